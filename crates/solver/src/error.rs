@@ -1,0 +1,41 @@
+//! Typed errors of the solver crate.
+use thiserror::Error;
+
+/// Everything that can go wrong when setting up or running a simulation.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum SolverError {
+    /// A model or solver parameter is outside its allowed range.
+    #[error("invalid parameter `{name}` = {value}: {allowed}")]
+    InvalidParameter {
+        name: &'static str,
+        value: f64,
+        allowed: &'static str,
+    },
+    /// A named initial condition that does not exist.
+    #[error("unknown initial condition `{0}`: allowed are i, ii, iii, iv, i', ii' or custom:vx,vy,a2,b2")]
+    UnknownInitialCondition(String),
+    /// A scheme name that does not exist.
+    #[error("unknown scheme `{0}`: allowed are spectral, paper-fd")]
+    UnknownScheme(String),
+    /// The Newton iteration of the exact steady-state solver did not converge.
+    #[error("steady-state Newton solve did not converge (residual {residual:e} after {iterations} iterations)")]
+    NewtonFailed { residual: f64, iterations: usize },
+}
+
+/// Shorthand for a finite-and-positive check.
+pub(crate) fn require(
+    ok: bool,
+    name: &'static str,
+    value: f64,
+    allowed: &'static str,
+) -> Result<(), SolverError> {
+    if ok && value.is_finite() {
+        Ok(())
+    } else {
+        Err(SolverError::InvalidParameter {
+            name,
+            value,
+            allowed,
+        })
+    }
+}

@@ -1,0 +1,29 @@
+//! The droplet model of Kitahata, Koyano, Kobayashi & Nagayama, "Energetics-based model for a
+//! diffusiophoretic motion of a deformable droplet": a co-moving pseudo-spectral integrator
+//! (default), the paper's finite-difference scheme (baseline), the exact steady state, the
+//! stop rules and the classification of Sect. 3.
+pub mod classify;
+pub mod error;
+pub mod etd;
+pub mod fft2;
+pub mod forces;
+pub mod grid;
+pub mod initial;
+pub mod params;
+pub mod run;
+pub mod scheme;
+pub mod shape;
+pub mod state;
+pub mod steady;
+
+pub use classify::StateClass;
+pub use error::SolverError;
+pub use initial::InitialCondition;
+pub use params::ModelParams;
+pub use run::{simulate, Run, RunOutcome, RunStatus, SeriesRow, SolverSettings};
+pub use scheme::{Scheme, SchemeKind};
+pub use state::DropletState;
+pub use steady::{SteadySolver, SteadyState};
+
+/// Version of the solver's numerics; part of every run's cache key.
+pub const SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-1");

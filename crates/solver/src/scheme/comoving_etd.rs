@@ -1,0 +1,386 @@
+//! Pseudo-spectral ETD2RK in the droplet's co-moving frame (design.md Sect. 2).
+//!
+//! With `w(xi, t) = u(xi + r_c(t), t)` the concentration equation (paper eq. 34) becomes
+//! `w_t = Lap w - w + v . grad w + Theta(a2, b2) / A`, in Fourier space
+//! `w_t = -(1 + k^2) w + i k.v w + Theta_hat / A`. The stiff part `-(1 + k^2)` is integrated
+//! exactly (ETD2RK, [`crate::etd`]); advection and the source form the explicit part. The
+//! droplet's own linear parts (`-eta_t / m`, `-kappa2 / eta2`) get the same exact treatment.
+//! Every ETD-RK step keeps the ODE's fixed points, so a steadily moving droplet is an exact
+//! fixed point of the scheme and its steady `v`, `s` do not depend on `dt`.
+//!
+//! Cost per step: `Theta`, `X Theta`, `Y Theta` at the predictor and at the new state (six
+//! row-pruned forward transforms, no inverse one: forces by Parseval, [`crate::forces`]), and
+//! two fused passes over the spectrum that advance the field and accumulate the forces.
+use crate::etd::{EtdCoef, SeparableExp};
+use crate::fft2::PrunedFft2;
+use crate::forces::{ForceSums, Forces, ShapeSampler};
+use crate::grid::Grid;
+use crate::params::ModelParams;
+use crate::scheme::{Field, Scheme};
+use crate::shape::ShapeParams;
+use crate::state::DropletState;
+use rustfft::num_complex::Complex64;
+
+/// Transforms of `Theta`, `X Theta`, `Y Theta` for one droplet shape, and its area.
+struct ShapeSpectra {
+    th: Vec<Complex64>,
+    thx: Vec<Complex64>,
+    thy: Vec<Complex64>,
+    area: f64,
+}
+
+impl ShapeSpectra {
+    fn new(len: usize) -> Self {
+        let z = Complex64::default();
+        Self {
+            th: vec![z; len],
+            thx: vec![z; len],
+            thy: vec![z; len],
+            area: 0.0,
+        }
+    }
+}
+
+/// Real-space scratch for sampling the shape.
+struct ShapeScratch {
+    t: Vec<f64>,
+    tx: Vec<f64>,
+    ty: Vec<f64>,
+}
+
+/// The co-moving spectral integrator of one run.
+pub struct ComovingEtd {
+    params: ModelParams,
+    grid: Grid,
+    fft: PrunedFft2,
+    sampler: ShapeSampler,
+    /// Hold the centre fixed (deformation-only runs, Appendix E).
+    pinned: bool,
+    state: DropletState,
+    /// Normalised Fourier coefficients of `w`, `[kx][ky]`.
+    w_hat: Vec<Complex64>,
+    w_new: Vec<Complex64>,
+    a_hat: Vec<Complex64>,
+    /// Explicit part of the field at the step's start.
+    n0: Vec<Complex64>,
+    /// Shape spectra at the current state, the predictor, and the candidate new state.
+    cur: ShapeSpectra,
+    pred: ShapeSpectra,
+    next: ShapeSpectra,
+    scratch: ShapeScratch,
+    /// Forces at the current state, if known.
+    forces0: Option<Forces>,
+    exp: SeparableExp,
+}
+
+impl ComovingEtd {
+    /// A run from `state` with `u = 0`, on an `n x n` grid.
+    pub fn new(
+        params: ModelParams,
+        n: usize,
+        state: DropletState,
+        pinned: bool,
+    ) -> Result<Self, crate::SolverError> {
+        params.validate()?;
+        let grid = Grid::new(n, params.box_len)?;
+        let len = grid.spectral_len();
+        let shape = ShapeParams {
+            radius: params.radius,
+            sigma: params.sigma,
+        };
+        let mut state = state;
+        if pinned {
+            state.vx = 0.0;
+            state.vy = 0.0;
+        }
+        let zero = Complex64::default();
+        Ok(Self {
+            params,
+            fft: PrunedFft2::new(n),
+            sampler: ShapeSampler::new(&grid, shape),
+            pinned,
+            state,
+            w_hat: vec![zero; len],
+            w_new: vec![zero; len],
+            a_hat: vec![zero; len],
+            n0: vec![zero; len],
+            cur: ShapeSpectra::new(len),
+            pred: ShapeSpectra::new(len),
+            next: ShapeSpectra::new(len),
+            scratch: ShapeScratch {
+                t: vec![0.0; n * n],
+                tx: vec![0.0; n * n],
+                ty: vec![0.0; n * n],
+            },
+            forces0: None,
+            exp: SeparableExp::default(),
+            grid,
+        })
+    }
+
+    /// The grid of the co-moving frame.
+    pub fn grid(&self) -> &Grid {
+        &self.grid
+    }
+
+    /// Replaces the co-moving field (normalised coefficients, `[kx][ky]`).
+    pub fn set_spectrum(&mut self, w_hat: &[Complex64]) {
+        self.w_hat.copy_from_slice(w_hat);
+        self.forces0 = None;
+    }
+
+    /// The co-moving field (normalised coefficients, `[kx][ky]`).
+    pub fn spectrum(&self) -> &[Complex64] {
+        &self.w_hat
+    }
+
+    /// Forces and area at the current state.
+    pub fn forces(&mut self) -> Forces {
+        self.ensure_current()
+    }
+
+    /// Samples the shape `(a2, b2)` and transforms it into `out`.
+    fn shape_spectra(
+        fft: &mut PrunedFft2,
+        sampler: &ShapeSampler,
+        scratch: &mut ShapeScratch,
+        a2: f64,
+        b2: f64,
+        out: &mut ShapeSpectra,
+    ) {
+        let (lo, hi) = sampler.span(a2, b2);
+        out.area = sampler.sample(a2, b2, &mut scratch.t, &mut scratch.tx, &mut scratch.ty);
+        fft.forward(&mut scratch.t, &mut out.th, lo, hi);
+        fft.forward(&mut scratch.tx, &mut out.thx, lo, hi);
+        fft.forward(&mut scratch.ty, &mut out.thy, lo, hi);
+    }
+
+    /// Shape spectra and forces at the current state (computed once per state).
+    fn ensure_current(&mut self) -> Forces {
+        if let Some(f) = self.forces0 {
+            return f;
+        }
+        let st = self.state;
+        Self::shape_spectra(
+            &mut self.fft,
+            &self.sampler,
+            &mut self.scratch,
+            st.a2,
+            st.b2,
+            &mut self.cur,
+        );
+        let f = crate::forces::spectral_forces(
+            &self.grid,
+            &self.w_hat,
+            &self.cur.th,
+            &self.cur.thx,
+            &self.cur.thy,
+            self.cur.area,
+        );
+        self.set_overdamped_velocity(&f);
+        self.forces0 = Some(f);
+        f
+    }
+
+    /// In the overdamped limit (`m = 0`) the velocity is `F / eta_t` at every state.
+    fn set_overdamped_velocity(&mut self, f: &Forces) {
+        if self.params.mass == 0.0 && !self.pinned {
+            self.state.vx = f.fx / self.params.eta_t;
+            self.state.vy = f.fy / self.params.eta_t;
+        }
+    }
+
+    /// Velocity used for advection at a stage with forces `f` and integrated velocity `v`.
+    fn stage_velocity(&self, f: &Forces, v: (f64, f64)) -> (f64, f64) {
+        let p = &self.params;
+        if self.pinned {
+            (0.0, 0.0)
+        } else if p.mass == 0.0 {
+            (f.fx / p.eta_t, f.fy / p.eta_t)
+        } else {
+            v
+        }
+    }
+
+    /// Explicit rates of `(vx, vy, a2, b2)` beyond their linear terms.
+    fn scalar_rates(&self, f: &Forces) -> [f64; 4] {
+        let p = &self.params;
+        let (ax, ay) = if self.pinned || p.mass == 0.0 {
+            (0.0, 0.0)
+        } else {
+            (f.fx / p.mass, f.fy / p.mass)
+        };
+        [ax, ay, f.ga / p.eta2, f.gb / p.eta2]
+    }
+}
+
+impl Scheme for ComovingEtd {
+    fn state(&self) -> DropletState {
+        self.state
+    }
+
+    fn step(&mut self, h: f64) {
+        let f0 = self.ensure_current();
+        let p = self.params;
+        let st = self.state;
+        let inertial = p.mass > 0.0 && !self.pinned;
+        let vel = EtdCoef::new(if inertial { -p.eta_t / p.mass } else { 0.0 }, h);
+        let shp = EtdCoef::new(-p.kappa2 / p.eta2, h);
+        let pos = EtdCoef::new(0.0, h);
+        self.exp.update(h, &self.grid.kx, &self.grid.ky);
+        let n = self.grid.n;
+        let da = self.grid.dx * self.grid.dx;
+        let norm = 1.0 / (n as f64 * n as f64);
+
+        // Predictor (ETD1) for the scalars; then the predictor's shape spectra.
+        let (v0x, v0y) = self.stage_velocity(&f0, (st.vx, st.vy));
+        let r0 = self.scalar_rates(&f0);
+        let (vxa, vya) = (vel.predict(st.vx, r0[0]), vel.predict(st.vy, r0[1]));
+        let a2a = shp.predict(st.a2, r0[2]);
+        let b2a = shp.predict(st.b2, r0[3]);
+        Self::shape_spectra(
+            &mut self.fft,
+            &self.sampler,
+            &mut self.scratch,
+            a2a,
+            b2a,
+            &mut self.pred,
+        );
+
+        // Field predictor fused with the forces at the predictor.
+        let src0 = norm / self.cur.area;
+        let mut sums = ForceSums::default();
+        for jx in 0..=n / 2 {
+            let (kx, kxf, wt, ex) = (
+                self.grid.kx_d[jx],
+                self.grid.kx[jx],
+                self.grid.column_weight(jx),
+                self.exp.ex[jx],
+            );
+            let row = jx * n..(jx + 1) * n;
+            let (w, th, n0, ah) = (
+                &self.w_hat[row.clone()],
+                &self.cur.th[row.clone()],
+                &mut self.n0[row.clone()],
+                &mut self.a_hat[row.clone()],
+            );
+            let (pth, pthx, pthy) = (
+                &self.pred.th[row.clone()],
+                &self.pred.thx[row.clone()],
+                &self.pred.thy[row],
+            );
+            for jy in 0..n {
+                let (ky, kyf) = (self.grid.ky_d[jy], self.grid.ky[jy]);
+                let c = -(1.0 + kxf * kxf + kyf * kyf);
+                let cf = EtdCoef::from_exp(ex * self.exp.ey[jy], c, h);
+                let kv = kx * v0x + ky * v0y;
+                let wv = w[jy];
+                let nw = Complex64::new(-kv * wv.im, kv * wv.re) + th[jy] * src0;
+                n0[jy] = nw;
+                let a = wv * cf.e + nw * cf.p1;
+                ah[jy] = a;
+                sums.add(wt, kx, ky, a, pth[jy], pthx[jy], pthy[jy]);
+            }
+        }
+        let fa = sums.finish(da, self.pred.area);
+
+        // Corrector for the scalars, then the new state's shape spectra.
+        let (vax, vay) = self.stage_velocity(&fa, (vxa, vya));
+        let ra = self.scalar_rates(&fa);
+        let mut next = DropletState {
+            x: pos.correct(pos.predict(st.x, v0x), v0x, vax),
+            y: pos.correct(pos.predict(st.y, v0y), v0y, vay),
+            vx: vel.correct(vxa, r0[0], ra[0]),
+            vy: vel.correct(vya, r0[1], ra[1]),
+            a2: shp.correct(a2a, r0[2], ra[2]),
+            b2: shp.correct(b2a, r0[3], ra[3]),
+        };
+        if !inertial {
+            (next.vx, next.vy) = (st.vx, st.vy);
+        }
+        if self.pinned {
+            (next.x, next.y) = (st.x, st.y);
+        }
+        let sample_next = next.is_finite() && next.deformation() < 1.0;
+        if sample_next {
+            Self::shape_spectra(
+                &mut self.fft,
+                &self.sampler,
+                &mut self.scratch,
+                next.a2,
+                next.b2,
+                &mut self.next,
+            );
+        }
+
+        // Field corrector fused with the forces at the new state.
+        let srca = norm / self.pred.area;
+        let mut sums = ForceSums::default();
+        for jx in 0..=n / 2 {
+            let (kx, kxf, wt, ex) = (
+                self.grid.kx_d[jx],
+                self.grid.kx[jx],
+                self.grid.column_weight(jx),
+                self.exp.ex[jx],
+            );
+            let row = jx * n..(jx + 1) * n;
+            let (ah, th, n0, wn) = (
+                &self.a_hat[row.clone()],
+                &self.pred.th[row.clone()],
+                &self.n0[row.clone()],
+                &mut self.w_new[row.clone()],
+            );
+            let (nth, nthx, nthy) = (
+                &self.next.th[row.clone()],
+                &self.next.thx[row.clone()],
+                &self.next.thy[row],
+            );
+            for jy in 0..n {
+                let (ky, kyf) = (self.grid.ky_d[jy], self.grid.ky[jy]);
+                let c = -(1.0 + kxf * kxf + kyf * kyf);
+                let cf = EtdCoef::from_exp(ex * self.exp.ey[jy], c, h);
+                let kv = kx * vax + ky * vay;
+                let av = ah[jy];
+                let na = Complex64::new(-kv * av.im, kv * av.re) + th[jy] * srca;
+                let w = av + (na - n0[jy]) * cf.p2;
+                wn[jy] = w;
+                sums.add(wt, kx, ky, w, nth[jy], nthx[jy], nthy[jy]);
+            }
+        }
+        std::mem::swap(&mut self.w_hat, &mut self.w_new);
+        self.state = next;
+        if sample_next {
+            std::mem::swap(&mut self.cur, &mut self.next);
+            let f = sums.finish(da, self.cur.area);
+            self.set_overdamped_velocity(&f);
+            self.forces0 = Some(f);
+        } else {
+            self.forces0 = None;
+        }
+    }
+
+    fn mass(&self) -> f64 {
+        self.params.box_len * self.params.box_len * self.w_hat[0].re
+    }
+
+    fn field(&mut self) -> Field {
+        // Lab frame: u(x) = w(x - r_c), an exact phase shift e^{-i k . r_c}.
+        let n = self.grid.n;
+        let (x, y) = (self.state.x, self.state.y);
+        let mut spec = self.w_hat.clone();
+        for jx in 0..=n / 2 {
+            let kx = self.grid.kx_d[jx];
+            for jy in 0..n {
+                let phase = -(kx * x + self.grid.ky_d[jy] * y);
+                spec[jx * n + jy] *= Complex64::from_polar(1.0, phase);
+            }
+        }
+        let mut values = vec![0.0; n * n];
+        self.fft.inverse(&mut spec, &mut values, 0, n - 1);
+        Field {
+            n,
+            len: self.params.box_len,
+            values,
+        }
+    }
+}

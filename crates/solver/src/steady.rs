@@ -1,0 +1,170 @@
+//! The exact co-moving steady state (design.md Sect. 2): for given `(v, a2, b2)` the field
+//! `u_hat = Theta_hat / (A (1 + k^2 - i k.v))` solves `0 = Lap u - u + v.grad u + Theta / A`
+//! (paper eq. S13), and the force balance `-eta_t v + F = 0`, `Ga - kappa2 a2 = 0`,
+//! `Gb - kappa2 b2 = 0` is solved by Newton. Same grid, `Theta` and force quadrature as
+//! [`crate::scheme::ComovingEtd`], so its fixed points coincide with the solver's.
+use crate::error::SolverError;
+use crate::fft2::PrunedFft2;
+use crate::forces::{spectral_forces, Forces, ShapeSampler};
+use crate::grid::Grid;
+use crate::params::ModelParams;
+use crate::shape::ShapeParams;
+use rustfft::num_complex::Complex64;
+
+/// Evaluates steady fields and force-balance residuals on an `N x N` co-moving grid.
+pub struct SteadySolver {
+    params: ModelParams,
+    grid: Grid,
+    fft: PrunedFft2,
+    sampler: ShapeSampler,
+    t: Vec<f64>,
+    tx: Vec<f64>,
+    ty: Vec<f64>,
+    th: Vec<Complex64>,
+    thx: Vec<Complex64>,
+    thy: Vec<Complex64>,
+    w: Vec<Complex64>,
+}
+
+/// A steady state found by [`SteadySolver::newton`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SteadyState {
+    /// Speed along +x (the motion direction is fixed to x by symmetry).
+    pub v: f64,
+    /// Shape amplitude along x (`b2 = 0`); `a2 < 0` is a droplet elongated across the motion.
+    pub a2: f64,
+    /// Max norm of the residual at the solution.
+    pub residual: f64,
+    pub iterations: usize,
+}
+
+impl SteadySolver {
+    pub fn new(params: ModelParams, n: usize) -> Result<Self, SolverError> {
+        params.validate()?;
+        let grid = Grid::new(n, params.box_len)?;
+        let shape = ShapeParams {
+            radius: params.radius,
+            sigma: params.sigma,
+        };
+        let len = grid.spectral_len();
+        let z = Complex64::default();
+        Ok(Self {
+            params,
+            fft: PrunedFft2::new(n),
+            sampler: ShapeSampler::new(&grid, shape),
+            t: vec![0.0; n * n],
+            tx: vec![0.0; n * n],
+            ty: vec![0.0; n * n],
+            th: vec![z; len],
+            thx: vec![z; len],
+            thy: vec![z; len],
+            w: vec![z; len],
+            grid,
+        })
+    }
+
+    /// The steady co-moving field (normalised Fourier coefficients, `[kx][ky]`) of a droplet
+    /// of shape `(a2, b2)` moving at `(vx, vy)`, and the forces it exerts.
+    pub fn field_and_forces(
+        &mut self,
+        vx: f64,
+        vy: f64,
+        a2: f64,
+        b2: f64,
+    ) -> (&[Complex64], Forces) {
+        let n = self.grid.n;
+        let (lo, hi) = self.sampler.span(a2, b2);
+        let area = self
+            .sampler
+            .sample(a2, b2, &mut self.t, &mut self.tx, &mut self.ty);
+        self.fft.forward(&mut self.t, &mut self.th, lo, hi);
+        self.fft.forward(&mut self.tx, &mut self.thx, lo, hi);
+        self.fft.forward(&mut self.ty, &mut self.thy, lo, hi);
+        let norm = 1.0 / (area * (n * n) as f64);
+        for jx in 0..=n / 2 {
+            let kx = self.grid.kx[jx];
+            let kxd = self.grid.kx_d[jx];
+            for jy in 0..n {
+                let ky = self.grid.ky[jy];
+                let kv = kxd * vx + self.grid.ky_d[jy] * vy;
+                let denom = Complex64::new(1.0 + kx * kx + ky * ky, -kv);
+                let i = jx * n + jy;
+                self.w[i] = self.th[i] * norm / denom;
+            }
+        }
+        let f = spectral_forces(&self.grid, &self.w, &self.th, &self.thx, &self.thy, area);
+        (&self.w, f)
+    }
+
+    /// Forces exerted by the steady field of a droplet `(a2, b2)` moving at `(vx, vy)`.
+    pub fn forces(&mut self, vx: f64, vy: f64, a2: f64, b2: f64) -> Forces {
+        self.field_and_forces(vx, vy, a2, b2).1
+    }
+
+    /// Force-balance residual `(-eta_t vx + Fx, Ga - kappa2 a2)` for motion along x, `b2 = 0`.
+    pub fn residual(&mut self, v: f64, a2: f64) -> [f64; 2] {
+        let f = self.forces(v, 0.0, a2, 0.0);
+        let p = self.params;
+        [-p.eta_t * v + f.fx, f.ga - p.kappa2 * a2]
+    }
+
+    /// Newton solve from `(v, a2)`. With `v = 0` only `a2` is solved (ID and IC states, where
+    /// `F = 0` by symmetry); otherwise `(v, a2)` (MD, MC states moving along x).
+    pub fn newton(&mut self, v0: f64, a20: f64, tol: f64) -> Result<SteadyState, SolverError> {
+        let moving = v0 != 0.0;
+        let (mut v, mut a2) = (v0, a20);
+        let h = 1e-6;
+        let mut res = self.residual(v, a2);
+        let norm = |r: [f64; 2]| {
+            if moving {
+                r[0].abs().max(r[1].abs())
+            } else {
+                r[1].abs()
+            }
+        };
+        for it in 0..50 {
+            if norm(res) < tol {
+                return Ok(SteadyState {
+                    v,
+                    a2,
+                    residual: norm(res),
+                    iterations: it,
+                });
+            }
+            let ra_p = self.residual(v, a2 + h);
+            let ra_m = self.residual(v, a2 - h);
+            let d_a = [
+                (ra_p[0] - ra_m[0]) / (2.0 * h),
+                (ra_p[1] - ra_m[1]) / (2.0 * h),
+            ];
+            let (dv, da) = if moving {
+                let rv_p = self.residual(v + h, a2);
+                let rv_m = self.residual(v - h, a2);
+                let d_v = [
+                    (rv_p[0] - rv_m[0]) / (2.0 * h),
+                    (rv_p[1] - rv_m[1]) / (2.0 * h),
+                ];
+                let det = d_v[0] * d_a[1] - d_a[0] * d_v[1];
+                (
+                    -(res[0] * d_a[1] - d_a[0] * res[1]) / det,
+                    -(d_v[0] * res[1] - res[0] * d_v[1]) / det,
+                )
+            } else {
+                (0.0, -res[1] / d_a[1])
+            };
+            // Damped step: never let |a2| jump past the small-deformation model.
+            let scale = (0.2 / da.abs().max(1e-300)).min(1.0);
+            v += dv * scale;
+            a2 += da * scale;
+            res = self.residual(v, a2);
+        }
+        Err(SolverError::NewtonFailed {
+            residual: norm(res),
+            iterations: 50,
+        })
+    }
+
+    pub fn grid(&self) -> &Grid {
+        &self.grid
+    }
+}
