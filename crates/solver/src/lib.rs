@@ -2,6 +2,7 @@
 //! diffusiophoretic motion of a deformable droplet": a co-moving pseudo-spectral integrator
 //! (default), the paper's finite-difference scheme (baseline), the exact steady state, the
 //! stop rules and the classification of Sect. 3.
+pub mod bessel;
 pub mod classify;
 pub mod error;
 pub mod etd;

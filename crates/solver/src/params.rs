@@ -71,10 +71,10 @@ impl ModelParams {
             "a finite number >= 0 (0 = overdamped)",
         )?;
         require(
-            self.box_len > 2.0 * (2.0 * self.radius + 20.0 * self.sigma),
+            self.box_len > 2.0 * (self.radius + crate::shape::BAND_Q * self.sigma),
             "box_len",
             self.box_len,
-            "a finite number > 2 (2 R + 20 sigma), so that a droplet with s < 1 fits in the box",
+            "a finite number > 2 (R + 16 sigma), so that the droplet and its interface fit in the box",
         )?;
         Ok(())
     }
@@ -96,7 +96,7 @@ mod tests {
             other => panic!("expected eta_t error, got {other:?}"),
         }
         let small_box = ModelParams {
-            box_len: 3.0,
+            box_len: 2.5,
             ..Default::default()
         };
         assert!(small_box.validate().is_err());

@@ -96,6 +96,17 @@ impl SteadySolver {
         (&self.w, f)
     }
 
+    /// The steady field in real space (co-moving, droplet at the grid centre; row-major,
+    /// `values[iy * n + ix]` at `((ix - n/2) dx, (iy - n/2) dx)`).
+    pub fn field(&mut self, vx: f64, vy: f64, a2: f64, b2: f64) -> Vec<f64> {
+        let n = self.grid.n;
+        self.field_and_forces(vx, vy, a2, b2);
+        let mut spec = self.w.clone();
+        let mut out = vec![0.0; n * n];
+        self.fft.inverse(&mut spec, &mut out, 0, n - 1);
+        out
+    }
+
     /// Forces exerted by the steady field of a droplet `(a2, b2)` moving at `(vx, vy)`.
     pub fn forces(&mut self, vx: f64, vy: f64, a2: f64, b2: f64) -> Forces {
         self.field_and_forces(vx, vy, a2, b2).1

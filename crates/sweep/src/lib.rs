@@ -1,1 +1,16 @@
+//! Sweeps of the droplet model over `(eta_t, kappa2)`: YAML specs, content-keyed run store
+//! with resume, parallel execution, point classification, Parquet tables and pictures.
+//! Data flows one way: spec -> plan -> runs (store) -> tables -> pictures.
+pub mod error;
+pub mod execute;
+pub mod phase;
+pub mod plan;
+pub mod plot;
+pub mod spec;
+pub mod status;
+pub mod store;
+pub mod tables;
 
+pub use error::{SpecError, SweepError};
+pub use execute::{run_sweep, SweepOptions, SweepSummary};
+pub use spec::SweepSpec;

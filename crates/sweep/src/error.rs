@@ -1,0 +1,54 @@
+//! Typed errors of the sweep crate.
+use std::path::PathBuf;
+use thiserror::Error;
+
+/// A problem with a YAML spec: where it is, what was found, what is allowed.
+#[derive(Debug, Error, Clone, PartialEq)]
+#[error("{file}:{line}: `{path}` = {value}: {allowed}", line = line.map(|l| l.to_string()).unwrap_or_else(|| "?".into()))]
+pub struct SpecError {
+    pub file: String,
+    /// Dotted key path, e.g. `grid.eta_t.step`.
+    pub path: String,
+    /// 1-based line of the key, when it can be located.
+    pub line: Option<usize>,
+    pub value: String,
+    pub allowed: String,
+}
+
+/// Everything that can go wrong in a sweep.
+#[derive(Debug, Error)]
+pub enum SweepError {
+    #[error(transparent)]
+    Spec(#[from] SpecError),
+    #[error("{path}: {source}")]
+    Io {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+    #[error("{0} is in use by another droplet process (lock held on {1}); wait for it or use another --out")]
+    Locked(PathBuf, PathBuf),
+    #[error(transparent)]
+    Solver(#[from] droplet_solver::SolverError),
+    #[error("parquet: {0}")]
+    Parquet(#[from] polars::error::PolarsError),
+    #[error("plot: {0}")]
+    Plot(String),
+    #[error("{0}")]
+    Invalid(String),
+}
+
+impl SweepError {
+    /// Wraps an I/O error with the path it concerns.
+    pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
+        Self::Io {
+            path: path.into(),
+            source,
+        }
+    }
+
+    /// True for errors in what the user gave (exit code 2), false for failures while working.
+    pub fn is_user_error(&self) -> bool {
+        matches!(self, Self::Spec(_) | Self::Locked(..) | Self::Invalid(_))
+    }
+}

@@ -1,0 +1,174 @@
+//! Runs a sweep: the pending tasks of a plan in a rayon pool, each persisted as it finishes,
+//! with progress (runs done / total, ETA, classes so far), then the final tables and picture.
+use crate::error::SweepError;
+use crate::plan::{plan, Plan, Task};
+use crate::spec::SweepSpec;
+use crate::store::{RunRecord, Store};
+use crate::tables;
+use droplet_solver::{simulate, SOLVER_VERSION};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use rayon::prelude::*;
+use serde::Serialize;
+use std::collections::BTreeMap;
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+use std::time::Instant;
+
+/// How to run a sweep.
+#[derive(Debug, Clone, Default)]
+pub struct SweepOptions {
+    /// Worker threads (default: all cores).
+    pub jobs: Option<usize>,
+    /// Show a progress bar (only drawn on a terminal).
+    pub progress: bool,
+}
+
+/// What a finished sweep did.
+#[derive(Debug, Clone, Serialize)]
+pub struct SweepSummary {
+    pub name: String,
+    pub output: PathBuf,
+    pub points: usize,
+    pub runs: usize,
+    /// Runs computed by this invocation.
+    pub computed: usize,
+    /// Runs found in the store (resumed or shared with another sweep).
+    pub reused: usize,
+    pub wall_s: f64,
+    pub jobs: usize,
+    pub point_classes: BTreeMap<String, usize>,
+    pub run_statuses: BTreeMap<String, usize>,
+    pub tables: Vec<PathBuf>,
+}
+
+/// Runs one task to a record.
+pub fn run_task(task: &Task) -> Result<RunRecord, SweepError> {
+    let outcome = simulate(&task.params, &task.ic, &task.settings)?;
+    Ok(RunRecord {
+        key: task.key.clone(),
+        params: task.params,
+        ic: task.ic.clone(),
+        settings: task.settings,
+        solver_version: SOLVER_VERSION.to_string(),
+        outcome,
+    })
+}
+
+fn progress_bar(total: u64, done: u64, show: bool) -> ProgressBar {
+    let pb = ProgressBar::with_draw_target(
+        Some(total),
+        if show && std::io::stderr().is_terminal() {
+            ProgressDrawTarget::stderr()
+        } else {
+            ProgressDrawTarget::hidden()
+        },
+    );
+    pb.set_style(
+        ProgressStyle::with_template(
+            "{bar:30} {pos}/{len} runs  {elapsed_precise} elapsed, ETA {eta_precise}  {msg}",
+        )
+        .expect("valid template"),
+    );
+    pb.set_position(done);
+    pb.reset_eta();
+    pb
+}
+
+/// Runs every pending task of `spec` into `out` and writes the tables.
+pub fn run_sweep(
+    spec: &SweepSpec,
+    out: &Path,
+    opts: &SweepOptions,
+) -> Result<SweepSummary, SweepError> {
+    let started = Instant::now();
+    let store = Store::open_locked(out)?;
+    store.write_file("spec.yaml", spec.source.as_bytes())?;
+    let plan = plan(spec);
+    let pending: Vec<&Task> = plan.tasks.iter().filter(|t| !store.has(&t.key)).collect();
+    let reused = plan.tasks.len() - pending.len();
+    let jobs = opts
+        .jobs
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
+        .max(1);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(jobs)
+        .build()
+        .map_err(|e| SweepError::Invalid(format!("cannot start {jobs} worker threads: {e}")))?;
+    let pb = progress_bar(plan.tasks.len() as u64, reused as u64, opts.progress);
+    let counts: Mutex<BTreeMap<String, usize>> = Mutex::new(BTreeMap::new());
+    pool.install(|| {
+        pending
+            .par_iter()
+            .try_for_each(|task| -> Result<(), SweepError> {
+                let record = run_task(task)?;
+                store.save(&record)?;
+                let label = match record.outcome.class {
+                    Some(c) if record.outcome.status == droplet_solver::RunStatus::Steady => {
+                        c.as_str().to_string()
+                    }
+                    _ => record.outcome.status.as_str().to_string(),
+                };
+                let mut c = counts.lock().expect("no panics while held");
+                *c.entry(label).or_default() += 1;
+                let msg = c
+                    .iter()
+                    .map(|(k, v)| format!("{k} {v}"))
+                    .collect::<Vec<_>>()
+                    .join(", ");
+                drop(c);
+                pb.set_message(msg);
+                pb.inc(1);
+                Ok(())
+            })
+    })?;
+    pb.finish_and_clear();
+    let tables = write_tables(&store, spec, &plan)?;
+    let records = store.load_many(plan.tasks.iter().map(|t| t.key.as_str()));
+    let mut point_classes = BTreeMap::new();
+    for (c, _) in tables::point_classes(&plan, &records) {
+        *point_classes.entry(c.label).or_default() += 1;
+    }
+    let mut run_statuses = BTreeMap::new();
+    for r in records.values() {
+        *run_statuses
+            .entry(r.outcome.status.as_str().to_string())
+            .or_default() += 1;
+    }
+    Ok(SweepSummary {
+        name: spec.name.clone(),
+        output: out.to_path_buf(),
+        points: plan.points.len(),
+        runs: plan.tasks.len(),
+        computed: pending.len(),
+        reused,
+        wall_s: started.elapsed().as_secs_f64(),
+        jobs,
+        point_classes,
+        run_statuses,
+        tables,
+    })
+}
+
+/// Writes `runs.parquet` and `points.parquet` for `plan` from the store.
+pub fn write_tables(
+    store: &Store,
+    spec: &SweepSpec,
+    plan: &Plan,
+) -> Result<Vec<PathBuf>, SweepError> {
+    let records = store.load_many(plan.tasks.iter().map(|t| t.key.as_str()));
+    let meta = tables::metadata(Some(&spec.source));
+    let runs_path = store.dir().join("runs.parquet");
+    let points_path = store.dir().join("points.parquet");
+    tables::write_parquet(
+        &mut tables::runs_frame(plan, &records)?,
+        &runs_path,
+        meta.clone(),
+    )?;
+    tables::write_parquet(
+        &mut tables::points_frame(plan, &records)?,
+        &points_path,
+        meta,
+    )?;
+    Ok(vec![runs_path, points_path])
+}

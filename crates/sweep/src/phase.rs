@@ -1,0 +1,140 @@
+//! Point classification from the runs of one point (paper Sect. 3).
+//!
+//! Rules:
+//! - a run that ended `steady` counts with its class (IC, ID, MD, MC);
+//! - a run that hit `t_max` counts with the class of its final state (the paper's
+//!   "not classified" points come from such slowly converging runs), and is counted in
+//!   `n_t_max` so it can be told apart;
+//! - a `diverged` run has no class and does not count; it is counted in `n_diverged`;
+//! - one distinct class -> that class; two -> a bistable pair written in the order
+//!   IC, ID, MD, MC (`IC/MD`, `ID/MD`, `IC/MC`, ...); three or more -> `not classified`;
+//!   no classified run at all (every run diverged, or none finished) -> `diverged` / `missing`.
+use crate::store::RunRecord;
+use droplet_solver::StateClass;
+use std::collections::BTreeSet;
+
+/// Label of a point whose runs gave three or more classes.
+pub const NOT_CLASSIFIED: &str = "not classified";
+/// Label of a point whose runs all diverged.
+pub const DIVERGED: &str = "diverged";
+/// Label of a point without finished runs.
+pub const MISSING: &str = "missing";
+
+/// Classification of one point.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PointClass {
+    pub label: String,
+    pub n_runs: usize,
+    pub n_steady: usize,
+    pub n_t_max: usize,
+    pub n_diverged: usize,
+}
+
+/// Classifies a point from its runs (any order).
+pub fn classify_point<'a>(runs: impl IntoIterator<Item = &'a RunRecord>) -> PointClass {
+    let mut classes = BTreeSet::new();
+    let (mut n_runs, mut n_steady, mut n_t_max, mut n_diverged) = (0, 0, 0, 0);
+    for r in runs {
+        n_runs += 1;
+        match r.outcome.status {
+            droplet_solver::RunStatus::Steady => n_steady += 1,
+            droplet_solver::RunStatus::TMax => n_t_max += 1,
+            droplet_solver::RunStatus::Diverged => n_diverged += 1,
+        }
+        if let Some(c) = r.outcome.class {
+            classes.insert(c);
+        }
+    }
+    let label = label_of(&classes, n_runs, n_diverged);
+    PointClass {
+        label,
+        n_runs,
+        n_steady,
+        n_t_max,
+        n_diverged,
+    }
+}
+
+fn label_of(classes: &BTreeSet<StateClass>, n_runs: usize, n_diverged: usize) -> String {
+    let names: Vec<&str> = classes.iter().map(|c| c.as_str()).collect();
+    match names.len() {
+        0 if n_runs == 0 => MISSING.into(),
+        0 if n_diverged > 0 => DIVERGED.into(),
+        0 => MISSING.into(),
+        1 | 2 => names.join("/"),
+        _ => NOT_CLASSIFIED.into(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use droplet_solver::{InitialCondition, ModelParams, RunOutcome, RunStatus, SolverSettings};
+
+    fn rec(status: RunStatus, class: Option<StateClass>) -> RunRecord {
+        RunRecord {
+            key: String::new(),
+            params: ModelParams::default(),
+            ic: InitialCondition::parse("i").unwrap(),
+            settings: SolverSettings::default(),
+            solver_version: String::new(),
+            outcome: RunOutcome {
+                status,
+                class,
+                state: Default::default(),
+                v: 0.0,
+                s: 0.0,
+                t_end: 0.0,
+                t_steady: None,
+                steps: 0,
+                wall_s: 0.0,
+                series: vec![],
+            },
+        }
+    }
+
+    #[test]
+    fn single_bistable_not_classified_and_divergence() {
+        use RunStatus::*;
+        use StateClass::*;
+        let p = |v: Vec<RunRecord>| classify_point(&v).label;
+        assert_eq!(p(vec![rec(Steady, Some(IC)); 4]), "IC");
+        assert_eq!(
+            p(vec![
+                rec(Steady, Some(MD)),
+                rec(Steady, Some(IC)),
+                rec(Steady, Some(IC))
+            ]),
+            "IC/MD"
+        );
+        assert_eq!(
+            p(vec![rec(Steady, Some(MD)), rec(Steady, Some(ID))]),
+            "ID/MD"
+        );
+        assert_eq!(
+            p(vec![rec(Steady, Some(MC)), rec(Steady, Some(IC))]),
+            "IC/MC"
+        );
+        assert_eq!(
+            p(vec![
+                rec(Steady, Some(MC)),
+                rec(Steady, Some(IC)),
+                rec(TMax, Some(MD))
+            ]),
+            NOT_CLASSIFIED
+        );
+        // Diverged runs do not count; t_max runs count by their final state.
+        let mixed = vec![
+            rec(Steady, Some(ID)),
+            rec(Diverged, None),
+            rec(TMax, Some(ID)),
+        ];
+        let c = classify_point(&mixed);
+        assert_eq!(
+            (c.label.as_str(), c.n_diverged, c.n_t_max, c.n_steady),
+            ("ID", 1, 1, 1)
+        );
+        assert_eq!(p(vec![rec(Diverged, None); 4]), DIVERGED);
+        assert_eq!(p(vec![]), MISSING);
+    }
+}

@@ -1,0 +1,100 @@
+//! Progress and class counts of a sweep directory, finished or not, and its picture.
+use crate::error::SweepError;
+use crate::plan::plan;
+use crate::plot::{phase_map, MapPoint};
+use crate::spec::{parse, SweepSpec};
+use crate::store::Store;
+use crate::tables::point_classes;
+use serde::Serialize;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+/// The state of a sweep directory.
+#[derive(Debug, Clone, Serialize)]
+pub struct SweepStatus {
+    pub name: String,
+    pub output: PathBuf,
+    pub points: usize,
+    pub runs_total: usize,
+    pub runs_done: usize,
+    pub complete: bool,
+    pub run_statuses: BTreeMap<String, usize>,
+    pub run_classes: BTreeMap<String, usize>,
+    /// Point labels over the points whose runs are all done.
+    pub point_classes: BTreeMap<String, usize>,
+    pub cpu_s: f64,
+}
+
+/// The spec stored in a sweep directory.
+pub fn stored_spec(dir: &Path) -> Result<SweepSpec, SweepError> {
+    let path = dir.join("spec.yaml");
+    let text = std::fs::read_to_string(&path).map_err(|e| SweepError::io(&path, e))?;
+    Ok(parse(&text, &path.display().to_string(), "sweep")?)
+}
+
+/// Reads the status of the sweep in `dir`.
+pub fn status(dir: &Path) -> Result<SweepStatus, SweepError> {
+    let store = Store::open_read(dir)?;
+    let spec = stored_spec(dir)?;
+    let plan = plan(&spec);
+    let records = store.load_many(plan.tasks.iter().map(|t| t.key.as_str()));
+    let mut run_statuses = BTreeMap::new();
+    let mut run_classes = BTreeMap::new();
+    let mut cpu_s = 0.0;
+    for r in records.values() {
+        *run_statuses
+            .entry(r.outcome.status.as_str().to_string())
+            .or_default() += 1;
+        let c = r
+            .outcome
+            .class
+            .map_or("none".to_string(), |c| c.as_str().to_string());
+        *run_classes.entry(c).or_default() += 1;
+        cpu_s += r.outcome.wall_s;
+    }
+    let mut point_counts = BTreeMap::new();
+    for (c, per_ic) in point_classes(&plan, &records) {
+        if per_ic.iter().all(|x| x.is_some()) {
+            *point_counts.entry(c.label).or_default() += 1;
+        }
+    }
+    Ok(SweepStatus {
+        name: spec.name,
+        output: dir.to_path_buf(),
+        points: plan.points.len(),
+        runs_total: plan.tasks.len(),
+        runs_done: records.len(),
+        complete: records.len() == plan.tasks.len(),
+        run_statuses,
+        run_classes,
+        point_classes: point_counts,
+        cpu_s,
+    })
+}
+
+/// Draws `phase_map.png` / `.svg` of the sweep in `dir` (points without all runs: `missing`).
+pub fn plot(dir: &Path) -> Result<Vec<PathBuf>, SweepError> {
+    let store = Store::open_read(dir)?;
+    let spec = stored_spec(dir)?;
+    let plan = plan(&spec);
+    let records = store.load_many(plan.tasks.iter().map(|t| t.key.as_str()));
+    let pts: Vec<MapPoint> = point_classes(&plan, &records)
+        .into_iter()
+        .zip(&plan.points)
+        .map(|((c, per_ic), &(eta_t, kappa2))| MapPoint {
+            eta_t,
+            kappa2,
+            label: if per_ic.iter().all(|x| x.is_some()) {
+                c.label
+            } else {
+                "missing".into()
+            },
+        })
+        .collect();
+    let title = format!(
+        "{}: PDE phase map ({} ICs per point)",
+        spec.name,
+        plan.ic_names.len()
+    );
+    phase_map(dir, "phase_map", &title, &pts, &[])
+}

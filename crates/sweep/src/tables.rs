@@ -1,0 +1,252 @@
+//! Parquet tables: `runs.parquet` (one row per run), `points.parquet` (one row per point),
+//! time series; each with key-value metadata (spec, its hash, versions, git commit).
+use crate::error::SweepError;
+use crate::phase::{classify_point, PointClass};
+use crate::plan::Plan;
+use crate::store::RunRecord;
+use droplet_solver::SeriesRow;
+use polars::prelude::*;
+use sha2::{Digest, Sha256};
+use std::collections::HashMap;
+use std::fs::File;
+use std::path::Path;
+
+/// Git commit of the build (`-dirty` when the tree had changes).
+pub const GIT_COMMIT: &str = env!("DROPLET_GIT_COMMIT");
+
+/// Metadata written into every table.
+pub fn metadata(spec_text: Option<&str>) -> Vec<(String, String)> {
+    let mut kv = vec![
+        (
+            "droplet_version".to_string(),
+            env!("CARGO_PKG_VERSION").to_string(),
+        ),
+        (
+            "solver_version".to_string(),
+            droplet_solver::SOLVER_VERSION.to_string(),
+        ),
+        ("git_commit".to_string(), GIT_COMMIT.to_string()),
+    ];
+    if let Some(text) = spec_text {
+        let hash: String = Sha256::digest(text.as_bytes())
+            .iter()
+            .map(|b| format!("{b:02x}"))
+            .collect();
+        kv.push(("spec".to_string(), text.to_string()));
+        kv.push(("spec_sha256".to_string(), hash));
+    }
+    kv
+}
+
+/// Writes `df` to `path` (atomically) with metadata.
+pub fn write_parquet(
+    df: &mut DataFrame,
+    path: &Path,
+    meta: Vec<(String, String)>,
+) -> Result<(), SweepError> {
+    let tmp = path.with_extension(format!("{}.tmp", std::process::id()));
+    let file = File::create(&tmp).map_err(|e| SweepError::io(&tmp, e))?;
+    ParquetWriter::new(file)
+        .with_key_value_metadata(Some(KeyValueMetadata::from_static(meta)))
+        .finish(df)?;
+    std::fs::rename(&tmp, path).map_err(|e| SweepError::io(path, e))?;
+    Ok(())
+}
+
+/// Reads the key-value metadata of a Parquet file.
+pub fn read_metadata(path: &Path) -> Result<HashMap<String, String>, SweepError> {
+    let file = File::open(path).map_err(|e| SweepError::io(path, e))?;
+    let mut reader = ParquetReader::new(file);
+    let md = reader.get_metadata()?;
+    Ok(md
+        .key_value_metadata()
+        .iter()
+        .flatten()
+        .filter_map(|kv| kv.value.clone().map(|v| (kv.key.clone(), v)))
+        .collect())
+}
+
+fn f64_col(name: &str, v: Vec<f64>) -> Column {
+    Column::new(name.into(), v)
+}
+
+fn str_col(name: &str, v: Vec<String>) -> Column {
+    Column::new(name.into(), v)
+}
+
+/// The runs table for `plan` from the stored `records` (runs not stored are left out).
+pub fn runs_frame(
+    plan: &Plan,
+    records: &HashMap<String, RunRecord>,
+) -> Result<DataFrame, SweepError> {
+    let rows: Vec<(&crate::plan::Task, &RunRecord)> = plan
+        .tasks
+        .iter()
+        .filter_map(|t| records.get(&t.key).map(|r| (t, r)))
+        .collect();
+    let f = |g: &dyn Fn(&RunRecord) -> f64| rows.iter().map(|(_, r)| g(r)).collect::<Vec<f64>>();
+    let cols = vec![
+        Column::new(
+            "point".into(),
+            rows.iter()
+                .map(|(t, _)| t.point as u32)
+                .collect::<Vec<u32>>(),
+        ),
+        f64_col("eta_t", f(&|r| r.params.eta_t)),
+        f64_col("kappa2", f(&|r| r.params.kappa2)),
+        str_col("ic", rows.iter().map(|(t, _)| t.ic.name.clone()).collect()),
+        f64_col("ic_vx", f(&|r| r.ic.vx)),
+        f64_col("ic_vy", f(&|r| r.ic.vy)),
+        f64_col("ic_a2", f(&|r| r.ic.a2)),
+        f64_col("ic_b2", f(&|r| r.ic.b2)),
+        f64_col("eta2", f(&|r| r.params.eta2)),
+        f64_col("radius", f(&|r| r.params.radius)),
+        f64_col("sigma", f(&|r| r.params.sigma)),
+        f64_col("box_len", f(&|r| r.params.box_len)),
+        f64_col("mass", f(&|r| r.params.mass)),
+        str_col(
+            "scheme",
+            rows.iter()
+                .map(|(_, r)| r.settings.scheme.to_string())
+                .collect(),
+        ),
+        Column::new(
+            "n".into(),
+            rows.iter()
+                .map(|(_, r)| r.settings.n as u32)
+                .collect::<Vec<u32>>(),
+        ),
+        f64_col("dt", f(&|r| r.settings.dt)),
+        f64_col("t_max", f(&|r| r.settings.t_max)),
+        f64_col("steady_tol", f(&|r| r.settings.steady_tol)),
+        f64_col("steady_window", f(&|r| r.settings.steady_window)),
+        str_col(
+            "status",
+            rows.iter()
+                .map(|(_, r)| r.outcome.status.as_str().to_string())
+                .collect(),
+        ),
+        Column::new(
+            "class".into(),
+            rows.iter()
+                .map(|(_, r)| r.outcome.class.map(|c| c.as_str().to_string()))
+                .collect::<Vec<Option<String>>>(),
+        ),
+        f64_col("v", f(&|r| r.outcome.v)),
+        f64_col("s", f(&|r| r.outcome.s)),
+        f64_col("vx", f(&|r| r.outcome.state.vx)),
+        f64_col("vy", f(&|r| r.outcome.state.vy)),
+        f64_col("a2", f(&|r| r.outcome.state.a2)),
+        f64_col("b2", f(&|r| r.outcome.state.b2)),
+        f64_col("t_end", f(&|r| r.outcome.t_end)),
+        Column::new(
+            "t_steady".into(),
+            rows.iter()
+                .map(|(_, r)| r.outcome.t_steady)
+                .collect::<Vec<Option<f64>>>(),
+        ),
+        Column::new(
+            "steps".into(),
+            rows.iter()
+                .map(|(_, r)| r.outcome.steps)
+                .collect::<Vec<u64>>(),
+        ),
+        f64_col("wall_s", f(&|r| r.outcome.wall_s)),
+        str_col("key", rows.iter().map(|(t, _)| t.key.clone()).collect()),
+    ];
+    Ok(DataFrame::new(rows.len(), cols)?)
+}
+
+/// Classification of every point of `plan` from the stored runs.
+pub fn point_classes(
+    plan: &Plan,
+    records: &HashMap<String, RunRecord>,
+) -> Vec<(PointClass, Vec<Option<String>>)> {
+    let mut by_point: Vec<Vec<Option<&RunRecord>>> =
+        vec![vec![None; plan.ic_names.len()]; plan.points.len()];
+    for t in &plan.tasks {
+        by_point[t.point][t.ic_index] = records.get(&t.key);
+    }
+    by_point
+        .iter()
+        .map(|runs| {
+            let class = classify_point(runs.iter().flatten().copied());
+            let per_ic = runs
+                .iter()
+                .map(|r| {
+                    r.map(|r| match r.outcome.status {
+                        droplet_solver::RunStatus::Diverged => "diverged".to_string(),
+                        _ => r
+                            .outcome
+                            .class
+                            .map(|c| c.as_str().to_string())
+                            .unwrap_or_default(),
+                    })
+                })
+                .collect();
+            (class, per_ic)
+        })
+        .collect()
+}
+
+/// The points table: coordinates, point class, the class from each initial condition.
+pub fn points_frame(
+    plan: &Plan,
+    records: &HashMap<String, RunRecord>,
+) -> Result<DataFrame, SweepError> {
+    let classes = point_classes(plan, records);
+    let n = plan.points.len();
+    let mut cols = vec![
+        Column::new("point".into(), (0..n as u32).collect::<Vec<u32>>()),
+        f64_col("eta_t", plan.points.iter().map(|p| p.0).collect()),
+        f64_col("kappa2", plan.points.iter().map(|p| p.1).collect()),
+        str_col(
+            "class",
+            classes.iter().map(|(c, _)| c.label.clone()).collect(),
+        ),
+    ];
+    for (i, name) in plan.ic_names.iter().enumerate() {
+        cols.push(Column::new(
+            format!("class_{name}").as_str().into(),
+            classes
+                .iter()
+                .map(|(_, per)| per[i].clone())
+                .collect::<Vec<Option<String>>>(),
+        ));
+    }
+    for (name, get) in [
+        (
+            "n_runs",
+            (|c: &PointClass| c.n_runs) as fn(&PointClass) -> usize,
+        ),
+        ("n_steady", |c| c.n_steady),
+        ("n_t_max", |c| c.n_t_max),
+        ("n_diverged", |c| c.n_diverged),
+    ] {
+        cols.push(Column::new(
+            name.into(),
+            classes
+                .iter()
+                .map(|(c, _)| get(c) as u32)
+                .collect::<Vec<u32>>(),
+        ));
+    }
+    Ok(DataFrame::new(n, cols)?)
+}
+
+/// The time series of one run.
+pub fn series_frame(series: &[SeriesRow]) -> Result<DataFrame, SweepError> {
+    let f = |g: fn(&SeriesRow) -> f64| series.iter().map(g).collect::<Vec<f64>>();
+    let cols = vec![
+        f64_col("t", f(|r| r.t)),
+        f64_col("x", f(|r| r.x)),
+        f64_col("y", f(|r| r.y)),
+        f64_col("vx", f(|r| r.vx)),
+        f64_col("vy", f(|r| r.vy)),
+        f64_col("a2", f(|r| r.a2)),
+        f64_col("b2", f(|r| r.b2)),
+        f64_col("v", f(|r| r.v)),
+        f64_col("s", f(|r| r.s)),
+    ];
+    Ok(DataFrame::new(series.len(), cols)?)
+}

@@ -1,0 +1,80 @@
+//! Command-line front end.
+mod plot;
+mod simulate;
+mod status;
+mod sweep;
+
+use clap::{Parser, Subcommand};
+
+/// Map the phase diagram of a self-propelled, deformable droplet (Kitahata, Koyano,
+/// Kobayashi & Nagayama). Every command that prints results accepts --json.
+#[derive(Parser)]
+#[command(name = "droplet", version, about, long_about = None, after_help = "Quick start:\n  droplet sweep sweeps/smoke.yaml      # coarse phase map in ~1 minute\n  droplet plot out/smoke               # out/smoke/phase_map.png\n  droplet simulate --eta-t 0.085 --kappa2 0.112 --ic i --picture md.png")]
+pub struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    Simulate(simulate::Args),
+    Sweep(sweep::Args),
+    Status(status::Args),
+    Plot(plot::Args),
+}
+
+/// Exit codes: 0 success, 1 failure while working, 2 bad input.
+pub fn main() -> i32 {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Simulate(a) => simulate::run(a),
+        Command::Sweep(a) => sweep::run(a),
+        Command::Status(a) => status::run(a),
+        Command::Plot(a) => plot::run(a),
+    };
+    match result {
+        Ok(()) => 0,
+        Err(e) => {
+            eprintln!("error: {}", e.message);
+            e.code
+        }
+    }
+}
+
+/// An error with its exit code.
+pub struct CliError {
+    pub message: String,
+    pub code: i32,
+}
+
+impl CliError {
+    pub fn usage(message: impl Into<String>) -> Self {
+        Self {
+            message: message.into(),
+            code: 2,
+        }
+    }
+}
+
+impl From<droplet_sweep::SweepError> for CliError {
+    fn from(e: droplet_sweep::SweepError) -> Self {
+        Self {
+            code: if e.is_user_error() { 2 } else { 1 },
+            message: e.to_string(),
+        }
+    }
+}
+
+impl From<droplet_solver::SolverError> for CliError {
+    fn from(e: droplet_solver::SolverError) -> Self {
+        Self::usage(e.to_string())
+    }
+}
+
+/// Prints one JSON object.
+pub fn print_json<T: serde::Serialize>(value: &T) {
+    println!(
+        "{}",
+        serde_json::to_string_pretty(value).expect("serialisable")
+    );
+}

@@ -1,0 +1,211 @@
+//! `droplet simulate`: one run, its class, and optionally its time series and Fig. 1 picture.
+use super::{print_json, CliError};
+use droplet_solver::{InitialCondition, ModelParams, Run, SchemeKind, SolverSettings};
+use droplet_sweep::{plot, tables};
+use serde::Serialize;
+use std::path::PathBuf;
+
+/// Simulate one droplet from one initial condition until it is steady, reaches --t-max, or
+/// diverges; print status, class (IC/ID/MD/MC), final v, s and timings.
+#[derive(clap::Args)]
+#[command(
+    after_help = "Examples:\n  droplet simulate --eta-t 0.085 --kappa2 0.112 --ic i                 # MD (Fig. 1c)\n  droplet simulate --eta-t 0.085 --kappa2 0.116 --ic i --json          # ID (Fig. 1b)\n  droplet simulate --eta-t 0.085 --kappa2 0.120 --ic i --series s.parquet --picture ic.png"
+)]
+pub struct Args {
+    /// Translational friction eta_t (> 0).
+    #[arg(long)]
+    eta_t: f64,
+    /// Mode-2 stiffness kappa2 (>= 0).
+    #[arg(long)]
+    kappa2: f64,
+    /// Initial condition: i, ii, iii, iv (paper Sect. 3), i', ii' (Fig. 2b; also ip, iip), or custom:vx,vy,a2,b2.
+    #[arg(long, default_value = "i")]
+    ic: String,
+    /// Inertia m (0 = overdamped; design.md Decision 1).
+    #[arg(long, default_value_t = 0.1)]
+    mass: f64,
+    /// Mode-2 friction eta2.
+    #[arg(long, default_value_t = 0.1)]
+    eta2: f64,
+    /// Droplet radius R.
+    #[arg(long, default_value_t = 1.0)]
+    radius: f64,
+    /// Interface width sigma of Theta.
+    #[arg(long, default_value_t = 0.03)]
+    sigma: f64,
+    /// Side L of the periodic box.
+    #[arg(long, default_value_t = 7.0)]
+    box_len: f64,
+    /// Scheme: spectral (co-moving ETD2RK, default) or paper-fd (the paper's explicit scheme).
+    #[arg(long, default_value = "spectral")]
+    scheme: String,
+    /// Grid points per side (default: 192 spectral, 280 paper-fd).
+    #[arg(long)]
+    n: Option<usize>,
+    /// Time step (default: 0.02 spectral, 1e-4 paper-fd).
+    #[arg(long)]
+    dt: Option<f64>,
+    /// Give up at this time (status t_max).
+    #[arg(long, default_value_t = 2000.0)]
+    t_max: f64,
+    /// Steady when max change of vx, vy, a2, b2 over one window is below this.
+    #[arg(long, default_value_t = 1e-6)]
+    steady_tol: f64,
+    /// Window of the steady test in time units.
+    #[arg(long, default_value_t = 0.1)]
+    steady_window: f64,
+    /// Hold the centre fixed (deformation-only run, Appendix E).
+    #[arg(long)]
+    pinned: bool,
+    /// Write the time series (t, x, y, vx, vy, a2, b2, v, s) to this Parquet file.
+    #[arg(long)]
+    series: Option<PathBuf>,
+    /// Sampling interval of the series / picture in time units.
+    #[arg(long, default_value_t = 0.5)]
+    every: f64,
+    /// Draw the Fig. 1 panels (final field, outline, velocity; v(t), s(t)) to this PNG (+ .svg).
+    #[arg(long)]
+    picture: Option<PathBuf>,
+    /// Print one JSON object instead of text.
+    #[arg(long)]
+    json: bool,
+}
+
+#[derive(Serialize)]
+struct Report {
+    status: String,
+    class: Option<String>,
+    v: f64,
+    s: f64,
+    vx: f64,
+    vy: f64,
+    a2: f64,
+    b2: f64,
+    x: f64,
+    y: f64,
+    t_end: f64,
+    t_steady: Option<f64>,
+    steps: u64,
+    wall_s: f64,
+    mass_integral: f64,
+    params: ModelParams,
+    settings: SolverSettings,
+    ic: InitialCondition,
+    series: Option<PathBuf>,
+    picture: Vec<PathBuf>,
+}
+
+pub fn run(a: Args) -> Result<(), CliError> {
+    let scheme: SchemeKind = a.scheme.parse()?;
+    let base = match scheme {
+        SchemeKind::Spectral => SolverSettings::default(),
+        SchemeKind::PaperFd => SolverSettings::paper_fd(),
+    };
+    let settings = SolverSettings {
+        scheme,
+        n: a.n.unwrap_or(base.n),
+        dt: a.dt.unwrap_or(base.dt),
+        t_max: a.t_max,
+        steady_tol: a.steady_tol,
+        steady_window: a.steady_window,
+        pinned: a.pinned,
+    };
+    let params = ModelParams {
+        eta_t: a.eta_t,
+        kappa2: a.kappa2,
+        eta2: a.eta2,
+        radius: a.radius,
+        sigma: a.sigma,
+        box_len: a.box_len,
+        mass: a.mass,
+    };
+    let ic = InitialCondition::parse(&a.ic)?;
+    if !(a.every > 0.0 && a.every.is_finite()) {
+        return Err(CliError::usage(format!(
+            "invalid --every {}: a finite number > 0",
+            a.every
+        )));
+    }
+    for p in [&a.series, &a.picture].into_iter().flatten() {
+        if let Some(dir) = p.parent().filter(|d| !d.as_os_str().is_empty()) {
+            if !dir.is_dir() {
+                return Err(CliError::usage(format!(
+                    "directory {} does not exist",
+                    dir.display()
+                )));
+            }
+        }
+    }
+    let record = a.series.is_some() || a.picture.is_some();
+    let mut run = Run::new(&params, &ic, &settings)?.record_every(record.then_some(a.every));
+    let out = run.execute();
+    let mass_integral = run.scheme_mut().mass();
+    if let Some(path) = &a.series {
+        let mut df = tables::series_frame(&out.series)?;
+        let mut meta = tables::metadata(None);
+        meta.push((
+            "params".into(),
+            serde_json::to_string(&params).expect("json"),
+        ));
+        meta.push((
+            "settings".into(),
+            serde_json::to_string(&settings).expect("json"),
+        ));
+        meta.push(("ic".into(), ic.name.clone()));
+        tables::write_parquet(&mut df, path, meta)?;
+    }
+    let mut pictures = Vec::new();
+    if let Some(path) = &a.picture {
+        let field = run.scheme_mut().field();
+        let title = format!(
+            "eta_t = {}, kappa2 = {}, IC {}: {} ({}), t = {:.1}",
+            params.eta_t,
+            params.kappa2,
+            ic.name,
+            out.class.map_or("-", |c| c.as_str()),
+            out.status.as_str(),
+            out.t_end
+        );
+        pictures = plot::run_picture(path, &title, &params, &field, &out.state, &out.series)?;
+    }
+    let report = Report {
+        status: out.status.as_str().into(),
+        class: out.class.map(|c| c.as_str().into()),
+        v: out.v,
+        s: out.s,
+        vx: out.state.vx,
+        vy: out.state.vy,
+        a2: out.state.a2,
+        b2: out.state.b2,
+        x: out.state.x,
+        y: out.state.y,
+        t_end: out.t_end,
+        t_steady: out.t_steady,
+        steps: out.steps,
+        wall_s: out.wall_s,
+        mass_integral,
+        params,
+        settings,
+        ic,
+        series: a.series.clone(),
+        picture: pictures.clone(),
+    };
+    if a.json {
+        print_json(&report);
+    } else {
+        println!(
+            "status {}  class {}  v = {:.6}  s = {:.6}  t = {:.2}  ({} steps, {:.2} s wall)",
+            report.status,
+            report.class.as_deref().unwrap_or("-"),
+            report.v,
+            report.s,
+            report.t_end,
+            report.steps,
+            report.wall_s
+        );
+        for p in a.series.iter().chain(&pictures) {
+            println!("wrote {}", p.display());
+        }
+    }
+    Ok(())
+}
