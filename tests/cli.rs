@@ -1,0 +1,409 @@
+//! End-to-end tests through the `droplet` binary.
+use polars::prelude::*;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output, Stdio};
+use std::time::Duration;
+
+fn droplet() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_droplet"))
+}
+
+fn run(args: &[&str]) -> Output {
+    droplet().args(args).output().expect("binary runs")
+}
+
+fn read(path: &Path) -> DataFrame {
+    ParquetReader::new(std::fs::File::open(path).unwrap())
+        .finish()
+        .unwrap()
+}
+
+/// A tiny sweep (coarse grid, N = 32): seconds, enough for resume and locking tests.
+const TINY: &str = "name: tiny
+grid:
+  eta_t: [0.07, 0.09, 0.11]
+  kappa2: {start: 0.10, stop: 0.14, step: 0.02}
+initial_conditions: [i, iii]
+solver:
+  n: 32
+  dt: 0.05
+  t_max: 150
+";
+
+fn write_spec(dir: &Path, name: &str, text: &str) -> PathBuf {
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+fn json(out: &Output) -> serde_json::Value {
+    assert!(
+        out.status.success(),
+        "stderr: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).expect("one JSON object")
+}
+
+#[test]
+fn smoke_sweep_produces_typed_tables_and_a_picture() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("smoke");
+    let o = run(&[
+        "sweep",
+        "sweeps/smoke.yaml",
+        "--out",
+        out.to_str().unwrap(),
+        "--json",
+    ]);
+    let summary = json(&o);
+    assert_eq!(summary["runs"], 64);
+    assert_eq!(summary["points"], 16);
+    let runs = read(&out.join("runs.parquet"));
+    let points = read(&out.join("points.parquet"));
+    assert_eq!(runs.height(), 64);
+    assert_eq!(points.height(), 16);
+    let schema = runs.schema();
+    assert_eq!(schema.get("v"), Some(&DataType::Float64));
+    assert_eq!(schema.get("steps"), Some(&DataType::UInt64));
+    assert_eq!(schema.get("point"), Some(&DataType::UInt32));
+    assert_eq!(schema.get("class"), Some(&DataType::String));
+    assert_eq!(points.schema().get("kappa2"), Some(&DataType::Float64));
+    // At least two different point classes, all from the allowed vocabulary.
+    let class_col = points.column("class").unwrap().str().unwrap();
+    let classes: std::collections::BTreeSet<String> = (0..points.height())
+        .filter_map(|i| class_col.get(i).map(String::from))
+        .collect();
+    assert!(classes.len() >= 2, "{classes:?}");
+    for c in &classes {
+        let ok = ["IC", "ID", "MD", "MC", "not classified", "diverged"].contains(&c.as_str())
+            || c.split('/').all(|p| ["IC", "ID", "MD", "MC"].contains(&p));
+        assert!(ok, "unexpected class {c}");
+    }
+    // The MD region is at small eta_t, IC at large eta_t and kappa2 (paper Fig. 2a layout).
+    let label_at = |eta: f64, k: f64| -> String {
+        let e = points.column("eta_t").unwrap().f64().unwrap();
+        let kk = points.column("kappa2").unwrap().f64().unwrap();
+        let c = points.column("class").unwrap().str().unwrap();
+        (0..points.height())
+            .find(|&i| {
+                (e.get(i).unwrap() - eta).abs() < 1e-9 && (kk.get(i).unwrap() - k).abs() < 1e-9
+            })
+            .map(|i| c.get(i).unwrap().to_string())
+            .unwrap()
+    };
+    assert_eq!(label_at(0.07, 0.10), "MD");
+    assert_eq!(label_at(0.10, 0.16), "IC");
+    // Metadata: spec, hash, versions, commit.
+    let meta = droplet_sweep::tables::read_metadata(&out.join("runs.parquet")).unwrap();
+    for key in [
+        "spec",
+        "spec_sha256",
+        "droplet_version",
+        "solver_version",
+        "git_commit",
+    ] {
+        assert!(meta.contains_key(key), "missing metadata {key}");
+    }
+    assert!(meta["spec"].contains("name: smoke"));
+    for f in ["phase_map.png", "phase_map.svg"] {
+        assert!(std::fs::metadata(out.join(f)).unwrap().len() > 1000);
+    }
+    // status agrees.
+    let st = json(&run(&["status", out.to_str().unwrap(), "--json"]));
+    assert_eq!(st["runs_done"], 64);
+    assert_eq!(st["complete"], true);
+}
+
+/// A table without its wall-clock column (the one value that differs between two runs).
+fn table_without_wall(path: &Path) -> DataFrame {
+    let df = read(path);
+    if df.schema().contains("wall_s") {
+        df.drop("wall_s").unwrap()
+    } else {
+        df
+    }
+}
+
+#[test]
+fn sigkill_at_several_moments_then_resume_gives_identical_tables() {
+    let dir = tempfile::tempdir().unwrap();
+    let spec = write_spec(dir.path(), "tiny.yaml", TINY);
+    let reference = dir.path().join("ref");
+    json(&run(&[
+        "sweep",
+        spec.to_str().unwrap(),
+        "--out",
+        reference.to_str().unwrap(),
+        "--json",
+        "--jobs",
+        "2",
+    ]));
+
+    let resumed = dir.path().join("resumed");
+    let mut kills = 0;
+    for wait_ms in [150u64, 400, 700, 1000] {
+        let mut child = droplet()
+            .args([
+                "sweep",
+                spec.to_str().unwrap(),
+                "--out",
+                resumed.to_str().unwrap(),
+                "--jobs",
+                "2",
+                "--json",
+            ])
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+            .unwrap();
+        std::thread::sleep(Duration::from_millis(wait_ms));
+        if child.try_wait().unwrap().is_none() {
+            child.kill().unwrap(); // SIGKILL
+            kills += 1;
+        }
+        child.wait().unwrap();
+    }
+    assert!(
+        kills >= 1,
+        "the sweep was never interrupted; make TINY larger"
+    );
+    let done = json(&run(&[
+        "sweep",
+        spec.to_str().unwrap(),
+        "--out",
+        resumed.to_str().unwrap(),
+        "--json",
+    ]));
+    assert!(done["reused"].as_u64().unwrap() > 0, "{done}");
+    // No leftovers, nothing duplicated: one file per run.
+    let files: Vec<_> = std::fs::read_dir(resumed.join("runs"))
+        .unwrap()
+        .flatten()
+        .collect();
+    assert_eq!(files.len(), 18);
+    for t in ["runs.parquet", "points.parquet"] {
+        let a = table_without_wall(&reference.join(t));
+        let b = table_without_wall(&resumed.join(t));
+        assert!(a.equals_missing(&b), "{t} differs:\n{a}\n{b}");
+    }
+}
+
+#[test]
+fn a_second_sweep_on_the_same_directory_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let slow = TINY
+        .replace("n: 32", "n: 64")
+        .replace("t_max: 150", "t_max: 400");
+    let spec = write_spec(dir.path(), "slow.yaml", &slow);
+    let out = dir.path().join("o");
+    let mut first = droplet()
+        .args([
+            "sweep",
+            spec.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--jobs",
+            "1",
+        ])
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    // Wait until the first has taken the lock.
+    for _ in 0..100 {
+        if out.join(".lock").exists() {
+            break;
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    std::thread::sleep(Duration::from_millis(100));
+    let second = run(&[
+        "sweep",
+        spec.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let still_running = first.try_wait().unwrap().is_none();
+    first.kill().ok();
+    first.wait().unwrap();
+    assert!(still_running, "first sweep ended before the second started");
+    assert_eq!(second.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&second.stderr);
+    assert!(err.contains("in use by another droplet process"), "{err}");
+}
+
+#[test]
+fn malformed_specs_exit_2_name_the_key_and_write_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let good = "name: m\noutput: OUTDIR\ngrid:\n  eta_t: {start: 0.07, stop: 0.08, step: 0.01}\n  kappa2: [0.11]\nsolver:\n  n: 32\n  dt: 0.05\n  t_max: 10\n";
+    let cases: Vec<(&str, String, &str)> = vec![
+        ("unknown top key", format!("{good}colour: red\n"), "colour"),
+        (
+            "unknown solver key",
+            good.replace("  n: 32", "  nn: 32"),
+            "solver.nn",
+        ),
+        ("odd n", good.replace("n: 32", "n: 33"), "solver.n"),
+        ("zero n", good.replace("n: 32", "n: 0"), "solver.n"),
+        (
+            "negative dt",
+            good.replace("dt: 0.05", "dt: -0.05"),
+            "solver.dt",
+        ),
+        (
+            "string dt",
+            good.replace("dt: 0.05", "dt: fast"),
+            "solver.dt",
+        ),
+        (
+            "nan t_max",
+            good.replace("t_max: 10", "t_max: .nan"),
+            "solver.t_max",
+        ),
+        (
+            "zero step",
+            good.replace("step: 0.01", "step: 0"),
+            "grid.eta_t.step",
+        ),
+        (
+            "reversed range",
+            good.replace("stop: 0.08", "stop: 0.06"),
+            "grid.eta_t.stop",
+        ),
+        (
+            "empty list",
+            good.replace("kappa2: [0.11]", "kappa2: []"),
+            "grid.kappa2",
+        ),
+        (
+            "negative kappa2",
+            good.replace("kappa2: [0.11]", "kappa2: [-0.1]"),
+            "grid.kappa2",
+        ),
+        (
+            "missing grid",
+            good.replace(
+                "grid:\n  eta_t: {start: 0.07, stop: 0.08, step: 0.01}\n  kappa2: [0.11]\n",
+                "",
+            ),
+            "grid",
+        ),
+        (
+            "missing step",
+            good.replace(", step: 0.01", ""),
+            "grid.eta_t.step",
+        ),
+        (
+            "unknown ic",
+            format!("{good}initial_conditions: [i, v]\n"),
+            "initial_conditions",
+        ),
+        (
+            "scheme",
+            good.replace("solver:\n", "solver:\n  scheme: rk4\n"),
+            "solver.scheme",
+        ),
+        (
+            "params mass",
+            format!("{good}params: {{mass: -1}}\n"),
+            "params.mass",
+        ),
+        (
+            "inf eta",
+            good.replace("start: 0.07", "start: .inf"),
+            "grid.eta_t.start",
+        ),
+        (
+            "grid not a mapping",
+            good.replace("grid:\n", "grid: 3\nx:\n"),
+            "grid",
+        ),
+        ("bad yaml", format!("{good}  : [\n"), "(document)"),
+    ];
+    assert!(cases.len() >= 15);
+    for (what, text, key) in cases {
+        let outdir = dir.path().join(format!("out-{}", what.replace(' ', "_")));
+        let text = text.replace("OUTDIR", outdir.to_str().unwrap());
+        let spec = write_spec(dir.path(), "bad.yaml", &text);
+        let o = run(&["sweep", spec.to_str().unwrap()]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{what}: {err}");
+        assert!(
+            err.contains(&format!("`{key}`")) || err.contains(key),
+            "{what}: message lacks {key}: {err}"
+        );
+        assert!(
+            err.contains("bad.yaml"),
+            "{what}: message lacks the file: {err}"
+        );
+        assert!(!outdir.exists(), "{what}: output directory was created");
+    }
+}
+
+#[test]
+fn simulate_rejects_bad_arguments_with_exit_2() {
+    for args in [
+        vec!["simulate", "--eta-t", "-1", "--kappa2", "0.1"],
+        vec![
+            "simulate", "--eta-t", "0.08", "--kappa2", "0.1", "--ic", "vii",
+        ],
+        vec![
+            "simulate", "--eta-t", "0.08", "--kappa2", "0.1", "--scheme", "rk4",
+        ],
+        vec![
+            "simulate", "--eta-t", "0.08", "--kappa2", "0.1", "--n", "31",
+        ],
+        vec!["simulate", "--eta-t", "0.08"],
+        vec!["simulate", "--eta-t", "x", "--kappa2", "0.1"],
+    ] {
+        let o = run(&args);
+        assert_eq!(
+            o.status.code(),
+            Some(2),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        assert!(!o.stderr.is_empty());
+    }
+}
+
+#[test]
+fn simulate_json_series_and_picture() {
+    let dir = tempfile::tempdir().unwrap();
+    let series = dir.path().join("s.parquet");
+    let pic = dir.path().join("p.png");
+    let o = run(&[
+        "simulate",
+        "--eta-t",
+        "0.07",
+        "--kappa2",
+        "0.12",
+        "--ic",
+        "i",
+        "--n",
+        "48",
+        "--t-max",
+        "20",
+        "--json",
+        "--series",
+        series.to_str().unwrap(),
+        "--picture",
+        pic.to_str().unwrap(),
+        "--every",
+        "1",
+    ]);
+    let j = json(&o);
+    for key in [
+        "status", "class", "v", "s", "vx", "vy", "a2", "b2", "t_end", "t_steady", "steps",
+        "wall_s", "settings", "params",
+    ] {
+        assert!(j.get(key).is_some(), "missing {key}");
+    }
+    assert_eq!(j["steps"], 1000);
+    assert!((j["mass_integral"].as_f64().unwrap() - (1.0 - (-20f64).exp())).abs() < 1e-9);
+    let df = read(&series);
+    assert_eq!(df.height(), 21);
+    assert!(std::fs::metadata(&pic).unwrap().len() > 1000);
+    assert!(dir.path().join("p.svg").exists());
+}
