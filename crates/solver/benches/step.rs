@@ -1,1 +1,30 @@
-fn main() {}
+//! Cost of one time step (single-threaded), co-moving spectral scheme at N = 128, 192, 256 and
+//! the paper's finite-difference scheme at its own resolution (N = 280, dt = 1e-4).
+//! Run: `cargo bench --bench step` (add `-- --quick` for a fast pass).
+use criterion::{criterion_group, criterion_main, Criterion};
+use droplet_solver::scheme::{ComovingEtd, PaperFd, Scheme};
+use droplet_solver::{InitialCondition, ModelParams};
+
+fn warm<S: Scheme>(mut s: S, h: f64, steps: usize) -> S {
+    // Past the start-up, at a moving and deformed state (MD point of Fig. 1).
+    for _ in 0..steps {
+        s.step(h);
+    }
+    s
+}
+
+fn bench(c: &mut Criterion) {
+    let p = ModelParams::at(0.085, 0.112);
+    let st = InitialCondition::parse("i").unwrap().state();
+    let mut g = c.benchmark_group("step");
+    for n in [128, 192, 256] {
+        let mut s = warm(ComovingEtd::new(p, n, st, false).unwrap(), 0.02, 500);
+        g.bench_function(format!("spectral_n{n}"), |b| b.iter(|| s.step(0.02)));
+    }
+    let mut fd = warm(PaperFd::new(p, 280, st, false).unwrap(), 1e-4, 2000);
+    g.bench_function("paper_fd_n280", |b| b.iter(|| fd.step(1e-4)));
+    g.finish();
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);

@@ -51,23 +51,6 @@ impl EtdCoef {
         }
     }
 
-    /// The coefficients when `e = e^{ch}` is already known (the field modes, where
-    /// `e^{-h(1 + kx^2 + ky^2)}` is a product of per-axis factors): no exponential per mode.
-    #[inline(always)]
-    pub fn from_exp(e: f64, c: f64, h: f64) -> Self {
-        let z = c * h;
-        if z.abs() < 0.1 {
-            Self::new(c, h)
-        } else {
-            let em1 = e - 1.0;
-            Self {
-                e,
-                p1: em1 / c,
-                p2: (em1 - z) / (c * z),
-            }
-        }
-    }
-
     /// Predictor `a = e y + p1 n0`.
     #[inline(always)]
     pub fn predict(&self, y: f64, n0: f64) -> f64 {
@@ -81,23 +64,38 @@ impl EtdCoef {
     }
 }
 
-/// Per-axis factors `e^{-h kx^2}`, `e^{-h ky^2}` of the field's exact propagator.
+/// Per-axis factors of the field's exact propagator `e^{-h (1 + kx^2 + ky^2)}`, stored as
+/// `expm1` values: `ax = e^{-h kx^2} - 1`, `ay = e^{-h (1 + ky^2)} - 1`. Then
+/// `e - 1 = ax + ay + ax ay` without cancellation, `p1 = h phi1 = (e - 1) / c` and
+/// `p2 = h phi2 = (p1 - h) / (c h)`: no exponential, division or branch per mode.
 #[derive(Debug, Clone, Default)]
 pub struct SeparableExp {
     pub h: f64,
-    pub ex: Vec<f64>,
-    pub ey: Vec<f64>,
+    pub ax: Vec<f64>,
+    pub ay: Vec<f64>,
 }
 
 impl SeparableExp {
     /// Recomputes the factors for step `h` (O(N), no-op when `h` is unchanged).
     pub fn update(&mut self, h: f64, kx: &[f64], ky: &[f64]) {
-        if self.h == h && !self.ex.is_empty() {
+        if self.h == h && !self.ax.is_empty() {
             return;
         }
         self.h = h;
-        self.ex = kx.iter().map(|k| (-h * k * k).exp()).collect();
-        self.ey = ky.iter().map(|k| (-h * (1.0 + k * k)).exp()).collect();
+        self.ax = kx.iter().map(|k| (-h * k * k).exp_m1()).collect();
+        self.ay = ky.iter().map(|k| (-h * (1.0 + k * k)).exp_m1()).collect();
+    }
+
+    /// `(e, p1, p2)` of one mode from its axis factors and `1/c`.
+    #[inline(always)]
+    pub fn coef(ax: f64, ay: f64, inv_c: f64, h: f64, inv_h: f64) -> EtdCoef {
+        let em1 = ax + ay + ax * ay;
+        let p1 = em1 * inv_c;
+        EtdCoef {
+            e: 1.0 + em1,
+            p1,
+            p2: (p1 - h) * inv_c * inv_h,
+        }
     }
 }
 
@@ -119,15 +117,36 @@ mod tests {
 
     #[test]
     fn separable_coefficients_match_direct_ones() {
-        for &(c, h) in &[(-1.0, 0.02), (-50.0, 0.02), (-3000.0, 0.01), (-1.5, 1e-4)] {
+        // (kx^2, ky^2, h): from the k = 0 mode (cancellation-prone) to stiff modes.
+        let cases = [
+            (0.0, 0.0, 0.02),
+            (0.0, 0.0, 1e-4),
+            (3.0, 46.0, 0.02),
+            (2000.0, 1000.0, 0.01),
+            (0.5, 0.0, 1e-4),
+        ];
+        for &(kx2, ky2, h) in &cases {
+            let c = -(1.0f64 + kx2 + ky2);
             let a = EtdCoef::new(c, h);
-            let b = EtdCoef::from_exp((c * h).exp(), c, h);
-            for (x, y) in [(a.e, b.e), (a.p1, b.p1), (a.p2, b.p2)] {
-                assert!(
-                    (x - y).abs() <= 1e-13 * x.abs().max(1e-300),
-                    "{c} {h}: {x} vs {y}"
-                );
-            }
+            let ax = (-h * kx2).exp_m1();
+            let ay = (-h * (1.0 + ky2)).exp_m1();
+            let b = SeparableExp::coef(ax, ay, 1.0 / c, h, 1.0 / h);
+            // e = 1 + (e - 1): absolute round-off (it multiplies w, so this is round-off in w).
+            assert!((a.e - b.e).abs() <= 2e-16, "e {c} {h}");
+            assert!(
+                (a.p1 - b.p1).abs() <= 1e-14 * a.p1,
+                "p1 {c} {h}: {} vs {}",
+                a.p1,
+                b.p1
+            );
+            // p2 = (p1 - h)/(c h) loses digits like 1/|z| at tiny |z| = |c h|.
+            let z = (c * h).abs().min(1.0);
+            assert!(
+                (a.p2 - b.p2).abs() <= 1e-14 / z * a.p2,
+                "p2 {c} {h}: {} vs {}",
+                a.p2,
+                b.p2
+            );
         }
     }
 

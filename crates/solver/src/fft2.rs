@@ -10,9 +10,14 @@ use rustfft::num_complex::Complex64;
 use rustfft::{Fft, FftPlanner};
 use std::sync::Arc;
 
+/// Rows transposed together in the forward transform.
+const BLOCK: usize = 8;
+
 /// Plans plus the scratch buffers of one worker.
 pub struct PrunedFft2 {
     n: usize,
+    /// Row spectra of up to `BLOCK` rows, transposed into the output together.
+    block: Vec<Complex64>,
     r2c: Arc<dyn RealToComplex<f64>>,
     c2r: Arc<dyn ComplexToReal<f64>>,
     col_fwd: Arc<dyn Fft<f64>>,
@@ -38,6 +43,7 @@ impl PrunedFft2 {
             .max(col_inv.get_inplace_scratch_len());
         Self {
             n,
+            block: vec![Complex64::default(); BLOCK * (n / 2 + 1)],
             row_spec: vec![Complex64::default(); n / 2 + 1],
             row_real: vec![0.0; n],
             row_scratch: vec![Complex64::default(); row_scratch_len],
@@ -56,20 +62,32 @@ impl PrunedFft2 {
         let nc = n / 2 + 1;
         debug_assert_eq!(real.len(), n * n);
         debug_assert_eq!(spec.len(), nc * n);
-        for iy in 0..n {
-            if iy < lo || iy > hi {
-                for jx in 0..nc {
-                    spec[jx * n + iy] = Complex64::default();
+        for col in spec.chunks_exact_mut(n) {
+            col[..lo].fill(Complex64::default());
+            col[hi + 1..].fill(Complex64::default());
+        }
+        // Rows in blocks: each block's spectra are written column by column, so every
+        // column receives BLOCK consecutive values (a cache-friendly transposition).
+        let mut b0 = lo;
+        while b0 <= hi {
+            let rows = (hi + 1 - b0).min(BLOCK);
+            for r in 0..rows {
+                let iy = b0 + r;
+                self.r2c
+                    .process_with_scratch(
+                        &mut real[iy * n..(iy + 1) * n],
+                        &mut self.block[r * nc..(r + 1) * nc],
+                        &mut self.row_scratch,
+                    )
+                    .expect("r2c lengths are planned");
+            }
+            for jx in 0..nc {
+                let col = &mut spec[jx * n + b0..jx * n + b0 + rows];
+                for (r, c) in col.iter_mut().enumerate() {
+                    *c = self.block[r * nc + jx];
                 }
-                continue;
             }
-            let row = &mut real[iy * n..(iy + 1) * n];
-            self.r2c
-                .process_with_scratch(row, &mut self.row_spec, &mut self.row_scratch)
-                .expect("r2c lengths are planned");
-            for (jx, c) in self.row_spec.iter().enumerate() {
-                spec[jx * n + iy] = *c;
-            }
+            b0 += rows;
         }
         self.col_fwd
             .process_with_scratch(spec, &mut self.col_scratch);

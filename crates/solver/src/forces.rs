@@ -7,6 +7,12 @@
 //! no inverse transform is needed. Measured: at N = 192 these forces are within 1e-5 (relative)
 //! of the N = 512 values, where integrating by parts against the analytic `grad Theta` was
 //! off by 3e-3.
+//!
+//! A mode-2 droplet is point-symmetric, `Theta(-r) = Theta(r)`: on the centred grid `Theta`
+//! is an even sequence (real transform) and `X Theta`, `Y Theta` are odd (imaginary
+//! transforms). So one real transform of `P = Theta + X Theta` carries both:
+//! `Theta_hat = Re P_hat`, `(X Theta)_hat = i Im P_hat`; `Y Theta` takes a second one.
+//! The sampler computes half the window and mirrors it, which makes the symmetry exact.
 use crate::grid::Grid;
 use crate::shape::ShapeParams;
 use rustfft::num_complex::Complex64;
@@ -22,7 +28,12 @@ pub struct Forces {
     pub area: f64,
 }
 
-/// Running sums of the Parseval products; `add` once per stored mode, `finish` at the end.
+/// Running sums of the Parseval products, accumulated column by column: `column` takes one
+/// stored column `kx` (all `ky`), `finish` turns the sums into forces.
+///
+/// With `i w = (-w.im, w.re)`: `Re[i w conj(Theta_hat)] = -w.im Re p`,
+/// `Re[i w conj((X Theta)_hat)] = w.re Im p`, `Re[i w conj((Y Theta)_hat)] = w.re Im y`,
+/// where `p` is the raw transform of `Theta + X Theta` and `y` that of `Y Theta`.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct ForceSums {
     fx: f64,
@@ -31,37 +42,41 @@ pub struct ForceSums {
     gb: f64,
 }
 
-impl ForceSums {
-    /// Adds mode `k = (kx, ky)` (derivative wavenumbers) with column weight `wt` (1 or 2):
-    /// `w` is the normalised coefficient of `u`, `th, thx, thy` the raw transforms of
-    /// `Theta, X Theta, Y Theta`.
-    #[inline(always)]
-    pub fn add(
-        &mut self,
-        wt: f64,
-        kx: f64,
-        ky: f64,
-        w: Complex64,
-        th: Complex64,
-        thx: Complex64,
-        thy: Complex64,
-    ) {
-        // Re[(i k w) conj(g)] = -k Re[i w conj(g)] ... written out: i w = (-w.im, w.re).
-        let iw = Complex64::new(-w.im, w.re);
-        let dot = |g: Complex64| iw.re * g.re + iw.im * g.im;
-        let (p_th, p_x, p_y) = (dot(th), dot(thx), dot(thy));
-        self.fx += wt * kx * p_th;
-        self.fy += wt * ky * p_th;
-        self.ga += wt * (kx * p_x - ky * p_y);
-        self.gb += wt * (kx * p_y + ky * p_x);
-    }
+/// Per-column partial sums of [`ForceSums`] (one `kx`).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct ColumnSums {
+    th: f64,
+    ky_th: f64,
+    x: f64,
+    ky_x: f64,
+    y: f64,
+    ky_y: f64,
+}
 
-    /// Merges another partial sum.
-    pub fn merge(&mut self, o: &ForceSums) {
-        self.fx += o.fx;
-        self.fy += o.fy;
-        self.ga += o.ga;
-        self.gb += o.gb;
+impl ColumnSums {
+    /// Adds the mode `(kx, ky)` of the column: field coefficient `w`, shape transforms `p`, `y`.
+    #[inline(always)]
+    pub fn add(&mut self, ky: f64, w: Complex64, p: Complex64, y: Complex64) {
+        let p_th = -w.im * p.re;
+        let p_x = w.re * p.im;
+        let p_y = w.re * y.im;
+        self.th += p_th;
+        self.ky_th += ky * p_th;
+        self.x += p_x;
+        self.ky_x += ky * p_x;
+        self.y += p_y;
+        self.ky_y += ky * p_y;
+    }
+}
+
+impl ForceSums {
+    /// Folds in a finished column with wavenumber `kx` and Parseval weight `wt` (1 or 2).
+    #[inline(always)]
+    pub fn column(&mut self, wt: f64, kx: f64, c: &ColumnSums) {
+        self.fx += wt * kx * c.th;
+        self.fy += wt * c.ky_th;
+        self.ga += wt * (kx * c.x - c.ky_y);
+        self.gb += wt * (kx * c.y + c.ky_x);
     }
 
     /// The forces, given the cell area `dx^2` and the droplet area `A`.
@@ -76,25 +91,30 @@ impl ForceSums {
     }
 }
 
-/// Forces exerted by the field `w_hat` (normalised, `[kx][ky]`) given the raw transforms of
-/// `Theta`, `X Theta`, `Y Theta` and the area.
+/// Forces exerted by the field `w_hat` (normalised, `[kx][ky]`) given the packed shape
+/// transforms `p` (of `Theta + X Theta`) and `y` (of `Y Theta`) and the area.
 pub fn spectral_forces(
     grid: &Grid,
     w_hat: &[Complex64],
-    th: &[Complex64],
-    thx: &[Complex64],
-    thy: &[Complex64],
+    p: &[Complex64],
+    y: &[Complex64],
     area: f64,
 ) -> Forces {
     let n = grid.n;
     let mut sums = ForceSums::default();
     for jx in 0..=n / 2 {
-        let wt = grid.column_weight(jx);
-        let kx = grid.kx_d[jx];
-        for jy in 0..n {
-            let i = jx * n + jy;
-            sums.add(wt, kx, grid.ky_d[jy], w_hat[i], th[i], thx[i], thy[i]);
+        let row = jx * n..(jx + 1) * n;
+        let mut col = ColumnSums::default();
+        for (((ky, w), p), y) in grid
+            .ky_d
+            .iter()
+            .zip(&w_hat[row.clone()])
+            .zip(&p[row.clone()])
+            .zip(&y[row])
+        {
+            col.add(*ky, *w, *p, *y);
         }
+        sums.column(grid.column_weight(jx), grid.kx_d[jx], &col);
     }
     sums.finish(grid.dx * grid.dx, area)
 }
@@ -128,51 +148,68 @@ impl ShapeSampler {
         )
     }
 
-    /// Writes `Theta`, `X Theta`, `Y Theta` into rows `lo..=hi` of the three buffers (whole
-    /// rows, zero outside the window) and returns the area `A = Sum(Theta) dx^2`.
-    pub fn sample(
-        &self,
-        a2: f64,
-        b2: f64,
-        theta: &mut [f64],
-        xtheta: &mut [f64],
-        ytheta: &mut [f64],
-    ) -> f64 {
+    /// Writes `Theta + X Theta` into `p` and `Y Theta` into `y` on rows `lo..=hi` (whole rows,
+    /// zero outside the window) and returns the area `A = Sum(Theta) dx^2`. Computes the
+    /// half `iy >= N/2` and mirrors it through the centre (`(ix, iy) -> (N - ix, N - iy)`).
+    pub fn sample(&self, a2: f64, b2: f64, p: &mut [f64], y: &mut [f64]) -> f64 {
         let n = self.n;
+        let c = n / 2;
         let (lo, hi) = self.span(a2, b2);
         let r_out = self.shape.outer_radius(a2, b2);
         let r_in = self.shape.inner_radius(a2, b2);
         let (r_out2, r_in2) = (r_out * r_out, r_in * r_in);
-        let mut count = 0.0;
         for iy in lo..=hi {
-            let y = self.coords[iy];
-            let rows = iy * n..(iy + 1) * n;
-            let (t, tx, ty) = (
-                &mut theta[rows.clone()],
-                &mut xtheta[rows.clone()],
-                &mut ytheta[rows],
-            );
-            for buf in [&mut *t, &mut *tx, &mut *ty] {
-                buf[..lo].fill(0.0);
-                buf[hi + 1..].fill(0.0);
+            for buf in [&mut *p, &mut *y] {
+                let row = &mut buf[iy * n..(iy + 1) * n];
+                row[..lo].fill(0.0);
+                row[hi + 1..].fill(0.0);
             }
-            for ix in lo..=hi {
+        }
+        let mut count = 0.0;
+        for iy in c..=hi {
+            let yc = self.coords[iy];
+            let my = n - iy;
+            let start = if iy == c { c } else { lo };
+            for ix in start..=hi {
                 let x = self.coords[ix];
-                let r2 = x * x + y * y;
+                let r2 = x * x + yc * yc;
                 let th = if r2 < r_in2 {
                     1.0
                 } else if r2 > r_out2 {
                     0.0
                 } else {
-                    self.shape.theta(a2, b2, x, y)
+                    self.shape.theta(a2, b2, x, yc)
                 };
-                count += th;
-                t[ix] = th;
-                tx[ix] = x * th;
-                ty[ix] = y * th;
+                let i = iy * n + ix;
+                p[i] = th + x * th;
+                y[i] = yc * th;
+                let mx = n - ix;
+                if iy == c && ix == c {
+                    count += th;
+                } else {
+                    let m = my * n + mx;
+                    p[m] = th - x * th;
+                    y[m] = -yc * th;
+                    count += 2.0 * th;
+                }
             }
         }
         count * self.dx * self.dx
+    }
+
+    /// Writes `Theta` itself into rows `lo..=hi` of `theta` (for pictures and tests).
+    pub fn theta(&self, a2: f64, b2: f64, theta: &mut [f64]) {
+        let n = self.n;
+        let (lo, hi) = self.span(a2, b2);
+        for iy in lo..=hi {
+            for ix in 0..n {
+                theta[iy * n + ix] = if (lo..=hi).contains(&ix) {
+                    self.shape.theta(a2, b2, self.coords[ix], self.coords[iy])
+                } else {
+                    0.0
+                };
+            }
+        }
     }
 }
 
@@ -192,9 +229,16 @@ mod tests {
                 sigma: 0.03,
             },
         );
-        let (mut t, mut tx, mut ty) = (vec![0.0; n * n], vec![0.0; n * n], vec![0.0; n * n]);
+        let (mut p, mut y) = (vec![0.0; n * n], vec![0.0; n * n]);
         let (a2, b2) = (0.1, 0.05);
-        let area = sampler.sample(a2, b2, &mut t, &mut tx, &mut ty);
+        let area = sampler.sample(a2, b2, &mut p, &mut y);
+        let mut t = vec![0.0; n * n];
+        sampler.theta(a2, b2, &mut t);
+        let direct: f64 = t.iter().sum::<f64>() * grid.dx * grid.dx;
+        assert!(
+            (area - direct).abs() < 1e-12,
+            "mirrored area {area} vs direct {direct}"
+        );
         // Int r Theta dr = f^2/2 + pi^2 sigma^2 / 24 for the tanh profile, so the area is
         // pi R^2 (1 + (a2^2 + b2^2)/2) + pi^3 sigma^2 / 12.
         let pi = std::f64::consts::PI;
@@ -215,20 +259,25 @@ mod tests {
                 sigma: 0.1,
             },
         );
-        let (mut t, mut tx, mut ty) = (vec![0.0; n * n], vec![0.0; n * n], vec![0.0; n * n]);
+        let (mut pr, mut yr) = (vec![0.0; n * n], vec![0.0; n * n]);
         let (a2, b2) = (-0.15, 0.07);
-        let area = sampler.sample(a2, b2, &mut t, &mut tx, &mut ty);
-        let (t0, tx0, ty0) = (t.clone(), tx.clone(), ty.clone());
+        let area = sampler.sample(a2, b2, &mut pr, &mut yr);
+        let mut t0 = vec![0.0; n * n];
+        sampler.theta(a2, b2, &mut t0);
+        let tx0: Vec<f64> = (0..n * n).map(|i| grid.coord(i % n) * t0[i]).collect();
+        let ty0: Vec<f64> = (0..n * n).map(|i| grid.coord(i / n) * t0[i]).collect();
+        for i in 0..n * n {
+            assert!((pr[i] - t0[i] - tx0[i]).abs() < 1e-15, "{i}");
+            assert!((yr[i] - ty0[i]).abs() < 1e-15, "{i}");
+        }
         let mut fft = PrunedFft2::new(n);
         let len = grid.spectral_len();
-        let (mut th, mut thx, mut thy) = (
-            vec![Complex64::default(); len],
+        let (mut ph, mut yh) = (
             vec![Complex64::default(); len],
             vec![Complex64::default(); len],
         );
-        fft.forward(&mut t, &mut th, 0, n - 1);
-        fft.forward(&mut tx, &mut thx, 0, n - 1);
-        fft.forward(&mut ty, &mut thy, 0, n - 1);
+        fft.forward(&mut pr, &mut ph, 0, n - 1);
+        fft.forward(&mut yr, &mut yh, 0, n - 1);
         // u(x, y) = exp(cos(k0 x) + 0.5 sin(k0 (x + y))), periodic, with u_x, u_y analytic.
         let k0 = 2.0 * std::f64::consts::PI / 7.0;
         let mut u = vec![0.0; n * n];
@@ -249,7 +298,7 @@ mod tests {
         for c in w.iter_mut() {
             *c /= (n * n) as f64;
         }
-        let f = spectral_forces(&grid, &w, &th, &thx, &thy, area);
+        let f = spectral_forces(&grid, &w, &ph, &yh, area);
         let da = grid.dx * grid.dx;
         let (mut fx, mut fy, mut ga, mut gb) = (0.0, 0.0, 0.0, 0.0);
         for i in 0..n * n {

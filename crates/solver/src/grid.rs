@@ -28,7 +28,7 @@ impl Grid {
     /// A grid of `n x n` points on a box of side `len`.
     pub fn new(n: usize, len: f64) -> Result<Self, SolverError> {
         require(
-            n >= 16 && n % 2 == 0 && n <= 8192,
+            n >= 16 && n.is_multiple_of(2) && n <= 8192,
             "n",
             n as f64,
             "an even integer between 16 and 8192",

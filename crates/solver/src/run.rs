@@ -69,7 +69,7 @@ impl SolverSettings {
             "a finite number >= dt",
         )?;
         require(
-            self.n >= 16 && self.n % 2 == 0,
+            self.n >= 16 && self.n.is_multiple_of(2),
             "n",
             self.n as f64,
             "an even integer >= 16",
@@ -217,11 +217,11 @@ impl Run {
                 break;
             }
             if let Some(every) = record_steps {
-                if steps % every == 0 {
+                if steps.is_multiple_of(every) {
                     series.push(SeriesRow::at(t, &st));
                 }
             }
-            if steps % steps_per_window == 0 {
+            if steps.is_multiple_of(steps_per_window) {
                 let change = st
                     .monitored()
                     .iter()
@@ -238,7 +238,7 @@ impl Run {
         }
         let state = self.scheme.state();
         let t_end = steps as f64 * dt;
-        if record_steps.is_some_and(|e| steps % e != 0) {
+        if record_steps.is_some_and(|e| !steps.is_multiple_of(e)) {
             series.push(SeriesRow::at(t_end, &state));
         }
         let (v, s) = (state.speed(), state.deformation());

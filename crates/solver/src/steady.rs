@@ -17,12 +17,10 @@ pub struct SteadySolver {
     grid: Grid,
     fft: PrunedFft2,
     sampler: ShapeSampler,
-    t: Vec<f64>,
-    tx: Vec<f64>,
-    ty: Vec<f64>,
-    th: Vec<Complex64>,
-    thx: Vec<Complex64>,
-    thy: Vec<Complex64>,
+    p: Vec<f64>,
+    y: Vec<f64>,
+    ph: Vec<Complex64>,
+    yh: Vec<Complex64>,
     w: Vec<Complex64>,
 }
 
@@ -52,12 +50,10 @@ impl SteadySolver {
             params,
             fft: PrunedFft2::new(n),
             sampler: ShapeSampler::new(&grid, shape),
-            t: vec![0.0; n * n],
-            tx: vec![0.0; n * n],
-            ty: vec![0.0; n * n],
-            th: vec![z; len],
-            thx: vec![z; len],
-            thy: vec![z; len],
+            p: vec![0.0; n * n],
+            y: vec![0.0; n * n],
+            ph: vec![z; len],
+            yh: vec![z; len],
             w: vec![z; len],
             grid,
         })
@@ -74,12 +70,9 @@ impl SteadySolver {
     ) -> (&[Complex64], Forces) {
         let n = self.grid.n;
         let (lo, hi) = self.sampler.span(a2, b2);
-        let area = self
-            .sampler
-            .sample(a2, b2, &mut self.t, &mut self.tx, &mut self.ty);
-        self.fft.forward(&mut self.t, &mut self.th, lo, hi);
-        self.fft.forward(&mut self.tx, &mut self.thx, lo, hi);
-        self.fft.forward(&mut self.ty, &mut self.thy, lo, hi);
+        let area = self.sampler.sample(a2, b2, &mut self.p, &mut self.y);
+        self.fft.forward(&mut self.p, &mut self.ph, lo, hi);
+        self.fft.forward(&mut self.y, &mut self.yh, lo, hi);
         let norm = 1.0 / (area * (n * n) as f64);
         for jx in 0..=n / 2 {
             let kx = self.grid.kx[jx];
@@ -89,10 +82,11 @@ impl SteadySolver {
                 let kv = kxd * vx + self.grid.ky_d[jy] * vy;
                 let denom = Complex64::new(1.0 + kx * kx + ky * ky, -kv);
                 let i = jx * n + jy;
-                self.w[i] = self.th[i] * norm / denom;
+                // Theta_hat = Re of the packed transform.
+                self.w[i] = Complex64::new(self.ph[i].re * norm, 0.0) / denom;
             }
         }
-        let f = spectral_forces(&self.grid, &self.w, &self.th, &self.thx, &self.thy, area);
+        let f = spectral_forces(&self.grid, &self.w, &self.ph, &self.yh, area);
         (&self.w, f)
     }
 
