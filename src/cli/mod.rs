@@ -1,4 +1,6 @@
 //! Command-line front end.
+mod fit_h0;
+mod ode;
 mod plot;
 mod simulate;
 mod status;
@@ -21,6 +23,8 @@ enum Command {
     Sweep(sweep::Args),
     Status(status::Args),
     Plot(plot::Args),
+    Ode(ode::Args),
+    FitH0(fit_h0::Args),
 }
 
 /// Exit codes: 0 success, 1 failure while working, 2 bad input.
@@ -31,6 +35,8 @@ pub fn main() -> i32 {
         Command::Sweep(a) => sweep::run(a),
         Command::Status(a) => status::run(a),
         Command::Plot(a) => plot::run(a),
+        Command::Ode(a) => ode::run(a),
+        Command::FitH0(a) => fit_h0::run(a),
     };
     match result {
         Ok(()) => 0,

@@ -109,6 +109,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
         steady_tol: a.steady_tol,
         steady_window: a.steady_window,
         pinned: a.pinned,
+        ..base
     };
     let params = ModelParams {
         eta_t: a.eta_t,

@@ -9,10 +9,34 @@ use crate::state::DropletState;
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
 
+/// Which equations a run integrates.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum ModelKind {
+    /// The PDE model of Sect. 3 (field + droplet).
+    #[default]
+    Pde,
+    /// The reduced ODE model, eqs. (58)-(59) ([`crate::reduced::ode`]).
+    Ode,
+}
+
+impl ModelKind {
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            Self::Pde => "pde",
+            Self::Ode => "ode",
+        }
+    }
+}
+
 /// Numerical settings of a run.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct SolverSettings {
+    /// PDE or reduced ODE.
+    pub model: ModelKind,
+    /// Cubic coefficient `h0` of the ODE model (unused by the PDE).
+    pub h0: f64,
     pub scheme: SchemeKind,
     /// Grid points per side.
     pub n: usize,
@@ -31,6 +55,8 @@ pub struct SolverSettings {
 impl Default for SolverSettings {
     fn default() -> Self {
         Self {
+            model: ModelKind::Pde,
+            h0: crate::reduced::coefficients::H0_PAPER,
             scheme: SchemeKind::Spectral,
             n: 192,
             dt: 0.02,
@@ -49,6 +75,15 @@ impl SolverSettings {
             scheme: SchemeKind::PaperFd,
             n: 280,
             dt: 1e-4,
+            ..Self::default()
+        }
+    }
+
+    /// The reduced ODE model: RK4 with dt = 0.05 (error far below the steady tolerance).
+    pub fn ode() -> Self {
+        Self {
+            model: ModelKind::Ode,
+            dt: 0.05,
             ..Self::default()
         }
     }
@@ -164,6 +199,12 @@ impl Run {
     ) -> Result<Self, SolverError> {
         params.validate()?;
         settings.validate()?;
+        require(
+            settings.model == ModelKind::Pde,
+            "model",
+            f64::NAN,
+            "pde for a field run (ODE runs go through `simulate`)",
+        )?;
         let st = ic.state();
         let scheme: Box<dyn Scheme> = match settings.scheme {
             SchemeKind::Spectral => {
@@ -263,5 +304,8 @@ pub fn simulate(
     ic: &InitialCondition,
     settings: &SolverSettings,
 ) -> Result<RunOutcome, SolverError> {
-    Ok(Run::new(params, ic, settings)?.execute())
+    match settings.model {
+        ModelKind::Pde => Ok(Run::new(params, ic, settings)?.execute()),
+        ModelKind::Ode => crate::reduced::ode::simulate(params, ic, settings),
+    }
 }

@@ -45,6 +45,8 @@ pub fn class_colour(label: &str) -> RGBColor {
         "MD/MC" => RGBColor(130, 60, 180),
         "ID/MC" => RGBColor(120, 130, 40),
         "diverged" => RGBColor(0, 0, 0),
+        "MD minor-axis" => RGBColor(0, 0, 139),
+        "MD major-axis" => RGBColor(140, 80, 20),
         _ => RGBColor(255, 255, 255),
     }
 }
@@ -372,5 +374,244 @@ pub fn run_picture(
         state,
         series,
     )?;
+    Ok(vec![png, svg])
+}
+
+/// One marker of a `v`, `s` against parameter picture.
+#[derive(Debug, Clone)]
+pub struct Marker {
+    pub x: f64,
+    pub v: f64,
+    pub s: f64,
+    /// Colour key (a class or branch name, see [`class_colour`]).
+    pub key: String,
+    /// Thick (stable / steady) or thin (unstable / not converged).
+    pub bold: bool,
+}
+
+fn draw_vs<DB: DrawingBackend>(
+    root: DrawingArea<DB, Shift>,
+    title: &str,
+    x_label: &str,
+    markers: &[Marker],
+    vlines: &[(f64, String)],
+) -> Result<(), SweepError>
+where
+    DB::ErrorType: 'static,
+{
+    root.fill(&WHITE).map_err(perr)?;
+    let root = root.titled(title, ("sans-serif", 20)).map_err(perr)?;
+    let (x0, x1) = markers
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), m| {
+            (a.min(m.x), b.max(m.x))
+        });
+    let pad = ((x1 - x0) * 0.03).max(1e-6);
+    let panels = root.split_evenly((1, 2));
+    for (i, panel) in panels.iter().enumerate() {
+        let val = |m: &Marker| if i == 0 { m.v } else { m.s };
+        let ymax = markers.iter().map(val).fold(0.0, f64::max).max(1e-3) * 1.08;
+        let mut chart = ChartBuilder::on(panel)
+            .margin(12)
+            .x_label_area_size(42)
+            .y_label_area_size(52)
+            .build_cartesian_2d(x0 - pad..x1 + pad, 0.0..ymax)
+            .map_err(perr)?;
+        chart
+            .configure_mesh()
+            .disable_mesh()
+            .x_desc(x_label)
+            .y_desc(if i == 0 { "speed v" } else { "deformation s" })
+            .label_style(("sans-serif", 14))
+            .axis_desc_style(("sans-serif", 16))
+            .x_label_formatter(&|v| format!("{v:.3}"))
+            .draw()
+            .map_err(perr)?;
+        for (x, label) in vlines {
+            chart
+                .draw_series(LineSeries::new(
+                    vec![(*x, 0.0), (*x, ymax)],
+                    BLACK.mix(0.4).stroke_width(1),
+                ))
+                .map_err(perr)?;
+            chart
+                .draw_series([Text::new(
+                    label.clone(),
+                    (*x, ymax * 0.97),
+                    ("sans-serif", 13),
+                )])
+                .map_err(perr)?;
+        }
+        let mut keys: Vec<&str> = markers.iter().map(|m| m.key.as_str()).collect();
+        keys.sort();
+        keys.dedup();
+        for key in keys {
+            let colour = class_colour(key);
+            let mine = markers.iter().filter(|m| m.key == key);
+            chart
+                .draw_series(mine.map(|m| {
+                    let style = if m.bold {
+                        colour.filled()
+                    } else {
+                        colour.stroke_width(1)
+                    };
+                    Circle::new((m.x, val(m)), if m.bold { 3 } else { 2 }, style)
+                }))
+                .map_err(perr)?
+                .label(key.to_string())
+                .legend(move |(x, y)| Circle::new((x + 6, y), 4, colour.filled()));
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .label_font(("sans-serif", 13))
+            .draw()
+            .map_err(perr)?;
+    }
+    root.present().map_err(perr)?;
+    Ok(())
+}
+
+/// `v` and `s` against a parameter (Fig. 2b / Fig. 3b style): `<stem>.png` and `.svg` in `dir`.
+/// Bold filled markers are stable (or steady) states, thin rings unstable ones; `vlines`
+/// mark bifurcation points.
+pub fn vs_parameter(
+    dir: &Path,
+    stem: &str,
+    title: &str,
+    x_label: &str,
+    markers: &[Marker],
+    vlines: &[(f64, String)],
+) -> Result<Vec<PathBuf>, SweepError> {
+    if markers.is_empty() {
+        return Err(SweepError::Invalid("nothing to draw".into()));
+    }
+    register_fonts();
+    let png = dir.join(format!("{stem}.png"));
+    let svg = dir.join(format!("{stem}.svg"));
+    draw_vs(
+        BitMapBackend::new(&png, (1200, 520)).into_drawing_area(),
+        title,
+        x_label,
+        markers,
+        vlines,
+    )?;
+    draw_vs(
+        SVGBackend::new(&svg, (1200, 520)).into_drawing_area(),
+        title,
+        x_label,
+        markers,
+        vlines,
+    )?;
+    Ok(vec![png, svg])
+}
+
+fn draw_h0<DB: DrawingBackend>(
+    root: DrawingArea<DB, Shift>,
+    fit: &H0Picture,
+) -> Result<(), SweepError>
+where
+    DB::ErrorType: 'static,
+{
+    root.fill(&WHITE).map_err(perr)?;
+    let (k0, k1) = fit
+        .points
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+            (a.min(p.0), b.max(p.0))
+        });
+    let smax = fit.points.iter().map(|p| p.1).fold(0.0, f64::max) * 1.1;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(
+            format!(
+                "Appendix E fit: p0 = {:.4}, p2 = h0 = {:.4} (N = {})",
+                fit.p0, fit.p2, fit.n
+            ),
+            ("sans-serif", 20),
+        )
+        .margin(12)
+        .x_label_area_size(44)
+        .y_label_area_size(56)
+        .build_cartesian_2d(k0 - 0.001..k1 + 0.001, 0.0..smax)
+        .map_err(perr)?;
+    chart
+        .configure_mesh()
+        .disable_mesh()
+        .x_desc("kappa2")
+        .y_desc("s")
+        .label_style(("sans-serif", 14))
+        .axis_desc_style(("sans-serif", 16))
+        .x_label_formatter(&|v| format!("{v:.3}"))
+        .draw()
+        .map_err(perr)?;
+    let curve = |p0: f64| -> Vec<(f64, f64)> {
+        (0..=300)
+            .map(|i| k0 - 0.001 + (k1 - k0 + 0.002) * i as f64 / 300.0)
+            .filter(|k| *k < p0)
+            .map(|k| (k, ((p0 - k) / fit.p2).sqrt()))
+            .filter(|(_, s)| *s <= smax)
+            .collect()
+    };
+    chart
+        .draw_series(LineSeries::new(curve(fit.p0), BLUE.stroke_width(2)))
+        .map_err(perr)?
+        .label("fit kappa2 = p0 - p2 s^2")
+        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 14, y)], BLUE.stroke_width(2)));
+    let green = RGBColor(20, 150, 40);
+    chart
+        .draw_series(
+            curve(fit.g0t)
+                .chunks(2)
+                .filter(|c| c.len() == 2)
+                .enumerate()
+                .filter(|(i, _)| i % 2 == 0)
+                .map(|(_, c)| PathElement::new(c.to_vec(), green.stroke_width(2))),
+        )
+        .map_err(perr)?
+        .label("kappa2 = g0~ - p2 s^2 (theory)")
+        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 14, y)], green.stroke_width(2)));
+    chart
+        .draw_series(
+            fit.points
+                .iter()
+                .map(|&(k, s)| Circle::new((k, s), 4, RED.filled())),
+        )
+        .map_err(perr)?
+        .label("deformation-only PDE steady states")
+        .legend(|(x, y)| Circle::new((x + 6, y), 4, RED.filled()));
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperRight)
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .label_font(("sans-serif", 14))
+        .draw()
+        .map_err(perr)?;
+    root.present().map_err(perr)?;
+    Ok(())
+}
+
+/// What the Fig. A picture shows.
+#[derive(Debug, Clone)]
+pub struct H0Picture {
+    pub points: Vec<(f64, f64)>,
+    pub p0: f64,
+    pub p2: f64,
+    pub g0t: f64,
+    pub n: usize,
+}
+
+/// The Appendix E picture (Fig. A): `<stem>.png` and `.svg` in `dir`.
+pub fn h0_picture(dir: &Path, stem: &str, fit: &H0Picture) -> Result<Vec<PathBuf>, SweepError> {
+    register_fonts();
+    let png = dir.join(format!("{stem}.png"));
+    let svg = dir.join(format!("{stem}.svg"));
+    draw_h0(
+        BitMapBackend::new(&png, (900, 640)).into_drawing_area(),
+        fit,
+    )?;
+    draw_h0(SVGBackend::new(&svg, (900, 640)).into_drawing_area(), fit)?;
     Ok(vec![png, svg])
 }

@@ -4,16 +4,17 @@
 //! ```yaml
 //! name: smoke                 # [A-Za-z0-9_.-]+ ; default: the file's stem
 //! output: out/smoke           # default: out/<name>
-//! model: pde                  # only the PDE model is available here
+//! model: pde                  # pde (Sect. 3) or ode (reduced model, eqs. 58-59)
 //! params: {eta2: 0.1, radius: 1, sigma: 0.03, box_len: 7, mass: 0.1}   # paper defaults
 //! grid:
 //!   eta_t: {start: 0.07, stop: 0.10, step: 0.01}    # inclusive range ...
 //!   kappa2: [0.11, 0.12]                            # ... or an explicit list
 //! initial_conditions: [i, ii, iii, iv]              # default: the paper's four
 //! solver: {scheme: spectral, n: 192, dt: 0.02, t_max: 2000, steady_tol: 1.0e-6, steady_window: 0.1}
+//!                             # ode: dt default 0.05, and h0 (default 0.1436)
 //! ```
 use crate::error::SpecError;
-use droplet_solver::{InitialCondition, ModelParams, SchemeKind, SolverSettings};
+use droplet_solver::{InitialCondition, ModelKind, ModelParams, SchemeKind, SolverSettings};
 use serde::Serialize;
 use serde_yaml::Value;
 use std::path::{Path, PathBuf};
@@ -203,11 +204,14 @@ pub fn parse(text: &str, file: &str, stem: &str) -> Result<SweepSpec, SpecError>
             _ => return Err(ctx.err(&["output"], show(v), "a directory path (string)")),
         },
     };
-    if let Some(v) = top.get("model") {
-        if v.as_str() != Some("pde") {
-            return Err(ctx.err(&["model"], show(v), "pde"));
-        }
-    }
+    let model = match top.get("model") {
+        None => ModelKind::Pde,
+        Some(v) => match v.as_str() {
+            Some("pde") => ModelKind::Pde,
+            Some("ode") => ModelKind::Ode,
+            _ => return Err(ctx.err(&["model"], show(v), "pde or ode")),
+        },
+    };
 
     let mut params = ModelParams::default();
     if let Some(v) = top.get("params") {
@@ -308,9 +312,20 @@ pub fn parse(text: &str, file: &str, stem: &str) -> Result<SweepSpec, SpecError>
         }
     };
 
-    let mut solver = SolverSettings::default();
+    let mut solver = match model {
+        ModelKind::Pde => SolverSettings::default(),
+        ModelKind::Ode => SolverSettings::ode(),
+    };
     if let Some(v) = top.get("solver") {
-        let keys = ["scheme", "n", "dt", "t_max", "steady_tol", "steady_window"];
+        let keys = [
+            "scheme",
+            "n",
+            "dt",
+            "t_max",
+            "steady_tol",
+            "steady_window",
+            "h0",
+        ];
         let m = ctx.mapping(v, &["solver"], &keys)?;
         if let Some(x) = m.get("scheme") {
             solver.scheme = x
@@ -350,6 +365,9 @@ pub fn parse(text: &str, file: &str, stem: &str) -> Result<SweepSpec, SpecError>
         }
         if let Some(x) = pos("steady_window")? {
             solver.steady_window = x;
+        }
+        if let Some(x) = pos("h0")? {
+            solver.h0 = x;
         }
         if solver.steady_window < solver.dt {
             return Err(ctx.err(
@@ -470,5 +488,19 @@ mod tests {
         let e = parse(&bad, "t.yaml", "t").unwrap_err();
         assert_eq!(e.path, "solver.nn");
         assert_eq!(e.line, Some(6));
+    }
+
+    #[test]
+    fn ode_model_has_its_own_defaults() {
+        let s = parse(
+            &format!("model: ode\n{GOOD}").replace("  dt: 0.02\n", ""),
+            "t.yaml",
+            "t",
+        )
+        .unwrap();
+        assert_eq!(s.solver.model, ModelKind::Ode);
+        assert_eq!(s.solver.dt, 0.05);
+        let e = parse(&format!("model: fem\n{GOOD}"), "t.yaml", "t").unwrap_err();
+        assert_eq!((e.path.as_str(), e.line), ("model", Some(1)));
     }
 }

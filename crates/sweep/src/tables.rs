@@ -105,6 +105,13 @@ pub fn runs_frame(
         f64_col("box_len", f(&|r| r.params.box_len)),
         f64_col("mass", f(&|r| r.params.mass)),
         str_col(
+            "model",
+            rows.iter()
+                .map(|(_, r)| r.settings.model.as_str().to_string())
+                .collect(),
+        ),
+        f64_col("h0", f(&|r| r.settings.h0)),
+        str_col(
             "scheme",
             rows.iter()
                 .map(|(_, r)| r.settings.scheme.to_string())
@@ -249,4 +256,28 @@ pub fn series_frame(series: &[SeriesRow]) -> Result<DataFrame, SweepError> {
         f64_col("s", f(|r| r.s)),
     ];
     Ok(DataFrame::new(series.len(), cols)?)
+}
+
+/// The analytic boundaries of the reduced model as a long table (`curve`, `eta_t`, `kappa2`).
+pub fn boundaries_frame(
+    curves: &[droplet_solver::reduced::boundaries::Boundary],
+) -> Result<DataFrame, SweepError> {
+    let mut name = Vec::new();
+    let (mut e, mut k) = (Vec::new(), Vec::new());
+    for c in curves {
+        for &(x, y) in &c.points {
+            name.push(c.name.to_string());
+            e.push(x);
+            k.push(y);
+        }
+    }
+    let n = name.len();
+    Ok(DataFrame::new(
+        n,
+        vec![
+            str_col("curve", name),
+            f64_col("eta_t", e),
+            f64_col("kappa2", k),
+        ],
+    )?)
 }

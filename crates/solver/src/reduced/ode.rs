@@ -1,0 +1,201 @@
+//! The reduced ODE (paper eqs. 58-59) for `v = (vx, vy)` and `S = [[a2, b2], [b2, -a2]]`:
+//!
+//! `m dv/dt = (-eta_t + f1) v - f1~ S v - f3 |v|^2 v`,
+//! `eta2 dS/dt = (-kappa2 + g0~) S - g2 (2 v v^T - |v|^2 I) - g2~ |v|^2 S - h0 S^3`, `S^3 = s^2 S`.
+//!
+//! Integrated with classical RK4 at a fixed step, with the same stop rules and classification
+//! as the PDE runs.
+use crate::classify::StateClass;
+use crate::error::{require, SolverError};
+use crate::initial::InitialCondition;
+use crate::params::ModelParams;
+use crate::reduced::Coefficients;
+use crate::run::{RunOutcome, RunStatus, SolverSettings};
+use crate::state::DropletState;
+use std::time::Instant;
+
+/// Right-hand side `d(vx, vy, a2, b2)/dt` of eqs. (58)-(59).
+pub fn rhs(c: &Coefficients, p: &ModelParams, y: [f64; 4]) -> [f64; 4] {
+    let [vx, vy, a2, b2] = y;
+    let v2 = vx * vx + vy * vy;
+    let s2 = a2 * a2 + b2 * b2;
+    let (svx, svy) = (a2 * vx + b2 * vy, b2 * vx - a2 * vy);
+    let lin_v = -p.eta_t + c.f1 - c.f3 * v2;
+    let lin_s = -p.kappa2 + c.g0t - c.g2t * v2 - c.h0 * s2;
+    [
+        (lin_v * vx - c.f1t * svx) / p.mass,
+        (lin_v * vy - c.f1t * svy) / p.mass,
+        (lin_s * a2 - c.g2 * (vx * vx - vy * vy)) / p.eta2,
+        (lin_s * b2 - c.g2 * 2.0 * vx * vy) / p.eta2,
+    ]
+}
+
+/// One RK4 step.
+pub fn rk4(c: &Coefficients, p: &ModelParams, y: [f64; 4], h: f64) -> [f64; 4] {
+    let add = |a: [f64; 4], b: [f64; 4], s: f64| {
+        [
+            a[0] + s * b[0],
+            a[1] + s * b[1],
+            a[2] + s * b[2],
+            a[3] + s * b[3],
+        ]
+    };
+    let k1 = rhs(c, p, y);
+    let k2 = rhs(c, p, add(y, k1, h / 2.0));
+    let k3 = rhs(c, p, add(y, k2, h / 2.0));
+    let k4 = rhs(c, p, add(y, k3, h));
+    let mut out = y;
+    for i in 0..4 {
+        out[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
+    }
+    out
+}
+
+/// Runs the ODE from `ic` with the stop rules of `settings` (its `n` and `scheme` are unused).
+pub fn simulate(
+    p: &ModelParams,
+    ic: &InitialCondition,
+    settings: &SolverSettings,
+) -> Result<RunOutcome, SolverError> {
+    p.validate()?;
+    settings.validate()?;
+    require(
+        p.mass > 0.0,
+        "mass",
+        p.mass,
+        "a finite number > 0 for the ODE model (eq. 58 has inertia)",
+    )?;
+    require(settings.h0 > 0.0, "h0", settings.h0, "a finite number > 0")?;
+    let started = Instant::now();
+    let c = Coefficients::new(p.radius, settings.h0);
+    let dt = settings.dt;
+    let window = ((settings.steady_window / dt).round() as u64).max(1);
+    let max_steps = (settings.t_max / dt).round() as u64;
+    let mut y = [ic.vx, ic.vy, ic.a2, ic.b2];
+    let mut last = y;
+    let (mut x, mut yy) = (0.0, 0.0);
+    let mut steps = 0;
+    let mut status = RunStatus::TMax;
+    let mut t_steady = None;
+    while steps < max_steps {
+        let next = rk4(&c, p, y, dt);
+        x += dt * 0.5 * (y[0] + next[0]);
+        yy += dt * 0.5 * (y[1] + next[1]);
+        y = next;
+        steps += 1;
+        if y.iter().any(|v| !v.is_finite()) || y[2].hypot(y[3]) >= 1.0 {
+            status = RunStatus::Diverged;
+            break;
+        }
+        if steps % window == 0 {
+            let change = y
+                .iter()
+                .zip(&last)
+                .map(|(a, b)| (a - b).abs())
+                .fold(0.0, f64::max);
+            last = y;
+            if change < settings.steady_tol {
+                status = RunStatus::Steady;
+                t_steady = Some(steps as f64 * dt);
+                break;
+            }
+        }
+    }
+    let state = DropletState {
+        x,
+        y: yy,
+        vx: y[0],
+        vy: y[1],
+        a2: y[2],
+        b2: y[3],
+    };
+    let (v, s) = (state.speed(), state.deformation());
+    Ok(RunOutcome {
+        status,
+        class: (status != RunStatus::Diverged).then(|| StateClass::of(v, s)),
+        state,
+        v,
+        s,
+        t_end: steps as f64 * dt,
+        t_steady,
+        steps,
+        wall_s: started.elapsed().as_secs_f64(),
+        series: Vec::new(),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn simulate_dispatches_to_the_ode_model() {
+        // Through the public entry point: an ODE run takes microseconds per step, and its
+        // class at a deep MD point is MD.
+        let p = ModelParams::at(0.07, 0.1);
+        let out = crate::run::simulate(
+            &p,
+            &InitialCondition::parse("i").unwrap(),
+            &SolverSettings::ode(),
+        )
+        .unwrap();
+        assert_eq!(out.class, Some(StateClass::MD));
+        assert!(
+            out.wall_s < 0.5,
+            "ODE run took {} s: not the ODE model?",
+            out.wall_s
+        );
+        assert!(crate::run::Run::new(
+            &p,
+            &InitialCondition::parse("i").unwrap(),
+            &SolverSettings::ode()
+        )
+        .is_err());
+    }
+
+    #[test]
+    fn id_state_is_the_analytic_one() {
+        // kappa2 < g0~, eta_t > the ID stability line: ID with s = sqrt((g0~ - kappa2) / h0).
+        let c = Coefficients::paper();
+        let p = ModelParams::at(0.1, 0.11);
+        let s = SolverSettings {
+            dt: 0.05,
+            t_max: 5000.0,
+            steady_tol: 1e-12,
+            ..SolverSettings::ode()
+        };
+        let out = simulate(&p, &InitialCondition::parse("iv").unwrap(), &s).unwrap();
+        assert_eq!(out.class, Some(StateClass::ID));
+        assert!(
+            (out.s - ((c.g0t - 0.11) / c.h0).sqrt()).abs() < 1e-8,
+            "{}",
+            out.s
+        );
+    }
+
+    #[test]
+    fn md_state_solves_the_reduced_balance() {
+        // Minor-axis MD: (-eta_t + f1) + f1~ s - f3 v^2 = 0 and
+        // (g0~ - kappa2) s + g2 v^2 - g2~ s v^2 - h0 s^3 = 0.
+        let c = Coefficients::paper();
+        let p = ModelParams::at(0.075, 0.13);
+        let s = SolverSettings {
+            dt: 0.05,
+            t_max: 5000.0,
+            steady_tol: 1e-12,
+            ..SolverSettings::ode()
+        };
+        let out = simulate(&p, &InitialCondition::parse("i").unwrap(), &s).unwrap();
+        assert_eq!(out.class, Some(StateClass::MD));
+        let (v2, sd) = (out.v * out.v, out.s);
+        assert!(((-p.eta_t + c.f1) + c.f1t * sd - c.f3 * v2).abs() < 1e-8);
+        assert!(
+            ((c.g0t - p.kappa2) * sd + c.g2 * v2 - c.g2t * sd * v2 - c.h0 * sd.powi(3)).abs()
+                < 1e-8
+        );
+        // Moving along the minor axis: S v is antiparallel to v (v . S v = -s v^2).
+        let st = out.state;
+        let vsv = st.vx * (st.a2 * st.vx + st.b2 * st.vy) + st.vy * (st.b2 * st.vx - st.a2 * st.vy);
+        assert!((vsv + sd * v2).abs() < 1e-8);
+    }
+}

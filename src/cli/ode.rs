@@ -1,0 +1,263 @@
+//! `droplet ode`: the reduced model's coefficients and bifurcation diagrams (Fig. 3b).
+use super::{print_json, CliError};
+use clap::Subcommand;
+use droplet_solver::reduced::bifurcation::{diagram, Axis, Branch};
+use droplet_solver::reduced::Coefficients;
+use droplet_solver::ModelParams;
+use droplet_sweep::plot::{vs_parameter, Marker};
+use droplet_sweep::tables;
+use polars::prelude::*;
+use std::path::PathBuf;
+
+/// The reduced ODE model (paper eqs. 58-59): coefficients and bifurcation diagrams. For ODE
+/// phase maps run a sweep spec with `model: ode` (see sweeps/ode.yaml).
+#[derive(clap::Args)]
+pub struct Args {
+    #[command(subcommand)]
+    command: OdeCommand,
+}
+
+#[derive(Subcommand)]
+enum OdeCommand {
+    /// Print f1, f1~, f3, f3~, g0~, g2, g2~ from the Bessel formulas (eqs. F1 - tildeG2a).
+    Coefficients {
+        /// Droplet radius R.
+        #[arg(long, default_value_t = 1.0)]
+        radius: f64,
+        /// Cubic coefficient h0 (reported alongside).
+        #[arg(long, default_value_t = droplet_solver::reduced::coefficients::H0_PAPER)]
+        h0: f64,
+        /// Print one JSON object (keys f1, f1t, f3, f3t, g0t, g2, g2t, h0, radius).
+        #[arg(long)]
+        json: bool,
+    },
+    /// Steady states along a line with their stability and the bifurcation points (Fig. 3b):
+    /// writes DIR/<stem>.parquet, DIR/<stem>_events.parquet and DIR/<stem>.png/.svg.
+    #[command(
+        after_help = "Examples:\n  droplet ode bifurcation --kappa2 0.130 --from 0.07 --to 0.10 --out results/ode   # vary eta_t\n  droplet ode bifurcation --eta-t 0.085 --from 0.10 --to 0.17 --out results/ode    # vary kappa2"
+    )]
+    Bifurcation {
+        /// Fix eta_t and vary kappa2.
+        #[arg(long, conflicts_with = "kappa2", required_unless_present = "kappa2")]
+        eta_t: Option<f64>,
+        /// Fix kappa2 and vary eta_t.
+        #[arg(long)]
+        kappa2: Option<f64>,
+        /// Start of the varied parameter.
+        #[arg(long)]
+        from: f64,
+        /// End of the varied parameter.
+        #[arg(long)]
+        to: f64,
+        /// Samples along the line.
+        #[arg(long, default_value_t = 600)]
+        steps: usize,
+        #[arg(long, default_value_t = 1.0)]
+        radius: f64,
+        #[arg(long, default_value_t = droplet_solver::reduced::coefficients::H0_PAPER)]
+        h0: f64,
+        #[arg(long, default_value_t = 0.1)]
+        mass: f64,
+        #[arg(long, default_value_t = 0.1)]
+        eta2: f64,
+        /// Output directory.
+        #[arg(long, default_value = "out/ode")]
+        out: PathBuf,
+        /// Print a JSON summary (events and files).
+        #[arg(long)]
+        json: bool,
+    },
+}
+
+pub fn run(a: Args) -> Result<(), CliError> {
+    match a.command {
+        OdeCommand::Coefficients { radius, h0, json } => {
+            if !(radius > 0.0 && radius.is_finite()) {
+                return Err(CliError::usage(format!(
+                    "invalid --radius {radius}: a finite number > 0"
+                )));
+            }
+            let c = Coefficients::new(radius, h0);
+            if json {
+                print_json(&c);
+            } else {
+                println!(
+                    "R = {radius}: f1 = {:.6}  f1~ = {:.6}  f3 = {:.6}  f3~ = {:.6}",
+                    c.f1, c.f1t, c.f3, c.f3t
+                );
+                println!(
+                    "        g0~ = {:.6}  g2 = {:.6}  g2~ = {:.6}  h0 = {}",
+                    c.g0t, c.g2, c.g2t, c.h0
+                );
+            }
+            Ok(())
+        }
+        OdeCommand::Bifurcation {
+            eta_t,
+            kappa2,
+            from,
+            to,
+            steps,
+            radius,
+            h0,
+            mass,
+            eta2,
+            out,
+            json,
+        } => {
+            if !(from.is_finite() && to.is_finite() && from < to) || steps < 2 {
+                return Err(CliError::usage(format!("invalid line --from {from} --to {to} --steps {steps}: need from < to and steps >= 2")));
+            }
+            let (axis, fixed, x_label, fixed_label) = match (eta_t, kappa2) {
+                (Some(e), _) => (Axis::Kappa2, e, "kappa2", format!("eta_t = {e}")),
+                (_, Some(k)) => (Axis::EtaT, k, "eta_t", format!("kappa2 = {k}")),
+                _ => unreachable!("clap requires one"),
+            };
+            let base = match axis {
+                Axis::Kappa2 => ModelParams {
+                    eta_t: fixed,
+                    kappa2: from,
+                    mass,
+                    eta2,
+                    radius,
+                    ..ModelParams::default()
+                },
+                Axis::EtaT => ModelParams {
+                    eta_t: from,
+                    kappa2: fixed,
+                    mass,
+                    eta2,
+                    radius,
+                    ..ModelParams::default()
+                },
+            };
+            base.validate()?;
+            let c = Coefficients::new(radius, h0);
+            let values: Vec<f64> = (0..steps)
+                .map(|i| from + (to - from) * i as f64 / (steps - 1) as f64)
+                .collect();
+            let (pts, events) = diagram(&c, &base, axis, &values);
+            std::fs::create_dir_all(&out)
+                .map_err(|e| CliError::from(droplet_sweep::SweepError::io(&out, e)))?;
+            let stem = format!("bifurcation_{}", fixed_label.replace(" = ", "_"));
+            let x_of = |p: &droplet_solver::reduced::bifurcation::SteadyPoint| {
+                if axis == Axis::EtaT {
+                    p.eta_t
+                } else {
+                    p.kappa2
+                }
+            };
+            let mut df = DataFrame::new(
+                pts.len(),
+                vec![
+                    Column::new(
+                        "branch".into(),
+                        pts.iter()
+                            .map(|p| p.branch.as_str().to_string())
+                            .collect::<Vec<_>>(),
+                    ),
+                    Column::new(
+                        "eta_t".into(),
+                        pts.iter().map(|p| p.eta_t).collect::<Vec<_>>(),
+                    ),
+                    Column::new(
+                        "kappa2".into(),
+                        pts.iter().map(|p| p.kappa2).collect::<Vec<_>>(),
+                    ),
+                    Column::new("v".into(), pts.iter().map(|p| p.v).collect::<Vec<_>>()),
+                    Column::new("s".into(), pts.iter().map(|p| p.s).collect::<Vec<_>>()),
+                    Column::new(
+                        "max_re_eigenvalue".into(),
+                        pts.iter().map(|p| p.max_re).collect::<Vec<_>>(),
+                    ),
+                    Column::new(
+                        "stable".into(),
+                        pts.iter().map(|p| p.stable).collect::<Vec<_>>(),
+                    ),
+                ],
+            )
+            .map_err(droplet_sweep::SweepError::from)?;
+            let mut ev = DataFrame::new(
+                events.len(),
+                vec![
+                    Column::new(
+                        "kind".into(),
+                        events
+                            .iter()
+                            .map(|e| e.kind.to_string())
+                            .collect::<Vec<_>>(),
+                    ),
+                    Column::new(
+                        "branch".into(),
+                        events
+                            .iter()
+                            .map(|e| e.branch.as_str().to_string())
+                            .collect::<Vec<_>>(),
+                    ),
+                    Column::new(
+                        x_label.into(),
+                        events.iter().map(|e| e.at).collect::<Vec<_>>(),
+                    ),
+                ],
+            )
+            .map_err(droplet_sweep::SweepError::from)?;
+            let mut meta = tables::metadata(None);
+            meta.push((
+                "coefficients".into(),
+                serde_json::to_string(&c).expect("json"),
+            ));
+            meta.push((
+                "line".into(),
+                format!("{fixed_label}, {x_label} from {from} to {to}"),
+            ));
+            let p1 = out.join(format!("{stem}.parquet"));
+            let p2 = out.join(format!("{stem}_events.parquet"));
+            tables::write_parquet(&mut df, &p1, meta.clone())?;
+            tables::write_parquet(&mut ev, &p2, meta)?;
+            let markers: Vec<Marker> = pts
+                .iter()
+                .map(|p| Marker {
+                    x: x_of(p),
+                    v: p.v,
+                    s: p.s,
+                    key: p.branch.as_str().to_string(),
+                    bold: p.stable,
+                })
+                .collect();
+            // Label each bifurcation once (the first of a cluster).
+            let mut vlines: Vec<(f64, String)> = Vec::new();
+            for e in &events {
+                if e.branch == Branch::MdMajor {
+                    continue;
+                }
+                if !vlines
+                    .iter()
+                    .any(|(x, l)| (x - e.at).abs() < (to - from) * 0.004 && l == e.kind)
+                {
+                    vlines.push((e.at, e.kind.to_string()));
+                }
+            }
+            let title = format!("ODE model, {fixed_label}: thick = stable, thin = unstable");
+            let mut files = vs_parameter(&out, &stem, &title, x_label, &markers, &vlines)?;
+            files.extend([p1, p2]);
+            if json {
+                print_json(
+                    &serde_json::json!({ "events": events, "files": files, "points": pts.len() }),
+                );
+            } else {
+                for e in &events {
+                    println!(
+                        "{:>3} on {:<14} at {x_label} = {:.5}",
+                        e.kind,
+                        e.branch.as_str(),
+                        e.at
+                    );
+                }
+                for f in files {
+                    println!("wrote {}", f.display());
+                }
+            }
+            Ok(())
+        }
+    }
+}
