@@ -502,3 +502,53 @@ fn ode_sweep_bifurcation_and_h0_fit_from_the_cli() {
         "p0 {p0} p2 {p2}"
     );
 }
+
+/// The paper's Fig. 1 at the default settings (N = 192, dt = 0.02) from IC (i):
+/// kappa2 = 0.120 -> IC, 0.116 -> ID, 0.112 -> MD moving along its minor axis.
+#[test]
+fn fig1_points_classify_as_in_the_paper() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("fig1");
+    json(&run(&[
+        "sweep",
+        "sweeps/fig1.yaml",
+        "--out",
+        out.to_str().unwrap(),
+        "--json",
+        "--no-plot",
+    ]));
+    let runs = read(&out.join("runs.parquet"));
+    let k = runs.column("kappa2").unwrap().f64().unwrap();
+    let class = runs.column("class").unwrap().str().unwrap();
+    let status = runs.column("status").unwrap().str().unwrap();
+    let col = |c: &str| runs.column(c).unwrap().f64().unwrap().clone();
+    let (vx, vy, a2, b2) = (col("vx"), col("vy"), col("a2"), col("b2"));
+    for i in 0..runs.height() {
+        let kappa = k.get(i).unwrap();
+        let want = if kappa > 0.118 {
+            "IC"
+        } else if kappa > 0.114 {
+            "ID"
+        } else {
+            "MD"
+        };
+        assert_eq!(status.get(i), Some("steady"), "kappa2 {kappa}");
+        assert_eq!(class.get(i), Some(want), "kappa2 {kappa}");
+        if want == "MD" {
+            // Minor axis along the motion: v . S v = -s v^2 (S v antiparallel to v).
+            let (vx, vy, a2, b2) = (
+                vx.get(i).unwrap(),
+                vy.get(i).unwrap(),
+                a2.get(i).unwrap(),
+                b2.get(i).unwrap(),
+            );
+            let vsv = vx * (a2 * vx + b2 * vy) + vy * (b2 * vx - a2 * vy);
+            let (v2, s) = (vx * vx + vy * vy, a2.hypot(b2));
+            assert!(
+                (vsv / (s * v2) + 1.0).abs() < 1e-3,
+                "not minor-axis motion: {vsv} vs {}",
+                -s * v2
+            );
+        }
+    }
+}

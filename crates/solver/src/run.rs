@@ -199,12 +199,13 @@ impl Run {
     ) -> Result<Self, SolverError> {
         params.validate()?;
         settings.validate()?;
-        require(
-            settings.model == ModelKind::Pde,
-            "model",
-            f64::NAN,
-            "pde for a field run (ODE runs go through `simulate`)",
-        )?;
+        if settings.model != ModelKind::Pde {
+            return Err(SolverError::InvalidParameter {
+                name: "model",
+                value: 1.0,
+                allowed: "pde for a field run (ODE runs go through `simulate`)",
+            });
+        }
         let st = ic.state();
         let scheme: Box<dyn Scheme> = match settings.scheme {
             SchemeKind::Spectral => {
