@@ -1,8 +1,10 @@
 //! Command-line front end.
 mod fit_h0;
+mod merge;
 mod ode;
 mod plot;
 mod simulate;
+mod slurm;
 mod status;
 mod sweep;
 
@@ -25,6 +27,8 @@ enum Command {
     Plot(plot::Args),
     Ode(ode::Args),
     FitH0(fit_h0::Args),
+    Merge(merge::Args),
+    Slurm(slurm::Args),
 }
 
 /// Exit codes: 0 success, 1 failure while working, 2 bad input.
@@ -37,6 +41,8 @@ pub fn main() -> i32 {
         Command::Plot(a) => plot::run(a),
         Command::Ode(a) => ode::run(a),
         Command::FitH0(a) => fit_h0::run(a),
+        Command::Merge(a) => merge::run(a),
+        Command::Slurm(a) => slurm::run(a),
     };
     match result {
         Ok(()) => 0,

@@ -1,5 +1,6 @@
 //! `droplet sweep`: every (point, initial condition) run of a YAML spec, resumable.
 use super::{print_json, CliError};
+use droplet_sweep::shard::Shard;
 use droplet_sweep::{run_sweep, spec, status, SweepOptions};
 use std::path::PathBuf;
 
@@ -23,6 +24,11 @@ pub struct Args {
     /// Do not draw the phase map at the end.
     #[arg(long)]
     no_plot: bool,
+    /// Run only slice I of N (0 <= I < N), balanced by expected cost, into the same DIR as the
+    /// other shards; no tables are written (run `droplet merge DIR` after all shards).
+    /// Defaults from SLURM_ARRAY_TASK_ID / SLURM_ARRAY_TASK_COUNT when both are set.
+    #[arg(long, value_name = "I/N")]
+    shard: Option<String>,
     /// Print a JSON summary instead of text.
     #[arg(long)]
     json: bool,
@@ -34,12 +40,19 @@ pub fn run(a: Args) -> Result<(), CliError> {
         return Err(CliError::usage("invalid --jobs 0: at least 1"));
     }
     let out = a.out.clone().unwrap_or_else(|| spec.output.clone());
+    let shard = match &a.shard {
+        Some(text) => Some(Shard::parse(text).map_err(CliError::usage)?),
+        None => Shard::from_slurm_env()
+            .transpose()
+            .map_err(|e| CliError::usage(format!("from SLURM_ARRAY_TASK_ID/COUNT: {e}")))?,
+    };
     let opts = SweepOptions {
         jobs: a.jobs,
         progress: !a.json,
+        shard,
     };
     let mut summary = run_sweep(&spec, &out, &opts)?;
-    if !a.no_plot {
+    if !a.no_plot && shard.is_none() {
         summary.tables.extend(status::plot(&out)?);
     }
     if a.json {

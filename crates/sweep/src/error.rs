@@ -36,6 +36,8 @@ pub enum SweepError {
     Plot(String),
     #[error("{0}")]
     Invalid(String),
+    #[error("{} of {} runs are missing in {} (e.g. {}); no tables written", .0.runs_missing, .0.runs_total, .0.output.display(), .0.missing_examples.first().map(String::as_str).unwrap_or("-"))]
+    Incomplete(Box<crate::execute::MergeReport>),
 }
 
 impl SweepError {

@@ -2,6 +2,7 @@
 //! with progress (runs done / total, ETA, classes so far), then the final tables and picture.
 use crate::error::SweepError;
 use crate::plan::{plan, Plan, Task};
+use crate::shard::{tasks_of, Shard};
 use crate::spec::SweepSpec;
 use crate::store::{RunRecord, Store};
 use crate::tables;
@@ -22,6 +23,8 @@ pub struct SweepOptions {
     pub jobs: Option<usize>,
     /// Show a progress bar (only drawn on a terminal).
     pub progress: bool,
+    /// Run only this slice of the runs, and write no final tables (`droplet merge` does).
+    pub shard: Option<Shard>,
 }
 
 /// What a finished sweep did.
@@ -30,7 +33,10 @@ pub struct SweepSummary {
     pub name: String,
     pub output: PathBuf,
     pub points: usize,
+    /// Runs of this invocation (all, or this shard's).
     pub runs: usize,
+    /// `I/N` when sharded.
+    pub shard: Option<String>,
     /// Runs computed by this invocation.
     pub computed: usize,
     /// Runs found in the store (resumed or shared with another sweep).
@@ -82,11 +88,22 @@ pub fn run_sweep(
     opts: &SweepOptions,
 ) -> Result<SweepSummary, SweepError> {
     let started = Instant::now();
-    let store = Store::open_locked(out)?;
+    let store = match opts.shard {
+        None => Store::open_locked(out)?,
+        Some(sh) => Store::open_locked_as(out, &sh.lock_name())?,
+    };
     store.write_file("spec.yaml", spec.source.as_bytes())?;
     let plan = plan(spec);
-    let pending: Vec<&Task> = plan.tasks.iter().filter(|t| !store.has(&t.key)).collect();
-    let reused = plan.tasks.len() - pending.len();
+    let mine: Vec<&Task> = match opts.shard {
+        None => plan.tasks.iter().collect(),
+        Some(sh) => tasks_of(&plan, sh),
+    };
+    let pending: Vec<&Task> = mine
+        .iter()
+        .copied()
+        .filter(|t| !store.has(&t.key))
+        .collect();
+    let reused = mine.len() - pending.len();
     let jobs = opts
         .jobs
         .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
@@ -95,7 +112,7 @@ pub fn run_sweep(
         .num_threads(jobs)
         .build()
         .map_err(|e| SweepError::Invalid(format!("cannot start {jobs} worker threads: {e}")))?;
-    let pb = progress_bar(plan.tasks.len() as u64, reused as u64, opts.progress);
+    let pb = progress_bar(mine.len() as u64, reused as u64, opts.progress);
     let counts: Mutex<BTreeMap<String, usize>> = Mutex::new(BTreeMap::new());
     pool.install(|| {
         pending
@@ -123,7 +140,11 @@ pub fn run_sweep(
             })
     })?;
     pb.finish_and_clear();
-    let tables = write_tables(&store, spec, &plan)?;
+    let tables = if opts.shard.is_none() {
+        write_tables(&store, spec, &plan)?
+    } else {
+        Vec::new()
+    };
     let records = store.load_many(plan.tasks.iter().map(|t| t.key.as_str()));
     let mut point_classes = BTreeMap::new();
     for (c, _) in tables::point_classes(&plan, &records) {
@@ -139,7 +160,8 @@ pub fn run_sweep(
         name: spec.name.clone(),
         output: out.to_path_buf(),
         points: plan.points.len(),
-        runs: plan.tasks.len(),
+        runs: mine.len(),
+        shard: opts.shard.map(|s| format!("{}/{}", s.index, s.count)),
         computed: pending.len(),
         reused,
         wall_s: started.elapsed().as_secs_f64(),
@@ -171,4 +193,46 @@ pub fn write_tables(
         meta,
     )?;
     Ok(vec![runs_path, points_path])
+}
+
+/// Result of [`merge`].
+#[derive(Debug, Clone, Serialize)]
+pub struct MergeReport {
+    pub output: PathBuf,
+    pub runs_total: usize,
+    pub runs_missing: usize,
+    /// Up to 20 missing runs as `eta_t, kappa2, ic`.
+    pub missing_examples: Vec<String>,
+    pub tables: Vec<PathBuf>,
+}
+
+/// Builds the final tables of the sweep in `dir` from all its stored runs (e.g. after the
+/// shards of an array job). With runs missing, writes nothing and fails with a report.
+/// Idempotent: the tables depend only on the stored runs.
+pub fn merge(dir: &Path) -> Result<MergeReport, SweepError> {
+    let spec = crate::status::stored_spec(dir)?;
+    let store = Store::open_read(dir)?;
+    let plan = plan(&spec);
+    let missing: Vec<&Task> = plan.tasks.iter().filter(|t| !store.has(&t.key)).collect();
+    let report = MergeReport {
+        output: dir.to_path_buf(),
+        runs_total: plan.tasks.len(),
+        runs_missing: missing.len(),
+        missing_examples: missing
+            .iter()
+            .take(20)
+            .map(|t| {
+                format!(
+                    "eta_t = {}, kappa2 = {}, ic = {}",
+                    t.params.eta_t, t.params.kappa2, t.ic.name
+                )
+            })
+            .collect(),
+        tables: Vec::new(),
+    };
+    if !missing.is_empty() {
+        return Err(SweepError::Incomplete(Box::new(report)));
+    }
+    let tables = write_tables(&store, &spec, &plan)?;
+    Ok(MergeReport { tables, ..report })
 }

@@ -6,11 +6,12 @@ pub mod execute;
 pub mod phase;
 pub mod plan;
 pub mod plot;
+pub mod shard;
 pub mod spec;
 pub mod status;
 pub mod store;
 pub mod tables;
 
 pub use error::{SpecError, SweepError};
-pub use execute::{run_sweep, SweepOptions, SweepSummary};
+pub use execute::{merge, run_sweep, MergeReport, SweepOptions, SweepSummary};
 pub use spec::SweepSpec;

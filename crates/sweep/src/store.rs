@@ -32,9 +32,15 @@ impl Store {
     /// Opens `dir` for writing, creating it, and takes its lock (refused while another
     /// process holds it; the OS releases it when that process dies, even by SIGKILL).
     pub fn open_locked(dir: &Path) -> Result<Self, SweepError> {
+        Self::open_locked_as(dir, ".lock")
+    }
+
+    /// As [`Self::open_locked`] with the lock file `lock_name`: each shard of a sharded sweep
+    /// has its own, so shards never serialise each other (their runs are separate files).
+    pub fn open_locked_as(dir: &Path, lock_name: &str) -> Result<Self, SweepError> {
         let runs = dir.join("runs");
         fs::create_dir_all(&runs).map_err(|e| SweepError::io(&runs, e))?;
-        let lock_path = dir.join(".lock");
+        let lock_path = dir.join(lock_name);
         let lock = OpenOptions::new()
             .create(true)
             .truncate(false)

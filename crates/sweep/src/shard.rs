@@ -1,0 +1,119 @@
+//! Sharding a sweep over independent processes (e.g. a Slurm job array): deterministic slices
+//! balanced by expected cost. The cost of a PDE run is estimated by the reduced ODE model's
+//! number of steps to its steady state from the same point and initial condition
+//! (microseconds per run): runs near transitions relax slowly in both models. Slices are
+//! assigned greedily, most expensive first, to the currently cheapest shard (LPT).
+use crate::plan::{Plan, Task};
+use droplet_solver::{simulate, SolverSettings};
+
+/// Which slice of a sweep this process runs: `index` in `0..count`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Shard {
+    pub index: usize,
+    pub count: usize,
+}
+
+impl Shard {
+    /// Parses `I/N` with `0 <= I < N`.
+    pub fn parse(text: &str) -> Result<Self, String> {
+        let (i, n) = text
+            .split_once('/')
+            .ok_or_else(|| format!("invalid shard `{text}`: expected I/N, e.g. 0/4"))?;
+        let index: usize = i
+            .trim()
+            .parse()
+            .map_err(|_| format!("invalid shard index `{i}` in `{text}`"))?;
+        let count: usize = n
+            .trim()
+            .parse()
+            .map_err(|_| format!("invalid shard count `{n}` in `{text}`"))?;
+        if count == 0 || index >= count {
+            return Err(format!("invalid shard `{text}`: need 0 <= I < N"));
+        }
+        Ok(Self { index, count })
+    }
+
+    /// From Slurm's job-array variables, when both are set.
+    pub fn from_slurm_env() -> Option<Result<Self, String>> {
+        let id = std::env::var("SLURM_ARRAY_TASK_ID").ok()?;
+        let count = std::env::var("SLURM_ARRAY_TASK_COUNT").ok()?;
+        Some(Self::parse(&format!("{id}/{count}")))
+    }
+
+    /// Name of this shard's lock file.
+    pub fn lock_name(&self) -> String {
+        format!(".lock-shard-{}-of-{}", self.index, self.count)
+    }
+}
+
+/// Expected relative cost of a run: ODE steps to its steady state (at least 1).
+pub fn expected_cost(task: &Task) -> f64 {
+    let ode = SolverSettings {
+        t_max: task.settings.t_max,
+        ..SolverSettings::ode()
+    };
+    simulate(&task.params, &task.ic, &ode).map_or(1.0, |o| o.steps.max(1) as f64)
+}
+
+/// The shard (`0..count`) of every task, balanced by expected cost; deterministic.
+pub fn assign(plan: &Plan, count: usize) -> Vec<usize> {
+    let costs: Vec<f64> = plan.tasks.iter().map(expected_cost).collect();
+    let mut order: Vec<usize> = (0..plan.tasks.len()).collect();
+    // Most expensive first; ties by task order, so the result never depends on timing.
+    order.sort_by(|&a, &b| costs[b].total_cmp(&costs[a]).then(a.cmp(&b)));
+    let mut load = vec![0.0f64; count];
+    let mut owner = vec![0; plan.tasks.len()];
+    for t in order {
+        let s = (0..count)
+            .min_by(|&a, &b| load[a].total_cmp(&load[b]).then(a.cmp(&b)))
+            .expect("count > 0");
+        load[s] += costs[t];
+        owner[t] = s;
+    }
+    owner
+}
+
+/// The tasks of `shard`.
+pub fn tasks_of<'p>(plan: &'p Plan, shard: Shard) -> Vec<&'p Task> {
+    let owner = assign(plan, shard.count);
+    plan.tasks
+        .iter()
+        .zip(owner)
+        .filter(|(_, s)| *s == shard.index)
+        .map(|(t, _)| t)
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::spec::parse;
+
+    #[test]
+    fn shards_partition_the_runs_and_balance_cost() {
+        let spec = parse(
+            "grid:\n  eta_t: {start: 0.07, stop: 0.10, step: 0.005}\n  kappa2: {start: 0.10, stop: 0.16, step: 0.01}\n",
+            "t.yaml",
+            "t",
+        )
+        .unwrap();
+        let plan = crate::plan::plan(&spec);
+        let n = 3;
+        let mut seen = std::collections::HashSet::new();
+        let mut loads = vec![0.0; n];
+        for i in 0..n {
+            for t in tasks_of(&plan, Shard { index: i, count: n }) {
+                assert!(seen.insert(t.key.clone()), "run in two shards");
+                loads[i] += expected_cost(t);
+            }
+        }
+        assert_eq!(seen.len(), plan.tasks.len());
+        let (lo, hi) = loads
+            .iter()
+            .fold((f64::INFINITY, 0.0f64), |(a, b), &x| (a.min(x), b.max(x)));
+        assert!(hi / lo < 1.05, "unbalanced: {loads:?}");
+        assert_eq!(assign(&plan, n), assign(&plan, n));
+        assert!(Shard::parse("3/3").is_err() && Shard::parse("x").is_err());
+        assert_eq!(Shard::parse("1/4").unwrap(), Shard { index: 1, count: 4 });
+    }
+}

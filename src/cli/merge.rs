@@ -1,0 +1,58 @@
+//! `droplet merge`: the final tables of a sharded sweep.
+use super::{print_json, CliError};
+use std::path::PathBuf;
+
+/// Build DIR/runs.parquet, DIR/points.parquet and the picture from every stored run (e.g. after
+/// the shards of a Slurm array job). With runs missing it lists them, writes nothing and exits
+/// with code 1. Safe to repeat.
+#[derive(clap::Args)]
+pub struct Args {
+    /// The sweep's output directory.
+    out: PathBuf,
+    /// Do not draw the phase map.
+    #[arg(long)]
+    no_plot: bool,
+    /// Print one JSON object.
+    #[arg(long)]
+    json: bool,
+}
+
+pub fn run(a: Args) -> Result<(), CliError> {
+    match droplet_sweep::merge(&a.out) {
+        Ok(mut report) => {
+            if !a.no_plot {
+                report.tables.extend(droplet_sweep::status::plot(&a.out)?);
+            }
+            if a.json {
+                print_json(&report);
+            } else {
+                println!(
+                    "{}: all {} runs present",
+                    a.out.display(),
+                    report.runs_total
+                );
+                for f in &report.tables {
+                    println!("wrote {}", f.display());
+                }
+            }
+            Ok(())
+        }
+        Err(droplet_sweep::SweepError::Incomplete(report)) => {
+            if a.json {
+                print_json(&report);
+            }
+            let list = report.missing_examples.join("\n  ");
+            Err(CliError {
+                message: format!(
+                    "{} of {} runs are missing in {}; no tables written. Missing (first {}):\n  {list}",
+                    report.runs_missing,
+                    report.runs_total,
+                    a.out.display(),
+                    report.missing_examples.len()
+                ),
+                code: 1,
+            })
+        }
+        Err(e) => Err(e.into()),
+    }
+}

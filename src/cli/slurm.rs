@@ -1,0 +1,152 @@
+//! `droplet slurm`: a Slurm job array for a sweep, plus a dependent merge job.
+use super::{print_json, CliError};
+use droplet_sweep::{spec, SweepError};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// Write (and with --submit, submit) DIR/slurm/sweep.sbatch, an array of N shards each running
+/// `droplet sweep SPEC --shard $SLURM_ARRAY_TASK_ID/N`, and DIR/slurm/merge.sbatch, which runs
+/// `droplet merge DIR` after the array (afterany). DIR must be on a file system all nodes share.
+#[derive(clap::Args)]
+#[command(
+    after_help = "Example:\n  droplet slurm sweeps/fig2a.yaml --shards 32 --partition compute --time 08:00:00 --cpus 8 --submit\n  droplet status out/fig2a          # progress while it runs\n  resubmitting the array resumes: finished runs are never recomputed"
+)]
+pub struct Args {
+    /// The YAML spec.
+    spec: PathBuf,
+    /// Number of array tasks (shards).
+    #[arg(long)]
+    shards: usize,
+    /// Output directory (default: the spec's `output`), shared by all nodes.
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Slurm partition.
+    #[arg(long)]
+    partition: Option<String>,
+    /// Wall-time limit per shard (Slurm format).
+    #[arg(long, default_value = "24:00:00")]
+    time: String,
+    /// Memory per shard (Slurm format).
+    #[arg(long, default_value = "4G")]
+    mem: String,
+    /// CPUs per shard (worker threads).
+    #[arg(long, default_value_t = 1)]
+    cpus: usize,
+    /// The droplet binary the jobs run (default: this one).
+    #[arg(long)]
+    droplet: Option<PathBuf>,
+    /// Submit with sbatch (array, then the merge job depending on it).
+    #[arg(long)]
+    submit: bool,
+    /// Print one JSON object.
+    #[arg(long)]
+    json: bool,
+}
+
+fn abs(p: &Path) -> PathBuf {
+    std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf())
+}
+
+pub fn run(a: Args) -> Result<(), CliError> {
+    let sweep = spec::load(&a.spec)?;
+    if a.shards == 0 || a.cpus == 0 {
+        return Err(CliError::usage("--shards and --cpus must be at least 1"));
+    }
+    let out = abs(&a.out.clone().unwrap_or_else(|| sweep.output.clone()));
+    let spec_path = abs(&a.spec);
+    let exe = match &a.droplet {
+        Some(p) => abs(p),
+        None => {
+            std::env::current_exe().map_err(|e| CliError::from(SweepError::io("droplet", e)))?
+        }
+    };
+    let dir = out.join("slurm");
+    std::fs::create_dir_all(&dir).map_err(|e| CliError::from(SweepError::io(&dir, e)))?;
+    let partition = a
+        .partition
+        .as_ref()
+        .map(|p| format!("#SBATCH --partition={p}\n"))
+        .unwrap_or_default();
+    let header = |name: &str, extra: &str| {
+        format!(
+            "#!/bin/bash\n#SBATCH --job-name={name}\n{partition}#SBATCH --time={}\n#SBATCH --mem={}\n#SBATCH --output={}/%x-%A_%a.out\n{extra}set -euo pipefail\n",
+            a.time,
+            a.mem,
+            dir.display()
+        )
+    };
+    let sweep_script = format!(
+        "{}# Shard $SLURM_ARRAY_TASK_ID of {n}: finished runs are skipped, so resubmitting resumes.\n\"{}\" sweep \"{}\" --out \"{}\" --shard \"$SLURM_ARRAY_TASK_ID/{n}\" --jobs \"${{SLURM_CPUS_PER_TASK:-1}}\" --json\n",
+        header(&format!("droplet-{}", sweep.name), &format!("#SBATCH --array=0-{}\n#SBATCH --cpus-per-task={}\n", a.shards - 1, a.cpus)),
+        exe.display(),
+        spec_path.display(),
+        out.display(),
+        n = a.shards,
+    );
+    let merge_script = format!(
+        "{}\"{}\" merge \"{}\" --json\n",
+        header(
+            &format!("droplet-{}-merge", sweep.name),
+            "#SBATCH --cpus-per-task=1\n"
+        ),
+        exe.display(),
+        out.display()
+    );
+    let sweep_path = dir.join("sweep.sbatch");
+    let merge_path = dir.join("merge.sbatch");
+    droplet_sweep::store::write_atomic(&sweep_path, sweep_script.as_bytes())?;
+    droplet_sweep::store::write_atomic(&merge_path, merge_script.as_bytes())?;
+    let mut jobs = Vec::new();
+    if a.submit {
+        let sbatch = |args: &[&str]| -> Result<String, CliError> {
+            let o = Command::new("sbatch")
+                .args(args)
+                .output()
+                .map_err(|e| CliError {
+                    message: format!("cannot run sbatch: {e} (is Slurm installed here?)"),
+                    code: 1,
+                })?;
+            if !o.status.success() {
+                return Err(CliError {
+                    message: format!(
+                        "sbatch {}: {}",
+                        args.join(" "),
+                        String::from_utf8_lossy(&o.stderr).trim()
+                    ),
+                    code: 1,
+                });
+            }
+            Ok(String::from_utf8_lossy(&o.stdout)
+                .trim()
+                .split(';')
+                .next()
+                .unwrap_or("")
+                .to_string())
+        };
+        let array = sbatch(&["--parsable", sweep_path.to_str().unwrap_or_default()])?;
+        let dep = format!("--dependency=afterany:{array}");
+        let merge = sbatch(&["--parsable", &dep, merge_path.to_str().unwrap_or_default()])?;
+        jobs = vec![array, merge];
+    }
+    if a.json {
+        print_json(
+            &serde_json::json!({ "sweep_script": sweep_path, "merge_script": merge_path, "jobs": jobs, "output": out }),
+        );
+    } else {
+        println!(
+            "wrote {}\nwrote {}",
+            sweep_path.display(),
+            merge_path.display()
+        );
+        if jobs.is_empty() {
+            println!(
+                "submit: sbatch {} && sbatch --dependency=afterany:<array job id> {}",
+                sweep_path.display(),
+                merge_path.display()
+            );
+        } else {
+            println!("submitted array job {} and merge job {}", jobs[0], jobs[1]);
+        }
+    }
+    Ok(())
+}
