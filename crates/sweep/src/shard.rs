@@ -74,7 +74,7 @@ pub fn assign(plan: &Plan, count: usize) -> Vec<usize> {
 }
 
 /// The tasks of `shard`.
-pub fn tasks_of<'p>(plan: &'p Plan, shard: Shard) -> Vec<&'p Task> {
+pub fn tasks_of(plan: &Plan, shard: Shard) -> Vec<&Task> {
     let owner = assign(plan, shard.count);
     plan.tasks
         .iter()
@@ -101,10 +101,10 @@ mod tests {
         let n = 3;
         let mut seen = std::collections::HashSet::new();
         let mut loads = vec![0.0; n];
-        for i in 0..n {
+        for (i, load) in loads.iter_mut().enumerate() {
             for t in tasks_of(&plan, Shard { index: i, count: n }) {
                 assert!(seen.insert(t.key.clone()), "run in two shards");
-                loads[i] += expected_cost(t);
+                *load += expected_cost(t);
             }
         }
         assert_eq!(seen.len(), plan.tasks.len());
