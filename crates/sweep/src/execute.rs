@@ -4,13 +4,14 @@ use crate::error::SweepError;
 use crate::plan::{plan, Plan, Task};
 use crate::shard::{tasks_of, Shard};
 use crate::spec::SweepSpec;
+use crate::status::tally;
 use crate::store::{RunRecord, Store};
 use crate::tables;
 use droplet_solver::{simulate, SOLVER_VERSION};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rayon::prelude::*;
 use serde::Serialize;
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
@@ -140,22 +141,22 @@ pub fn run_sweep(
             })
     })?;
     pb.finish_and_clear();
+    let records = store.load_many(plan.tasks.iter().map(|t| t.key.as_str()));
     let tables = if opts.shard.is_none() {
-        write_tables(&store, spec, &plan)?
+        write_tables(&store, spec, &plan, &records)?
     } else {
         Vec::new()
     };
-    let records = store.load_many(plan.tasks.iter().map(|t| t.key.as_str()));
-    let mut point_classes = BTreeMap::new();
-    for (c, _) in tables::point_classes(&plan, &records) {
-        *point_classes.entry(c.label).or_default() += 1;
-    }
-    let mut run_statuses = BTreeMap::new();
-    for r in records.values() {
-        *run_statuses
-            .entry(r.outcome.status.as_str().to_string())
-            .or_default() += 1;
-    }
+    let point_classes = tally(
+        tables::point_classes(&plan, &records)
+            .into_iter()
+            .map(|(c, _)| c.label),
+    );
+    let run_statuses = tally(
+        records
+            .values()
+            .map(|r| r.outcome.status.as_str().to_string()),
+    );
     Ok(SweepSummary {
         name: spec.name.clone(),
         output: out.to_path_buf(),
@@ -177,18 +178,18 @@ pub fn write_tables(
     store: &Store,
     spec: &SweepSpec,
     plan: &Plan,
+    records: &HashMap<String, RunRecord>,
 ) -> Result<Vec<PathBuf>, SweepError> {
-    let records = store.load_many(plan.tasks.iter().map(|t| t.key.as_str()));
     let meta = tables::metadata(Some(&spec.source));
     let runs_path = store.dir().join("runs.parquet");
     let points_path = store.dir().join("points.parquet");
     tables::write_parquet(
-        &mut tables::runs_frame(plan, &records)?,
+        &mut tables::runs_frame(plan, records)?,
         &runs_path,
         meta.clone(),
     )?;
     tables::write_parquet(
-        &mut tables::points_frame(plan, &records)?,
+        &mut tables::points_frame(plan, records)?,
         &points_path,
         meta,
     )?;
@@ -233,6 +234,7 @@ pub fn merge(dir: &Path) -> Result<MergeReport, SweepError> {
     if !missing.is_empty() {
         return Err(SweepError::Incomplete(Box::new(report)));
     }
-    let tables = write_tables(&store, &spec, &plan)?;
+    let records = store.load_many(plan.tasks.iter().map(|t| t.key.as_str()));
+    let tables = write_tables(&store, &spec, &plan, &records)?;
     Ok(MergeReport { tables, ..report })
 }

@@ -27,6 +27,15 @@ pub struct SweepStatus {
     pub cpu_s: f64,
 }
 
+/// Counts of each label.
+pub fn tally(labels: impl IntoIterator<Item = String>) -> BTreeMap<String, usize> {
+    let mut out = BTreeMap::new();
+    for l in labels {
+        *out.entry(l).or_default() += 1;
+    }
+    out
+}
+
 /// The spec stored in a sweep directory.
 pub fn stored_spec(dir: &Path) -> Result<SweepSpec, SweepError> {
     let path = dir.join("spec.yaml");
@@ -40,26 +49,24 @@ pub fn status(dir: &Path) -> Result<SweepStatus, SweepError> {
     let spec = stored_spec(dir)?;
     let plan = plan(&spec);
     let records = store.load_many(plan.tasks.iter().map(|t| t.key.as_str()));
-    let mut run_statuses = BTreeMap::new();
-    let mut run_classes = BTreeMap::new();
-    let mut cpu_s = 0.0;
-    for r in records.values() {
-        *run_statuses
-            .entry(r.outcome.status.as_str().to_string())
-            .or_default() += 1;
-        let c = r
-            .outcome
+    let run_statuses = tally(
+        records
+            .values()
+            .map(|r| r.outcome.status.as_str().to_string()),
+    );
+    let run_classes = tally(records.values().map(|r| {
+        r.outcome
             .class
-            .map_or("none".to_string(), |c| c.as_str().to_string());
-        *run_classes.entry(c).or_default() += 1;
-        cpu_s += r.outcome.wall_s;
-    }
-    let mut point_counts = BTreeMap::new();
-    for (c, per_ic) in point_classes(&plan, &records) {
-        if per_ic.iter().all(|x| x.is_some()) {
-            *point_counts.entry(c.label).or_default() += 1;
-        }
-    }
+            .map_or("none".to_string(), |c| c.as_str().to_string())
+    }));
+    let cpu_s = records.values().map(|r| r.outcome.wall_s).sum();
+    // Point labels only over points whose runs are all done.
+    let point_counts = tally(
+        point_classes(&plan, &records)
+            .into_iter()
+            .filter(|(_, per_ic)| per_ic.iter().all(|x| x.is_some()))
+            .map(|(c, _)| c.label),
+    );
     Ok(SweepStatus {
         name: spec.name,
         output: dir.to_path_buf(),
