@@ -1,0 +1,85 @@
+//! Stress test over random parameters in and beyond the paper's window: no panic, every run
+//! ends with a status, outputs are finite unless the run diverged, and a diverged run stops
+//! where it diverged. The seed is fixed so that the suite is deterministic.
+use droplet_solver::*;
+use proptest::prelude::*;
+use proptest::test_runner::{Config, RngSeed};
+
+fn config() -> Config {
+    Config {
+        cases: 40,
+        rng_seed: RngSeed::Fixed(20261123),
+        failure_persistence: None,
+        ..Config::default()
+    }
+}
+
+fn check(out: &RunOutcome, t_max: f64) {
+    match out.status {
+        RunStatus::Diverged => {
+            assert!(out.class.is_none());
+            assert!(
+                !out.state.is_finite() || out.s >= 1.0,
+                "diverged but fine: {out:?}"
+            );
+            assert!(out.t_end <= t_max + 1e-9);
+        }
+        RunStatus::Steady | RunStatus::TMax => {
+            assert!(
+                out.state.is_finite() && out.v.is_finite() && out.s < 1.0,
+                "{out:?}"
+            );
+            assert!(out.class.is_some());
+        }
+    }
+    assert!(out.wall_s.is_finite());
+}
+
+proptest! {
+    #![proptest_config(config())]
+
+    #[test]
+    fn any_parameters_end_with_a_status(
+        eta_t in 0.01f64..0.3,
+        kappa2 in 0.0f64..0.3,
+        mass in prop_oneof![Just(0.0), 0.001f64..1.0],
+        sigma in 0.02f64..0.12,
+        half_n in 8usize..32,
+        dt in 0.001f64..0.4,
+        ic in prop_oneof![Just("i"), Just("ii"), Just("iii"), Just("iv"), Just("i'"), Just("ii'")],
+        fd in any::<bool>(),
+    ) {
+        let p = ModelParams { eta_t, kappa2, mass, sigma, ..ModelParams::default() };
+        let ic = InitialCondition::parse(ic).unwrap();
+        let t_max = 8.0;
+        let s = if fd {
+            // The explicit scheme at a stable step for its grid (dt < dx^2 / 4).
+            let n = 2 * half_n;
+            let dx = p.box_len / n as f64;
+            SolverSettings { n, dt: 0.2 * dx * dx, t_max: 1.0, ..SolverSettings::paper_fd() }
+        } else {
+            SolverSettings { n: 2 * half_n, dt, t_max, steady_window: dt.max(0.1), ..SolverSettings::default() }
+        };
+        let out = simulate(&p, &ic, &s).unwrap();
+        check(&out, s.t_max);
+        if mass > 0.0 {
+            let ode = SolverSettings { t_max, ..SolverSettings::ode() };
+            check(&simulate(&p, &ic, &ode).unwrap(), t_max);
+        }
+    }
+}
+
+/// Small eta_t and kappa2 (the paper's warning): the deformation runs away and the run ends
+/// `diverged` promptly, not at t_max.
+#[test]
+fn runaway_deformation_ends_as_diverged_promptly() {
+    let p = ModelParams::at(0.03, 0.0);
+    let s = SolverSettings {
+        n: 48,
+        t_max: 2000.0,
+        ..SolverSettings::default()
+    };
+    let out = simulate(&p, &InitialCondition::parse("ii").unwrap(), &s).unwrap();
+    assert_eq!(out.status, RunStatus::Diverged, "{out:?}");
+    assert!(out.t_end < 200.0, "took until t = {}", out.t_end);
+}
