@@ -84,11 +84,20 @@ impl Store {
         self.runs.join(format!("{key}.json"))
     }
 
-    /// Leftovers of writes interrupted by a crash.
+    /// Leftovers of writes interrupted by a crash. A temporary lives for milliseconds (write,
+    /// fsync, rename), so only those older than a minute are removed: a concurrent shard's
+    /// write in progress is never touched.
     fn remove_temporaries(&self) {
+        let stale = |e: &fs::DirEntry| {
+            e.metadata()
+                .and_then(|m| m.modified())
+                .ok()
+                .and_then(|t| t.elapsed().ok())
+                .is_some_and(|age| age > std::time::Duration::from_secs(60))
+        };
         if let Ok(entries) = fs::read_dir(&self.runs) {
             for e in entries.flatten() {
-                if e.file_name().to_string_lossy().ends_with(".tmp") {
+                if e.file_name().to_string_lossy().ends_with(".tmp") && stale(&e) {
                     let _ = fs::remove_file(e.path());
                 }
             }
@@ -184,6 +193,12 @@ mod tests {
         };
         store.save(&rec).unwrap();
         assert!(store.has("abc"));
+        // A fresh temporary (another process writing) survives a second open; no stale ones.
+        let fresh = dir.path().join("runs").join("x.1.tmp");
+        std::fs::write(&fresh, b"{").unwrap();
+        let other = Store::open_locked_as(dir.path(), ".lock-shard-0-of-2").unwrap();
+        assert!(fresh.exists());
+        drop(other);
         assert_eq!(store.load("abc").unwrap(), rec);
         drop(store);
         assert!(Store::open_locked(dir.path()).is_ok());
