@@ -18,11 +18,8 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<(), CliError> {
-    match droplet_sweep::merge(&a.out) {
-        Ok(mut report) => {
-            if !a.no_plot {
-                report.tables.extend(droplet_sweep::status::plot(&a.out)?);
-            }
+    match droplet_sweep::merge(&a.out, !a.no_plot) {
+        Ok(report) => {
             if a.json {
                 print_json(&report);
             } else {

@@ -1,7 +1,7 @@
 //! `droplet sweep`: every (point, initial condition) run of a YAML spec, resumable.
 use super::{print_json, CliError};
 use droplet_sweep::shard::Shard;
-use droplet_sweep::{run_sweep, spec, status, SweepOptions};
+use droplet_sweep::{run_sweep, spec, SweepOptions};
 use std::path::PathBuf;
 
 /// Run a sweep over (eta_t, kappa2) from a YAML spec: every point from every initial
@@ -50,11 +50,9 @@ pub fn run(a: Args) -> Result<(), CliError> {
         jobs: a.jobs,
         progress: !a.json,
         shard,
+        plot: !a.no_plot,
     };
-    let mut summary = run_sweep(&spec, &out, &opts)?;
-    if !a.no_plot && shard.is_none() {
-        summary.tables.extend(status::plot(&out)?);
-    }
+    let summary = run_sweep(&spec, &out, &opts)?;
     if a.json {
         print_json(&summary);
     } else {

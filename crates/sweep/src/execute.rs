@@ -26,6 +26,8 @@ pub struct SweepOptions {
     pub progress: bool,
     /// Run only this slice of the runs, and write no final tables (`droplet merge` does).
     pub shard: Option<Shard>,
+    /// Draw the pictures with the tables (unsharded sweeps only).
+    pub plot: bool,
 }
 
 /// What a finished sweep did.
@@ -142,11 +144,13 @@ pub fn run_sweep(
     })?;
     pb.finish_and_clear();
     let records = store.load_many(plan.tasks.iter().map(|t| t.key.as_str()));
-    let tables = if opts.shard.is_none() {
-        write_tables(&store, spec, &plan, &records)?
-    } else {
-        Vec::new()
-    };
+    let mut tables = Vec::new();
+    if opts.shard.is_none() {
+        tables = write_tables(&store, spec, &plan, &records)?;
+        if opts.plot {
+            tables.extend(crate::status::plot_records(out, spec, &plan, &records)?);
+        }
+    }
     let point_classes = tally(
         tables::point_classes(&plan, &records)
             .into_iter()
@@ -209,8 +213,8 @@ pub struct MergeReport {
 
 /// Builds the final tables of the sweep in `dir` from all its stored runs (e.g. after the
 /// shards of an array job). With runs missing, writes nothing and fails with a report.
-/// Idempotent: the tables depend only on the stored runs.
-pub fn merge(dir: &Path) -> Result<MergeReport, SweepError> {
+/// Idempotent: the tables depend only on the stored runs. `draw` adds the pictures.
+pub fn merge(dir: &Path, draw: bool) -> Result<MergeReport, SweepError> {
     let spec = crate::status::stored_spec(dir)?;
     let store = Store::open_read(dir)?;
     let plan = plan(&spec);
@@ -235,6 +239,9 @@ pub fn merge(dir: &Path) -> Result<MergeReport, SweepError> {
         return Err(SweepError::Incomplete(Box::new(report)));
     }
     let records = store.load_many(plan.tasks.iter().map(|t| t.key.as_str()));
-    let tables = write_tables(&store, &spec, &plan, &records)?;
+    let mut tables = write_tables(&store, &spec, &plan, &records)?;
+    if draw {
+        tables.extend(crate::status::plot_records(dir, &spec, &plan, &records)?);
+    }
     Ok(MergeReport { tables, ..report })
 }

@@ -87,7 +87,17 @@ pub fn plot(dir: &Path) -> Result<Vec<PathBuf>, SweepError> {
     let spec = stored_spec(dir)?;
     let plan = plan(&spec);
     let records = store.load_many(plan.tasks.iter().map(|t| t.key.as_str()));
-    let pts: Vec<MapPoint> = point_classes(&plan, &records)
+    plot_records(dir, &spec, &plan, &records)
+}
+
+/// As [`plot`], from records already loaded (a sweep or merge that just wrote the tables).
+pub fn plot_records(
+    dir: &Path,
+    spec: &SweepSpec,
+    plan: &crate::plan::Plan,
+    records: &std::collections::HashMap<String, crate::store::RunRecord>,
+) -> Result<Vec<PathBuf>, SweepError> {
+    let pts: Vec<MapPoint> = point_classes(plan, records)
         .into_iter()
         .zip(&plan.points)
         .map(|((c, per_ic), &(eta_t, kappa2))| MapPoint {
@@ -131,7 +141,7 @@ pub fn plot(dir: &Path) -> Result<Vec<PathBuf>, SweepError> {
         Vec::new()
     };
     files.push(path);
-    files.extend(lines(dir, &spec, &plan, &records)?);
+    files.extend(lines(dir, spec, plan, records)?);
     Ok(files)
 }
 

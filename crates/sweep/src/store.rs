@@ -111,18 +111,8 @@ impl Store {
 
     /// Persists a finished run atomically.
     pub fn save(&self, record: &RunRecord) -> Result<(), SweepError> {
-        let path = self.path_of(&record.key);
-        let tmp = self
-            .runs
-            .join(format!("{}.{}.tmp", record.key, std::process::id()));
         let json = serde_json::to_vec(record).expect("records serialise");
-        let write = || -> std::io::Result<()> {
-            let mut f = File::create(&tmp)?;
-            f.write_all(&json)?;
-            f.sync_all()?;
-            fs::rename(&tmp, &path)
-        };
-        write().map_err(|e| SweepError::io(&path, e))
+        write_atomic(&self.path_of(&record.key), &json).map(|_| ())
     }
 
     /// Loads one run, if stored and readable.
@@ -147,7 +137,8 @@ impl Store {
     }
 }
 
-/// Writes `bytes` to `path` via a temporary file and a rename.
+/// Writes `bytes` to `path` via a temporary file (`<stem>.<pid>.tmp`), fsync and a rename, so a
+/// crash leaves either the old file or the new one, never a partial one.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<PathBuf, SweepError> {
     let tmp = path.with_extension(format!("{}.tmp", std::process::id()));
     let write = || -> std::io::Result<()> {

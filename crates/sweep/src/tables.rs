@@ -38,18 +38,17 @@ pub fn metadata(spec_text: Option<&str>) -> Vec<(String, String)> {
     kv
 }
 
-/// Writes `df` to `path` (atomically) with metadata.
+/// Writes `df` to `path` with metadata (atomically, see [`crate::store::write_atomic`]).
 pub fn write_parquet(
     df: &mut DataFrame,
     path: &Path,
     meta: Vec<(String, String)>,
 ) -> Result<(), SweepError> {
-    let tmp = path.with_extension(format!("{}.tmp", std::process::id()));
-    let file = File::create(&tmp).map_err(|e| SweepError::io(&tmp, e))?;
-    ParquetWriter::new(file)
+    let mut bytes = Vec::new();
+    ParquetWriter::new(&mut bytes)
         .with_key_value_metadata(Some(KeyValueMetadata::from_static(meta)))
         .finish(df)?;
-    std::fs::rename(&tmp, path).map_err(|e| SweepError::io(path, e))?;
+    crate::store::write_atomic(path, &bytes)?;
     Ok(())
 }
 
