@@ -1,4 +1,5 @@
 //! Command-line front end.
+mod bench;
 mod fit_h0;
 mod merge;
 mod ode;
@@ -29,6 +30,7 @@ enum Command {
     FitH0(fit_h0::Args),
     Merge(merge::Args),
     Slurm(slurm::Args),
+    Bench(bench::Args),
 }
 
 /// Exit codes: 0 success, 1 failure while working, 2 bad input.
@@ -43,6 +45,7 @@ pub fn main() -> i32 {
         Command::FitH0(a) => fit_h0::run(a),
         Command::Merge(a) => merge::run(a),
         Command::Slurm(a) => slurm::run(a),
+        Command::Bench(a) => bench::run(a),
     };
     match result {
         Ok(()) => 0,

@@ -45,6 +45,13 @@ pub struct Args {
     /// Time step (default: 0.02 spectral, 1e-4 paper-fd).
     #[arg(long)]
     dt: Option<f64>,
+    /// Adaptive stepping: largest accepted embedded error estimate per step (units of v, a2,
+    /// b2); 0 = fixed step --dt (default: the spectral default; paper-fd has no estimate).
+    #[arg(long)]
+    tol: Option<f64>,
+    /// Largest adaptive step.
+    #[arg(long)]
+    dt_max: Option<f64>,
     /// Give up at this time (status t_max).
     #[arg(long, default_value_t = 2000.0)]
     t_max: f64,
@@ -86,6 +93,8 @@ struct Report {
     t_end: f64,
     t_steady: Option<f64>,
     steps: u64,
+    rejected: u64,
+    max_step_error: Option<f64>,
     wall_s: f64,
     mass_integral: f64,
     params: ModelParams,
@@ -105,6 +114,8 @@ pub fn run(a: Args) -> Result<(), CliError> {
         scheme,
         n: a.n.unwrap_or(base.n),
         dt: a.dt.unwrap_or(base.dt),
+        tol: a.tol.unwrap_or(base.tol),
+        dt_max: a.dt_max.unwrap_or(base.dt_max.max(a.dt.unwrap_or(base.dt))),
         t_max: a.t_max,
         steady_tol: a.steady_tol,
         steady_window: a.steady_window,
@@ -183,6 +194,8 @@ pub fn run(a: Args) -> Result<(), CliError> {
         t_end: out.t_end,
         t_steady: out.t_steady,
         steps: out.steps,
+        rejected: out.rejected,
+        max_step_error: out.max_step_error,
         wall_s: out.wall_s,
         mass_integral,
         params,

@@ -18,6 +18,7 @@ pub mod scheme;
 pub mod shape;
 pub mod state;
 pub mod steady;
+pub mod step_control;
 
 pub use classify::StateClass;
 pub use error::SolverError;

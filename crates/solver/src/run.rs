@@ -6,6 +6,7 @@ use crate::initial::InitialCondition;
 use crate::params::ModelParams;
 use crate::scheme::{ComovingEtd, PaperFd, Scheme, SchemeKind};
 use crate::state::DropletState;
+use crate::step_control::PiController;
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
 
@@ -40,8 +41,13 @@ pub struct SolverSettings {
     pub scheme: SchemeKind,
     /// Grid points per side.
     pub n: usize,
-    /// Time step.
+    /// Time step: the fixed step, or the first step when `tol > 0`.
     pub dt: f64,
+    /// Adaptive stepping (spectral scheme): the largest accepted embedded error estimate per
+    /// step, in the units of `vx, vy, a2, b2` ([`crate::step_control`]). `0` = fixed step `dt`.
+    pub tol: f64,
+    /// Largest step the adaptive controller may take.
+    pub dt_max: f64,
     /// Give up (status `t_max`) at this time.
     pub t_max: f64,
     /// Steady when the max change of `vx, vy, a2, b2` over one window is below this.
@@ -60,6 +66,8 @@ impl Default for SolverSettings {
             scheme: SchemeKind::Spectral,
             n: 192,
             dt: 0.02,
+            tol: 0.0,
+            dt_max: 1.0,
             t_max: 2000.0,
             steady_tol: 1e-6,
             steady_window: 0.1,
@@ -75,6 +83,7 @@ impl SolverSettings {
             scheme: SchemeKind::PaperFd,
             n: 280,
             dt: 1e-4,
+            tol: 0.0,
             ..Self::default()
         }
     }
@@ -84,13 +93,39 @@ impl SolverSettings {
         Self {
             model: ModelKind::Ode,
             dt: 0.05,
+            tol: 0.0,
             ..Self::default()
         }
+    }
+
+    /// Adaptive step control is on.
+    pub fn adaptive(&self) -> bool {
+        self.tol > 0.0
     }
 
     pub fn validate(&self) -> Result<(), SolverError> {
         require(self.dt > 0.0, "dt", self.dt, "a finite number > 0")?;
         require(self.t_max > 0.0, "t_max", self.t_max, "a finite number > 0")?;
+        require(
+            self.tol >= 0.0,
+            "tol",
+            self.tol,
+            "a finite number >= 0 (0 = fixed step)",
+        )?;
+        require(
+            self.dt_max >= self.dt,
+            "dt_max",
+            self.dt_max,
+            "a finite number >= dt",
+        )?;
+        if self.adaptive() && (self.model != ModelKind::Pde || self.scheme != SchemeKind::Spectral)
+        {
+            return Err(SolverError::InvalidParameter {
+                name: "tol",
+                value: self.tol,
+                allowed: "0 (fixed step): adaptive stepping needs the spectral PDE scheme",
+            });
+        }
         require(
             self.steady_tol > 0.0,
             "steady_tol",
@@ -177,7 +212,15 @@ pub struct RunOutcome {
     pub t_end: f64,
     /// Time at which the steady test was met.
     pub t_steady: Option<f64>,
+    /// Accepted steps.
     pub steps: u64,
+    /// Refused adaptive steps.
+    #[serde(default)]
+    pub rejected: u64,
+    /// Largest embedded local error estimate of an accepted step (`None`: the scheme has none).
+    /// For a fixed step, a value far above `steady_tol` says `dt` is too large.
+    #[serde(default)]
+    pub max_step_error: Option<f64>,
     pub wall_s: f64,
     /// Recorded time series (empty unless asked for).
     pub series: Vec<SeriesRow>,
@@ -234,44 +277,85 @@ impl Run {
     }
 
     /// Integrates until a stop rule fires.
+    ///
+    /// Fixed step: `dt` throughout. Adaptive (`tol > 0`): steps from the PI controller,
+    /// clipped to land on `t_max` and on the recording times. The steady test compares
+    /// states at least `steady_window` apart and scales the change to one window
+    /// (`change * window / elapsed`), so it keeps the paper's meaning (change per 0.1) for
+    /// steps longer than the window.
     pub fn execute(&mut self) -> RunOutcome {
         let started = Instant::now();
         let cfg = self.settings;
-        let dt = cfg.dt;
-        let steps_per_window = ((cfg.steady_window / dt).round() as u64).max(1);
-        let record_steps = self.record_every.map(|i| ((i / dt).round() as u64).max(1));
-        let max_steps = (cfg.t_max / dt).round() as u64;
+        let adaptive = cfg.adaptive();
+        let max_steps = (cfg.t_max / cfg.dt).round() as u64;
+        // Times within `slack` of a target count as reaching it (round-off of sums of steps).
+        let slack = 1e-9 * cfg.dt;
+        let mut controller = PiController::new(cfg.dt_max);
+        let mut h = cfg.dt;
         let mut series = Vec::new();
-        let mut last = self.scheme.state();
-        if record_steps.is_some() {
-            series.push(SeriesRow::at(0.0, &last));
+        let mut checkpoint = (0.0, self.scheme.state());
+        let mut next_record = self.record_every;
+        if next_record.is_some() {
+            series.push(SeriesRow::at(0.0, &checkpoint.1));
         }
-        let mut steps = 0u64;
+        let (mut t, mut steps, mut rejected) = (0.0, 0u64, 0u64);
+        let mut max_step_error: Option<f64> = None;
         let mut status = RunStatus::TMax;
         let mut t_steady = None;
-        while steps < max_steps {
-            self.scheme.step(dt);
-            steps += 1;
+        loop {
+            if adaptive {
+                if t >= cfg.t_max - slack {
+                    break;
+                }
+                let mut h_try = h.min(cfg.t_max - t);
+                if let Some(tr) = next_record {
+                    h_try = h_try.min(tr - t);
+                }
+                let a = self.scheme.attempt(h_try, cfg.tol);
+                let err = a.error.unwrap_or(0.0) / cfg.tol;
+                if !a.accepted {
+                    rejected += 1;
+                    h = controller.reject(h_try, err);
+                    if h < MIN_STEP {
+                        status = RunStatus::Diverged;
+                        break;
+                    }
+                    continue;
+                }
+                h = controller.accept(h_try, err);
+                t += h_try;
+                steps += 1;
+                max_step_error = larger(max_step_error, a.error);
+            } else {
+                if steps >= max_steps {
+                    break;
+                }
+                let a = self.scheme.attempt(cfg.dt, f64::INFINITY);
+                steps += 1;
+                t = steps as f64 * cfg.dt;
+                max_step_error = larger(max_step_error, a.error);
+            }
             let st = self.scheme.state();
-            let t = steps as f64 * dt;
             if !st.is_finite() || st.deformation() >= 1.0 {
                 status = RunStatus::Diverged;
                 break;
             }
-            if let Some(every) = record_steps {
-                if steps.is_multiple_of(every) {
+            if let (Some(tr), Some(every)) = (next_record, self.record_every) {
+                if t >= tr - slack {
                     series.push(SeriesRow::at(t, &st));
+                    next_record = Some(tr + every);
                 }
             }
-            if steps.is_multiple_of(steps_per_window) {
+            let elapsed = t - checkpoint.0;
+            if elapsed >= cfg.steady_window - slack {
                 let change = st
                     .monitored()
                     .iter()
-                    .zip(last.monitored())
+                    .zip(checkpoint.1.monitored())
                     .map(|(a, b)| (a - b).abs())
                     .fold(0.0, f64::max);
-                last = st;
-                if change < cfg.steady_tol {
+                checkpoint = (t, st);
+                if change * (cfg.steady_window / elapsed).min(1.0) < cfg.steady_tol {
                     status = RunStatus::Steady;
                     t_steady = Some(t);
                     break;
@@ -279,9 +363,8 @@ impl Run {
             }
         }
         let state = self.scheme.state();
-        let t_end = steps as f64 * dt;
-        if record_steps.is_some_and(|e| !steps.is_multiple_of(e)) {
-            series.push(SeriesRow::at(t_end, &state));
+        if series.last().is_some_and(|r| r.t < t - slack) {
+            series.push(SeriesRow::at(t, &state));
         }
         let (v, s) = (state.speed(), state.deformation());
         RunOutcome {
@@ -290,14 +373,27 @@ impl Run {
             state,
             v,
             s,
-            t_end,
+            t_end: t,
             t_steady,
             steps,
+            rejected,
+            max_step_error,
             wall_s: started.elapsed().as_secs_f64(),
             series,
         }
     }
 }
+
+fn larger(a: Option<f64>, b: Option<f64>) -> Option<f64> {
+    match (a, b) {
+        (Some(x), Some(y)) => Some(x.max(y)),
+        (x, None) => x,
+        (None, y) => y,
+    }
+}
+
+/// Smallest adaptive step before a run is declared diverged (the error estimate cannot be met).
+const MIN_STEP: f64 = 1e-9;
 
 /// Runs `params` from `ic` with `settings` to the end.
 pub fn simulate(

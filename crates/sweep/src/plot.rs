@@ -10,7 +10,7 @@ use std::sync::Once;
 static FONT: Once = Once::new();
 
 /// Registers the bundled DejaVu Sans for every family plotters may ask for.
-fn register_fonts() {
+pub(crate) fn register_fonts() {
     FONT.call_once(|| {
         let bytes: &'static [u8] = include_bytes!("../../../assets/DejaVuSans.ttf");
         for family in ["sans-serif", "serif", "monospace"] {
@@ -26,7 +26,7 @@ fn register_fonts() {
     });
 }
 
-fn perr<E: std::fmt::Display>(e: E) -> SweepError {
+pub(crate) fn perr<E: std::fmt::Display>(e: E) -> SweepError {
     SweepError::Plot(e.to_string())
 }
 

@@ -280,3 +280,51 @@ pub fn boundaries_frame(
         ],
     )?)
 }
+
+/// The work-precision benchmark's rows ([`crate::bench`]).
+pub fn bench_frame(rows: &[crate::bench::BenchRow]) -> Result<DataFrame, SweepError> {
+    use crate::bench::BenchRow;
+    let f = |g: fn(&BenchRow) -> f64| rows.iter().map(g).collect::<Vec<f64>>();
+    let st = |g: fn(&BenchRow) -> String| rows.iter().map(g).collect::<Vec<String>>();
+    let opt = |g: fn(&BenchRow) -> Option<f64>| rows.iter().map(g).collect::<Vec<Option<f64>>>();
+    let cols = vec![
+        str_col("case", st(|r| r.case.clone())),
+        str_col("family", st(|r| r.family.clone())),
+        str_col("scheme", st(|r| r.scheme.clone())),
+        Column::new(
+            "n".into(),
+            rows.iter().map(|r| r.n as u32).collect::<Vec<u32>>(),
+        ),
+        f64_col("dt", f(|r| r.dt)),
+        f64_col("tol", f(|r| r.tol)),
+        f64_col("dt_max", f(|r| r.dt_max)),
+        str_col("status", st(|r| r.status.clone())),
+        Column::new(
+            "class".into(),
+            rows.iter()
+                .map(|r| r.class.clone())
+                .collect::<Vec<Option<String>>>(),
+        ),
+        Column::new(
+            "class_ok".into(),
+            rows.iter().map(|r| r.class_ok).collect::<Vec<bool>>(),
+        ),
+        f64_col("v", f(|r| r.v)),
+        f64_col("s", f(|r| r.s)),
+        f64_col("err_v", f(|r| r.err_v)),
+        f64_col("err_s", f(|r| r.err_s)),
+        Column::new("err_series".into(), opt(|r| r.err_series)),
+        f64_col("t_end", f(|r| r.t_end)),
+        Column::new(
+            "steps".into(),
+            rows.iter().map(|r| r.steps).collect::<Vec<u64>>(),
+        ),
+        Column::new(
+            "rejected".into(),
+            rows.iter().map(|r| r.rejected).collect::<Vec<u64>>(),
+        ),
+        Column::new("max_step_error".into(), opt(|r| r.max_step_error)),
+        f64_col("wall_s", f(|r| r.wall_s)),
+    ];
+    Ok(DataFrame::new(rows.len(), cols)?)
+}

@@ -119,6 +119,8 @@ pub fn simulate(
         t_end: steps as f64 * dt,
         t_steady,
         steps,
+        rejected: 0,
+        max_step_error: None,
         wall_s: started.elapsed().as_secs_f64(),
         series: Vec::new(),
     })

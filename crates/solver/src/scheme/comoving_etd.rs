@@ -25,7 +25,7 @@ use crate::fft2::PrunedFft2;
 use crate::forces::{ColumnSums, ForceSums, Forces, ShapeSampler};
 use crate::grid::Grid;
 use crate::params::ModelParams;
-use crate::scheme::{Field, Scheme};
+use crate::scheme::{Attempt, Field, Scheme};
 use crate::shape::ShapeParams;
 use crate::state::DropletState;
 use rustfft::num_complex::Complex64;
@@ -231,7 +231,7 @@ impl Scheme for ComovingEtd {
         self.state
     }
 
-    fn step(&mut self, h: f64) {
+    fn attempt(&mut self, h: f64, max_error: f64) -> Attempt {
         let f0 = self.ensure_current();
         let p = self.params;
         let st = self.state;
@@ -311,6 +311,26 @@ impl Scheme for ComovingEtd {
         if self.pinned {
             (next.x, next.y) = (st.x, st.y);
         }
+        // Embedded estimate: corrector minus ETD1 predictor of the integrated scalars. The
+        // step can be refused here, before the second half of its cost.
+        let error = if self.pinned {
+            (next.a2 - a2a).abs().max((next.b2 - b2a).abs())
+        } else if inertial {
+            [next.vx - vxa, next.vy - vya, next.a2 - a2a, next.b2 - b2a]
+                .iter()
+                .fold(0.0f64, |m, d| m.max(d.abs()))
+        } else {
+            let (xa, ya) = (pos.predict(st.x, v0x), pos.predict(st.y, v0y));
+            [next.x - xa, next.y - ya, next.a2 - a2a, next.b2 - b2a]
+                .iter()
+                .fold(0.0f64, |m, d| m.max(d.abs()))
+        };
+        if max_error.is_finite() && !(error <= max_error) {
+            return Attempt {
+                accepted: false,
+                error: Some(error),
+            };
+        }
         let sample_next = next.is_finite() && next.deformation() < 1.0;
         if sample_next {
             Self::shape_spectra(
@@ -364,6 +384,10 @@ impl Scheme for ComovingEtd {
             self.forces0 = Some(f);
         } else {
             self.forces0 = None;
+        }
+        Attempt {
+            accepted: true,
+            error: Some(error),
         }
     }
 

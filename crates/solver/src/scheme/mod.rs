@@ -56,12 +56,28 @@ pub struct Field {
     pub values: Vec<f64>,
 }
 
+/// What became of one step attempt.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Attempt {
+    /// The step was taken (else nothing changed).
+    pub accepted: bool,
+    /// Embedded local error estimate: max over the droplet's integrated scalars of
+    /// `|corrector - predictor|` (`None` for schemes without one).
+    pub error: Option<f64>,
+}
+
 /// One integrator: advance the droplet and its field by a step.
 pub trait Scheme: Send {
     /// Current droplet state.
     fn state(&self) -> DropletState;
-    /// Advances by `h`.
-    fn step(&mut self, h: f64);
+    /// Attempts a step of `h`. It is taken unless the scheme's embedded error estimate
+    /// exceeds `max_error`; a refused step leaves the scheme unchanged. Schemes without an
+    /// estimate always take the step.
+    fn attempt(&mut self, h: f64, max_error: f64) -> Attempt;
+    /// Advances by `h` unconditionally.
+    fn step(&mut self, h: f64) {
+        self.attempt(h, f64::INFINITY);
+    }
     /// `Integral u dA`.
     fn mass(&self) -> f64;
     /// The concentration in the lab frame.

@@ -3,7 +3,7 @@
 //! Kept as the baseline for speed and error comparisons; paper settings dx = 0.025, dt = 1e-4.
 use crate::grid::Grid;
 use crate::params::ModelParams;
-use crate::scheme::{Field, Scheme};
+use crate::scheme::{Attempt, Field, Scheme};
 use crate::shape::ShapeParams;
 use crate::state::DropletState;
 
@@ -108,7 +108,31 @@ impl Scheme for PaperFd {
         self.state
     }
 
-    fn step(&mut self, h: f64) {
+    /// Forward Euler has no embedded estimate: every attempt is taken.
+    fn attempt(&mut self, h: f64, _max_error: f64) -> Attempt {
+        self.euler_step(h);
+        Attempt {
+            accepted: true,
+            error: None,
+        }
+    }
+
+    fn mass(&self) -> f64 {
+        self.u.iter().sum::<f64>() * self.dx * self.dx
+    }
+
+    fn field(&mut self) -> Field {
+        Field {
+            n: self.n,
+            len: self.params.box_len,
+            values: self.u.clone(),
+        }
+    }
+}
+
+impl PaperFd {
+    /// One forward-Euler step of the field and the droplet (paper Sect. 3).
+    fn euler_step(&mut self, h: f64) {
         let [area, fx, fy, ga, gb] = self.fill_and_forces();
         let n = self.n;
         let inv_dx2 = 1.0 / (self.dx * self.dx);
@@ -146,17 +170,5 @@ impl Scheme for PaperFd {
         }
         st.a2 += h / p.eta2 * (ga - p.kappa2 * st.a2);
         st.b2 += h / p.eta2 * (gb - p.kappa2 * st.b2);
-    }
-
-    fn mass(&self) -> f64 {
-        self.u.iter().sum::<f64>() * self.dx * self.dx
-    }
-
-    fn field(&mut self) -> Field {
-        Field {
-            n: self.n,
-            len: self.params.box_len,
-            values: self.u.clone(),
-        }
     }
 }
