@@ -18,7 +18,8 @@ fn read(path: &Path) -> DataFrame {
         .unwrap()
 }
 
-/// A tiny sweep (coarse grid, N = 32): seconds, enough for resume and locking tests.
+/// A tiny sweep (coarse grid, N = 32, fixed steps so that it lasts long enough to be
+/// interrupted): seconds, enough for resume and locking tests.
 const TINY: &str = "name: tiny
 grid:
   eta_t: [0.07, 0.09, 0.11]
@@ -27,6 +28,7 @@ initial_conditions: [i, iii]
 solver:
   n: 32
   dt: 0.05
+  tol: 0
   t_max: 150
 ";
 
@@ -176,10 +178,12 @@ fn sigkill_at_several_moments_then_resume_gives_identical_tables() {
         "--json",
     ]));
     assert!(done["reused"].as_u64().unwrap() > 0, "{done}");
-    // No leftovers, nothing duplicated: one file per run.
+    // Nothing duplicated: one record per run. (A write cut by SIGKILL may leave a `*.tmp`,
+    // never read; the store removes temporaries once they are a minute old.)
     let files: Vec<_> = std::fs::read_dir(resumed.join("runs"))
         .unwrap()
         .flatten()
+        .filter(|e| e.path().extension().is_some_and(|x| x == "json"))
         .collect();
     assert_eq!(files.len(), 18);
     for t in ["runs.parquet", "points.parquet"] {
@@ -245,6 +249,21 @@ fn malformed_specs_exit_2_name_the_key_and_write_nothing() {
             "solver.nn",
         ),
         ("odd n", good.replace("n: 32", "n: 33"), "solver.n"),
+        (
+            "negative tol",
+            good.replace("  n: 32", "  n: 32\n  tol: -1"),
+            "solver.tol",
+        ),
+        (
+            "adaptive paper-fd",
+            good.replace("  n: 32", "  scheme: paper-fd\n  n: 32\n  tol: 1.0e-4"),
+            "solver.tol",
+        ),
+        (
+            "dt_max below dt",
+            good.replace("  n: 32", "  n: 32\n  dt_max: 0.01"),
+            "solver.dt_max",
+        ),
         ("zero n", good.replace("n: 32", "n: 0"), "solver.n"),
         (
             "negative dt",
@@ -395,12 +414,32 @@ fn simulate_json_series_and_picture() {
     ]);
     let j = json(&o);
     for key in [
-        "status", "class", "v", "s", "vx", "vy", "a2", "b2", "t_end", "t_steady", "steps",
-        "wall_s", "settings", "params",
+        "status",
+        "class",
+        "v",
+        "s",
+        "vx",
+        "vy",
+        "a2",
+        "b2",
+        "t_end",
+        "t_steady",
+        "steps",
+        "rejected",
+        "max_step_error",
+        "dt_warning",
+        "wall_s",
+        "settings",
+        "params",
     ] {
         assert!(j.get(key).is_some(), "missing {key}");
     }
-    assert_eq!(j["steps"], 1000);
+    // Adaptive by default: fewer steps than dt = 0.02 would take, ending exactly at t_max.
+    let steps = j["steps"].as_u64().unwrap();
+    assert!(steps > 20 && steps < 1000, "{steps}");
+    assert!((j["t_end"].as_f64().unwrap() - 20.0).abs() < 1e-9);
+    assert!(j["max_step_error"].as_f64().unwrap() <= 1e-4);
+    assert!(j["dt_warning"].is_null());
     assert!((j["mass_integral"].as_f64().unwrap() - (1.0 - (-20f64).exp())).abs() < 1e-9);
     let df = read(&series);
     assert_eq!(df.height(), 21);
@@ -660,4 +699,76 @@ fn shards_then_merge_equal_a_single_sweep_and_early_merge_writes_nothing() {
     assert!(script.contains("#SBATCH --partition=debug"));
     let merge = std::fs::read_to_string(sl["merge_script"].as_str().unwrap()).unwrap();
     assert!(merge.contains(" merge "));
+}
+
+#[test]
+fn bench_quick_writes_its_table_summary_and_picture_and_rescores() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("bench");
+    let o = out.to_str().unwrap();
+    let j = json(&run(&[
+        "bench", "--quick", "--out", o, "--json", "--jobs", "2",
+    ]));
+    assert_eq!(j["reference_reused"], false);
+    for f in [
+        "bench.parquet",
+        "bench.md",
+        "summary.json",
+        "reference.json",
+        "work_precision.png",
+        "work_precision.svg",
+    ] {
+        assert!(out.join(f).exists(), "{f}");
+    }
+    let df = read(&out.join("bench.parquet"));
+    assert_eq!(df.height() as u64, j["rows"].as_u64().unwrap());
+    assert_eq!(df.column("n").unwrap().dtype(), &DataType::UInt32);
+    assert_eq!(df.column("err_series").unwrap().dtype(), &DataType::Float64);
+    let meta = droplet_sweep::tables::read_metadata(&out.join("bench.parquet")).unwrap();
+    for k in ["git_commit", "machine", "command", "plan"] {
+        assert!(meta.contains_key(k), "{k}");
+    }
+    // Spatial convergence shows: the MD case's error falls from N = 32 to N = 48 (dt = 0.05).
+    let err = |n: u32| {
+        let case = df.column("case").unwrap().str().unwrap().clone();
+        let fam = df.column("family").unwrap().str().unwrap().clone();
+        let dt = df.column("dt").unwrap().f64().unwrap().clone();
+        let (ev, es) = (
+            df.column("err_v").unwrap().f64().unwrap().clone(),
+            df.column("err_s").unwrap().f64().unwrap().clone(),
+        );
+        (0..df.height())
+            .find(|&i| {
+                case.get(i) == Some("MD")
+                    && fam.get(i) == Some(format!("spectral N={n}").as_str())
+                    && dt.get(i) == Some(0.05)
+            })
+            .map(|i| ev.get(i).unwrap().max(es.get(i).unwrap()))
+            .unwrap()
+    };
+    assert!(err(48) < err(32) / 3.0, "{} vs {}", err(48), err(32));
+    // Not overwritten without --force; re-scored against the stored reference on request.
+    let again = run(&["bench", "--quick", "--out", o]);
+    assert_eq!(again.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&again.stderr).contains("--force"));
+    let r = json(&run(&[
+        "bench",
+        "--quick",
+        "--out",
+        o,
+        "--rescore",
+        "--json",
+    ]));
+    assert_eq!(
+        (r["reference_reused"].as_bool(), r["rows"].as_u64()),
+        (Some(true), j["rows"].as_u64())
+    );
+    let df2 = read(&out.join("bench.parquet"));
+    for name in df.get_column_names() {
+        let (a, b) = (df.column(name).unwrap(), df2.column(name).unwrap());
+        assert!(
+            a.equals_missing(b),
+            "column {name} changed by re-scoring:\n{a:?}\n{b:?}"
+        );
+    }
 }

@@ -31,6 +31,10 @@ pub struct Args {
     /// Replace an existing OUT/bench.parquet.
     #[arg(long)]
     force: bool,
+    /// Re-score the runs of OUT/bench.parquet against OUT/reference.json (recomputed when
+    /// absent) without re-running them; rewrites the table, summary and picture.
+    #[arg(long, conflicts_with = "force")]
+    rescore: bool,
     /// Print one JSON object (keys: out, profile, rows, summary, reference_wall_s, wall_s, files).
     #[arg(long)]
     json: bool,
@@ -89,6 +93,32 @@ fn load_or_compute(dir: &Path, plan: &BenchPlan) -> Result<(References, bool), C
     Ok((refs, false))
 }
 
+/// Every row as a Markdown table (the Parquet table's main columns), grouped by case.
+fn markdown(rows: &[bench::BenchRow]) -> String {
+    let mut out = String::from(
+        "| case | method | dt | tol | status | class ok | err v | err s | err series | steps | rejected | wall s |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+    );
+    let e = |x: f64| format!("{x:.1e}");
+    for r in rows {
+        out.push_str(&format!(
+            "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {:.2} |\n",
+            r.case,
+            r.family,
+            r.dt,
+            r.tol,
+            r.status,
+            if r.class_ok { "yes" } else { "NO" },
+            e(r.err_v),
+            e(r.err_s),
+            r.err_series.map_or("-".into(), e),
+            r.steps,
+            r.rejected,
+            r.wall_s
+        ));
+    }
+    out
+}
+
 pub fn run(a: Args) -> Result<(), CliError> {
     let started = std::time::Instant::now();
     let profile = if a.quick {
@@ -98,7 +128,13 @@ pub fn run(a: Args) -> Result<(), CliError> {
     };
     let plan = BenchPlan::new(profile);
     let table = a.out.join("bench.parquet");
-    if table.exists() && !a.force {
+    if a.rescore && !table.exists() {
+        return Err(CliError::usage(format!(
+            "--rescore: {} does not exist; run the benchmark first",
+            table.display()
+        )));
+    }
+    if table.exists() && !a.force && !a.rescore {
         return Err(CliError::usage(format!(
             "{} exists; pass --force to replace it, or use another --out",
             table.display()
@@ -112,11 +148,26 @@ pub fn run(a: Args) -> Result<(), CliError> {
         .map_err(|e| CliError::usage(format!("thread pool: {e}")))?;
     let (refs, reused, rows) = pool.install(|| -> Result<_, CliError> {
         let (refs, reused) = load_or_compute(&a.out, &plan)?;
-        let rows = bench::run(&refs, !a.json)?;
+        let rows = if a.rescore {
+            let mut rows = tables::read_bench(&table)?;
+            bench::rescore(&refs, &mut rows);
+            rows
+        } else {
+            bench::run(&refs, !a.json)?
+        };
         Ok((refs, reused, rows))
     })?;
     let summary = bench::summarise(&refs, &rows);
     let mut meta = tables::metadata(None);
+    if a.rescore {
+        // Keep the provenance of the measurement; add the re-scoring's.
+        let old = tables::read_metadata(&table)?;
+        for k in ["machine", "command", "jobs", "git_commit"] {
+            if let Some(v) = old.get(k) {
+                meta.push((format!("measured_{k}"), v.clone()));
+            }
+        }
+    }
     meta.push(("machine".into(), machine()));
     meta.push((
         "command".into(),
@@ -126,6 +177,8 @@ pub fn run(a: Args) -> Result<(), CliError> {
     meta.push(("plan".into(), serde_json::to_string(&plan).expect("json")));
     let mut df = tables::bench_frame(&rows)?;
     tables::write_parquet(&mut df, &table, meta)?;
+    let md_path = a.out.join("bench.md");
+    store::write_atomic(&md_path, markdown(&rows).as_bytes())?;
     let summary_path = a.out.join("summary.json");
     store::write_atomic(
         &summary_path,
@@ -139,7 +192,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
         machine(),
         tables::GIT_COMMIT
     );
-    let mut files = vec![table, summary_path, a.out.join("reference.json")];
+    let mut files = vec![table, md_path, summary_path, a.out.join("reference.json")];
     files.extend(precision_plot::work_precision(
         &a.out,
         "work_precision",

@@ -42,14 +42,16 @@ pub struct Args {
     /// Grid points per side (default: 192 spectral, 280 paper-fd).
     #[arg(long)]
     n: Option<usize>,
-    /// Time step (default: 0.02 spectral, 1e-4 paper-fd).
+    /// Time step: the first step of adaptive runs, else the fixed step (default: 0.02
+    /// spectral, 1e-4 paper-fd).
     #[arg(long)]
     dt: Option<f64>,
     /// Adaptive stepping: largest accepted embedded error estimate per step (units of v, a2,
-    /// b2); 0 = fixed step --dt (default: the spectral default; paper-fd has no estimate).
+    /// b2); 0 = fixed step --dt. Default 1e-4 for spectral (see `droplet bench`), 0 for
+    /// paper-fd (no estimate). For accurate time series use 1e-5.
     #[arg(long)]
     tol: Option<f64>,
-    /// Largest adaptive step.
+    /// Largest adaptive step (default 0.25: larger steps relax slow modes at the wrong rate).
     #[arg(long)]
     dt_max: Option<f64>,
     /// Give up at this time (status t_max).
@@ -95,6 +97,8 @@ struct Report {
     steps: u64,
     rejected: u64,
     max_step_error: Option<f64>,
+    /// Set when a fixed step is too large to trust (see `RunOutcome::dt_warning`).
+    dt_warning: Option<String>,
     wall_s: f64,
     mass_integral: f64,
     params: ModelParams,
@@ -196,6 +200,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
         steps: out.steps,
         rejected: out.rejected,
         max_step_error: out.max_step_error,
+        dt_warning: out.dt_warning(&settings),
         wall_s: out.wall_s,
         mass_integral,
         params,
@@ -217,6 +222,9 @@ pub fn run(a: Args) -> Result<(), CliError> {
             report.steps,
             report.wall_s
         );
+        if let Some(w) = &report.dt_warning {
+            eprintln!("warning: {w}");
+        }
         for p in a.series.iter().chain(&pictures) {
             println!("wrote {}", p.display());
         }

@@ -72,6 +72,13 @@ pub fn run(a: Args) -> Result<(), CliError> {
             .map(|(k, v)| format!("{k}: {v}"))
             .collect();
         println!("point classes: {}", classes.join(", "));
+        if summary.dt_warnings > 0 {
+            eprintln!(
+                "warning: {} fixed-step runs took steps too large to trust (column max_step_error > {:e} in runs.parquet); lower dt or use adaptive stepping (solver.tol)",
+                summary.dt_warnings,
+                droplet_solver::run::STEP_ERROR_LIMIT
+            );
+        }
         for p in &summary.tables {
             println!("wrote {}", p.display());
         }

@@ -76,14 +76,21 @@ pub struct SeparableExp {
 }
 
 impl SeparableExp {
-    /// Recomputes the factors for step `h` (O(N), no-op when `h` is unchanged).
+    /// Recomputes the factors for step `h` (O(N), in place: adaptive steps change `h` every
+    /// step; a no-op when `h` is unchanged).
     pub fn update(&mut self, h: f64, kx: &[f64], ky: &[f64]) {
-        if self.h == h && !self.ax.is_empty() {
+        if self.h == h && self.ax.len() == kx.len() && self.ay.len() == ky.len() {
             return;
         }
         self.h = h;
-        self.ax = kx.iter().map(|k| (-h * k * k).exp_m1()).collect();
-        self.ay = ky.iter().map(|k| (-h * (1.0 + k * k)).exp_m1()).collect();
+        self.ax.resize(kx.len(), 0.0);
+        self.ay.resize(ky.len(), 0.0);
+        for (a, k) in self.ax.iter_mut().zip(kx) {
+            *a = (-h * k * k).exp_m1();
+        }
+        for (a, k) in self.ay.iter_mut().zip(ky) {
+            *a = (-h * (1.0 + k * k)).exp_m1();
+        }
     }
 
     /// `(e, p1, p2)` of one mode from its axis factors and `1/c`.

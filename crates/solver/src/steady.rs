@@ -24,12 +24,25 @@ pub struct SteadySolver {
     w: Vec<Complex64>,
 }
 
+/// A mirror line of the periodic square box on which [`SteadySolver::newton_on`] works: the
+/// steady states symmetric about it form a 2-unknown problem (speed along it, one shape
+/// amplitude).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MirrorAxis {
+    /// Motion along x, shape `(a2, 0)`.
+    X,
+    /// Motion along `(1, 1) / sqrt 2`, shape `(0, b2)`. The box's images make this orientation
+    /// differ from `X` near thresholds (an ID droplet settles on the diagonal).
+    Diagonal,
+}
+
 /// A steady state found by [`SteadySolver::newton`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SteadyState {
-    /// Speed along +x (the motion direction is fixed to x by symmetry).
+    /// Speed along the axis (+x for [`SteadySolver::newton`]).
     pub v: f64,
-    /// Shape amplitude along x (`b2 = 0`); `a2 < 0` is a droplet elongated across the motion.
+    /// Shape amplitude on the axis: `a2` for [`MirrorAxis::X`] (`b2 = 0`; `a2 < 0` is a
+    /// droplet elongated across the motion), `b2` for [`MirrorAxis::Diagonal`] (`a2 = 0`).
     pub a2: f64,
     /// Max norm of the residual at the solution.
     pub residual: f64,
@@ -113,13 +126,41 @@ impl SteadySolver {
         [-p.eta_t * v + f.fx, f.ga - p.kappa2 * a2]
     }
 
-    /// Newton solve from `(v, a2)`. With `v = 0` only `a2` is solved (ID and IC states, where
-    /// `F = 0` by symmetry); otherwise `(v, a2)` (MD, MC states moving along x).
+    /// The residual of [`Self::residual`] on a mirror axis: speed `v` along it, shape
+    /// amplitude `c` on it.
+    pub fn residual_on(&mut self, axis: MirrorAxis, v: f64, c: f64) -> [f64; 2] {
+        let p = self.params;
+        match axis {
+            MirrorAxis::X => self.residual(v, c),
+            MirrorAxis::Diagonal => {
+                let d = v * std::f64::consts::FRAC_1_SQRT_2;
+                let f = self.forces(d, d, 0.0, c);
+                [
+                    -p.eta_t * v + (f.fx + f.fy) * std::f64::consts::FRAC_1_SQRT_2,
+                    f.gb - p.kappa2 * c,
+                ]
+            }
+        }
+    }
+
+    /// Newton solve from `(v, a2)` on the x axis. With `v = 0` only `a2` is solved (ID and IC
+    /// states, where `F = 0` by symmetry); otherwise `(v, a2)` (MD, MC states moving along x).
     pub fn newton(&mut self, v0: f64, a20: f64, tol: f64) -> Result<SteadyState, SolverError> {
+        self.newton_on(MirrorAxis::X, v0, a20, tol)
+    }
+
+    /// [`Self::newton`] on either mirror axis.
+    pub fn newton_on(
+        &mut self,
+        axis: MirrorAxis,
+        v0: f64,
+        a20: f64,
+        tol: f64,
+    ) -> Result<SteadyState, SolverError> {
         let moving = v0 != 0.0;
         let (mut v, mut a2) = (v0, a20);
         let h = 1e-6;
-        let mut res = self.residual(v, a2);
+        let mut res = self.residual_on(axis, v, a2);
         let norm = |r: [f64; 2]| {
             if moving {
                 r[0].abs().max(r[1].abs())
@@ -136,15 +177,15 @@ impl SteadySolver {
                     iterations: it,
                 });
             }
-            let ra_p = self.residual(v, a2 + h);
-            let ra_m = self.residual(v, a2 - h);
+            let ra_p = self.residual_on(axis, v, a2 + h);
+            let ra_m = self.residual_on(axis, v, a2 - h);
             let d_a = [
                 (ra_p[0] - ra_m[0]) / (2.0 * h),
                 (ra_p[1] - ra_m[1]) / (2.0 * h),
             ];
             let (dv, da) = if moving {
-                let rv_p = self.residual(v + h, a2);
-                let rv_m = self.residual(v - h, a2);
+                let rv_p = self.residual_on(axis, v + h, a2);
+                let rv_m = self.residual_on(axis, v - h, a2);
                 let d_v = [
                     (rv_p[0] - rv_m[0]) / (2.0 * h),
                     (rv_p[1] - rv_m[1]) / (2.0 * h),
@@ -161,7 +202,7 @@ impl SteadySolver {
             let scale = (0.2 / da.abs().max(1e-300)).min(1.0);
             v += dv * scale;
             a2 += da * scale;
-            res = self.residual(v, a2);
+            res = self.residual_on(axis, v, a2);
         }
         Err(SolverError::NewtonFailed {
             residual: norm(res),

@@ -48,6 +48,7 @@ proptest! {
         dt in 0.001f64..0.4,
         ic in prop_oneof![Just("i"), Just("ii"), Just("iii"), Just("iv"), Just("i'"), Just("ii'")],
         fd in any::<bool>(),
+        adaptive in any::<bool>(),
     ) {
         let p = ModelParams { eta_t, kappa2, mass, sigma, ..ModelParams::default() };
         let ic = InitialCondition::parse(ic).unwrap();
@@ -57,11 +58,18 @@ proptest! {
             let n = 2 * half_n;
             let dx = p.box_len / n as f64;
             SolverSettings { n, dt: 0.2 * dx * dx, t_max: 1.0, ..SolverSettings::paper_fd() }
+        } else if adaptive {
+            // dt is the first step; the controller takes over.
+            SolverSettings { n: 2 * half_n, dt: dt.min(0.1), t_max, ..SolverSettings::default() }
         } else {
-            SolverSettings { n: 2 * half_n, dt, t_max, steady_window: dt.max(0.1), ..SolverSettings::default() }
+            SolverSettings { n: 2 * half_n, dt, tol: 0.0, dt_max: dt.max(1.0), t_max, steady_window: dt.max(0.1), ..SolverSettings::default() }
         };
         let out = simulate(&p, &ic, &s).unwrap();
         check(&out, s.t_max);
+        if s.adaptive() {
+            // Every accepted step met the tolerance.
+            prop_assert!(out.max_step_error.unwrap_or(0.0) <= s.tol, "{:?}", out);
+        }
         if mass > 0.0 {
             let ode = SolverSettings { t_max, ..SolverSettings::ode() };
             check(&simulate(&p, &ic, &ode).unwrap(), t_max);

@@ -48,6 +48,8 @@ pub struct SweepSummary {
     pub jobs: usize,
     pub point_classes: BTreeMap<String, usize>,
     pub run_statuses: BTreeMap<String, usize>,
+    /// Fixed-step runs whose step looked too large (`RunOutcome::dt_warning`).
+    pub dt_warnings: usize,
     pub tables: Vec<PathBuf>,
 }
 
@@ -161,6 +163,10 @@ pub fn run_sweep(
             .values()
             .map(|r| r.outcome.status.as_str().to_string()),
     );
+    let dt_warnings = records
+        .values()
+        .filter(|r| r.outcome.dt_warning(&r.settings).is_some())
+        .count();
     Ok(SweepSummary {
         name: spec.name.clone(),
         output: out.to_path_buf(),
@@ -173,6 +179,7 @@ pub fn run_sweep(
         jobs,
         point_classes,
         run_statuses,
+        dt_warnings,
         tables,
     })
 }

@@ -87,6 +87,8 @@ mod tests {
                 t_end: 0.0,
                 t_steady: None,
                 steps: 0,
+                rejected: 0,
+                max_step_error: None,
                 wall_s: 0.0,
                 series: vec![],
             },

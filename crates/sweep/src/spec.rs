@@ -10,7 +10,9 @@
 //!   eta_t: {start: 0.07, stop: 0.10, step: 0.01}    # inclusive range ...
 //!   kappa2: [0.11, 0.12]                            # ... or an explicit list
 //! initial_conditions: [i, ii, iii, iv]              # default: the paper's four
-//! solver: {scheme: spectral, n: 192, dt: 0.02, t_max: 2000, steady_tol: 1.0e-6, steady_window: 0.1}
+//! solver: {scheme: spectral, n: 192, dt: 0.02, tol: 1.0e-4, dt_max: 0.25, t_max: 2000,
+//!          steady_tol: 1.0e-6, steady_window: 0.1}
+//!                             # tol: adaptive stepping (0 = fixed step dt; spectral only)
 //!                             # ode: dt default 0.05, and h0 (default 0.1436)
 //! ```
 use crate::error::SpecError;
@@ -321,6 +323,8 @@ pub fn parse(text: &str, file: &str, stem: &str) -> Result<SweepSpec, SpecError>
             "scheme",
             "n",
             "dt",
+            "tol",
+            "dt_max",
             "t_max",
             "steady_tol",
             "steady_window",
@@ -334,7 +338,7 @@ pub fn parse(text: &str, file: &str, stem: &str) -> Result<SweepSpec, SpecError>
                 .ok_or_else(|| ctx.err(&["solver", "scheme"], show(x), "spectral or paper-fd"))?;
             if solver.scheme == SchemeKind::PaperFd {
                 let fd = SolverSettings::paper_fd();
-                (solver.n, solver.dt) = (fd.n, fd.dt);
+                (solver.n, solver.dt, solver.tol) = (fd.n, fd.dt, fd.tol);
             }
         }
         if let Some(x) = m.get("n") {
@@ -356,6 +360,33 @@ pub fn parse(text: &str, file: &str, stem: &str) -> Result<SweepSpec, SpecError>
         };
         if let Some(x) = pos("dt")? {
             solver.dt = x;
+        }
+        if let Some(x) = m.get("tol") {
+            solver.tol = ctx.number(
+                x,
+                &["solver", "tol"],
+                |x| x >= 0.0,
+                "a finite number >= 0 (0 = fixed step dt)",
+            )?;
+            if solver.tol > 0.0
+                && (model != ModelKind::Pde || solver.scheme != SchemeKind::Spectral)
+            {
+                return Err(ctx.err(
+                    &["solver", "tol"],
+                    solver.tol,
+                    "0: adaptive stepping needs model pde with scheme spectral",
+                ));
+            }
+        }
+        if let Some(x) = pos("dt_max")? {
+            solver.dt_max = x;
+        }
+        if solver.adaptive() && solver.dt_max < solver.dt {
+            return Err(ctx.err(
+                &["solver", "dt_max"],
+                solver.dt_max,
+                format!("at least dt = {}", solver.dt),
+            ));
         }
         if let Some(x) = pos("t_max")? {
             solver.t_max = x;

@@ -178,6 +178,8 @@ mod tests {
                 t_end: 10.0,
                 t_steady: Some(10.0),
                 steps: 500,
+                rejected: 0,
+                max_step_error: None,
                 wall_s: 0.1,
                 series: vec![],
             },

@@ -123,6 +123,8 @@ pub fn runs_frame(
                 .collect::<Vec<u32>>(),
         ),
         f64_col("dt", f(&|r| r.settings.dt)),
+        f64_col("tol", f(&|r| r.settings.tol)),
+        f64_col("dt_max", f(&|r| r.settings.dt_max)),
         f64_col("t_max", f(&|r| r.settings.t_max)),
         f64_col("steady_tol", f(&|r| r.settings.steady_tol)),
         f64_col("steady_window", f(&|r| r.settings.steady_window)),
@@ -156,6 +158,18 @@ pub fn runs_frame(
             rows.iter()
                 .map(|(_, r)| r.outcome.steps)
                 .collect::<Vec<u64>>(),
+        ),
+        Column::new(
+            "rejected".into(),
+            rows.iter()
+                .map(|(_, r)| r.outcome.rejected)
+                .collect::<Vec<u64>>(),
+        ),
+        Column::new(
+            "max_step_error".into(),
+            rows.iter()
+                .map(|(_, r)| r.outcome.max_step_error)
+                .collect::<Vec<Option<f64>>>(),
         ),
         f64_col("wall_s", f(&|r| r.outcome.wall_s)),
         str_col("key", rows.iter().map(|(t, _)| t.key.clone()).collect()),
@@ -327,4 +341,62 @@ pub fn bench_frame(rows: &[crate::bench::BenchRow]) -> Result<DataFrame, SweepEr
         f64_col("wall_s", f(|r| r.wall_s)),
     ];
     Ok(DataFrame::new(rows.len(), cols)?)
+}
+
+/// Reads the rows of a `bench.parquet` written by [`bench_frame`].
+pub fn read_bench(path: &Path) -> Result<Vec<crate::bench::BenchRow>, SweepError> {
+    let file = File::open(path).map_err(|e| SweepError::io(path, e))?;
+    let df = ParquetReader::new(file).finish()?;
+    let h = df.height();
+    let s = |c: &str| -> Result<Vec<Option<String>>, SweepError> {
+        let col = df.column(c)?.str()?.clone();
+        Ok((0..h).map(|i| col.get(i).map(str::to_string)).collect())
+    };
+    let f = |c: &str| -> Result<Vec<Option<f64>>, SweepError> {
+        let col = df.column(c)?.f64()?.clone();
+        Ok((0..h).map(|i| col.get(i)).collect())
+    };
+    let u = |c: &str| -> Result<Vec<Option<u64>>, SweepError> {
+        let col = df.column(c)?.cast(&DataType::UInt64)?;
+        let col = col.u64()?;
+        Ok((0..h).map(|i| col.get(i)).collect())
+    };
+    let (case, family, scheme, status, class) = (
+        s("case")?,
+        s("family")?,
+        s("scheme")?,
+        s("status")?,
+        s("class")?,
+    );
+    let (n, steps, rejected) = (u("n")?, u("steps")?, u("rejected")?);
+    let (dt, tol, dt_max, v, sv) = (f("dt")?, f("tol")?, f("dt_max")?, f("v")?, f("s")?);
+    let (err_v, err_s, err_series) = (f("err_v")?, f("err_s")?, f("err_series")?);
+    let (t_end, mse, wall) = (f("t_end")?, f("max_step_error")?, f("wall_s")?);
+    let ok_col = df.column("class_ok")?.bool()?.clone();
+    let ok: Vec<Option<bool>> = (0..h).map(|i| ok_col.get(i)).collect();
+    let nan = |x: Option<f64>| x.unwrap_or(f64::NAN);
+    Ok((0..df.height())
+        .map(|i| crate::bench::BenchRow {
+            case: case[i].clone().unwrap_or_default(),
+            family: family[i].clone().unwrap_or_default(),
+            scheme: scheme[i].clone().unwrap_or_default(),
+            n: n[i].unwrap_or(0) as usize,
+            dt: nan(dt[i]),
+            tol: nan(tol[i]),
+            dt_max: nan(dt_max[i]),
+            status: status[i].clone().unwrap_or_default(),
+            class: class[i].clone(),
+            class_ok: ok[i].unwrap_or(false),
+            v: nan(v[i]),
+            s: nan(sv[i]),
+            err_v: nan(err_v[i]),
+            err_s: nan(err_s[i]),
+            err_series: err_series[i],
+            t_end: nan(t_end[i]),
+            steps: steps[i].unwrap_or(0),
+            rejected: rejected[i].unwrap_or(0),
+            max_step_error: mse[i],
+            wall_s: nan(wall[i]),
+        })
+        .collect())
 }

@@ -8,6 +8,11 @@
 //! Every ETD-RK step keeps the ODE's fixed points, so a steadily moving droplet is an exact
 //! fixed point of the scheme and its steady `v`, `s` do not depend on `dt`.
 //!
+//! Adaptive steps ([`Scheme::attempt`], [`crate::step_control`]): the corrector minus the
+//! ETD1 predictor of the droplet's integrated scalars is the embedded error estimate. It is
+//! known after the first half of the step (the predictor pass gives the forces the scalar
+//! corrector needs), so a refused step costs half a step and changes nothing.
+//!
 //! Cost per step: the shape at the predictor and at the new state, each as two row-pruned
 //! forward transforms (`Theta + X Theta` packed, and `Y Theta`; no inverse transform: forces
 //! by Parseval, [`crate::forces`]), and two fused passes over the spectrum that advance the
@@ -325,7 +330,7 @@ impl Scheme for ComovingEtd {
                 .iter()
                 .fold(0.0f64, |m, d| m.max(d.abs()))
         };
-        if max_error.is_finite() && !(error <= max_error) {
+        if max_error.is_finite() && (error.is_nan() || error > max_error) {
             return Attempt {
                 accepted: false,
                 error: Some(error),
