@@ -117,16 +117,20 @@ impl BenchPlan {
         } else {
             &[1e-5, 1e-4, 1e-3]
         };
+        let fd = SolverSettings {
+            dt_max: base.dt_max,
+            ..SolverSettings::paper_fd()
+        };
         let mut methods = vec![Method {
             family: "paper-fd".into(),
             settings: if quick {
                 SolverSettings {
                     n: 48,
                     dt: 1e-3,
-                    ..SolverSettings::paper_fd()
+                    ..fd
                 }
             } else {
-                SolverSettings::paper_fd()
+                fd
             },
         }];
         for &n in ns {
