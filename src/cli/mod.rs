@@ -14,7 +14,7 @@ use clap::{Parser, Subcommand};
 /// Map the phase diagram of a self-propelled, deformable droplet (Kitahata, Koyano,
 /// Kobayashi & Nagayama). Every command that prints results accepts --json.
 #[derive(Parser)]
-#[command(name = "droplet", version, about, long_about = None, after_help = "Quick start:\n  droplet sweep sweeps/smoke.yaml      # coarse phase map in ~1 minute\n  droplet plot out/smoke               # out/smoke/phase_map.png\n  droplet simulate --eta-t 0.085 --kappa2 0.112 --ic i --picture md.png")]
+#[command(name = "droplet", version, about, long_about = None, after_help = "Quick start:\n  droplet sweep sweeps/smoke.yaml      # coarse phase map in seconds\n  droplet plot out/smoke               # out/smoke/phase_map.png\n  droplet simulate --eta-t 0.085 --kappa2 0.112 --ic i --picture md.png")]
 pub struct Cli {
     #[command(subcommand)]
     command: Command,

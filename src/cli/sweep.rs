@@ -10,7 +10,7 @@ use std::path::PathBuf;
 /// OUT/runs.parquet, OUT/points.parquet and OUT/phase_map.png (+ .svg).
 #[derive(clap::Args)]
 #[command(
-    after_help = "Examples:\n  droplet sweep sweeps/smoke.yaml                 # CI smoke sweep, ~15 s on 2 cores\n  droplet sweep sweeps/fig2a.yaml --jobs 16       # the paper's Fig. 2(a), overnight\n  droplet sweep sweeps/smoke.yaml --out /tmp/s    # same spec, another directory\n\nSpec keys: name, output, model (pde | ode), params {eta2, radius, sigma, box_len, mass},\ngrid {eta_t, kappa2} (each {start, stop, step} or a list), initial_conditions, solver {scheme,\nn, dt, t_max, steady_tol, steady_window, h0}. See sweeps/*.yaml and README.md."
+    after_help = "Examples:\n  droplet sweep sweeps/smoke.yaml                 # CI smoke sweep, ~2 s on 2 cores\n  droplet sweep sweeps/fig2a.yaml --jobs 16       # the paper's Fig. 2(a): 21 min on 2 cores\n  droplet sweep sweeps/smoke.yaml --out /tmp/s    # same spec, another directory\n\nSpec keys: name, output, model (pde | ode), params {eta2, radius, sigma, box_len, mass},\ngrid {eta_t, kappa2} (each {start, stop, step} or a list), initial_conditions, solver {scheme,\nn, dt, tol, dt_max, t_max, steady_tol, steady_window, h0}. See sweeps/*.yaml and README.md."
 )]
 pub struct Args {
     /// The YAML spec.

@@ -230,7 +230,7 @@ pub struct RunOutcome {
     #[serde(default)]
     pub rejected: u64,
     /// Largest embedded local error estimate of an accepted step (`None`: the scheme has none).
-    /// For a fixed step, a value far above `steady_tol` says `dt` is too large.
+    /// For a fixed step, a value above [`STEP_ERROR_LIMIT`] says `dt` is too large.
     #[serde(default)]
     pub max_step_error: Option<f64>,
     pub wall_s: f64,
