@@ -1,21 +1,14 @@
 //! End-to-end tests through the `droplet` binary.
+mod common;
+
+use common::{droplet, read, table_without_wall};
 use polars::prelude::*;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
+use std::process::{Output, Stdio};
 use std::time::Duration;
-
-fn droplet() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_droplet"))
-}
 
 fn run(args: &[&str]) -> Output {
     droplet().args(args).output().expect("binary runs")
-}
-
-fn read(path: &Path) -> DataFrame {
-    ParquetReader::new(std::fs::File::open(path).unwrap())
-        .finish()
-        .unwrap()
 }
 
 /// A tiny sweep (coarse grid, N = 32, fixed steps so that it lasts long enough to be
@@ -115,16 +108,6 @@ fn smoke_sweep_produces_typed_tables_and_a_picture() {
     let st = json(&run(&["status", out.to_str().unwrap(), "--json"]));
     assert_eq!(st["runs_done"], 64);
     assert_eq!(st["complete"], true);
-}
-
-/// A table without its wall-clock column (the one value that differs between two runs).
-fn table_without_wall(path: &Path) -> DataFrame {
-    let df = read(path);
-    if df.schema().contains("wall_s") {
-        df.drop("wall_s").unwrap()
-    } else {
-        df
-    }
 }
 
 #[test]

@@ -6,14 +6,12 @@
 //! `SLURM_CONF` into its env file; `.ci/run` does that and sets `DROPLET_SLURM_TEST=1`, which
 //! makes this test mandatory. Without `SLURM_CONF` (and without that variable) it prints why
 //! it is skipped and passes.
-use polars::prelude::*;
+mod common;
+
+use common::{droplet, table_without_wall};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use std::time::{Duration, Instant};
-
-fn droplet() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_droplet"))
-}
 
 fn ok(out: Output, what: &str) -> String {
     assert!(
@@ -74,17 +72,6 @@ fn wait_for(jobs: &[&str], limit: Duration) -> Vec<String> {
             "jobs {jobs:?} still {all:?} after {limit:?}"
         );
         std::thread::sleep(Duration::from_millis(250));
-    }
-}
-
-fn table_without_wall(path: &Path) -> DataFrame {
-    let df = ParquetReader::new(std::fs::File::open(path).unwrap())
-        .finish()
-        .unwrap();
-    if df.schema().contains("wall_s") {
-        df.drop("wall_s").unwrap()
-    } else {
-        df
     }
 }
 

@@ -158,6 +158,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
         Ok((refs, reused, rows))
     })?;
     let summary = bench::summarise(&refs, &rows);
+    let machine = machine();
     let mut meta = tables::metadata(None);
     if a.rescore {
         // Keep the provenance of the measurement; add the re-scoring's.
@@ -168,7 +169,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
             }
         }
     }
-    meta.push(("machine".into(), machine()));
+    meta.push(("machine".into(), machine.clone()));
     meta.push((
         "command".into(),
         std::env::args().collect::<Vec<_>>().join(" "),
@@ -189,7 +190,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
     let title = format!(
         "Work-precision ({:?} profile; {}; commit {})",
         profile,
-        machine(),
+        machine,
         tables::GIT_COMMIT
     );
     let mut files = vec![table, md_path, summary_path, a.out.join("reference.json")];

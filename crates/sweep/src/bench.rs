@@ -11,15 +11,14 @@
 //! also gives the reference class; IC states are exactly `v = s = 0`; the transient by the
 //! spectral scheme at `n_ref` with a small fixed step.
 use crate::error::SweepError;
+use crate::execute::progress_bar;
 use droplet_solver::steady::MirrorAxis;
 use droplet_solver::{
     simulate, InitialCondition, ModelParams, RunOutcome, RunStatus, SchemeKind, SolverSettings,
     StateClass, SteadySolver,
 };
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
-use std::io::IsTerminal;
 use std::time::Instant;
 
 /// One benchmark case.
@@ -414,18 +413,7 @@ pub fn run(refs: &References, progress: bool) -> Result<Vec<BenchRow>, SweepErro
         steps * (s.n * s.n) as f64
     };
     jobs.sort_by(|a, b| cost(b).total_cmp(&cost(a)));
-    let bar = ProgressBar::with_draw_target(
-        Some(jobs.len() as u64),
-        if progress && std::io::stderr().is_terminal() {
-            ProgressDrawTarget::stderr()
-        } else {
-            ProgressDrawTarget::hidden()
-        },
-    );
-    bar.set_style(
-        ProgressStyle::with_template("{bar:30} {pos}/{len} bench runs  {elapsed_precise}  {msg}")
-            .expect("valid template"),
-    );
+    let bar = progress_bar(jobs.len() as u64, 0, progress, "bench runs");
     let rows = jobs
         .par_iter()
         .map(|&(ci, mi)| {
@@ -435,8 +423,7 @@ pub fn run(refs: &References, progress: bool) -> Result<Vec<BenchRow>, SweepErro
             bar.inc(1);
             bar.set_message(format!("{} {}", c.name, m.family));
             let s = &m.settings;
-            let class = out.class.map(|k| k.as_str().to_string());
-            Ok(BenchRow {
+            let mut row = BenchRow {
                 case: c.name.clone(),
                 family: m.family.clone(),
                 scheme: s.scheme.as_str().into(),
@@ -445,12 +432,12 @@ pub fn run(refs: &References, progress: bool) -> Result<Vec<BenchRow>, SweepErro
                 tol: s.tol,
                 dt_max: s.dt_max,
                 status: out.status.as_str().into(),
-                class_ok: class.as_deref() == Some(r.class.as_str()),
-                class,
+                class: out.class.map(|k| k.as_str().to_string()),
+                class_ok: false,
                 v: out.v,
                 s: out.s,
-                err_v: (out.v - r.v).abs(),
-                err_s: (out.s - r.s).abs(),
+                err_v: f64::NAN,
+                err_s: f64::NAN,
                 err_series: c
                     .window
                     .map(|_| series_error(&series_of(&out), &r.series, plan.every)),
@@ -459,7 +446,9 @@ pub fn run(refs: &References, progress: bool) -> Result<Vec<BenchRow>, SweepErro
                 rejected: out.rejected,
                 max_step_error: out.max_step_error,
                 wall_s: out.wall_s,
-            })
+            };
+            score(&mut row, r);
+            Ok(row)
         })
         .collect::<Result<Vec<_>, SweepError>>()?;
     bar.finish_and_clear();
@@ -472,15 +461,20 @@ pub fn run(refs: &References, progress: bool) -> Result<Vec<BenchRow>, SweepErro
     Ok(rows)
 }
 
-/// Recomputes the steady cases' errors and class agreement of measured `rows` against
-/// `refs` (after a better reference), without re-running them. Series errors are kept (the
-/// series are not stored).
+/// A row's final-state errors and class agreement against its case's reference.
+fn score(row: &mut BenchRow, reference: &Reference) {
+    row.err_v = (row.v - reference.v).abs();
+    row.err_s = (row.s - reference.s).abs();
+    row.class_ok = row.class.as_deref() == Some(reference.class.as_str());
+}
+
+/// Recomputes the errors and class agreement of measured `rows` against `refs` (after a
+/// better reference), without re-running them. Series errors are kept (the series are not
+/// stored).
 pub fn rescore(refs: &References, rows: &mut [BenchRow]) {
     for r in rows.iter_mut() {
         if let Some(c) = refs.cases.iter().find(|c| c.case == r.case) {
-            r.err_v = (r.v - c.v).abs();
-            r.err_s = (r.s - c.s).abs();
-            r.class_ok = r.class.as_deref() == Some(c.class.as_str());
+            score(r, c);
         }
     }
 }

@@ -66,7 +66,9 @@ pub fn run_task(task: &Task) -> Result<RunRecord, SweepError> {
     })
 }
 
-fn progress_bar(total: u64, done: u64, show: bool) -> ProgressBar {
+/// A progress bar over `total` items called `unit` (drawn only on a terminal, and only when
+/// `show`), with elapsed time and ETA, starting at `done`.
+pub(crate) fn progress_bar(total: u64, done: u64, show: bool, unit: &str) -> ProgressBar {
     let pb = ProgressBar::with_draw_target(
         Some(total),
         if show && std::io::stderr().is_terminal() {
@@ -76,9 +78,9 @@ fn progress_bar(total: u64, done: u64, show: bool) -> ProgressBar {
         },
     );
     pb.set_style(
-        ProgressStyle::with_template(
-            "{bar:30} {pos}/{len} runs  {elapsed_precise} elapsed, ETA {eta_precise}  {msg}",
-        )
+        ProgressStyle::with_template(&format!(
+            "{{bar:30}} {{pos}}/{{len}} {unit}  {{elapsed_precise}} elapsed, ETA {{eta_precise}}  {{msg}}"
+        ))
         .expect("valid template"),
     );
     pb.set_position(done);
@@ -117,7 +119,7 @@ pub fn run_sweep(
         .num_threads(jobs)
         .build()
         .map_err(|e| SweepError::Invalid(format!("cannot start {jobs} worker threads: {e}")))?;
-    let pb = progress_bar(mine.len() as u64, reused as u64, opts.progress);
+    let pb = progress_bar(mine.len() as u64, reused as u64, opts.progress, "runs");
     let counts: Mutex<BTreeMap<String, usize>> = Mutex::new(BTreeMap::new());
     pool.install(|| {
         pending
