@@ -3,8 +3,8 @@ use super::{print_json, CliError};
 use std::path::PathBuf;
 
 /// Build DIR/runs.parquet, DIR/points.parquet and the picture from every stored run (e.g. after
-/// the shards of a Slurm array job). With runs missing it lists them, writes nothing and exits
-/// with code 1. Safe to repeat.
+/// the shards of a Slurm array job). With runs missing or unreadable it lists them, writes
+/// nothing and exits with code 1. Safe to repeat.
 #[derive(clap::Args)]
 pub struct Args {
     /// The sweep's output directory.
@@ -41,10 +41,11 @@ pub fn run(a: Args) -> Result<(), CliError> {
             let list = report.missing_examples.join("\n  ");
             Err(CliError {
                 message: format!(
-                    "{} of {} runs are missing in {}; no tables written. Missing (first {}):\n  {list}",
+                    "{} of {} runs are missing in {} ({} of them stored but unreadable); no tables written; re-run the sweep or the shards (unreadable runs are then moved to corrupt/ and recomputed). Missing (first {}):\n  {list}",
                     report.runs_missing,
                     report.runs_total,
                     a.out.display(),
+                    report.runs_unreadable,
                     report.missing_examples.len()
                 ),
                 code: 1,

@@ -4,6 +4,7 @@ use clap::Subcommand;
 use droplet_solver::reduced::bifurcation::{diagram, Axis, Branch};
 use droplet_solver::reduced::Coefficients;
 use droplet_solver::ModelParams;
+use droplet_sweep::branch_lines::{branch_lines, BranchSample};
 use droplet_sweep::plot::{vs_parameter, Marker};
 use droplet_sweep::tables;
 use polars::prelude::*;
@@ -20,6 +21,7 @@ pub struct Args {
 #[derive(Subcommand)]
 enum OdeCommand {
     /// Print f1, f1~, f3, f3~, g0~, g2, g2~ from the Bessel formulas (eqs. F1 - tildeG2a).
+    #[command(allow_negative_numbers = true)]
     Coefficients {
         /// Droplet radius R.
         #[arg(long, default_value_t = 1.0)]
@@ -34,6 +36,7 @@ enum OdeCommand {
     /// Steady states along a line with their stability and the bifurcation points (Fig. 3b):
     /// writes DIR/<stem>.parquet, DIR/<stem>_events.parquet and DIR/<stem>.png/.svg.
     #[command(
+        allow_negative_numbers = true,
         after_help = "Examples:\n  droplet ode bifurcation --kappa2 0.130 --from 0.07 --to 0.10 --out results/ode   # vary eta_t\n  droplet ode bifurcation --eta-t 0.085 --from 0.10 --to 0.17 --out results/ode    # vary kappa2"
     )]
     Bifurcation {
@@ -68,6 +71,9 @@ enum OdeCommand {
         json: bool,
     },
 }
+
+/// Most samples of one bifurcation line.
+const MAX_STEPS: usize = 1_000_000;
 
 pub fn run(a: Args) -> Result<(), CliError> {
     match a.command {
@@ -105,9 +111,14 @@ pub fn run(a: Args) -> Result<(), CliError> {
             out,
             json,
         } => {
-            if !(from.is_finite() && to.is_finite() && from < to) || steps < 2 {
-                return Err(CliError::usage(format!("invalid line --from {from} --to {to} --steps {steps}: need from < to and steps >= 2")));
+            if !(from.is_finite()
+                && to.is_finite()
+                && from < to
+                && (2..=MAX_STEPS).contains(&steps))
+            {
+                return Err(CliError::usage(format!("invalid line --from {from} --to {to} --steps {steps}: need from < to and 2 <= steps <= {MAX_STEPS}")));
             }
+            droplet_sweep::store::create_output_dir(&out)?;
             let (axis, fixed, x_label, fixed_label) = match (eta_t, kappa2) {
                 (Some(e), _) => (Axis::Kappa2, e, "kappa2", format!("eta_t = {e}")),
                 (_, Some(k)) => (Axis::EtaT, k, "eta_t", format!("kappa2 = {k}")),
@@ -137,8 +148,6 @@ pub fn run(a: Args) -> Result<(), CliError> {
                 .map(|i| from + (to - from) * i as f64 / (steps - 1) as f64)
                 .collect();
             let (pts, events) = diagram(&c, &base, axis, &values);
-            std::fs::create_dir_all(&out)
-                .map_err(|e| CliError::from(droplet_sweep::SweepError::io(&out, e)))?;
             let stem = format!("bifurcation_{}", fixed_label.replace(" = ", "_"));
             let x_of = |p: &droplet_solver::reduced::bifurcation::SteadyPoint| {
                 if axis == Axis::EtaT {
@@ -214,14 +223,33 @@ pub fn run(a: Args) -> Result<(), CliError> {
             let p2 = out.join(format!("{stem}_events.parquet"));
             tables::write_parquet(&mut df, &p1, meta.clone())?;
             tables::write_parquet(&mut ev, &p2, meta)?;
-            let markers: Vec<Marker> = pts
+            // Branches as lines (solid stable, dashed unstable); markers only at P / SN.
+            let samples: Vec<BranchSample> = pts
                 .iter()
-                .map(|p| Marker {
+                .map(|p| BranchSample {
+                    key: p.branch.as_str().to_string(),
                     x: x_of(p),
                     v: p.v,
                     s: p.s,
-                    key: p.branch.as_str().to_string(),
-                    bold: p.stable,
+                    stable: p.stable,
+                })
+                .collect();
+            let lines = branch_lines(&samples);
+            let markers: Vec<Marker> = events
+                .iter()
+                .filter_map(|e| {
+                    // The state of the event's branch nearest to the event.
+                    samples
+                        .iter()
+                        .filter(|p| p.key == e.branch.as_str())
+                        .min_by(|a, b| (a.x - e.at).abs().total_cmp(&(b.x - e.at).abs()))
+                        .map(|p| Marker {
+                            x: e.at,
+                            v: p.v,
+                            s: p.s,
+                            key: p.key.clone(),
+                            bold: true,
+                        })
                 })
                 .collect();
             // Label each bifurcation once (the first of a cluster).
@@ -237,8 +265,10 @@ pub fn run(a: Args) -> Result<(), CliError> {
                     vlines.push((e.at, e.kind.to_string()));
                 }
             }
-            let title = format!("ODE model, {fixed_label}: thick = stable, thin = unstable");
-            let mut files = vs_parameter(&out, &stem, &title, x_label, &markers, &vlines)?;
+            let title = format!(
+                "ODE model, {fixed_label}: solid = stable, dashed = unstable, dots = P / SN"
+            );
+            let mut files = vs_parameter(&out, &stem, &title, x_label, &markers, &lines, &vlines)?;
             files.extend([p1, p2]);
             if json {
                 print_json(

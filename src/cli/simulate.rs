@@ -9,6 +9,7 @@ use std::path::PathBuf;
 /// diverges; print status, class (IC/ID/MD/MC), final v, s and timings.
 #[derive(clap::Args)]
 #[command(
+    allow_negative_numbers = true,
     after_help = "Examples:\n  droplet simulate --eta-t 0.085 --kappa2 0.112 --ic i                 # MD (Fig. 1c)\n  droplet simulate --eta-t 0.085 --kappa2 0.116 --ic i --json          # ID (Fig. 1b)\n  droplet simulate --eta-t 0.085 --kappa2 0.120 --ic i --series s.parquet --picture ic.png"
 )]
 pub struct Args {
@@ -136,7 +137,10 @@ pub fn run(a: Args) -> Result<(), CliError> {
         mass: a.mass,
     };
     let ic = InitialCondition::parse(&a.ic)?;
-    if !(a.every > 0.0 && a.every.is_finite()) {
+    let record = a.series.is_some() || a.picture.is_some();
+    if record {
+        droplet_solver::limits::check_series(a.t_max, a.every)?;
+    } else if !(a.every > 0.0 && a.every.is_finite()) {
         return Err(CliError::usage(format!(
             "invalid --every {}: a finite number > 0",
             a.every
@@ -152,7 +156,6 @@ pub fn run(a: Args) -> Result<(), CliError> {
             }
         }
     }
-    let record = a.series.is_some() || a.picture.is_some();
     let mut run = Run::new(&params, &ic, &settings)?.record_every(record.then_some(a.every));
     let out = run.execute();
     let mass_integral = run.scheme_mut().mass();

@@ -35,6 +35,9 @@ pub struct Args {
     /// The droplet binary the jobs run (default: this one).
     #[arg(long)]
     droplet: Option<PathBuf>,
+    /// Refuse specs with more runs than this (passed on to every shard).
+    #[arg(long, value_name = "RUNS", default_value_t = droplet_sweep::plan::DEFAULT_MAX_RUNS)]
+    max_runs: u64,
     /// Submit with sbatch (array, then the merge job depending on it).
     #[arg(long)]
     submit: bool,
@@ -52,6 +55,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
     if a.shards == 0 || a.cpus == 0 {
         return Err(CliError::usage("--shards and --cpus must be at least 1"));
     }
+    droplet_sweep::plan::check_size(&sweep, a.max_runs)?;
     let out = abs(&a.out.clone().unwrap_or_else(|| sweep.output.clone()));
     let spec_path = abs(&a.spec);
     let exe = match &a.droplet {
@@ -61,7 +65,12 @@ pub fn run(a: Args) -> Result<(), CliError> {
         }
     };
     let dir = out.join("slurm");
-    std::fs::create_dir_all(&dir).map_err(|e| CliError::from(SweepError::io(&dir, e)))?;
+    std::fs::create_dir_all(&dir).map_err(|e| {
+        CliError::from(SweepError::Output {
+            path: dir.clone(),
+            source: e,
+        })
+    })?;
     let partition = a
         .partition
         .as_ref()
@@ -76,12 +85,13 @@ pub fn run(a: Args) -> Result<(), CliError> {
         )
     };
     let sweep_script = format!(
-        "{}# Shard $SLURM_ARRAY_TASK_ID of {n}: finished runs are skipped, so resubmitting resumes.\n\"{}\" sweep \"{}\" --out \"{}\" --shard \"$SLURM_ARRAY_TASK_ID/{n}\" --jobs \"${{SLURM_CPUS_PER_TASK:-1}}\" --json\n",
+        "{}# Shard $SLURM_ARRAY_TASK_ID of {n}: finished runs are skipped, so resubmitting resumes.\n\"{}\" sweep \"{}\" --out \"{}\" --shard \"$SLURM_ARRAY_TASK_ID/{n}\" --jobs \"${{SLURM_CPUS_PER_TASK:-1}}\" --max-runs {max_runs} --json\n",
         header(&format!("droplet-{}", sweep.name), &format!("#SBATCH --array=0-{}\n#SBATCH --cpus-per-task={}\n", a.shards - 1, a.cpus)),
         exe.display(),
         spec_path.display(),
         out.display(),
         n = a.shards,
+        max_runs = a.max_runs,
     );
     let merge_script = format!(
         "{}\"{}\" merge \"{}\" --json\n",

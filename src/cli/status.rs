@@ -36,6 +36,12 @@ pub fn run(a: Args) -> Result<(), CliError> {
                 .collect::<Vec<_>>()
                 .join(", ")
         };
+        if st.runs_corrupt > 0 {
+            println!(
+                "{} stored runs cannot be used (unreadable or not matching their key): the next `droplet sweep` on this directory moves them to corrupt/ and recomputes them",
+                st.runs_corrupt
+            );
+        }
         println!("run statuses: {}", fmt(&st.run_statuses));
         println!("run classes: {}", fmt(&st.run_classes));
         println!(

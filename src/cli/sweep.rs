@@ -10,7 +10,7 @@ use std::path::PathBuf;
 /// OUT/runs.parquet, OUT/points.parquet and OUT/phase_map.png (+ .svg).
 #[derive(clap::Args)]
 #[command(
-    after_help = "Examples:\n  droplet sweep sweeps/smoke.yaml                 # CI smoke sweep, ~2 s on 2 cores\n  droplet sweep sweeps/fig2a.yaml --jobs 16       # the paper's Fig. 2(a): 21 min on 2 cores\n  droplet sweep sweeps/smoke.yaml --out /tmp/s    # same spec, another directory\n\nSpec keys: name, output, model (pde | ode), params {eta2, radius, sigma, box_len, mass},\ngrid {eta_t, kappa2} (each {start, stop, step} or a list), initial_conditions, solver {scheme,\nn, dt, tol, dt_max, t_max, steady_tol, steady_window, h0}. See sweeps/*.yaml and README.md."
+    after_help = "Examples:\n  droplet sweep sweeps/smoke.yaml                 # CI smoke sweep, ~2 s on 2 cores\n  droplet sweep sweeps/fig2a.yaml --jobs 16       # the paper's Fig. 2(a): 21 min on 2 cores\n  droplet sweep sweeps/smoke.yaml --out /tmp/s    # same spec, another directory\n\nSpec keys: name, output, model (pde | ode), params {eta2, radius, sigma, box_len, mass},\ngrid {eta_t, kappa2} (each {start, stop, step} or a list), initial_conditions, solver {scheme,\nn, dt, tol, dt_max, t_max, steady_tol, steady_window, h0}. See sweeps/*.yaml and README.md.\n\nA stored run that cannot be used (truncated, not a record, or not matching its key) is moved to\nOUT/corrupt/ with a warning and recomputed. Exit codes: 0 done, 1 failure while working, 2 bad\ninput (spec, arguments, output directory, a sweep already running there)."
 )]
 pub struct Args {
     /// The YAML spec.
@@ -29,6 +29,10 @@ pub struct Args {
     /// Defaults from SLURM_ARRAY_TASK_ID / SLURM_ARRAY_TASK_COUNT when both are set.
     #[arg(long, value_name = "I/N")]
     shard: Option<String>,
+    /// Refuse specs with more runs than this (points x initial conditions), checked before
+    /// anything is written. Raise it deliberately for very large sweeps.
+    #[arg(long, value_name = "RUNS", default_value_t = droplet_sweep::plan::DEFAULT_MAX_RUNS)]
+    max_runs: u64,
     /// Print a JSON summary instead of text.
     #[arg(long)]
     json: bool,
@@ -51,18 +55,28 @@ pub fn run(a: Args) -> Result<(), CliError> {
         progress: !a.json,
         shard,
         plot: !a.no_plot,
+        max_runs: Some(a.max_runs),
     };
     let summary = run_sweep(&spec, &out, &opts)?;
+    for c in &summary.corrupt {
+        eprintln!(
+            "warning: stored run {} could not be used ({}); moved to {} and recomputed",
+            c.key,
+            c.reason,
+            c.moved_to.display()
+        );
+    }
     if a.json {
         print_json(&summary);
     } else {
         println!(
-            "{}: {} points, {} runs ({} computed, {} reused) in {:.1} s on {} threads",
+            "{}: {} points, {} runs ({} computed, {} reused, {} corrupt recomputed) in {:.1} s on {} threads",
             summary.name,
             summary.points,
             summary.runs,
             summary.computed,
             summary.reused,
+            summary.corrupt.len(),
             summary.wall_s,
             summary.jobs
         );

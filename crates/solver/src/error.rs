@@ -9,11 +9,14 @@ pub enum SolverError {
     InvalidParameter {
         name: &'static str,
         value: f64,
-        allowed: &'static str,
+        allowed: String,
     },
     /// A named initial condition that does not exist.
     #[error("unknown initial condition `{0}`: allowed are i, ii, iii, iv, i', ii' or custom:vx,vy,a2,b2")]
     UnknownInitialCondition(String),
+    /// A custom initial condition whose values are outside the model.
+    #[error("invalid initial condition `{text}`: {reason}")]
+    InvalidInitialCondition { text: String, reason: String },
     /// A scheme name that does not exist.
     #[error("unknown scheme `{0}`: allowed are spectral, paper-fd")]
     UnknownScheme(String),
@@ -22,12 +25,12 @@ pub enum SolverError {
     NewtonFailed { residual: f64, iterations: usize },
 }
 
-/// Shorthand for a finite-and-positive check.
+/// Shorthand for a finite-and-in-range check.
 pub(crate) fn require(
     ok: bool,
     name: &'static str,
     value: f64,
-    allowed: &'static str,
+    allowed: impl Into<String>,
 ) -> Result<(), SolverError> {
     if ok && value.is_finite() {
         Ok(())
@@ -35,7 +38,7 @@ pub(crate) fn require(
         Err(SolverError::InvalidParameter {
             name,
             value,
-            allowed,
+            allowed: allowed.into(),
         })
     }
 }

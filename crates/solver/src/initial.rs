@@ -56,16 +56,31 @@ impl InitialCondition {
             });
         }
         if let Some(rest) = key.strip_prefix("custom:") {
+            let bad = |reason: String| SolverError::InvalidInitialCondition {
+                text: text.to_string(),
+                reason,
+            };
             let parts: Vec<f64> = rest
                 .split(',')
                 .map(|p| p.trim().parse::<f64>())
                 .collect::<Result<_, _>>()
-                .map_err(|_| SolverError::UnknownInitialCondition(text.to_string()))?;
-            if let [vx, vy, a2, b2] = parts[..] {
-                if parts.iter().all(|p| p.is_finite()) && a2.hypot(b2) < 1.0 {
-                    return Ok(Self::custom(vx, vy, a2, b2));
-                }
+                .map_err(|_| bad("expected four numbers custom:vx,vy,a2,b2".into()))?;
+            let [vx, vy, a2, b2] = parts[..] else {
+                return Err(bad(format!(
+                    "expected four numbers custom:vx,vy,a2,b2, got {}",
+                    parts.len()
+                )));
+            };
+            if !parts.iter().all(|p| p.is_finite()) {
+                return Err(bad("every value must be finite".into()));
             }
+            let s = a2.hypot(b2);
+            if s >= 1.0 {
+                return Err(bad(format!(
+                    "the deformation s = sqrt(a2^2 + b2^2) = {s} must be < 1 (the small-deformation model, eq. 31)"
+                )));
+            }
+            return Ok(Self::custom(vx, vy, a2, b2));
         }
         Err(SolverError::UnknownInitialCondition(text.to_string()))
     }

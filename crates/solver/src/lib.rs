@@ -11,6 +11,7 @@ pub mod forces;
 pub mod grid;
 pub mod h0_fit;
 pub mod initial;
+pub mod limits;
 pub mod params;
 pub mod reduced;
 pub mod run;

@@ -63,7 +63,15 @@ impl ModelParams {
             self.radius,
             "a finite number > 0",
         )?;
-        require(self.sigma > 0.0, "sigma", self.sigma, "a finite number > 0")?;
+        require(
+            self.sigma > 0.0 && self.sigma <= 0.25 * self.radius,
+            "sigma",
+            self.sigma,
+            format!(
+                "a finite number > 0 and at most R/4 = {} (the interface must be thinner than the droplet)",
+                0.25 * self.radius
+            ),
+        )?;
         require(
             self.mass >= 0.0,
             "mass",

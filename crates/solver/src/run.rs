@@ -135,7 +135,7 @@ impl SolverSettings {
             return Err(SolverError::InvalidParameter {
                 name: "tol",
                 value: self.tol,
-                allowed: "0 (fixed step): adaptive stepping needs the spectral PDE scheme",
+                allowed: "0 (fixed step): adaptive stepping needs the spectral PDE scheme".into(),
             });
         }
         require(
@@ -156,7 +156,7 @@ impl SolverSettings {
             self.n as f64,
             "an even integer >= 16",
         )?;
-        Ok(())
+        crate::limits::check_steps(self)
     }
 }
 
@@ -170,6 +170,9 @@ pub enum RunStatus {
     TMax,
     /// A value became non-finite, or `s >= 1` (outside the small-deformation model).
     Diverged,
+    /// The adaptive controller took [`crate::limits::adaptive_step_cap`] steps before `t_max`
+    /// (steps far below `dt_max` throughout): ended instead of running for ever.
+    StepLimit,
 }
 
 impl RunStatus {
@@ -178,6 +181,7 @@ impl RunStatus {
             Self::Steady => "steady",
             Self::TMax => "t_max",
             Self::Diverged => "diverged",
+            Self::StepLimit => "step_limit",
         }
     }
 }
@@ -277,11 +281,12 @@ impl Run {
     ) -> Result<Self, SolverError> {
         params.validate()?;
         settings.validate()?;
+        crate::limits::check_run(params, settings)?;
         if settings.model != ModelKind::Pde {
             return Err(SolverError::InvalidParameter {
                 name: "model",
                 value: 1.0,
-                allowed: "pde for a field run (ODE runs go through `simulate`)",
+                allowed: "pde for a field run (ODE runs go through `simulate`)".into(),
             });
         }
         let st = ic.state();
@@ -323,6 +328,7 @@ impl Run {
         let cfg = self.settings;
         let adaptive = cfg.adaptive();
         let max_steps = (cfg.t_max / cfg.dt).round() as u64;
+        let step_cap = crate::limits::adaptive_step_cap(&cfg);
         // Times within `slack` of a target count as reaching it (round-off of sums of steps).
         let slack = 1e-9 * cfg.dt;
         let mut controller = PiController::new(cfg.dt_max);
@@ -340,6 +346,10 @@ impl Run {
         loop {
             if adaptive {
                 if t >= cfg.t_max - slack {
+                    break;
+                }
+                if steps >= step_cap {
+                    status = RunStatus::StepLimit;
                     break;
                 }
                 let mut h_try = h.min(cfg.t_max - t);

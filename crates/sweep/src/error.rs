@@ -28,6 +28,16 @@ pub enum SweepError {
     },
     #[error("{0} is in use by another droplet process (lock held on {1}); wait for it or use another --out")]
     Locked(PathBuf, PathBuf),
+    /// The output directory cannot be created or written (a bad `--out` or `output:`).
+    #[error("output directory {path}: {source}; choose a writable directory with --out")]
+    Output {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+    /// A spec asks for more runs than allowed.
+    #[error("the spec asks for {runs} runs ({points} points x initial conditions), more than the limit of {limit}; coarsen the grid, or raise the limit deliberately with --max-runs {runs}")]
+    TooLarge { runs: u64, points: u64, limit: u64 },
     #[error(transparent)]
     Solver(#[from] droplet_solver::SolverError),
     #[error("parquet: {0}")]
@@ -36,7 +46,7 @@ pub enum SweepError {
     Plot(String),
     #[error("{0}")]
     Invalid(String),
-    #[error("{} of {} runs are missing in {} (e.g. {}); no tables written", .0.runs_missing, .0.runs_total, .0.output.display(), .0.missing_examples.first().map(String::as_str).unwrap_or("-"))]
+    #[error("{} of {} runs are missing or unreadable in {} (e.g. {}); no tables written; re-run the sweep (or the shard) to recompute them", .0.runs_missing, .0.runs_total, .0.output.display(), .0.missing_examples.first().map(String::as_str).unwrap_or("-"))]
     Incomplete(Box<crate::execute::MergeReport>),
 }
 
@@ -51,6 +61,13 @@ impl SweepError {
 
     /// True for errors in what the user gave (exit code 2), false for failures while working.
     pub fn is_user_error(&self) -> bool {
-        matches!(self, Self::Spec(_) | Self::Locked(..) | Self::Invalid(_))
+        matches!(
+            self,
+            Self::Spec(_)
+                | Self::Locked(..)
+                | Self::Invalid(_)
+                | Self::Output { .. }
+                | Self::TooLarge { .. }
+        )
     }
 }

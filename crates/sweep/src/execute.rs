@@ -2,10 +2,10 @@
 //! with progress (runs done / total, ETA, classes so far), then the final tables and picture.
 use crate::error::SweepError;
 use crate::plan::{plan, Plan, Task};
-use crate::shard::{tasks_of, Shard};
+use crate::shard::{indices_of, Shard};
 use crate::spec::SweepSpec;
 use crate::status::tally;
-use crate::store::{RunRecord, Store};
+use crate::store::{CorruptRun, RunRecord, Store, Stored};
 use crate::tables;
 use droplet_solver::{simulate, SOLVER_VERSION};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -28,6 +28,8 @@ pub struct SweepOptions {
     pub shard: Option<Shard>,
     /// Draw the pictures with the tables (unsharded sweeps only).
     pub plot: bool,
+    /// Refuse specs with more runs than this (`None`: [`crate::plan::DEFAULT_MAX_RUNS`]).
+    pub max_runs: Option<u64>,
 }
 
 /// What a finished sweep did.
@@ -44,6 +46,9 @@ pub struct SweepSummary {
     pub computed: usize,
     /// Runs found in the store (resumed or shared with another sweep).
     pub reused: usize,
+    /// Stored runs that could not be used (unreadable, or content not matching the key):
+    /// moved to `DIR/corrupt/` and recomputed.
+    pub corrupt: Vec<CorruptRun>,
     pub wall_s: f64,
     pub jobs: usize,
     pub point_classes: BTreeMap<String, usize>,
@@ -95,21 +100,32 @@ pub fn run_sweep(
     opts: &SweepOptions,
 ) -> Result<SweepSummary, SweepError> {
     let started = Instant::now();
+    crate::plan::check_size(spec, opts.max_runs.unwrap_or(crate::plan::DEFAULT_MAX_RUNS))?;
     let store = match opts.shard {
         None => Store::open_locked(out)?,
-        Some(sh) => Store::open_locked_as(out, &sh.lock_name())?,
+        Some(sh) => Store::open_shard(out, &sh.lock_name())?,
     };
     store.write_file("spec.yaml", spec.source.as_bytes())?;
     let plan = plan(spec);
-    let mine: Vec<&Task> = match opts.shard {
-        None => plan.tasks.iter().collect(),
-        Some(sh) => tasks_of(&plan, sh),
+    // Indices of this invocation's runs; runs are made on demand (memory per run: 8 bytes).
+    let mine: Vec<usize> = match opts.shard {
+        None => (0..plan.len()).collect(),
+        Some(sh) => indices_of(&plan, sh),
     };
-    let pending: Vec<&Task> = mine
-        .iter()
-        .copied()
-        .filter(|t| !store.has(&t.key))
-        .collect();
+    // Stored runs are reused only when valid; a corrupt one is moved aside and recomputed.
+    let mut pending: Vec<usize> = Vec::new();
+    let mut corrupt = Vec::new();
+    for &i in &mine {
+        let key = plan.task(i).key;
+        match store.check(&key) {
+            Stored::Valid(_) => {}
+            Stored::Missing => pending.push(i),
+            Stored::Corrupt(reason) => {
+                corrupt.push(store.quarantine(&key, &reason)?);
+                pending.push(i);
+            }
+        }
+    }
     let reused = mine.len() - pending.len();
     let jobs = opts
         .jobs
@@ -124,8 +140,8 @@ pub fn run_sweep(
     pool.install(|| {
         pending
             .par_iter()
-            .try_for_each(|task| -> Result<(), SweepError> {
-                let record = run_task(task)?;
+            .try_for_each(|&i| -> Result<(), SweepError> {
+                let record = run_task(&plan.task(i))?;
                 store.save(&record)?;
                 let label = match record.outcome.class {
                     Some(c) if record.outcome.status == droplet_solver::RunStatus::Steady => {
@@ -147,9 +163,16 @@ pub fn run_sweep(
             })
     })?;
     pb.finish_and_clear();
-    let records = store.load_many(plan.tasks.iter().map(|t| t.key.as_str()));
+    let records = store.load_many(plan.tasks().map(|t| t.key));
     let mut tables = Vec::new();
     if opts.shard.is_none() {
+        if records.len() != plan.len() {
+            // Only another process touching runs/ meanwhile can cause this: never write
+            // tables with rows missing.
+            return Err(SweepError::Incomplete(Box::new(missing_report(
+                out, &plan, &store,
+            ))));
+        }
         tables = write_tables(&store, spec, &plan, &records)?;
         if opts.plot {
             tables.extend(crate::status::plot_records(out, spec, &plan, &records)?);
@@ -177,6 +200,7 @@ pub fn run_sweep(
         shard: opts.shard.map(|s| format!("{}/{}", s.index, s.count)),
         computed: pending.len(),
         reused,
+        corrupt,
         wall_s: started.elapsed().as_secs_f64(),
         jobs,
         point_classes,
@@ -214,40 +238,64 @@ pub fn write_tables(
 pub struct MergeReport {
     pub output: PathBuf,
     pub runs_total: usize,
+    /// Runs with no valid record: absent, or unreadable (see `runs_unreadable`).
     pub runs_missing: usize,
-    /// Up to 20 missing runs as `eta_t, kappa2, ic`.
+    /// Of those, runs whose file exists but cannot be used (left in place; the next sweep or
+    /// shard on the directory moves it to `corrupt/` and recomputes the run).
+    pub runs_unreadable: usize,
+    /// Up to 20 missing runs as `eta_t, kappa2, ic` (and why, when unreadable).
     pub missing_examples: Vec<String>,
     pub tables: Vec<PathBuf>,
 }
 
-/// Builds the final tables of the sweep in `dir` from all its stored runs (e.g. after the
-/// shards of an array job). With runs missing, writes nothing and fails with a report.
-/// Idempotent: the tables depend only on the stored runs. `draw` adds the pictures.
-pub fn merge(dir: &Path, draw: bool) -> Result<MergeReport, SweepError> {
-    let spec = crate::status::stored_spec(dir)?;
-    let store = Store::open_read(dir)?;
-    let plan = plan(&spec);
-    let missing: Vec<&Task> = plan.tasks.iter().filter(|t| !store.has(&t.key)).collect();
-    let report = MergeReport {
+/// The runs of `plan` that have no valid record in `store`.
+fn missing_report(dir: &Path, plan: &Plan, store: &Store) -> MergeReport {
+    let (mut missing, mut unreadable, mut examples) = (0, 0, Vec::new());
+    for t in plan.tasks() {
+        let why = match store.check(&t.key) {
+            Stored::Valid(_) => continue,
+            Stored::Missing => String::new(),
+            Stored::Corrupt(reason) => {
+                unreadable += 1;
+                format!(": runs/{}.json unreadable ({reason})", t.key)
+            }
+        };
+        missing += 1;
+        if examples.len() < 20 {
+            examples.push(format!(
+                "eta_t = {}, kappa2 = {}, ic = {}{why}",
+                t.params.eta_t, t.params.kappa2, t.ic.name
+            ));
+        }
+    }
+    MergeReport {
         output: dir.to_path_buf(),
-        runs_total: plan.tasks.len(),
-        runs_missing: missing.len(),
-        missing_examples: missing
-            .iter()
-            .take(20)
-            .map(|t| {
-                format!(
-                    "eta_t = {}, kappa2 = {}, ic = {}",
-                    t.params.eta_t, t.params.kappa2, t.ic.name
-                )
-            })
-            .collect(),
+        runs_total: plan.len(),
+        runs_missing: missing,
+        runs_unreadable: unreadable,
+        missing_examples: examples,
         tables: Vec::new(),
-    };
-    if !missing.is_empty() {
+    }
+}
+
+/// Builds the final tables of the sweep in `dir` from all its stored runs (e.g. after the
+/// shards of an array job). With runs missing or unreadable, writes nothing and fails with a
+/// report. Idempotent: the tables depend only on the stored runs. `draw` adds the pictures.
+pub fn merge(dir: &Path, draw: bool) -> Result<MergeReport, SweepError> {
+    let store = Store::open_read(dir)?;
+    let spec = crate::status::stored_spec(dir)?;
+    let plan = plan(&spec);
+    let report = missing_report(dir, &plan, &store);
+    if report.runs_missing > 0 {
         return Err(SweepError::Incomplete(Box::new(report)));
     }
-    let records = store.load_many(plan.tasks.iter().map(|t| t.key.as_str()));
+    let records = store.load_many(plan.tasks().map(|t| t.key));
+    if records.len() != plan.len() {
+        // A run went bad between the check and the load.
+        return Err(SweepError::Incomplete(Box::new(missing_report(
+            dir, &plan, &store,
+        ))));
+    }
     let mut tables = write_tables(&store, &spec, &plan, &records)?;
     if draw {
         tables.extend(crate::status::plot_records(dir, &spec, &plan, &records)?);

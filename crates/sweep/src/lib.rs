@@ -2,12 +2,14 @@
 //! with resume, parallel execution, point classification, Parquet tables and pictures.
 //! Data flows one way: spec -> plan -> runs (store) -> tables -> pictures.
 pub mod bench;
+pub mod branch_lines;
 pub mod error;
 pub mod execute;
 pub mod phase;
 pub mod plan;
 pub mod plot;
 pub mod precision_plot;
+pub mod render;
 pub mod shard;
 pub mod spec;
 pub mod status;

@@ -4,7 +4,8 @@
 //! - a run that ended `steady` counts with its class (IC, ID, MD, MC);
 //! - a run that hit `t_max` counts with the class of its final state (the paper's
 //!   "not classified" points come from such slowly converging runs), and is counted in
-//!   `n_t_max` so it can be told apart;
+//!   `n_t_max` so it can be told apart; so does a run that ended unconverged at the step cap
+//!   (`step_limit`, see `droplet_solver::limits`);
 //! - a `diverged` run has no class and does not count; it is counted in `n_diverged`;
 //! - one distinct class -> that class; two -> a bistable pair written in the order
 //!   IC, ID, MD, MC (`IC/MD`, `ID/MD`, `IC/MC`, ...); three or more -> `not classified`;
@@ -38,7 +39,7 @@ pub fn classify_point<'a>(runs: impl IntoIterator<Item = &'a RunRecord>) -> Poin
         n_runs += 1;
         match r.outcome.status {
             droplet_solver::RunStatus::Steady => n_steady += 1,
-            droplet_solver::RunStatus::TMax => n_t_max += 1,
+            droplet_solver::RunStatus::TMax | droplet_solver::RunStatus::StepLimit => n_t_max += 1,
             droplet_solver::RunStatus::Diverged => n_diverged += 1,
         }
         if let Some(c) = r.outcome.class {

@@ -18,13 +18,79 @@ pub struct Task {
     pub key: String,
 }
 
-/// All points and runs of a spec.
+/// All points and runs of a spec. The points are stored (16 bytes each); the runs are made
+/// on demand from a point and an initial condition ([`Plan::task`]), so a plan's memory does
+/// not grow with the number of runs.
 #[derive(Debug, Clone)]
 pub struct Plan {
     /// `(eta_t, kappa2)` of each point.
     pub points: Vec<(f64, f64)>,
-    pub tasks: Vec<Task>,
     pub ic_names: Vec<String>,
+    ics: Vec<InitialCondition>,
+    params: ModelParams,
+    settings: SolverSettings,
+}
+
+impl Plan {
+    /// Number of runs: points x initial conditions.
+    pub fn len(&self) -> usize {
+        self.points.len() * self.ics.len()
+    }
+
+    /// True when the plan has no runs.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Run `index` (point-major, initial conditions in spec order), key included.
+    pub fn task(&self, index: usize) -> Task {
+        let (point, ic_index) = (index / self.ics.len(), index % self.ics.len());
+        let (eta_t, kappa2) = self.points[point];
+        let params = ModelParams {
+            eta_t,
+            kappa2,
+            ..self.params
+        };
+        let ic = &self.ics[ic_index];
+        Task {
+            point,
+            ic_index,
+            ic: ic.clone(),
+            params,
+            settings: self.settings,
+            key: run_key(&params, ic, &self.settings),
+        }
+    }
+
+    /// Every run, in order.
+    pub fn tasks(&self) -> impl ExactSizeIterator<Item = Task> + '_ {
+        (0..self.len()).map(|i| self.task(i))
+    }
+}
+
+/// Number of runs a spec asks for (points x initial conditions), computed without planning
+/// them (saturating, so that an absurd spec cannot overflow).
+pub fn run_count(spec: &SweepSpec) -> u64 {
+    (spec.eta_t.len() as u64)
+        .saturating_mul(spec.kappa2.len() as u64)
+        .saturating_mul(spec.initial_conditions.len() as u64)
+}
+
+/// Default of `--max-runs`: the most runs one sweep may plan (1e6 runs at N = 192 are about
+/// two CPU-months; the ODE model's dense map is 17 324).
+pub const DEFAULT_MAX_RUNS: u64 = 1_000_000;
+
+/// Refuses a spec with more than `max_runs` runs, before anything is planned or written.
+pub fn check_size(spec: &SweepSpec, max_runs: u64) -> Result<(), crate::SweepError> {
+    let count = run_count(spec);
+    if count > max_runs {
+        return Err(crate::SweepError::TooLarge {
+            runs: count,
+            points: (spec.eta_t.len() as u64).saturating_mul(spec.kappa2.len() as u64),
+            limit: max_runs,
+        });
+    }
+    Ok(())
 }
 
 #[derive(Serialize)]
@@ -49,39 +115,24 @@ pub fn run_key(params: &ModelParams, ic: &InitialCondition, settings: &SolverSet
     digest.iter().take(16).map(|b| format!("{b:02x}")).collect()
 }
 
-/// Expands a spec into its points and tasks (point-major, initial conditions in spec order).
+/// Expands a spec into its points (eta_t-major) and initial conditions; runs are made on
+/// demand. Check [`check_size`] first: the points are allocated here.
 pub fn plan(spec: &SweepSpec) -> Plan {
-    let mut points = Vec::new();
-    let mut tasks = Vec::new();
-    for &eta_t in &spec.eta_t {
-        for &kappa2 in &spec.kappa2 {
-            let point = points.len();
-            points.push((eta_t, kappa2));
-            let params = ModelParams {
-                eta_t,
-                kappa2,
-                ..spec.params
-            };
-            for (ic_index, ic) in spec.initial_conditions.iter().enumerate() {
-                tasks.push(Task {
-                    point,
-                    ic_index,
-                    ic: ic.clone(),
-                    params,
-                    settings: spec.solver,
-                    key: run_key(&params, ic, &spec.solver),
-                });
-            }
-        }
-    }
+    let points = spec
+        .eta_t
+        .iter()
+        .flat_map(|&eta_t| spec.kappa2.iter().map(move |&kappa2| (eta_t, kappa2)))
+        .collect();
     Plan {
         points,
-        tasks,
         ic_names: spec
             .initial_conditions
             .iter()
             .map(|i| i.name.clone())
             .collect(),
+        ics: spec.initial_conditions.clone(),
+        params: spec.params,
+        settings: spec.solver,
     }
 }
 
@@ -100,5 +151,31 @@ mod tests {
         assert_ne!(k, run_key(&p, &InitialCondition::parse("ii").unwrap(), &s));
         assert_ne!(k, run_key(&p, &ic, &SolverSettings { n: 128, ..s }));
         assert_eq!(k.len(), 32);
+    }
+
+    #[test]
+    fn lazy_tasks_are_point_major_and_sizes_are_checked_before_planning() {
+        let spec = crate::spec::parse(
+            "grid:\n  eta_t: [0.08, 0.09]\n  kappa2: [0.11, 0.12, 0.13]\ninitial_conditions: [i, iv]\n",
+            "t.yaml",
+            "t",
+        )
+        .unwrap();
+        let p = plan(&spec);
+        assert_eq!((p.len(), run_count(&spec)), (12, 12));
+        let t = p.task(7);
+        assert_eq!((t.point, t.ic_index, t.ic.name.as_str()), (3, 1, "iv"));
+        assert_eq!((t.params.eta_t, t.params.kappa2), (0.09, 0.11));
+        assert_eq!(t.key, run_key(&t.params, &t.ic, &spec.solver));
+        assert_eq!(p.tasks().count(), 12);
+        assert!(check_size(&spec, 12).is_ok());
+        assert!(matches!(
+            check_size(&spec, 11),
+            Err(crate::SweepError::TooLarge {
+                runs: 12,
+                limit: 11,
+                ..
+            })
+        ));
     }
 }

@@ -2,7 +2,7 @@
 //! panel per case and one curve per method family.
 use crate::bench::BenchRow;
 use crate::error::SweepError;
-use crate::plot::{perr, register_fonts};
+use crate::render::{perr, render, Figure};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
@@ -48,140 +48,150 @@ fn colour(family: &str, index: usize) -> RGBColor {
     shades[index.min(3)]
 }
 
-fn draw<DB: DrawingBackend>(
-    root: DrawingArea<DB, Shift>,
-    title: &str,
-    rows: &[BenchRow],
-) -> Result<(), SweepError>
-where
-    DB::ErrorType: 'static,
-{
-    root.fill(&WHITE).map_err(perr)?;
-    let root = root.titled(title, ("sans-serif", 20)).map_err(perr)?;
-    let mut cases: Vec<&str> = Vec::new();
-    for r in rows {
-        if !cases.contains(&r.case.as_str()) {
-            cases.push(&r.case);
-        }
+/// The work-precision picture.
+struct WorkPrecision<'a> {
+    title: &'a str,
+    rows: &'a [BenchRow],
+}
+
+impl Figure for WorkPrecision<'_> {
+    fn size(&self) -> (u32, u32) {
+        (1500, 960)
     }
-    let mut families: Vec<&str> = Vec::new();
-    for r in rows {
-        if !families.contains(&r.family.as_str()) {
-            families.push(&r.family);
+
+    fn draw<DB: DrawingBackend>(&self, root: DrawingArea<DB, Shift>) -> Result<(), SweepError>
+    where
+        DB::ErrorType: 'static,
+    {
+        let (title, rows) = (self.title, self.rows);
+        root.fill(&WHITE).map_err(perr)?;
+        let root = root.titled(title, ("sans-serif", 20)).map_err(perr)?;
+        let mut cases: Vec<&str> = Vec::new();
+        for r in rows {
+            if !cases.contains(&r.case.as_str()) {
+                cases.push(&r.case);
+            }
         }
-    }
-    // Shade index within a colour group: by N, in order of appearance.
-    let shade = |f: &str| {
-        let group = |g: &str| {
-            g.split(' ').next().unwrap_or("").to_string() + g.split("dt_max").nth(1).unwrap_or("")
-        };
-        families
-            .iter()
-            .filter(|g| group(g) == group(f))
-            .position(|g| *g == f)
-            .unwrap_or(0)
-    };
-    let panels = root.split_evenly((2, 3));
-    for (panel, case) in panels.iter().zip(&cases) {
-        let mine: Vec<&BenchRow> = rows
-            .iter()
-            .filter(|r| r.case == *case && r.status != "diverged" && r.error().is_finite())
-            .collect();
-        if mine.is_empty() {
-            continue;
+        let mut families: Vec<&str> = Vec::new();
+        for r in rows {
+            if !families.contains(&r.family.as_str()) {
+                families.push(&r.family);
+            }
         }
-        let (w0, w1) = mine.iter().fold((f64::INFINITY, 0.0f64), |(a, b), r| {
-            (a.min(r.wall_s.max(1e-4)), b.max(r.wall_s))
-        });
-        let (e0, e1) = mine.iter().fold((f64::INFINITY, 0.0f64), |(a, b), r| {
-            (a.min(r.error().max(FLOOR)), b.max(r.error().max(FLOOR)))
-        });
-        let what = if mine.iter().any(|r| r.err_series.is_some()) {
-            "max series error (v, s)"
-        } else {
-            "steady error max(|dv|, |ds|)"
-        };
-        let mut chart = ChartBuilder::on(panel)
-            .margin(10)
-            .caption(*case, ("sans-serif", 16))
-            .x_label_area_size(38)
-            .y_label_area_size(58)
-            .build_cartesian_2d(
-                (w0 / 1.5..w1 * 1.5).log_scale(),
-                (e0 / 2.0..e1 * 2.0).log_scale(),
-            )
-            .map_err(perr)?;
-        chart
-            .configure_mesh()
-            .x_desc("wall time per run [s]")
-            .y_desc(what)
-            .label_style(("sans-serif", 12))
-            .axis_desc_style(("sans-serif", 13))
-            .x_label_formatter(&|v| format!("{v:.0e}"))
-            .y_label_formatter(&|v| format!("{v:.0e}"))
-            .light_line_style(WHITE)
-            .draw()
-            .map_err(perr)?;
-        for f in &families {
-            let mut pts: Vec<(f64, f64, bool)> = mine
+        // Shade index within a colour group: by N, in order of appearance.
+        let shade = |f: &str| {
+            let group = |g: &str| {
+                g.split(' ').next().unwrap_or("").to_string()
+                    + g.split("dt_max").nth(1).unwrap_or("")
+            };
+            families
                 .iter()
-                .filter(|r| r.family == *f)
-                .map(|r| (r.wall_s.max(1e-4), r.error().max(FLOOR), r.class_ok))
+                .filter(|g| group(g) == group(f))
+                .position(|g| *g == f)
+                .unwrap_or(0)
+        };
+        let panels = root.split_evenly((2, 3));
+        for (panel, case) in panels.iter().zip(&cases) {
+            let mine: Vec<&BenchRow> = rows
+                .iter()
+                .filter(|r| r.case == *case && r.status != "diverged" && r.error().is_finite())
                 .collect();
-            pts.sort_by(|a, b| a.0.total_cmp(&b.0));
-            if pts.is_empty() {
+            if mine.is_empty() {
                 continue;
             }
-            let c = colour(f, shade(f));
+            let (w0, w1) = mine.iter().fold((f64::INFINITY, 0.0f64), |(a, b), r| {
+                (a.min(r.wall_s.max(1e-4)), b.max(r.wall_s))
+            });
+            let (e0, e1) = mine.iter().fold((f64::INFINITY, 0.0f64), |(a, b), r| {
+                (a.min(r.error().max(FLOOR)), b.max(r.error().max(FLOOR)))
+            });
+            let what = if mine.iter().any(|r| r.err_series.is_some()) {
+                "max series error (v, s)"
+            } else {
+                "steady error max(|dv|, |ds|)"
+            };
+            let mut chart = ChartBuilder::on(panel)
+                .margin(10)
+                .caption(*case, ("sans-serif", 16))
+                .x_label_area_size(38)
+                .y_label_area_size(58)
+                .build_cartesian_2d(
+                    (w0 / 1.5..w1 * 1.5).log_scale(),
+                    (e0 / 2.0..e1 * 2.0).log_scale(),
+                )
+                .map_err(perr)?;
             chart
-                .draw_series(LineSeries::new(
-                    pts.iter().map(|p| (p.0, p.1)),
-                    c.stroke_width(2),
+                .configure_mesh()
+                .x_desc("wall time per run [s]")
+                .y_desc(what)
+                .label_style(("sans-serif", 12))
+                .axis_desc_style(("sans-serif", 13))
+                .x_label_formatter(&|v| format!("{v:.0e}"))
+                .y_label_formatter(&|v| format!("{v:.0e}"))
+                .light_line_style(WHITE)
+                .draw()
+                .map_err(perr)?;
+            for f in &families {
+                let mut pts: Vec<(f64, f64, bool)> = mine
+                    .iter()
+                    .filter(|r| r.family == *f)
+                    .map(|r| (r.wall_s.max(1e-4), r.error().max(FLOOR), r.class_ok))
+                    .collect();
+                pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+                if pts.is_empty() {
+                    continue;
+                }
+                let c = colour(f, shade(f));
+                chart
+                    .draw_series(LineSeries::new(
+                        pts.iter().map(|p| (p.0, p.1)),
+                        c.stroke_width(2),
+                    ))
+                    .map_err(perr)?;
+                // Filled: class agrees with the reference; cross: it does not.
+                chart
+                    .draw_series(pts.iter().map(|p| {
+                        if p.2 {
+                            Circle::new((p.0, p.1), 3, c.filled()).into_dyn()
+                        } else {
+                            Cross::new((p.0, p.1), 5, c.stroke_width(2)).into_dyn()
+                        }
+                    }))
+                    .map_err(perr)?;
+            }
+        }
+        // Legend panel: the sixth cell.
+        if let Some(legend) = panels.get(cases.len()) {
+            let (w, _) = legend.dim_in_pixel();
+            let columns = if families.len() > 8 { 2 } else { 1 };
+            let per = families.len().div_ceil(columns);
+            for (i, f) in families.iter().enumerate() {
+                let (col, row) = (i / per, i % per);
+                let x = 20 + col as i32 * (w as i32 / 2);
+                let y = 20 + row as i32 * 22;
+                let c = colour(f, shade(f));
+                legend
+                    .draw(&PathElement::new(
+                        vec![(x, y + 7), (x + 24, y + 7)],
+                        c.stroke_width(3),
+                    ))
+                    .map_err(perr)?;
+                legend
+                    .draw(&Text::new(f.to_string(), (x + 30, y), ("sans-serif", 13)))
+                    .map_err(perr)?;
+            }
+            let y = 30 + per as i32 * 22;
+            legend
+                .draw(&Text::new(
+                    "dot: class agrees with the reference; cross: it does not",
+                    (20, y),
+                    ("sans-serif", 13),
                 ))
                 .map_err(perr)?;
-            // Filled: class agrees with the reference; cross: it does not.
-            chart
-                .draw_series(pts.iter().map(|p| {
-                    if p.2 {
-                        Circle::new((p.0, p.1), 3, c.filled()).into_dyn()
-                    } else {
-                        Cross::new((p.0, p.1), 5, c.stroke_width(2)).into_dyn()
-                    }
-                }))
-                .map_err(perr)?;
         }
+        root.present().map_err(perr)?;
+        Ok(())
     }
-    // Legend panel: the sixth cell.
-    if let Some(legend) = panels.get(cases.len()) {
-        let (w, _) = legend.dim_in_pixel();
-        let columns = if families.len() > 8 { 2 } else { 1 };
-        let per = families.len().div_ceil(columns);
-        for (i, f) in families.iter().enumerate() {
-            let (col, row) = (i / per, i % per);
-            let x = 20 + col as i32 * (w as i32 / 2);
-            let y = 20 + row as i32 * 22;
-            let c = colour(f, shade(f));
-            legend
-                .draw(&PathElement::new(
-                    vec![(x, y + 7), (x + 24, y + 7)],
-                    c.stroke_width(3),
-                ))
-                .map_err(perr)?;
-            legend
-                .draw(&Text::new(f.to_string(), (x + 30, y), ("sans-serif", 13)))
-                .map_err(perr)?;
-        }
-        let y = 30 + per as i32 * 22;
-        legend
-            .draw(&Text::new(
-                "dot: class agrees with the reference; cross: it does not",
-                (20, y),
-                ("sans-serif", 13),
-            ))
-            .map_err(perr)?;
-    }
-    root.present().map_err(perr)?;
-    Ok(())
 }
 
 /// Draws `<stem>.png` and `.svg` in `dir`.
@@ -194,18 +204,8 @@ pub fn work_precision(
     if rows.is_empty() {
         return Err(SweepError::Invalid("no benchmark rows to draw".into()));
     }
-    register_fonts();
-    let png = dir.join(format!("{stem}.png"));
-    let svg = dir.join(format!("{stem}.svg"));
-    draw(
-        BitMapBackend::new(&png, (1500, 960)).into_drawing_area(),
-        title,
-        rows,
-    )?;
-    draw(
-        SVGBackend::new(&svg, (1500, 960)).into_drawing_area(),
-        title,
-        rows,
-    )?;
-    Ok(vec![png, svg])
+    render(
+        &dir.join(format!("{stem}.png")),
+        &WorkPrecision { title, rows },
+    )
 }

@@ -57,12 +57,12 @@ pub fn expected_cost(task: &Task) -> f64 {
 
 /// The shard (`0..count`) of every task, balanced by expected cost; deterministic.
 pub fn assign(plan: &Plan, count: usize) -> Vec<usize> {
-    let costs: Vec<f64> = plan.tasks.iter().map(expected_cost).collect();
-    let mut order: Vec<usize> = (0..plan.tasks.len()).collect();
+    let costs: Vec<f64> = plan.tasks().map(|t| expected_cost(&t)).collect();
+    let mut order: Vec<usize> = (0..plan.len()).collect();
     // Most expensive first; ties by task order, so the result never depends on timing.
     order.sort_by(|&a, &b| costs[b].total_cmp(&costs[a]).then(a.cmp(&b)));
     let mut load = vec![0.0f64; count];
-    let mut owner = vec![0; plan.tasks.len()];
+    let mut owner = vec![0; plan.len()];
     for t in order {
         let s = (0..count)
             .min_by(|&a, &b| load[a].total_cmp(&load[b]).then(a.cmp(&b)))
@@ -73,14 +73,13 @@ pub fn assign(plan: &Plan, count: usize) -> Vec<usize> {
     owner
 }
 
-/// The tasks of `shard`.
-pub fn tasks_of(plan: &Plan, shard: Shard) -> Vec<&Task> {
-    let owner = assign(plan, shard.count);
-    plan.tasks
-        .iter()
-        .zip(owner)
+/// The indices (into [`Plan::task`]) of the runs of `shard`.
+pub fn indices_of(plan: &Plan, shard: Shard) -> Vec<usize> {
+    assign(plan, shard.count)
+        .into_iter()
+        .enumerate()
         .filter(|(_, s)| *s == shard.index)
-        .map(|(t, _)| t)
+        .map(|(i, _)| i)
         .collect()
 }
 
@@ -102,12 +101,13 @@ mod tests {
         let mut seen = std::collections::HashSet::new();
         let mut loads = vec![0.0; n];
         for (i, load) in loads.iter_mut().enumerate() {
-            for t in tasks_of(&plan, Shard { index: i, count: n }) {
+            for t in indices_of(&plan, Shard { index: i, count: n }) {
+                let t = plan.task(t);
                 assert!(seen.insert(t.key.clone()), "run in two shards");
-                *load += expected_cost(t);
+                *load += expected_cost(&t);
             }
         }
-        assert_eq!(seen.len(), plan.tasks.len());
+        assert_eq!(seen.len(), plan.len());
         let (lo, hi) = loads
             .iter()
             .fold((f64::INFINITY, 0.0f64), |(a, b), &x| (a.min(x), b.max(x)));

@@ -147,15 +147,31 @@ pub fn locate(text: &str, path: &[&str]) -> Option<usize> {
     best
 }
 
-/// Reads and validates a spec file.
+/// Reads and validates a spec file. A file that cannot be read (missing, a directory, not
+/// UTF-8) is a spec error too (exit code 2), naming the file and why.
 pub fn load(path: &Path) -> Result<SweepSpec, crate::SweepError> {
-    let text = std::fs::read_to_string(path).map_err(|e| crate::SweepError::io(path, e))?;
+    let text = std::fs::read_to_string(path).map_err(|e| SpecError {
+        file: path.display().to_string(),
+        path: "(file)".into(),
+        line: None,
+        value: format!("cannot be read ({e})"),
+        allowed: "a readable UTF-8 YAML file".into(),
+    })?;
     let stem = path
         .file_stem()
         .and_then(|s| s.to_str())
         .unwrap_or("sweep")
         .to_string();
     Ok(parse(&text, &path.display().to_string(), &stem)?)
+}
+
+/// The spec key of a field named in a [`droplet_solver::SolverError::InvalidParameter`].
+fn key_of(name: &str) -> [&str; 2] {
+    match name {
+        "eta2" | "radius" | "sigma" | "box_len" | "mass" => ["params", name],
+        "eta_t" | "kappa2" => ["grid", name],
+        _ => ["solver", name],
+    }
 }
 
 /// Parses and validates a spec's text; `file` names it in errors, `stem` is the default name.
@@ -294,11 +310,16 @@ pub fn parse(text: &str, file: &str, stem: &str) -> Result<SweepSpec, SpecError>
                         "a name such as i or ii' (quote names with ')",
                     )
                 })?;
-                let ic = InitialCondition::parse(s).map_err(|_| {
+                let ic = InitialCondition::parse(s).map_err(|e| {
                     ctx.err(
                         &["initial_conditions"],
                         show(item),
-                        "i, ii, iii, iv, i', ii' or custom:vx,vy,a2,b2 with s < 1",
+                        match e {
+                            droplet_solver::SolverError::InvalidInitialCondition {
+                                reason, ..
+                            } => reason,
+                            _ => "i, ii, iii, iv, i', ii' or custom:vx,vy,a2,b2 with s < 1".into(),
+                        },
                     )
                 })?;
                 if out.iter().any(|o| o.name == ic.name) {
@@ -414,6 +435,19 @@ pub fn parse(text: &str, file: &str, stem: &str) -> Result<SweepSpec, SpecError>
                 format!("at least dt = {}", solver.dt),
             ));
         }
+    }
+
+    // The solver's own checks, last: step counts, the droplet resolved by the grid, the
+    // explicit scheme's stability limit (one source of truth with `droplet simulate`).
+    if let Err(droplet_solver::SolverError::InvalidParameter {
+        name,
+        value,
+        allowed,
+    }) = solver
+        .validate()
+        .and_then(|()| droplet_solver::limits::check_run(&params, &solver))
+    {
+        return Err(ctx.err(&key_of(name), value, allowed));
     }
 
     Ok(SweepSpec {

@@ -19,6 +19,9 @@ pub struct SweepStatus {
     pub points: usize,
     pub runs_total: usize,
     pub runs_done: usize,
+    /// Stored runs that cannot be used (unreadable, or content not matching the key); the
+    /// next sweep on the directory moves them to `corrupt/` and recomputes them.
+    pub runs_corrupt: usize,
     pub complete: bool,
     pub run_statuses: BTreeMap<String, usize>,
     pub run_classes: BTreeMap<String, usize>,
@@ -48,7 +51,17 @@ pub fn status(dir: &Path) -> Result<SweepStatus, SweepError> {
     let store = Store::open_read(dir)?;
     let spec = stored_spec(dir)?;
     let plan = plan(&spec);
-    let records = store.load_many(plan.tasks.iter().map(|t| t.key.as_str()));
+    let mut records = std::collections::HashMap::new();
+    let mut runs_corrupt = 0;
+    for t in plan.tasks() {
+        match store.check(&t.key) {
+            crate::store::Stored::Valid(r) => {
+                records.insert(t.key, *r);
+            }
+            crate::store::Stored::Corrupt(_) => runs_corrupt += 1,
+            crate::store::Stored::Missing => {}
+        }
+    }
     let run_statuses = tally(
         records
             .values()
@@ -59,7 +72,8 @@ pub fn status(dir: &Path) -> Result<SweepStatus, SweepError> {
             .class
             .map_or("none".to_string(), |c| c.as_str().to_string())
     }));
-    let cpu_s = records.values().map(|r| r.outcome.wall_s).sum();
+    // A fold from +0.0 (an empty f64 sum is -0.0, printed "-0").
+    let cpu_s = records.values().fold(0.0, |acc, r| acc + r.outcome.wall_s);
     // Point labels only over points whose runs are all done.
     let point_counts = tally(
         point_classes(&plan, &records)
@@ -71,9 +85,10 @@ pub fn status(dir: &Path) -> Result<SweepStatus, SweepError> {
         name: spec.name,
         output: dir.to_path_buf(),
         points: plan.points.len(),
-        runs_total: plan.tasks.len(),
+        runs_total: plan.len(),
         runs_done: records.len(),
-        complete: records.len() == plan.tasks.len(),
+        runs_corrupt,
+        complete: records.len() == plan.len(),
         run_statuses,
         run_classes,
         point_classes: point_counts,
@@ -86,7 +101,7 @@ pub fn plot(dir: &Path) -> Result<Vec<PathBuf>, SweepError> {
     let store = Store::open_read(dir)?;
     let spec = stored_spec(dir)?;
     let plan = plan(&spec);
-    let records = store.load_many(plan.tasks.iter().map(|t| t.key.as_str()));
+    let records = store.load_many(plan.tasks().map(|t| t.key));
     plot_records(dir, &spec, &plan, &records)
 }
 
@@ -159,8 +174,7 @@ fn lines(
         _ => return Ok(Vec::new()),
     };
     let markers: Vec<Marker> = plan
-        .tasks
-        .iter()
+        .tasks()
         .filter_map(|t| records.get(&t.key).map(|r| (t, r)))
         .filter(|(_, r)| r.outcome.class.is_some())
         .map(|(t, r)| {
@@ -193,6 +207,7 @@ fn lines(
         &title,
         if along_eta { "eta_t" } else { "kappa2" },
         &markers,
+        &[],
         &[],
     )
 }

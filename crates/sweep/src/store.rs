@@ -2,7 +2,7 @@
 //! written atomically (temporary file, fsync, rename) the moment the run finishes, and an
 //! exclusive lock so that two sweeps cannot write one directory at once.
 use crate::error::SweepError;
-use droplet_solver::{InitialCondition, ModelParams, RunOutcome, SolverSettings};
+use droplet_solver::{InitialCondition, ModelParams, RunOutcome, SolverSettings, SOLVER_VERSION};
 use fs2::FileExt;
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
@@ -21,42 +21,93 @@ pub struct RunRecord {
     pub outcome: RunOutcome,
 }
 
+/// What the store holds for one key.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Stored {
+    /// No file.
+    Missing,
+    /// A record that parses and whose key matches its content.
+    Valid(Box<RunRecord>),
+    /// A file that cannot be read or parsed, or whose content does not hash to its key.
+    Corrupt(String),
+}
+
+/// A stored run that could not be used, and where its file went.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CorruptRun {
+    pub key: String,
+    pub reason: String,
+    /// Where the file was moved (`DIR/corrupt/`); it is never deleted.
+    pub moved_to: PathBuf,
+}
+
 /// An output directory's run store.
 pub struct Store {
     dir: PathBuf,
     runs: PathBuf,
-    _lock: Option<File>,
+    _locks: Vec<File>,
 }
 
+/// Name of the directory-wide lock file.
+const LOCK: &str = ".lock";
+
 impl Store {
-    /// Opens `dir` for writing, creating it, and takes its lock (refused while another
-    /// process holds it; the OS releases it when that process dies, even by SIGKILL).
+    /// Opens `dir` for a whole sweep, creating it, and takes its lock exclusively: refused
+    /// while another sweep or any shard works on it (the OS releases a lock when its process
+    /// dies, even by SIGKILL).
     pub fn open_locked(dir: &Path) -> Result<Self, SweepError> {
-        Self::open_locked_as(dir, ".lock")
+        let store = Self::create(dir)?;
+        let lock = store.lock_file(LOCK)?;
+        if lock.try_lock_exclusive().is_err() {
+            return Err(SweepError::Locked(dir.to_path_buf(), dir.join(LOCK)));
+        }
+        store.with_lock(lock)
     }
 
-    /// As [`Self::open_locked`] with the lock file `lock_name`: each shard of a sharded sweep
-    /// has its own, so shards never serialise each other (their runs are separate files).
-    pub fn open_locked_as(dir: &Path, lock_name: &str) -> Result<Self, SweepError> {
+    /// Opens `dir` for one shard: the directory lock shared (shards run side by side, a whole
+    /// sweep on the same directory is refused both ways) and the shard's own lock `lock_name`
+    /// exclusively (the same shard twice is refused). Shards write separate run files.
+    pub fn open_shard(dir: &Path, lock_name: &str) -> Result<Self, SweepError> {
+        let store = Self::create(dir)?;
+        let shared = store.lock_file(LOCK)?;
+        if FileExt::try_lock_shared(&shared).is_err() {
+            return Err(SweepError::Locked(dir.to_path_buf(), dir.join(LOCK)));
+        }
+        let own = store.lock_file(lock_name)?;
+        if own.try_lock_exclusive().is_err() {
+            return Err(SweepError::Locked(dir.to_path_buf(), dir.join(lock_name)));
+        }
+        let store = store.with_lock(shared)?;
+        Ok(Self {
+            _locks: store._locks.into_iter().chain([own]).collect(),
+            ..store
+        })
+    }
+
+    fn create(dir: &Path) -> Result<Self, SweepError> {
         let runs = dir.join("runs");
-        fs::create_dir_all(&runs).map_err(|e| SweepError::io(&runs, e))?;
-        let lock_path = dir.join(lock_name);
-        let lock = OpenOptions::new()
+        create_output_dir(&runs)?;
+        Ok(Self {
+            dir: dir.to_path_buf(),
+            runs,
+            _locks: Vec::new(),
+        })
+    }
+
+    fn lock_file(&self, name: &str) -> Result<File, SweepError> {
+        let path = self.dir.join(name);
+        OpenOptions::new()
             .create(true)
             .truncate(false)
             .write(true)
-            .open(&lock_path)
-            .map_err(|e| SweepError::io(&lock_path, e))?;
-        if lock.try_lock_exclusive().is_err() {
-            return Err(SweepError::Locked(dir.to_path_buf(), lock_path));
-        }
-        let store = Self {
-            dir: dir.to_path_buf(),
-            runs,
-            _lock: Some(lock),
-        };
-        store.remove_temporaries();
-        Ok(store)
+            .open(&path)
+            .map_err(|e| SweepError::Output { path, source: e })
+    }
+
+    fn with_lock(mut self, lock: File) -> Result<Self, SweepError> {
+        self._locks.push(lock);
+        self.remove_temporaries();
+        Ok(self)
     }
 
     /// Opens `dir` read-only (no lock; may see a sweep in progress).
@@ -72,7 +123,7 @@ impl Store {
         Ok(Self {
             dir: dir.to_path_buf(),
             runs,
-            _lock: None,
+            _locks: Vec::new(),
         })
     }
 
@@ -84,9 +135,10 @@ impl Store {
         self.runs.join(format!("{key}.json"))
     }
 
-    /// Leftovers of writes interrupted by a crash. A temporary lives for milliseconds (write,
-    /// fsync, rename), so only those older than a minute are removed: a concurrent shard's
-    /// write in progress is never touched.
+    /// Leftovers of writes interrupted by a crash, in `runs/` and in the directory itself
+    /// (tables and pictures): names ending in `.tmp`. A temporary lives for milliseconds to
+    /// seconds (write, fsync, rename), so only those older than a minute are removed: a
+    /// concurrent shard's write in progress is never touched.
     fn remove_temporaries(&self) {
         let stale = |e: &fs::DirEntry| {
             e.metadata()
@@ -95,18 +147,58 @@ impl Store {
                 .and_then(|t| t.elapsed().ok())
                 .is_some_and(|age| age > std::time::Duration::from_secs(60))
         };
-        if let Ok(entries) = fs::read_dir(&self.runs) {
-            for e in entries.flatten() {
-                if e.file_name().to_string_lossy().ends_with(".tmp") && stale(&e) {
-                    let _ = fs::remove_file(e.path());
+        for dir in [&self.runs, &self.dir] {
+            if let Ok(entries) = fs::read_dir(dir) {
+                for e in entries.flatten() {
+                    if e.file_name().to_string_lossy().ends_with(".tmp") && stale(&e) {
+                        let _ = fs::remove_file(e.path());
+                    }
                 }
             }
         }
     }
 
-    /// True when the run `key` is stored.
-    pub fn has(&self, key: &str) -> bool {
-        self.path_of(key).is_file()
+    /// What is stored under `key`: a valid record only if the file parses, names `key`, and
+    /// its parameters, initial condition, settings and solver version hash to `key`.
+    pub fn check(&self, key: &str) -> Stored {
+        let path = self.path_of(key);
+        let bytes = match fs::read(&path) {
+            Ok(b) => b,
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Stored::Missing,
+            Err(e) => return Stored::Corrupt(format!("cannot be read: {e}")),
+        };
+        let rec: RunRecord = match serde_json::from_slice(&bytes) {
+            Ok(r) => r,
+            Err(e) => {
+                return Stored::Corrupt(format!("not a run record ({} bytes): {e}", bytes.len()))
+            }
+        };
+        let content_key = crate::plan::run_key(&rec.params, &rec.ic, &rec.settings);
+        if rec.key != key || rec.solver_version != SOLVER_VERSION || content_key != key {
+            return Stored::Corrupt(format!(
+                "its content does not match its key (names key {}, solver {}, content hashes to {content_key})",
+                rec.key, rec.solver_version
+            ));
+        }
+        Stored::Valid(Box::new(rec))
+    }
+
+    /// Moves the file of `key` to `DIR/corrupt/<key>.<unix seconds>.json` (never deleted, so
+    /// that nothing is lost), so the run can be recomputed.
+    pub fn quarantine(&self, key: &str, reason: &str) -> Result<CorruptRun, SweepError> {
+        let aside = self.dir.join("corrupt");
+        fs::create_dir_all(&aside).map_err(|e| SweepError::io(&aside, e))?;
+        let stamp = std::time::SystemTime::now()
+            .duration_since(std::time::UNIX_EPOCH)
+            .map_or(0, |d| d.as_secs());
+        let to = aside.join(format!("{key}.{stamp}.json"));
+        let from = self.path_of(key);
+        fs::rename(&from, &to).map_err(|e| SweepError::io(&from, e))?;
+        Ok(CorruptRun {
+            key: key.to_string(),
+            reason: reason.to_string(),
+            moved_to: to,
+        })
     }
 
     /// Persists a finished run atomically.
@@ -115,19 +207,29 @@ impl Store {
         write_atomic(&self.path_of(&record.key), &json).map(|_| ())
     }
 
-    /// Loads one run, if stored and readable.
-    pub fn load(&self, key: &str) -> Option<RunRecord> {
-        let bytes = fs::read(self.path_of(key)).ok()?;
-        serde_json::from_slice(&bytes).ok()
+    /// True when a valid run `key` is stored.
+    pub fn has(&self, key: &str) -> bool {
+        matches!(self.check(key), Stored::Valid(_))
     }
 
-    /// Loads the runs with the given keys (missing ones are absent from the map).
-    pub fn load_many<'a>(
+    /// Loads one run, if stored and valid (see [`Self::check`]).
+    pub fn load(&self, key: &str) -> Option<RunRecord> {
+        match self.check(key) {
+            Stored::Valid(r) => Some(*r),
+            _ => None,
+        }
+    }
+
+    /// Loads the valid runs with the given keys (missing or corrupt ones are absent).
+    pub fn load_many<K: AsRef<str>>(
         &self,
-        keys: impl IntoIterator<Item = &'a str>,
+        keys: impl IntoIterator<Item = K>,
     ) -> HashMap<String, RunRecord> {
         keys.into_iter()
-            .filter_map(|k| self.load(k).map(|r| (k.to_string(), r)))
+            .filter_map(|k| {
+                let k = k.as_ref();
+                self.load(k).map(|r| (k.to_string(), r))
+            })
             .collect()
     }
 
@@ -137,8 +239,19 @@ impl Store {
     }
 }
 
+/// Creates an output directory given by the user (`--out`, `output:`); failing is bad input
+/// (exit code 2), reported with the directory.
+pub fn create_output_dir(dir: &Path) -> Result<(), SweepError> {
+    fs::create_dir_all(dir).map_err(|e| SweepError::Output {
+        path: dir.to_path_buf(),
+        source: e,
+    })
+}
+
 /// Writes `bytes` to `path` via a temporary file (`<stem>.<pid>.tmp`), fsync and a rename, so a
-/// crash leaves either the old file or the new one, never a partial one.
+/// crash leaves either the old file or the new one, never a partial one (and a stale
+/// temporary that the next sweep on the directory removes). Errors name `path`; a failed
+/// write removes its temporary.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<PathBuf, SweepError> {
     let tmp = path.with_extension(format!("{}.tmp", std::process::id()));
     let write = || -> std::io::Result<()> {
@@ -147,7 +260,10 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<PathBuf, SweepError> {
         f.sync_all()?;
         fs::rename(&tmp, path)
     };
-    write().map_err(|e| SweepError::io(path, e))?;
+    write().map_err(|e| {
+        let _ = fs::remove_file(&tmp);
+        SweepError::io(path, e)
+    })?;
     Ok(path.to_path_buf())
 }
 
@@ -155,20 +271,18 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<PathBuf, SweepError> {
 mod tests {
     use super::*;
 
-    #[test]
-    fn lock_is_exclusive_and_records_round_trip() {
-        let dir = tempfile::tempdir().unwrap();
-        let store = Store::open_locked(dir.path()).unwrap();
-        assert!(matches!(
-            Store::open_locked(dir.path()),
-            Err(SweepError::Locked(..))
-        ));
-        let rec = RunRecord {
-            key: "abc".into(),
-            params: ModelParams::default(),
-            ic: InitialCondition::parse("i").unwrap(),
-            settings: SolverSettings::default(),
-            solver_version: "x".into(),
+    fn record() -> RunRecord {
+        let (params, ic, settings) = (
+            ModelParams::default(),
+            InitialCondition::parse("i").unwrap(),
+            SolverSettings::default(),
+        );
+        RunRecord {
+            key: crate::plan::run_key(&params, &ic, &settings),
+            params,
+            ic,
+            settings,
+            solver_version: SOLVER_VERSION.into(),
             outcome: RunOutcome {
                 status: droplet_solver::RunStatus::Steady,
                 class: Some(droplet_solver::StateClass::MD),
@@ -183,17 +297,94 @@ mod tests {
                 wall_s: 0.1,
                 series: vec![],
             },
-        };
+        }
+    }
+
+    #[test]
+    fn lock_is_exclusive_and_records_round_trip() {
+        let dir = tempfile::tempdir().unwrap();
+        let store = Store::open_locked(dir.path()).unwrap();
+        assert!(matches!(
+            Store::open_locked(dir.path()),
+            Err(SweepError::Locked(..))
+        ));
+        // A shard is refused while the whole sweep holds the directory.
+        assert!(matches!(
+            Store::open_shard(dir.path(), ".lock-shard-0-of-2"),
+            Err(SweepError::Locked(..))
+        ));
+        let rec = record();
+        let key = rec.key.clone();
         store.save(&rec).unwrap();
-        assert!(store.has("abc"));
+        assert!(store.has(&key));
+        assert_eq!(store.load(&key).unwrap(), rec);
+        drop(store);
         // A fresh temporary (another process writing) survives a second open; no stale ones.
         let fresh = dir.path().join("runs").join("x.1.tmp");
         std::fs::write(&fresh, b"{").unwrap();
-        let other = Store::open_locked_as(dir.path(), ".lock-shard-0-of-2").unwrap();
+        let other = Store::open_shard(dir.path(), ".lock-shard-0-of-2").unwrap();
         assert!(fresh.exists());
-        drop(other);
-        assert_eq!(store.load("abc").unwrap(), rec);
-        drop(store);
+        // Shards run side by side, but not the same shard twice, and no whole sweep meanwhile.
+        let second = Store::open_shard(dir.path(), ".lock-shard-1-of-2").unwrap();
+        assert!(matches!(
+            Store::open_shard(dir.path(), ".lock-shard-0-of-2"),
+            Err(SweepError::Locked(..))
+        ));
+        assert!(matches!(
+            Store::open_locked(dir.path()),
+            Err(SweepError::Locked(..))
+        ));
+        drop((other, second));
         assert!(Store::open_locked(dir.path()).is_ok());
+    }
+
+    #[test]
+    fn corrupt_runs_are_told_apart_and_moved_aside() {
+        let dir = tempfile::tempdir().unwrap();
+        let store = Store::open_locked(dir.path()).unwrap();
+        let rec = record();
+        let key = rec.key.clone();
+        assert_eq!(store.check(&key), Stored::Missing);
+        let file = dir.path().join("runs").join(format!("{key}.json"));
+        for bad in [
+            Vec::new(),
+            b"{\"key\":".to_vec(),
+            b"garbage \xff".to_vec(),
+            // Valid JSON of another run under this key.
+            serde_json::to_vec(&RunRecord {
+                params: ModelParams::at(0.08, 0.12),
+                ..rec.clone()
+            })
+            .unwrap(),
+        ] {
+            std::fs::write(&file, &bad).unwrap();
+            let Stored::Corrupt(reason) = store.check(&key) else {
+                panic!("{bad:?} accepted")
+            };
+            assert!(store.load(&key).is_none());
+            let moved = store.quarantine(&key, &reason).unwrap();
+            assert!(!file.exists());
+            assert_eq!(std::fs::read(&moved.moved_to).unwrap(), bad);
+            std::fs::remove_file(&moved.moved_to).unwrap();
+        }
+        store.save(&rec).unwrap();
+        assert_eq!(store.check(&key), Stored::Valid(Box::new(rec)));
+    }
+
+    #[test]
+    fn stale_temporaries_of_tables_and_pictures_are_removed_at_the_next_open() {
+        let dir = tempfile::tempdir().unwrap();
+        drop(Store::open_locked(dir.path()).unwrap());
+        let old = std::time::SystemTime::now() - std::time::Duration::from_secs(3600);
+        let stale: Vec<PathBuf> = ["runs.4242.tmp", "phase_map.4242.tmp", "runs/k.4242.tmp"]
+            .iter()
+            .map(|n| dir.path().join(n))
+            .collect();
+        for p in &stale {
+            let f = File::create(p).unwrap();
+            f.set_modified(old).unwrap();
+        }
+        drop(Store::open_locked(dir.path()).unwrap());
+        assert!(stale.iter().all(|p| !p.exists()));
     }
 }

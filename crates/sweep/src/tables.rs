@@ -78,9 +78,8 @@ pub fn runs_frame(
     plan: &Plan,
     records: &HashMap<String, RunRecord>,
 ) -> Result<DataFrame, SweepError> {
-    let rows: Vec<(&crate::plan::Task, &RunRecord)> = plan
-        .tasks
-        .iter()
+    let rows: Vec<(crate::plan::Task, &RunRecord)> = plan
+        .tasks()
         .filter_map(|t| records.get(&t.key).map(|r| (t, r)))
         .collect();
     let f = |g: &dyn Fn(&RunRecord) -> f64| rows.iter().map(|(_, r)| g(r)).collect::<Vec<f64>>();
@@ -184,7 +183,7 @@ pub fn point_classes(
 ) -> Vec<(PointClass, Vec<Option<String>>)> {
     let mut by_point: Vec<Vec<Option<&RunRecord>>> =
         vec![vec![None; plan.ic_names.len()]; plan.points.len()];
-    for t in &plan.tasks {
+    for t in plan.tasks() {
         by_point[t.point][t.ic_index] = records.get(&t.key);
     }
     by_point

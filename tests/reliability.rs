@@ -1,0 +1,837 @@
+//! Reliability through the `droplet` binary: nothing lost, nothing hung.
+//!
+//! - a catalogue of malformed and extreme inputs: each exits with its documented code
+//!   (2 for bad input), names what is wrong, never panics, and returns within seconds (the
+//!   tiny-step cases within one);
+//! - corrupt stored runs are reported, moved aside and recomputed; `merge` refuses to build
+//!   tables while a run is missing or unreadable;
+//! - an oversized spec is refused before anything is written;
+//! - SIGKILL at many moments, then resume: tables identical to an uninterrupted sweep;
+//! - stale temporaries of interrupted table and picture writes are removed by the next run;
+//! - a whole sweep and a shard never work on one directory at the same time.
+//!
+//! With `DROPLET_RELIABILITY_DIR` set, the catalogue and kill tests write their counts there
+//! (`inputs.md`, `kills.md`): the README's reliability section quotes them.
+mod common;
+
+use common::{droplet, table_without_wall};
+use std::path::{Path, PathBuf};
+use std::process::{Output, Stdio};
+use std::time::{Duration, Instant};
+
+fn run(args: &[&str]) -> Output {
+    droplet().args(args).output().expect("binary runs")
+}
+
+fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+fn ok_json(out: &Output) -> serde_json::Value {
+    assert!(
+        out.status.success(),
+        "stderr: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).expect("one JSON object")
+}
+
+/// Writes a report section when `DROPLET_RELIABILITY_DIR` is set.
+fn report(name: &str, text: &str) {
+    if let Ok(dir) = std::env::var("DROPLET_RELIABILITY_DIR") {
+        std::fs::create_dir_all(&dir).unwrap();
+        std::fs::write(Path::new(&dir).join(name), text).unwrap();
+    }
+}
+
+/// A tiny sweep: 12 runs at N = 32, fixed steps; a fraction of a second per run.
+const TINY: &str = "name: tiny
+grid:
+  eta_t: [0.07, 0.09, 0.11]
+  kappa2: [0.10, 0.12]
+initial_conditions: [i, iii]
+solver:
+  n: 32
+  dt: 0.05
+  tol: 0
+  t_max: 150
+";
+
+fn sweep(spec: &Path, out: &Path, extra: &[&str]) -> Output {
+    let mut args = vec![
+        "sweep",
+        spec.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--json",
+        "--no-plot",
+    ];
+    args.extend_from_slice(extra);
+    run(&args)
+}
+
+fn tables_equal(a: &Path, b: &Path) {
+    for t in ["runs.parquet", "points.parquet"] {
+        let x = table_without_wall(&a.join(t));
+        let y = table_without_wall(&b.join(t));
+        assert!(x.equals_missing(&y), "{t} differs:\n{x}\n{y}");
+    }
+}
+
+fn run_files(dir: &Path) -> Vec<PathBuf> {
+    let mut v: Vec<PathBuf> = std::fs::read_dir(dir.join("runs"))
+        .unwrap()
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.extension().is_some_and(|x| x == "json"))
+        .collect();
+    v.sort();
+    v
+}
+
+#[test]
+fn corrupt_stored_runs_are_moved_aside_and_recomputed_and_merge_refuses_gaps() {
+    let dir = tempfile::tempdir().unwrap();
+    let spec = write(dir.path(), "tiny.yaml", TINY);
+    let reference = dir.path().join("ref");
+    ok_json(&sweep(&spec, &reference, &[]));
+    let out = dir.path().join("o");
+    ok_json(&sweep(&spec, &out, &[]));
+    let files = run_files(&out);
+    assert_eq!(files.len(), 12);
+    // Truncated, empty, garbage, and another run's (valid) record under this key.
+    let whole = std::fs::read(&files[0]).unwrap();
+    std::fs::write(&files[0], &whole[..whole.len() / 2]).unwrap();
+    std::fs::write(&files[1], b"").unwrap();
+    std::fs::write(&files[2], b"\xff\xfe not json").unwrap();
+    std::fs::copy(&files[4], &files[3]).unwrap();
+
+    // merge: exit 1, no tables, the unreadable runs named.
+    std::fs::remove_file(out.join("runs.parquet")).unwrap();
+    let m = run(&["merge", out.to_str().unwrap()]);
+    assert_eq!(m.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&m.stderr);
+    assert!(err.contains("4 of 12 runs are missing"), "{err}");
+    assert!(err.contains("unreadable"), "{err}");
+    assert!(!out.join("runs.parquet").exists());
+    // status counts them.
+    let st = ok_json(&run(&["status", out.to_str().unwrap(), "--json"]));
+    assert_eq!(st["runs_corrupt"], 4, "{st}");
+    assert_eq!(st["runs_done"], 8, "{st}");
+
+    // The sweep moves them aside (never deletes), recomputes them, and the tables are whole.
+    let o = sweep(&spec, &out, &[]);
+    let summary = ok_json(&o);
+    assert_eq!(summary["computed"], 4, "{summary}");
+    assert_eq!(summary["reused"], 8, "{summary}");
+    assert_eq!(summary["corrupt"].as_array().unwrap().len(), 4, "{summary}");
+    let aside: Vec<_> = std::fs::read_dir(out.join("corrupt"))
+        .unwrap()
+        .flatten()
+        .collect();
+    assert_eq!(aside.len(), 4);
+    let moved = summary["corrupt"][0]["moved_to"].as_str().unwrap();
+    assert!(Path::new(moved).exists());
+    tables_equal(&reference, &out);
+    assert_eq!(run_files(&out).len(), 12);
+
+    // A missing run: merge exits 1 and writes nothing; with all runs present it succeeds.
+    std::fs::remove_file(&files[5]).unwrap();
+    let before = std::fs::metadata(out.join("runs.parquet"))
+        .unwrap()
+        .modified()
+        .unwrap();
+    let m = run(&["merge", out.to_str().unwrap()]);
+    assert_eq!(m.status.code(), Some(1));
+    assert_eq!(
+        std::fs::metadata(out.join("runs.parquet"))
+            .unwrap()
+            .modified()
+            .unwrap(),
+        before
+    );
+    ok_json(&sweep(&spec, &out, &[]));
+    ok_json(&run(&[
+        "merge",
+        out.to_str().unwrap(),
+        "--json",
+        "--no-plot",
+    ]));
+    tables_equal(&reference, &out);
+}
+
+#[test]
+fn an_oversized_spec_is_refused_before_anything_is_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("huge-out");
+    // 1e5 x 1e5 points x 4 initial conditions = 4e10 runs.
+    let spec = write(
+        dir.path(),
+        "huge.yaml",
+        &format!(
+            "output: {}\ngrid:\n  eta_t: {{start: 0.05, stop: 0.14999, step: 1.0e-6}}\n  kappa2: {{start: 0.05, stop: 0.14999, step: 1.0e-6}}\n",
+            out.display()
+        ),
+    );
+    let started = Instant::now();
+    let o = run(&["sweep", spec.to_str().unwrap()]);
+    assert!(started.elapsed() < Duration::from_secs(5));
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("more than the limit of 1000000"), "{err}");
+    assert!(err.contains("--max-runs"), "{err}");
+    assert!(!out.exists(), "output directory created");
+    // The limit is a deliberate choice: a small sweep over a lowered limit is refused too,
+    // and runs once the limit allows it.
+    let tiny = write(dir.path(), "tiny.yaml", TINY);
+    let o2 = dir.path().join("o2");
+    let o = sweep(&tiny, &o2, &["--max-runs", "11"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(!o2.exists());
+    ok_json(&sweep(&tiny, &o2, &["--max-runs", "12"]));
+    let o = run(&["slurm", spec.to_str().unwrap(), "--shards", "4"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(!out.exists(), "slurm wrote into the output directory");
+}
+
+/// One malformed or extreme input: arguments (`SPEC` replaced by the spec file, `DIR` by a
+/// scratch directory), the exit code, and words the message must contain.
+struct Case {
+    what: &'static str,
+    args: Vec<String>,
+    code: i32,
+    says: &'static [&'static str],
+    /// Must return within this many seconds.
+    within: f64,
+}
+
+fn case(what: &'static str, args: &[&str], code: i32, says: &'static [&'static str]) -> Case {
+    Case {
+        what,
+        args: args.iter().map(|s| s.to_string()).collect(),
+        code,
+        says,
+        within: 10.0,
+    }
+}
+
+fn spec_case(what: &'static str, replace: (&str, &str), says: &'static [&'static str]) -> Case {
+    let good = "name: m\ngrid:\n  eta_t: [0.08]\n  kappa2: [0.11]\nsolver:\n  n: 32\n  dt: 0.05\n  t_max: 10\n";
+    assert!(good.contains(replace.0), "{what}");
+    Case {
+        what,
+        args: vec![
+            "sweep".into(),
+            format!("SPEC:{}", good.replacen(replace.0, replace.1, 1)),
+            "--out".into(),
+            "DIR/out".into(),
+        ],
+        code: 2,
+        says,
+        within: 5.0,
+    }
+}
+
+fn catalogue() -> Vec<Case> {
+    let sim = |extra: &[&str]| -> Vec<String> {
+        let mut v: Vec<String> = ["simulate", "--eta-t", "0.085", "--kappa2", "0.12"]
+            .iter()
+            .map(|s| s.to_string())
+            .collect();
+        v.extend(extra.iter().map(|s| s.to_string()));
+        v
+    };
+    let simc = |what, extra: &[&str], says, within| Case {
+        what,
+        args: sim(extra),
+        code: 2,
+        says,
+        within,
+    };
+    vec![
+        // Steps and intervals that would never finish.
+        simc(
+            "fixed step 1e-300",
+            &["--dt", "1e-300", "--tol", "0", "--t-max", "50"],
+            &["dt", "steps"],
+            1.0,
+        ),
+        simc(
+            "fixed step 1e-9",
+            &["--dt", "1e-9", "--tol", "0"],
+            &["dt", "steps"],
+            1.0,
+        ),
+        simc(
+            "adaptive cap 1e-300",
+            &["--dt", "1e-300", "--dt-max", "1e-300"],
+            &["dt_max", "steps"],
+            1.0,
+        ),
+        simc(
+            "series every 1e-300",
+            &["--every", "1e-300", "--series", "DIR/s.parquet"],
+            &["every", "rows"],
+            1.0,
+        ),
+        simc(
+            "picture every 1e-9",
+            &["--every", "1e-9", "--picture", "DIR/p.png"],
+            &["every", "rows"],
+            1.0,
+        ),
+        simc("every 0", &["--every", "0"], &["every"], 1.0),
+        simc("every nan", &["--every", "NaN"], &["every"], 1.0),
+        spec_case(
+            "spec fixed step 1e-300",
+            ("dt: 0.05", "dt: 1.0e-300\n  tol: 0"),
+            &["solver.dt", "steps"],
+        ),
+        spec_case(
+            "spec dt_max 1e-300",
+            ("dt: 0.05", "dt: 1.0e-300\n  dt_max: 1.0e-300"),
+            &["solver.dt_max"],
+        ),
+        // Negative numbers are values, rejected with the field's message.
+        Case {
+            what: "negative eta_t first",
+            args: ["simulate", "--eta-t", "-0.1", "--kappa2", "0.1"]
+                .iter()
+                .map(|s| s.to_string())
+                .collect(),
+            code: 2,
+            says: &["eta_t", "> 0"],
+            within: 5.0,
+        },
+        case(
+            "negative kappa2",
+            &["simulate", "--eta-t", "0.085", "--kappa2", "-1"],
+            2,
+            &["kappa2", ">= 0"],
+        ),
+        simc("negative mass", &["--mass", "-0.1"], &["mass"], 5.0),
+        simc("negative dt", &["--dt", "-0.01"], &["dt"], 5.0),
+        simc("negative t_max", &["--t-max", "-5"], &["t_max"], 5.0),
+        simc("zero eta2", &["--eta2", "0"], &["eta2"], 5.0),
+        simc("infinite box", &["--box-len", "inf"], &["box_len"], 5.0),
+        // Initial conditions: the bound that is broken.
+        simc(
+            "custom ic s >= 1",
+            &["--ic", "custom:0,0,2,0"],
+            &["s = sqrt(a2^2 + b2^2) = 2", "< 1"],
+            5.0,
+        ),
+        simc(
+            "custom ic three numbers",
+            &["--ic", "custom:0,0,0.1"],
+            &["four numbers", "got 3"],
+            5.0,
+        ),
+        simc(
+            "custom ic not numbers",
+            &["--ic", "custom:a,b,c,d"],
+            &["four numbers"],
+            5.0,
+        ),
+        simc(
+            "custom ic nan",
+            &["--ic", "custom:NaN,0,0,0"],
+            &["finite"],
+            5.0,
+        ),
+        simc(
+            "unknown ic",
+            &["--ic", "vii"],
+            &["unknown initial condition"],
+            5.0,
+        ),
+        // Geometry: the field at fault, and an unresolved droplet.
+        simc(
+            "sigma 10",
+            &["--sigma", "10"],
+            &["`sigma`", "thinner than the droplet"],
+            5.0,
+        ),
+        simc(
+            "sigma far below dx",
+            &["--sigma", "1e-4"],
+            &["`sigma`", "grid cell"],
+            5.0,
+        ),
+        simc(
+            "radius far below dx",
+            &["--radius", "0.12"],
+            &["`radius`", "grid cells"],
+            5.0,
+        ),
+        simc(
+            "radius too big for the box",
+            &["--radius", "5"],
+            &["`box_len`"],
+            5.0,
+        ),
+        simc("coarse grid", &["--n", "16"], &["`radius`", "raise n"], 5.0),
+        simc("odd n", &["--n", "31"], &["`n`"], 5.0),
+        simc(
+            "paper-fd above its stability limit",
+            &["--scheme", "paper-fd", "--dt", "1e-3"],
+            &["`dt`", "stability limit"],
+            5.0,
+        ),
+        simc(
+            "adaptive paper-fd",
+            &["--scheme", "paper-fd", "--tol", "1e-4"],
+            &["`tol`"],
+            5.0,
+        ),
+        simc("unknown scheme", &["--scheme", "rk4"], &["rk4"], 5.0),
+        simc(
+            "series into a missing directory",
+            &["--series", "DIR/no/such/s.parquet"],
+            &["does not exist"],
+            5.0,
+        ),
+        spec_case(
+            "spec sigma below dx",
+            ("solver:", "params: {sigma: 1.0e-4}\nsolver:"),
+            &["params.sigma", "grid cell"],
+        ),
+        spec_case(
+            "spec sigma 10",
+            ("solver:", "params: {sigma: 10}\nsolver:"),
+            &["params.sigma"],
+        ),
+        spec_case(
+            "spec radius below dx",
+            ("solver:", "params: {radius: 0.5}\nsolver:"),
+            &["params.radius"],
+        ),
+        spec_case(
+            "spec unstable paper-fd",
+            (
+                "  n: 32\n  dt: 0.05\n",
+                "  scheme: paper-fd\n  n: 64\n  dt: 0.01\n  tol: 0\n",
+            ),
+            &["solver.dt", "stability limit"],
+        ),
+        spec_case(
+            "spec custom ic s >= 1",
+            (
+                "solver:",
+                "initial_conditions: [\"custom:0,0,2,0\"]\nsolver:",
+            ),
+            &["initial_conditions", "< 1"],
+        ),
+        spec_case(
+            "spec negative step",
+            (
+                "eta_t: [0.08]",
+                "eta_t: {start: 0.07, stop: 0.08, step: -0.01}",
+            ),
+            &["grid.eta_t.step"],
+        ),
+        spec_case(
+            "spec unknown key",
+            ("name: m", "name: m\ncolour: red"),
+            &["colour"],
+        ),
+        spec_case("spec not yaml", ("name: m", "name: [m"), &["(document)"]),
+        spec_case("spec n huge", ("n: 32", "n: 100000"), &["solver.n"]),
+        spec_case(
+            "spec t_max inf",
+            ("t_max: 10", "t_max: .inf"),
+            &["solver.t_max"],
+        ),
+        spec_case(
+            "spec mass string",
+            ("solver:", "params: {mass: heavy}\nsolver:"),
+            &["params.mass"],
+        ),
+        // Files that cannot be read, and outputs that cannot be written.
+        case(
+            "missing spec file",
+            &["sweep", "DIR/none.yaml"],
+            2,
+            &["none.yaml", "cannot be read"],
+        ),
+        case(
+            "spec is a directory",
+            &["sweep", "DIR"],
+            2,
+            &["cannot be read"],
+        ),
+        case(
+            "spec not UTF-8",
+            &["sweep", "BINARY"],
+            2,
+            &["bin.yaml", "UTF-8"],
+        ),
+        case(
+            "out under a regular file",
+            &[
+                "sweep",
+                "SPEC:name: m\ngrid: {eta_t: [0.08], kappa2: [0.11]}\nsolver: {n: 32, t_max: 1}\n",
+                "--out",
+                "FILE/out",
+            ],
+            2,
+            &["output directory", "--out"],
+        ),
+        case(
+            "slurm out under a regular file",
+            &[
+                "slurm",
+                "SPEC:name: m\ngrid: {eta_t: [0.08], kappa2: [0.11]}\n",
+                "--shards",
+                "2",
+                "--out",
+                "FILE/out",
+            ],
+            2,
+            &["output directory"],
+        ),
+        case(
+            "ode out under a regular file",
+            &[
+                "ode",
+                "bifurcation",
+                "--kappa2",
+                "0.13",
+                "--from",
+                "0.07",
+                "--to",
+                "0.1",
+                "--out",
+                "FILE/out",
+            ],
+            2,
+            &["output directory"],
+        ),
+        case(
+            "fit-h0 out under a regular file",
+            &["fit-h0", "--n", "32", "--out", "FILE/out"],
+            2,
+            &["output directory"],
+        ),
+        case(
+            "status of no sweep",
+            &["status", "DIR/nothing"],
+            2,
+            &["holds no sweep"],
+        ),
+        case(
+            "merge of no sweep",
+            &["merge", "DIR/nothing"],
+            2,
+            &["holds no sweep"],
+        ),
+        case(
+            "plot of no sweep",
+            &["plot", "DIR/nothing"],
+            2,
+            &["holds no sweep"],
+        ),
+        case(
+            "sweep --jobs 0",
+            &[
+                "sweep",
+                "SPEC:grid: {eta_t: [0.08], kappa2: [0.11]}\n",
+                "--jobs",
+                "0",
+            ],
+            2,
+            &["--jobs"],
+        ),
+        case(
+            "bad shard",
+            &[
+                "sweep",
+                "SPEC:grid: {eta_t: [0.08], kappa2: [0.11]}\n",
+                "--shard",
+                "3/3",
+            ],
+            2,
+            &["shard"],
+        ),
+        case(
+            "ode reversed line",
+            &[
+                "ode",
+                "bifurcation",
+                "--kappa2",
+                "0.13",
+                "--from",
+                "0.1",
+                "--to",
+                "0.07",
+            ],
+            2,
+            &["from < to"],
+        ),
+        Case {
+            within: 1.0,
+            ..case(
+                "fit-h0 step 1e-300",
+                &["fit-h0", "--step", "1e-300", "--out", "DIR/h0"],
+                2,
+                &["--step", "more than"],
+            )
+        },
+        Case {
+            within: 1.0,
+            ..case(
+                "ode line of 1e12 samples",
+                &[
+                    "ode",
+                    "bifurcation",
+                    "--kappa2",
+                    "0.13",
+                    "--from",
+                    "0.07",
+                    "--to",
+                    "0.1",
+                    "--steps",
+                    "1000000000000",
+                    "--out",
+                    "DIR/ode",
+                ],
+                2,
+                &["steps"],
+            )
+        },
+        case(
+            "ode negative radius",
+            &["ode", "coefficients", "--radius", "-1"],
+            2,
+            &["radius"],
+        ),
+        case("unknown command", &["fly"], 2, &["fly"]),
+        case("no command", &[], 2, &["Usage"]),
+    ]
+}
+
+#[test]
+fn malformed_and_extreme_inputs_exit_with_their_code_name_the_problem_and_never_hang() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let file = write(d, "a-file", "x");
+    let binary = d.join("bin.yaml");
+    std::fs::write(&binary, b"name: \xff\xfe\n").unwrap();
+    let cases = catalogue();
+    let mut lines = Vec::new();
+    let mut slowest = 0.0f64;
+    for (i, c) in cases.iter().enumerate() {
+        let args: Vec<String> = c
+            .args
+            .iter()
+            .map(|a| {
+                if let Some(text) = a.strip_prefix("SPEC:") {
+                    write(d, &format!("spec-{i}.yaml"), text)
+                        .display()
+                        .to_string()
+                } else {
+                    a.replace("DIR", d.to_str().unwrap())
+                        .replace("FILE", file.to_str().unwrap())
+                        .replace("BINARY", binary.to_str().unwrap())
+                }
+            })
+            .collect();
+        let started = Instant::now();
+        let o = droplet().args(&args).stdin(Stdio::null()).output().unwrap();
+        let secs = started.elapsed().as_secs_f64();
+        slowest = slowest.max(secs / c.within);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(c.code), "{}: {args:?}\n{err}", c.what);
+        assert!(!err.contains("panicked"), "{}: panic\n{err}", c.what);
+        for s in c.says {
+            assert!(err.contains(s), "{}: message lacks {s:?}:\n{err}", c.what);
+        }
+        assert!(
+            secs <= c.within,
+            "{}: took {secs:.2} s (limit {} s)",
+            c.what,
+            c.within
+        );
+        lines.push(format!(
+            "| {} | `{}` | {} | {:.2} s |",
+            c.what,
+            err.lines().next().unwrap_or("").replace('|', "/"),
+            c.code,
+            secs
+        ));
+    }
+    // Nothing was left in the scratch directory by a refused command but its own inputs.
+    assert!(!d.join("out").exists());
+    assert!(cases.len() >= 50);
+    report(
+        "inputs.md",
+        &format!(
+            "{} malformed or extreme inputs, each refused with its exit code and a message naming the problem, no panic, none slower than {:.0} % of its time limit:\n\n| input | first line of the message | exit | time |\n|---|---|---|---|\n{}\n",
+            cases.len(),
+            100.0 * slowest,
+            lines.join("\n")
+        ),
+    );
+}
+
+#[test]
+fn sigkill_at_many_moments_then_resume_gives_identical_tables() {
+    let dir = tempfile::tempdir().unwrap();
+    // Slow enough to be cut mid-way: 12 runs at N = 64.
+    let spec_text = TINY.replace("n: 32", "n: 64");
+    let spec = write(dir.path(), "tiny.yaml", &spec_text);
+    let reference = dir.path().join("ref");
+    let started = Instant::now();
+    ok_json(&sweep(&spec, &reference, &["--jobs", "2"]));
+    let full_ms = started.elapsed().as_millis() as u64;
+    let resumed = dir.path().join("resumed");
+    // Moments spread over the sweep's length by a fixed-seed generator (LCG).
+    let mut x: u64 = 20261127;
+    let (mut kills, mut tries) = (0, 0);
+    while kills < 16 && tries < 40 {
+        tries += 1;
+        x = x
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        let wait = 20 + (x >> 33) % full_ms.max(50);
+        let mut child = droplet()
+            .args([
+                "sweep",
+                spec.to_str().unwrap(),
+                "--out",
+                resumed.to_str().unwrap(),
+                "--jobs",
+                "2",
+                "--json",
+            ])
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+            .unwrap();
+        std::thread::sleep(Duration::from_millis(wait));
+        if child.try_wait().unwrap().is_none() {
+            child.kill().unwrap(); // SIGKILL
+            kills += 1;
+        }
+        child.wait().unwrap();
+        if child_done(&resumed) {
+            // Finished before the kill: start over so that every try can be interrupted.
+            std::fs::remove_dir_all(&resumed).unwrap();
+        }
+    }
+    assert!(kills >= 8, "only {kills} of {tries} tries were interrupted");
+    ok_json(&sweep(&spec, &resumed, &[]));
+    assert_eq!(run_files(&resumed).len(), 12);
+    tables_equal(&reference, &resumed);
+    report(
+        "kills.md",
+        &format!(
+            "{kills} SIGKILLs at fixed-seed random moments of a 12-run sweep ({tries} tries; a sweep that finished first was started over), each followed by a resume: the final tables equal an uninterrupted sweep's in every column but wall_s, with one record per run.\n"
+        ),
+    );
+}
+
+fn child_done(out: &Path) -> bool {
+    out.join("runs.parquet").exists()
+}
+
+#[test]
+fn stale_temporaries_of_interrupted_writes_are_gone_after_the_next_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let spec = write(dir.path(), "tiny.yaml", TINY);
+    let out = dir.path().join("o");
+    ok_json(&sweep(&spec, &out, &[]));
+    // What a SIGKILL during the table, picture or run writes leaves behind.
+    let old = std::time::SystemTime::now() - Duration::from_secs(3600);
+    let stale: Vec<PathBuf> = [
+        "runs.4242.tmp",
+        "points.4242.tmp",
+        "phase_map.4242.tmp",
+        "runs/0123.4242.tmp",
+    ]
+    .iter()
+    .map(|n| out.join(n))
+    .collect();
+    for p in &stale {
+        std::fs::File::create(p).unwrap().set_modified(old).unwrap();
+    }
+    let o = run(&[
+        "sweep",
+        spec.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--json",
+    ]);
+    ok_json(&o);
+    for p in &stale {
+        assert!(!p.exists(), "{} survived", p.display());
+    }
+    // Nothing partial: every picture is complete, no temporary anywhere.
+    for name in [
+        "phase_map.png",
+        "phase_map.svg",
+        "runs.parquet",
+        "points.parquet",
+    ] {
+        assert!(
+            std::fs::metadata(out.join(name)).unwrap().len() > 100,
+            "{name}"
+        );
+    }
+    let leftovers: Vec<_> = std::fs::read_dir(&out)
+        .unwrap()
+        .chain(std::fs::read_dir(out.join("runs")).unwrap())
+        .flatten()
+        .filter(|e| e.file_name().to_string_lossy().ends_with(".tmp"))
+        .collect();
+    assert!(leftovers.is_empty(), "{leftovers:?}");
+}
+
+#[test]
+fn a_whole_sweep_and_a_shard_never_share_a_directory() {
+    let dir = tempfile::tempdir().unwrap();
+    let slow = TINY
+        .replace("n: 32", "n: 64")
+        .replace("t_max: 150", "t_max: 600");
+    let spec = write(dir.path(), "slow.yaml", &slow);
+    for (first, second) in [(None, Some("0/2")), (Some("1/2"), None)] {
+        let out = dir.path().join(format!("o-{}", first.is_some()));
+        let args = |shard: Option<&str>| {
+            let mut v = vec![
+                "sweep".to_string(),
+                spec.display().to_string(),
+                "--out".into(),
+                out.display().to_string(),
+                "--jobs".into(),
+                "1".into(),
+            ];
+            if let Some(s) = shard {
+                v.extend(["--shard".into(), s.to_string()]);
+            }
+            v
+        };
+        let mut child = droplet()
+            .args(args(first))
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+            .unwrap();
+        for _ in 0..200 {
+            if out.join(".lock").exists() {
+                break;
+            }
+            std::thread::sleep(Duration::from_millis(10));
+        }
+        std::thread::sleep(Duration::from_millis(150));
+        let o = droplet().args(args(second)).output().unwrap();
+        let still_running = child.try_wait().unwrap().is_none();
+        child.kill().ok();
+        child.wait().unwrap();
+        assert!(still_running, "the first sweep ended too soon");
+        assert_eq!(o.status.code(), Some(2), "{first:?} then {second:?}");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains("in use by another droplet process"), "{err}");
+    }
+}
