@@ -234,7 +234,11 @@ pub fn run(a: Args) -> Result<(), CliError> {
                     stable: p.stable,
                 })
                 .collect();
-            let lines = branch_lines(&samples);
+            let at: Vec<(String, f64)> = events
+                .iter()
+                .map(|e| (e.branch.as_str().to_string(), e.at))
+                .collect();
+            let lines = branch_lines(&samples, &at);
             let markers: Vec<Marker> = events
                 .iter()
                 .filter_map(|e| {

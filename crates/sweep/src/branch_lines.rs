@@ -27,8 +27,11 @@ pub struct BranchLine {
 const MAX_JUMP: f64 = 0.25;
 
 /// Joins `samples` into lines (see the module doc). Samples of one family share their `x`
-/// values when they come from one line of parameter values.
-pub fn branch_lines(samples: &[BranchSample]) -> Vec<BranchLine> {
+/// values when they come from one line of parameter values. `events` are bifurcation points
+/// `(family, x)` found between samples: there the tracks are closed up, so that a branch runs
+/// through its fold (two track ends meet: saddle-node) or starts on the state it bifurcates
+/// from (one track end: pitchfork) instead of stopping one sample short.
+pub fn branch_lines(samples: &[BranchSample], events: &[(String, f64)]) -> Vec<BranchLine> {
     let range = |f: fn(&BranchSample) -> f64| {
         let (lo, hi) = samples
             .iter()
@@ -98,7 +101,19 @@ pub fn branch_lines(samples: &[BranchSample]) -> Vec<BranchLine> {
             i = j;
         }
         closed.extend(open);
-        for track in closed {
+        let mut tracks: Vec<Vec<BranchSample>> = closed
+            .into_iter()
+            .map(|t| t.into_iter().cloned().collect())
+            .collect();
+        let step = mine
+            .windows(2)
+            .map(|w| w[1].x - w[0].x)
+            .filter(|d| *d > 0.0)
+            .fold(f64::INFINITY, f64::min);
+        for &(_, at) in events.iter().filter(|(k, _)| k == key) {
+            join_at(&mut tracks, at, 1.5 * step, samples, key, &dist);
+        }
+        for track in tracks {
             // Cut where the stability changes; the joining segment takes the new stability.
             let mut start: usize = 0;
             for k in 1..=track.len() {
@@ -115,6 +130,69 @@ pub fn branch_lines(samples: &[BranchSample]) -> Vec<BranchLine> {
         }
     }
     lines
+}
+
+/// Closes up the tracks of family `key` at the event `at` (see [`branch_lines`]): track ends
+/// within `reach` of `at` are joined to each other (two ends) or to the nearest state of
+/// another family there (one end).
+fn join_at(
+    tracks: &mut Vec<Vec<BranchSample>>,
+    at: f64,
+    reach: f64,
+    samples: &[BranchSample],
+    key: &str,
+    dist: &dyn Fn(&BranchSample, &BranchSample) -> f64,
+) {
+    // (track, at its start?) for every end near the event.
+    let ends: Vec<(usize, bool)> = tracks
+        .iter()
+        .enumerate()
+        .flat_map(|(t, tr)| {
+            let first = (t, true, tr[0].x);
+            let last = (t, false, tr[tr.len() - 1].x);
+            let both = tr.len() > 1;
+            std::iter::once(first).chain(both.then_some(last))
+        })
+        .filter(|(_, _, x)| (x - at).abs() <= reach)
+        .map(|(t, start, _)| (t, start))
+        .collect();
+    match ends[..] {
+        [(a, a_start), (b, b_start)] if a != b => {
+            // A fold: one track continues into the other.
+            let mut tb = std::mem::take(&mut tracks[b]);
+            let ta = &mut tracks[a];
+            if a_start {
+                ta.reverse();
+            }
+            if !b_start {
+                tb.reverse();
+            }
+            ta.extend(tb);
+            tracks.remove(b);
+        }
+        [(t, start)] => {
+            let tr = &mut tracks[t];
+            let end = if start { &tr[0] } else { &tr[tr.len() - 1] };
+            let Some(root) = samples
+                .iter()
+                .filter(|p| p.key != key && (p.x - at).abs() <= reach)
+                .min_by(|a, b| dist(a, end).total_cmp(&dist(b, end)))
+            else {
+                return;
+            };
+            let joint = BranchSample {
+                key: key.to_string(),
+                stable: end.stable,
+                ..root.clone()
+            };
+            if start {
+                tr.insert(0, joint);
+            } else {
+                tr.push(joint);
+            }
+        }
+        _ => {}
+    }
 }
 
 #[cfg(test)]
@@ -145,7 +223,7 @@ mod tests {
             }
             samples.push(sample("IC", x, 0.0, x < 0.5));
         }
-        let lines = branch_lines(&samples);
+        let lines = branch_lines(&samples, &[]);
         let md: Vec<&BranchLine> = lines.iter().filter(|l| l.key == "MD").collect();
         assert_eq!(md.len(), 2, "{md:?}");
         assert!(md.iter().any(|l| l.stable && l.points.len() == 11));
@@ -161,5 +239,34 @@ mod tests {
         // The unstable part starts at the last stable sample: no gap in the drawing.
         assert_eq!(unstable.points[0], *stable.points.last().unwrap());
         assert_eq!(unstable.points.len(), 7);
+        // With the fold and the resting state's pitchfork as events, the fold is closed up
+        // into one branch (stable part, then unstable part from the joint on).
+        let lines = branch_lines(
+            &samples,
+            &[("MD".to_string(), 0.05), ("IC".to_string(), 0.45)],
+        );
+        let md: Vec<&BranchLine> = lines.iter().filter(|l| l.key == "MD").collect();
+        assert_eq!(md.len(), 2, "{md:?}");
+        let total: usize = md.iter().map(|l| l.points.len()).sum();
+        assert_eq!(total, 22, "one point shared at the stability change");
+        let stable = md.iter().find(|l| l.stable).unwrap();
+        let unstable = md.iter().find(|l| !l.stable).unwrap();
+        assert_eq!(stable.points.last(), unstable.points.first(), "{md:?}");
+    }
+
+    #[test]
+    fn a_pitchfork_branch_starts_on_the_state_it_leaves() {
+        // A branch v = sqrt(x) emerging from the resting state at x = 0, sampled from x = 0.1.
+        let mut samples: Vec<BranchSample> = (0..=10)
+            .map(|i| sample("IC", i as f64 * 0.1, 0.0, false))
+            .collect();
+        samples.extend((1..=10).map(|i| {
+            let x = i as f64 * 0.1;
+            sample("MD", x, x.sqrt(), true)
+        }));
+        let lines = branch_lines(&samples, &[("MD".to_string(), 0.05)]);
+        let md = lines.iter().find(|l| l.key == "MD").unwrap();
+        assert_eq!(md.points.len(), 11);
+        assert_eq!(md.points[0], (0.0, 0.0, 0.0));
     }
 }
