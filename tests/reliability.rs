@@ -657,7 +657,12 @@ fn malformed_and_extreme_inputs_exit_with_their_code_name_the_problem_and_never_
         lines.push(format!(
             "| {} | `{}` | {} | {:.2} s |",
             c.what,
-            err.lines().next().unwrap_or("").replace('|', "/"),
+            err.lines()
+                .next()
+                .unwrap_or("")
+                .replace(d.to_str().unwrap(), "DIR")
+                .replace('|', "/")
+                .replace('`', "'"),
             c.code,
             secs
         ));
@@ -833,5 +838,67 @@ fn a_whole_sweep_and_a_shard_never_share_a_directory() {
         assert_eq!(o.status.code(), Some(2), "{first:?} then {second:?}");
         let err = String::from_utf8_lossy(&o.stderr);
         assert!(err.contains("in use by another droplet process"), "{err}");
+    }
+}
+
+/// A full disk (a 400 KiB tmpfs; needs root to mount, skipped with a message otherwise): the
+/// write that fails is named, exits 1, and leaves no partial or empty file and no temporary.
+#[test]
+fn a_full_disk_is_named_and_leaves_no_partial_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let mnt = dir.path().join("disk");
+    std::fs::create_dir(&mnt).unwrap();
+    let mounted = std::process::Command::new("mount")
+        .args(["-t", "tmpfs", "-o", "size=400k", "tmpfs"])
+        .arg(&mnt)
+        .output()
+        .is_ok_and(|o| o.status.success());
+    if !mounted {
+        eprintln!("skipped: cannot mount a small tmpfs here (needs root)");
+        return;
+    }
+    let result = std::panic::catch_unwind(|| {
+        let spec = write(dir.path(), "tiny.yaml", TINY);
+        let out = mnt.join("o");
+        // Fill the disk, then free room step by step: each failure must be clean.
+        let filler = mnt.join("filler");
+        let mut failures = 0;
+        for free_kib in [0usize, 60, 110, 160, 400] {
+            std::fs::write(&filler, vec![0u8; (400 - free_kib.min(400)) * 1024]).ok();
+            let o = droplet()
+                .args([
+                    "sweep",
+                    spec.to_str().unwrap(),
+                    "--out",
+                    out.to_str().unwrap(),
+                ])
+                .output()
+                .unwrap();
+            let err = String::from_utf8_lossy(&o.stderr);
+            if !o.status.success() {
+                failures += 1;
+                assert_eq!(o.status.code(), Some(1), "{err}");
+                assert!(err.contains("No space left on device"), "{err}");
+                assert!(err.contains(out.to_str().unwrap()), "no file named: {err}");
+            }
+            if out.is_dir() {
+                for e in std::fs::read_dir(&out).unwrap().flatten() {
+                    let name = e.file_name().to_string_lossy().to_string();
+                    let len = e.metadata().unwrap().len();
+                    assert!(!name.ends_with(".tmp"), "temporary {name} left");
+                    assert!(
+                        name.starts_with('.') || e.path().is_dir() || len > 0,
+                        "empty {name}"
+                    );
+                }
+            }
+            std::fs::remove_file(&filler).ok();
+        }
+        assert!(failures >= 1, "the disk never filled up");
+        assert!(out.join("phase_map.png").exists(), "never completed");
+    });
+    let _ = std::process::Command::new("umount").arg(&mnt).status();
+    if let Err(e) = result {
+        std::panic::resume_unwind(e);
     }
 }

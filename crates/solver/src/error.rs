@@ -5,7 +5,7 @@ use thiserror::Error;
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum SolverError {
     /// A model or solver parameter is outside its allowed range.
-    #[error("invalid parameter `{name}` = {value}: {allowed}")]
+    #[error("invalid parameter `{name}` = {}: {allowed}", show_number(*.value))]
     InvalidParameter {
         name: &'static str,
         value: f64,
@@ -25,6 +25,16 @@ pub enum SolverError {
     NewtonFailed { residual: f64, iterations: usize },
 }
 
+/// A number as a person reads it: plain for ordinary magnitudes, in exponent form when tiny
+/// or huge (`1e-300`, not three hundred zeros).
+pub fn show_number(x: f64) -> String {
+    if x != 0.0 && x.is_finite() && !(1e-4..1e7).contains(&x.abs()) {
+        format!("{x:e}")
+    } else {
+        x.to_string()
+    }
+}
+
 /// Shorthand for a finite-and-in-range check.
 pub(crate) fn require(
     ok: bool,
@@ -40,5 +50,20 @@ pub(crate) fn require(
             value,
             allowed: allowed.into(),
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_read_well_in_messages() {
+        assert_eq!(show_number(1e-300), "1e-300");
+        assert_eq!(show_number(0.02), "0.02");
+        assert_eq!(show_number(-0.1), "-0.1");
+        assert_eq!(show_number(0.0), "0");
+        assert_eq!(show_number(2e9), "2e9");
+        assert_eq!(show_number(f64::NAN), "NaN");
     }
 }

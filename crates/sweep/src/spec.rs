@@ -264,7 +264,11 @@ pub fn parse(text: &str, file: &str, stem: &str) -> Result<SweepSpec, SpecError>
             allowed,
         }) = params.validate()
         {
-            return Err(ctx.err(&["params", name], value, allowed));
+            return Err(ctx.err(
+                &["params", name],
+                droplet_solver::error::show_number(value),
+                allowed,
+            ));
         }
     }
 
@@ -447,7 +451,11 @@ pub fn parse(text: &str, file: &str, stem: &str) -> Result<SweepSpec, SpecError>
         .validate()
         .and_then(|()| droplet_solver::limits::check_run(&params, &solver))
     {
-        return Err(ctx.err(&key_of(name), value, allowed));
+        return Err(ctx.err(
+            &key_of(name),
+            droplet_solver::error::show_number(value),
+            allowed,
+        ));
     }
 
     Ok(SweepSpec {
