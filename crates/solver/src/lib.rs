@@ -4,6 +4,7 @@
 //! stop rules and the classification of Sect. 3.
 pub mod bessel;
 pub mod classify;
+pub mod dynamics;
 pub mod error;
 pub mod etd;
 pub mod fft2;
@@ -12,20 +13,26 @@ pub mod grid;
 pub mod h0_fit;
 pub mod initial;
 pub mod limits;
+pub mod newton;
+pub mod outcome;
 pub mod params;
 pub mod reduced;
 pub mod run;
 pub mod scheme;
+pub mod settings;
 pub mod shape;
 pub mod state;
 pub mod steady;
 pub mod step_control;
+pub mod stop_rule;
 
 pub use classify::StateClass;
 pub use error::SolverError;
 pub use initial::InitialCondition;
 pub use params::ModelParams;
-pub use run::{simulate, ModelKind, Run, RunOutcome, RunStatus, SeriesRow, SolverSettings};
+pub use outcome::{RunOutcome, RunStatus, SeriesRow, STEP_ERROR_LIMIT};
+pub use run::{simulate, Run};
+pub use settings::{ModelKind, SolverSettings};
 pub use scheme::{Scheme, SchemeKind};
 pub use state::DropletState;
 pub use steady::{SteadySolver, SteadyState};

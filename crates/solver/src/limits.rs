@@ -12,12 +12,10 @@
 //!   diverges, whatever the physics).
 use crate::error::{require, SolverError};
 use crate::params::ModelParams;
-use crate::run::{ModelKind, SolverSettings};
+use crate::settings::{ModelKind, SolverSettings};
 use crate::scheme::SchemeKind;
 
-/// Most steps one run may be planned to take (1e8: the paper's scheme at dt = 1e-4 reaches
-/// t = 10 000; at N = 192 the spectral scheme needs about a day for that many).
-pub const MAX_STEPS: f64 = 1e8;
+pub use crate::settings::MAX_STEPS;
 /// Most rows of a recorded time series (about 72 MB in memory).
 pub const MAX_SERIES_ROWS: f64 = 1e6;
 /// Least droplet radius in grid cells.
@@ -38,30 +36,6 @@ pub fn paper_fd_max_dt(dx: f64) -> f64 {
     2.0 / (8.0 / (dx * dx) + 1.0)
 }
 
-/// Step-count checks of `settings` alone (also for the ODE model).
-pub fn check_steps(settings: &SolverSettings) -> Result<(), SolverError> {
-    let fixed_steps = settings.t_max / settings.dt;
-    require(
-        settings.adaptive() || fixed_steps <= MAX_STEPS,
-        "dt",
-        settings.dt,
-        format!(
-            "a step giving at most {MAX_STEPS:e} steps to t_max = {} (this one gives {fixed_steps:.3e}); raise dt or lower t_max",
-            settings.t_max
-        ),
-    )?;
-    let fewest = settings.t_max / settings.dt_max;
-    require(
-        !settings.adaptive() || fewest <= MAX_STEPS,
-        "dt_max",
-        settings.dt_max,
-        format!(
-            "a largest step giving at most {MAX_STEPS:e} steps to t_max = {} (this one needs at least {fewest:.3e}); raise dt_max or lower t_max",
-            settings.t_max
-        ),
-    )
-}
-
 /// Checks a recording interval against `t_max`.
 pub fn check_series(t_max: f64, every: f64) -> Result<(), SolverError> {
     let rows = t_max / every;
@@ -78,7 +52,7 @@ pub fn check_series(t_max: f64, every: f64) -> Result<(), SolverError> {
 /// Checks that `settings` can resolve and integrate the droplet of `params` (PDE runs; the
 /// ODE model has no grid).
 pub fn check_run(params: &ModelParams, settings: &SolverSettings) -> Result<(), SolverError> {
-    check_steps(settings)?;
+    settings.check_steps()?;
     if settings.model != ModelKind::Pde {
         return Ok(());
     }

@@ -3,10 +3,12 @@
 //! (paper eq. S13), and the force balance `-eta_t v + F = 0`, `Ga - kappa2 a2 = 0`,
 //! `Gb - kappa2 b2 = 0` is solved by Newton. Same grid, `Theta` and force quadrature as
 //! [`crate::scheme::ComovingEtd`], so its fixed points coincide with the solver's.
+use crate::dynamics;
 use crate::error::SolverError;
 use crate::fft2::PrunedFft2;
 use crate::forces::{spectral_forces, Forces, ShapeSampler};
 use crate::grid::Grid;
+use crate::newton::{self, NewtonOptions};
 use crate::params::ModelParams;
 use crate::shape::ShapeParams;
 use rustfft::num_complex::Complex64;
@@ -122,8 +124,8 @@ impl SteadySolver {
     /// Force-balance residual `(-eta_t vx + Fx, Ga - kappa2 a2)` for motion along x, `b2 = 0`.
     pub fn residual(&mut self, v: f64, a2: f64) -> [f64; 2] {
         let f = self.forces(v, 0.0, a2, 0.0);
-        let p = self.params;
-        [-p.eta_t * v + f.fx, f.ga - p.kappa2 * a2]
+        let r = dynamics::force_balance(&self.params, [v, 0.0, a2, 0.0], &f);
+        [r[0], r[2]]
     }
 
     /// The residual of [`Self::residual`] on a mirror axis: speed `v` along it, shape
@@ -135,10 +137,9 @@ impl SteadySolver {
             MirrorAxis::Diagonal => {
                 let d = v * std::f64::consts::FRAC_1_SQRT_2;
                 let f = self.forces(d, d, 0.0, c);
-                [
-                    -p.eta_t * v + (f.fx + f.fy) * std::f64::consts::FRAC_1_SQRT_2,
-                    f.gb - p.kappa2 * c,
-                ]
+                let r = dynamics::force_balance(&p, [d, d, 0.0, c], &f);
+                // The balance along the diagonal: its x and y parts projected on (1, 1)/sqrt 2.
+                [(r[0] + r[1]) * std::f64::consts::FRAC_1_SQRT_2, r[3]]
             }
         }
     }
@@ -149,7 +150,9 @@ impl SteadySolver {
         self.newton_on(MirrorAxis::X, v0, a20, tol)
     }
 
-    /// [`Self::newton`] on either mirror axis.
+    /// [`Self::newton`] on either mirror axis ([`crate::newton::solve`]: central differences
+    /// of step 1e-6, the shape step capped at 0.2 so that it never jumps past the
+    /// small-deformation model, at most 50 iterations).
     pub fn newton_on(
         &mut self,
         axis: MirrorAxis,
@@ -158,55 +161,35 @@ impl SteadySolver {
         tol: f64,
     ) -> Result<SteadyState, SolverError> {
         let moving = v0 != 0.0;
-        let (mut v, mut a2) = (v0, a20);
-        let h = 1e-6;
-        let mut res = self.residual_on(axis, v, a2);
-        let norm = |r: [f64; 2]| {
-            if moving {
-                r[0].abs().max(r[1].abs())
+        let opts = NewtonOptions {
+            tol,
+            max_iter: 50,
+            fd_step: 1e-6,
+            max_step: if moving {
+                vec![f64::INFINITY, 0.2]
             } else {
-                r[1].abs()
-            }
+                vec![0.2]
+            },
         };
-        for it in 0..50 {
-            if norm(res) < tol {
-                return Ok(SteadyState {
-                    v,
-                    a2,
-                    residual: norm(res),
-                    iterations: it,
-                });
-            }
-            let ra_p = self.residual_on(axis, v, a2 + h);
-            let ra_m = self.residual_on(axis, v, a2 - h);
-            let d_a = [
-                (ra_p[0] - ra_m[0]) / (2.0 * h),
-                (ra_p[1] - ra_m[1]) / (2.0 * h),
-            ];
-            let (dv, da) = if moving {
-                let rv_p = self.residual_on(axis, v + h, a2);
-                let rv_m = self.residual_on(axis, v - h, a2);
-                let d_v = [
-                    (rv_p[0] - rv_m[0]) / (2.0 * h),
-                    (rv_p[1] - rv_m[1]) / (2.0 * h),
-                ];
-                let det = d_v[0] * d_a[1] - d_a[0] * d_v[1];
-                (
-                    -(res[0] * d_a[1] - d_a[0] * res[1]) / det,
-                    -(d_v[0] * res[1] - res[0] * d_v[1]) / det,
-                )
-            } else {
-                (0.0, -res[1] / d_a[1])
-            };
-            // Damped step: never let |a2| jump past the small-deformation model.
-            let scale = (0.2 / da.abs().max(1e-300)).min(1.0);
-            v += dv * scale;
-            a2 += da * scale;
-            res = self.residual_on(axis, v, a2);
-        }
-        Err(SolverError::NewtonFailed {
-            residual: norm(res),
-            iterations: 50,
+        let sol = if moving {
+            newton::solve(
+                |x| self.residual_on(axis, x[0], x[1]).to_vec(),
+                &[v0, a20],
+                &opts,
+            )?
+        } else {
+            newton::solve(|x| vec![self.residual_on(axis, 0.0, x[0])[1]], &[a20], &opts)?
+        };
+        let (v, a2) = if moving {
+            (sol.x[0], sol.x[1])
+        } else {
+            (0.0, sol.x[0])
+        };
+        Ok(SteadyState {
+            v,
+            a2,
+            residual: sol.residual,
+            iterations: sol.iterations,
         })
     }
 

@@ -118,18 +118,8 @@ pub fn max_real_eigenvalue(
     a2: f64,
     rotation_mode: bool,
 ) -> f64 {
-    let y0 = [v, 0.0, a2, 0.0];
-    let h = 1e-7;
-    let mut jac = [[0.0; 4]; 4];
-    for col in 0..4 {
-        let (mut yp, mut ym) = (y0, y0);
-        yp[col] += h;
-        ym[col] -= h;
-        let (fp, fm) = (rhs(c, p, yp), rhs(c, p, ym));
-        for row in 0..4 {
-            jac[row][col] = (fp[row] - fm[row]) / (2.0 * h);
-        }
-    }
+    let mut f = |y: &[f64]| rhs(c, p, [y[0], y[1], y[2], y[3]]).to_vec();
+    let jac = crate::newton::fd_jacobian(&mut f, &[v, 0.0, a2, 0.0], 1e-7);
     let a = [[jac[0][0], jac[0][2]], [jac[2][0], jac[2][2]]];
     let b = [[jac[1][1], jac[1][3]], [jac[3][1], jac[3][3]]];
     block_max_re(a, false).max(block_max_re(b, rotation_mode))

@@ -27,7 +27,8 @@ pub struct Coefficients {
 }
 
 /// The paper's fitted `h0` (Appendix E).
-pub const H0_PAPER: f64 = 0.1436;
+
+pub use crate::settings::H0_PAPER;
 
 impl Coefficients {
     /// Coefficients for radius `R > 0` (NaN otherwise) and the given `h0`.

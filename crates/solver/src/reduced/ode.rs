@@ -10,7 +10,9 @@ use crate::error::{require, SolverError};
 use crate::initial::InitialCondition;
 use crate::params::ModelParams;
 use crate::reduced::Coefficients;
-use crate::run::{RunOutcome, RunStatus, SolverSettings};
+use crate::outcome::{RunOutcome, RunStatus};
+use crate::settings::SolverSettings;
+use crate::stop_rule::{diverged, SteadyTest};
 use crate::state::DropletState;
 use std::time::Instant;
 
@@ -69,10 +71,9 @@ pub fn simulate(
     let started = Instant::now();
     let c = Coefficients::new(p.radius, settings.h0);
     let dt = settings.dt;
-    let window = ((settings.steady_window / dt).round() as u64).max(1);
     let max_steps = (settings.t_max / dt).round() as u64;
     let mut y = [ic.vx, ic.vy, ic.a2, ic.b2];
-    let mut last = y;
+    let mut steady_test = SteadyTest::new(settings, 0.0, y);
     let (mut x, mut yy) = (0.0, 0.0);
     let mut steps = 0;
     let mut status = RunStatus::TMax;
@@ -83,22 +84,15 @@ pub fn simulate(
         yy += dt * 0.5 * (y[1] + next[1]);
         y = next;
         steps += 1;
-        if y.iter().any(|v| !v.is_finite()) || y[2].hypot(y[3]) >= 1.0 {
+        if diverged(y, &[]) {
             status = RunStatus::Diverged;
             break;
         }
-        if steps % window == 0 {
-            let change = y
-                .iter()
-                .zip(&last)
-                .map(|(a, b)| (a - b).abs())
-                .fold(0.0, f64::max);
-            last = y;
-            if change < settings.steady_tol {
-                status = RunStatus::Steady;
-                t_steady = Some(steps as f64 * dt);
-                break;
-            }
+        let t = steps as f64 * dt;
+        if steady_test.is_steady(t, y) {
+            status = RunStatus::Steady;
+            t_steady = Some(t);
+            break;
         }
     }
     let state = DropletState {

@@ -28,6 +28,7 @@
 use crate::etd::{EtdCoef, SeparableExp};
 use crate::fft2::PrunedFft2;
 use crate::forces::{ColumnSums, ForceSums, Forces, ShapeSampler};
+use crate::dynamics;
 use crate::grid::Grid;
 use crate::params::ModelParams;
 use crate::scheme::{Attempt, Field, Scheme};
@@ -202,18 +203,16 @@ impl ComovingEtd {
     /// In the overdamped limit (`m = 0`) the velocity is `F / eta_t` at every state.
     fn set_overdamped_velocity(&mut self, f: &Forces) {
         if self.params.mass == 0.0 && !self.pinned {
-            self.state.vx = f.fx / self.params.eta_t;
-            self.state.vy = f.fy / self.params.eta_t;
+            (self.state.vx, self.state.vy) = dynamics::overdamped_velocity(&self.params, f);
         }
     }
 
     /// Velocity used for advection at a stage with forces `f` and integrated velocity `v`.
     fn stage_velocity(&self, f: &Forces, v: (f64, f64)) -> (f64, f64) {
-        let p = &self.params;
         if self.pinned {
             (0.0, 0.0)
-        } else if p.mass == 0.0 {
-            (f.fx / p.eta_t, f.fy / p.eta_t)
+        } else if self.params.mass == 0.0 {
+            dynamics::overdamped_velocity(&self.params, f)
         } else {
             v
         }
@@ -221,13 +220,7 @@ impl ComovingEtd {
 
     /// Explicit rates of `(vx, vy, a2, b2)` beyond their linear terms.
     fn scalar_rates(&self, f: &Forces) -> [f64; 4] {
-        let p = &self.params;
-        let (ax, ay) = if self.pinned || p.mass == 0.0 {
-            (0.0, 0.0)
-        } else {
-            (f.fx / p.mass, f.fy / p.mass)
-        };
-        [ax, ay, f.ga / p.eta2, f.gb / p.eta2]
+        dynamics::forcing(&self.params, f, self.pinned)
     }
 }
 
@@ -241,8 +234,9 @@ impl Scheme for ComovingEtd {
         let p = self.params;
         let st = self.state;
         let inertial = p.mass > 0.0 && !self.pinned;
-        let vel = EtdCoef::new(if inertial { -p.eta_t / p.mass } else { 0.0 }, h);
-        let shp = EtdCoef::new(-p.kappa2 / p.eta2, h);
+        let (rate_v, rate_s) = dynamics::linear_rates(&p, self.pinned);
+        let vel = EtdCoef::new(rate_v, h);
+        let shp = EtdCoef::new(rate_s, h);
         let pos = EtdCoef::new(0.0, h);
         self.exp.update(h, &self.grid.kx, &self.grid.ky);
         let n = self.grid.n;

@@ -1,6 +1,8 @@
 //! The paper's own scheme (Sect. 3): forward Euler, 5-point Laplacian, central differences,
 //! `Theta` evaluated on the lab grid at the droplet's position (minimum image).
 //! Kept as the baseline for speed and error comparisons; paper settings dx = 0.025, dt = 1e-4.
+use crate::dynamics;
+use crate::forces::Forces;
 use crate::grid::Grid;
 use crate::params::ModelParams;
 use crate::scheme::{Attempt, Field, Scheme};
@@ -154,21 +156,28 @@ impl PaperFd {
         std::mem::swap(&mut self.u, &mut self.u_next);
         let p = self.params;
         let st = &mut self.state;
+        let f = Forces {
+            fx,
+            fy,
+            ga,
+            gb,
+            area,
+        };
+        let rhs = dynamics::force_balance(&p, st.monitored(), &f);
         if !self.pinned {
             let (vx, vy) = (st.vx, st.vy);
             if p.mass > 0.0 {
-                st.vx += h / p.mass * (-p.eta_t * vx + fx);
-                st.vy += h / p.mass * (-p.eta_t * vy + fy);
+                st.vx += h / p.mass * rhs[0];
+                st.vy += h / p.mass * rhs[1];
                 st.x += h * vx;
                 st.y += h * vy;
             } else {
-                st.vx = fx / p.eta_t;
-                st.vy = fy / p.eta_t;
+                (st.vx, st.vy) = dynamics::overdamped_velocity(&p, &f);
                 st.x += h * st.vx;
                 st.y += h * st.vy;
             }
         }
-        st.a2 += h / p.eta2 * (ga - p.kappa2 * st.a2);
-        st.b2 += h / p.eta2 * (gb - p.kappa2 * st.b2);
+        st.a2 += h / p.eta2 * rhs[2];
+        st.b2 += h / p.eta2 * rhs[3];
     }
 }

@@ -1,0 +1,189 @@
+//! Newton's method for small dense systems `f(x) = 0` (the steady states' force balance, and
+//! the continuation to come): central-difference Jacobian, LU with partial pivoting, damping
+//! by a per-component step cap, and a convergence test on the residual (max norm) instead of
+//! a fixed number of iterations. No line search on the residual: the force balance always has
+//! the resting disk as a root, and a residual-decreasing search is drawn to it from states
+//! that are not.
+use crate::error::SolverError;
+
+/// How to run [`solve`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct NewtonOptions {
+    /// Converged when the max norm of the residual is below this.
+    pub tol: f64,
+    /// Give up after this many iterations (a safety net: converging solves take 3 to 8).
+    pub max_iter: usize,
+    /// Step of the central differences of the Jacobian.
+    pub fd_step: f64,
+    /// Largest change of each unknown in one step (the whole step is scaled down to respect
+    /// every cap; `f64::INFINITY` for none).
+    pub max_step: Vec<f64>,
+}
+
+/// A converged solve.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NewtonResult {
+    pub x: Vec<f64>,
+    /// Max norm of the residual at `x`.
+    pub residual: f64,
+    pub iterations: usize,
+}
+
+fn max_norm(r: &[f64]) -> f64 {
+    r.iter().fold(0.0, |m, v| m.max(v.abs()))
+}
+
+/// The Jacobian of `f` at `x` by central differences of step `h` (`jac[row][col]`).
+pub fn fd_jacobian(
+    f: &mut impl FnMut(&[f64]) -> Vec<f64>,
+    x: &[f64],
+    h: f64,
+) -> Vec<Vec<f64>> {
+    let n = x.len();
+    let mut cols = Vec::with_capacity(n);
+    let mut y = x.to_vec();
+    for j in 0..n {
+        y[j] = x[j] + h;
+        let fp = f(&y);
+        y[j] = x[j] - h;
+        let fm = f(&y);
+        y[j] = x[j];
+        cols.push(
+            fp.iter()
+                .zip(&fm)
+                .map(|(p, m)| (p - m) / (2.0 * h))
+                .collect::<Vec<f64>>(),
+        );
+    }
+    (0..cols.first().map_or(0, Vec::len))
+        .map(|i| cols.iter().map(|c| c[i]).collect())
+        .collect()
+}
+
+/// Solves `a x = b` by LU with partial pivoting; `None` when `a` is singular.
+pub fn lu_solve(mut a: Vec<Vec<f64>>, b: &[f64]) -> Option<Vec<f64>> {
+    let n = b.len();
+    let mut x = b.to_vec();
+    for k in 0..n {
+        let p = (k..n).max_by(|&i, &j| a[i][k].abs().total_cmp(&a[j][k].abs()))?;
+        if a[p][k] == 0.0 || !a[p][k].is_finite() {
+            return None;
+        }
+        a.swap(k, p);
+        x.swap(k, p);
+        for i in k + 1..n {
+            let m = a[i][k] / a[k][k];
+            for j in k..n {
+                a[i][j] -= m * a[k][j];
+            }
+            x[i] -= m * x[k];
+        }
+    }
+    for k in (0..n).rev() {
+        let s: f64 = (k + 1..n).map(|j| a[k][j] * x[j]).sum();
+        x[k] = (x[k] - s) / a[k][k];
+    }
+    x.iter().all(|v| v.is_finite()).then_some(x)
+}
+
+/// Solves `f(x) = 0` from `x0`. Each step is the Newton step scaled down to respect
+/// `opts.max_step`.
+pub fn solve(
+    mut f: impl FnMut(&[f64]) -> Vec<f64>,
+    x0: &[f64],
+    opts: &NewtonOptions,
+) -> Result<NewtonResult, SolverError> {
+    let mut x = x0.to_vec();
+    let mut r = f(&x);
+    let mut norm = max_norm(&r);
+    let failed = |residual: f64, iterations: usize| SolverError::NewtonFailed {
+        residual,
+        iterations,
+    };
+    for it in 0..=opts.max_iter {
+        if norm < opts.tol {
+            return Ok(NewtonResult {
+                x,
+                residual: norm,
+                iterations: it,
+            });
+        }
+        if it == opts.max_iter || !norm.is_finite() {
+            break;
+        }
+        let jac = fd_jacobian(&mut f, &x, opts.fd_step);
+        let minus_r: Vec<f64> = r.iter().map(|v| -v).collect();
+        let dx = lu_solve(jac, &minus_r).ok_or_else(|| failed(norm, it))?;
+        let scale = dx
+            .iter()
+            .zip(&opts.max_step)
+            .map(|(d, cap)| cap / d.abs().max(1e-300))
+            .fold(1.0f64, f64::min);
+        for (xi, d) in x.iter_mut().zip(&dx) {
+            *xi += scale * d;
+        }
+        r = f(&x);
+        norm = max_norm(&r);
+    }
+    Err(failed(norm, opts.max_iter))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lu_solves_with_pivoting_and_refuses_singular_systems() {
+        // A zero pivot in the first position needs a row swap.
+        let a = vec![
+            vec![0.0, 2.0, 1.0],
+            vec![1.0, 1.0, 0.0],
+            vec![2.0, 0.0, 3.0],
+        ];
+        let x = lu_solve(a.clone(), &[5.0, 3.0, 11.0]).unwrap();
+        for (row, b) in a.iter().zip([5.0, 3.0, 11.0]) {
+            let ax: f64 = row.iter().zip(&x).map(|(p, q)| p * q).sum();
+            assert!((ax - b).abs() < 1e-14);
+        }
+        assert!(lu_solve(vec![vec![1.0, 2.0], vec![2.0, 4.0]], &[1.0, 2.0]).is_none());
+    }
+
+    #[test]
+    fn converges_quadratically_and_the_jacobian_is_right() {
+        // x^2 + y^2 = 4, x y = 1 from (2, 0.3).
+        let f = |v: &[f64]| vec![v[0] * v[0] + v[1] * v[1] - 4.0, v[0] * v[1] - 1.0];
+        let opts = NewtonOptions {
+            tol: 1e-13,
+            max_iter: 50,
+            fd_step: 1e-6,
+            max_step: vec![f64::INFINITY; 2],
+        };
+        let sol = solve(f, &[2.0, 0.3], &opts).unwrap();
+        assert!(sol.residual < 1e-13 && sol.iterations <= 8, "{sol:?}");
+        let (x, y) = (sol.x[0], sol.x[1]);
+        assert!((x * y - 1.0).abs() < 1e-13);
+        let mut g = f;
+        let j = fd_jacobian(&mut g, &[1.0, 2.0], 1e-6);
+        let exact = [[2.0, 4.0], [2.0, 1.0]];
+        for i in 0..2 {
+            for k in 0..2 {
+                assert!((j[i][k] - exact[i][k]).abs() < 1e-8);
+            }
+        }
+        // A step cap slows it down but it still converges; no root -> a typed error.
+        let capped = NewtonOptions {
+            max_step: vec![0.05; 2],
+            ..opts.clone()
+        };
+        assert!(solve(f, &[2.0, 0.3], &capped).unwrap().iterations > sol.iterations);
+        let none = |v: &[f64]| vec![v[0] * v[0] + 1.0];
+        let o1 = NewtonOptions {
+            max_step: vec![f64::INFINITY],
+            ..opts
+        };
+        assert!(matches!(
+            solve(none, &[0.5], &o1),
+            Err(SolverError::NewtonFailed { .. })
+        ));
+    }
+}

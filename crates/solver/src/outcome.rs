@@ -1,0 +1,112 @@
+//! How a run ended and what it recorded: status, final state and class, step counts, the
+//! optional time series.
+use crate::classify::StateClass;
+use crate::settings::SolverSettings;
+use crate::state::DropletState;
+use serde::{Deserialize, Serialize};
+
+/// How a run ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RunStatus {
+    /// The paper's steady-state test was met.
+    Steady,
+    /// `t_max` was reached first.
+    TMax,
+    /// A value became non-finite, or `s >= 1` (outside the small-deformation model).
+    Diverged,
+    /// The adaptive controller took [`crate::limits::adaptive_step_cap`] steps before `t_max`
+    /// (steps far below `dt_max` throughout): ended instead of running for ever.
+    StepLimit,
+}
+
+impl RunStatus {
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            Self::Steady => "steady",
+            Self::TMax => "t_max",
+            Self::Diverged => "diverged",
+            Self::StepLimit => "step_limit",
+        }
+    }
+}
+
+/// One row of a time series.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct SeriesRow {
+    pub t: f64,
+    pub x: f64,
+    pub y: f64,
+    pub vx: f64,
+    pub vy: f64,
+    pub a2: f64,
+    pub b2: f64,
+    pub v: f64,
+    pub s: f64,
+}
+
+impl SeriesRow {
+    pub(crate) fn at(t: f64, st: &DropletState) -> Self {
+        Self {
+            t,
+            x: st.x,
+            y: st.y,
+            vx: st.vx,
+            vy: st.vy,
+            a2: st.a2,
+            b2: st.b2,
+            v: st.speed(),
+            s: st.deformation(),
+        }
+    }
+}
+
+/// Result of one run.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RunOutcome {
+    pub status: RunStatus,
+    /// Class of the final state (also for `t_max` runs; `None` when diverged).
+    pub class: Option<StateClass>,
+    pub state: DropletState,
+    pub v: f64,
+    pub s: f64,
+    pub t_end: f64,
+    /// Time at which the steady test was met.
+    pub t_steady: Option<f64>,
+    /// Accepted steps.
+    pub steps: u64,
+    /// Refused adaptive steps.
+    #[serde(default)]
+    pub rejected: u64,
+    /// Largest embedded local error estimate of an accepted step (`None`: the scheme has none).
+    /// For a fixed step, a value above [`STEP_ERROR_LIMIT`] says `dt` is too large.
+    #[serde(default)]
+    pub max_step_error: Option<f64>,
+    pub wall_s: f64,
+    /// Recorded time series (empty unless asked for).
+    pub series: Vec<SeriesRow>,
+}
+
+/// A fixed-step run whose largest embedded error estimate per step exceeds this took steps
+/// too large to trust (a 1 % change per step in `v`, `a2` or `b2` from the step alone).
+pub const STEP_ERROR_LIMIT: f64 = 1e-2;
+
+impl RunOutcome {
+    /// Why `dt` looks too large for this fixed-step run, if it does (adaptive runs keep the
+    /// estimate below their `tol`; schemes without an estimate are not judged).
+    pub fn dt_warning(&self, settings: &SolverSettings) -> Option<String> {
+        let e = self.max_step_error?;
+        (!settings.adaptive() && (e.is_nan() || e > STEP_ERROR_LIMIT)).then(|| {
+            format!(
+                "dt = {} is too large: the embedded local error estimate reached {e:.2e} per step (limit {STEP_ERROR_LIMIT:e}){}; use a smaller --dt or adaptive stepping (--tol)",
+                settings.dt,
+                if self.status == RunStatus::Diverged {
+                    ", so the divergence is likely numerical"
+                } else {
+                    ""
+                }
+            )
+        })
+    }
+}
+
