@@ -1,7 +1,7 @@
 //! `droplet bench`: the work-precision benchmark ([`droplet_sweep::bench`]).
 use super::{print_json, CliError};
 use droplet_sweep::bench::{self, BenchPlan, BenchSummary, Profile, References};
-use droplet_sweep::{precision_plot, store, tables};
+use droplet_sweep::{precision_plot, tables};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 
@@ -84,7 +84,7 @@ fn load_or_compute(dir: &Path, plan: &BenchPlan) -> Result<(References, bool), C
         return Ok((refs, true));
     }
     let refs = bench::references(plan)?;
-    store::write_atomic(
+    droplet_sweep::atomic::write_atomic(
         &path,
         serde_json::to_string_pretty(&refs)
             .expect("json")
@@ -179,9 +179,9 @@ pub fn run(a: Args) -> Result<(), CliError> {
     let mut df = tables::bench_frame(&rows)?;
     tables::write_parquet(&mut df, &table, meta)?;
     let md_path = a.out.join("bench.md");
-    store::write_atomic(&md_path, markdown(&rows).as_bytes())?;
+    droplet_sweep::atomic::write_atomic(&md_path, markdown(&rows).as_bytes())?;
     let summary_path = a.out.join("summary.json");
-    store::write_atomic(
+    droplet_sweep::atomic::write_atomic(
         &summary_path,
         serde_json::to_string_pretty(&summary)
             .expect("json")

@@ -57,7 +57,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
         )));
     }
     let count = count as usize;
-    droplet_sweep::store::create_output_dir(&a.out)?;
+    droplet_sweep::atomic::create_output_dir(&a.out)?;
     let ks: Vec<f64> = (0..count)
         .map(|i| droplet_sweep::spec::round12(a.from + i as f64 * a.step))
         .collect();

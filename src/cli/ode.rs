@@ -118,7 +118,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
             {
                 return Err(CliError::usage(format!("invalid line --from {from} --to {to} --steps {steps}: need from < to and 2 <= steps <= {MAX_STEPS}")));
             }
-            droplet_sweep::store::create_output_dir(&out)?;
+            droplet_sweep::atomic::create_output_dir(&out)?;
             let (axis, fixed, x_label, fixed_label) = match (eta_t, kappa2) {
                 (Some(e), _) => (Axis::Kappa2, e, "kappa2", format!("eta_t = {e}")),
                 (_, Some(k)) => (Axis::EtaT, k, "eta_t", format!("kappa2 = {k}")),

@@ -14,7 +14,7 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<(), CliError> {
-    let files = droplet_sweep::status::plot(&a.out)?;
+    let files = droplet_sweep::pictures::plot(&a.out)?;
     if a.json {
         print_json(&serde_json::json!({ "files": files }));
     } else {

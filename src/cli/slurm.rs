@@ -104,8 +104,8 @@ pub fn run(a: Args) -> Result<(), CliError> {
     );
     let sweep_path = dir.join("sweep.sbatch");
     let merge_path = dir.join("merge.sbatch");
-    droplet_sweep::store::write_atomic(&sweep_path, sweep_script.as_bytes())?;
-    droplet_sweep::store::write_atomic(&merge_path, merge_script.as_bytes())?;
+    droplet_sweep::atomic::write_atomic(&sweep_path, sweep_script.as_bytes())?;
+    droplet_sweep::atomic::write_atomic(&merge_path, merge_script.as_bytes())?;
     let mut jobs = Vec::new();
     if a.submit {
         let sbatch = |args: &[&str]| -> Result<String, CliError> {

@@ -29,11 +29,11 @@ pub mod stop_rule;
 pub use classify::StateClass;
 pub use error::SolverError;
 pub use initial::InitialCondition;
-pub use params::ModelParams;
 pub use outcome::{RunOutcome, RunStatus, SeriesRow, STEP_ERROR_LIMIT};
+pub use params::ModelParams;
 pub use run::{simulate, Run};
-pub use settings::{ModelKind, SolverSettings};
 pub use scheme::{Scheme, SchemeKind};
+pub use settings::{ModelKind, SolverSettings};
 pub use state::DropletState;
 pub use steady::{SteadySolver, SteadyState};
 

@@ -12,8 +12,8 @@
 //!   diverges, whatever the physics).
 use crate::error::{require, SolverError};
 use crate::params::ModelParams;
-use crate::settings::{ModelKind, SolverSettings};
 use crate::scheme::SchemeKind;
+use crate::settings::{ModelKind, SolverSettings};
 
 pub use crate::settings::MAX_STEPS;
 /// Most rows of a recorded time series (about 72 MB in memory).

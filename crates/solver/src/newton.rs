@@ -34,11 +34,7 @@ fn max_norm(r: &[f64]) -> f64 {
 }
 
 /// The Jacobian of `f` at `x` by central differences of step `h` (`jac[row][col]`).
-pub fn fd_jacobian(
-    f: &mut impl FnMut(&[f64]) -> Vec<f64>,
-    x: &[f64],
-    h: f64,
-) -> Vec<Vec<f64>> {
+pub fn fd_jacobian(f: &mut impl FnMut(&[f64]) -> Vec<f64>, x: &[f64], h: f64) -> Vec<Vec<f64>> {
     let n = x.len();
     let mut cols = Vec::with_capacity(n);
     let mut y = x.to_vec();

@@ -4,7 +4,6 @@ use crate::error::{require, SolverError};
 use crate::scheme::SchemeKind;
 use serde::{Deserialize, Serialize};
 
-
 pub const H0_PAPER: f64 = 0.1436;
 
 /// Most steps one run may be planned to take (1e8: the paper's scheme at dt = 1e-4 reaches
@@ -185,4 +184,3 @@ impl SolverSettings {
         self.check_steps()
     }
 }
-

@@ -178,7 +178,11 @@ impl SteadySolver {
                 &opts,
             )?
         } else {
-            newton::solve(|x| vec![self.residual_on(axis, 0.0, x[0])[1]], &[a20], &opts)?
+            newton::solve(
+                |x| vec![self.residual_on(axis, 0.0, x[0])[1]],
+                &[a20],
+                &opts,
+            )?
         };
         let (v, a2) = if moving {
             (sol.x[0], sol.x[1])

@@ -11,7 +11,7 @@
 //! also gives the reference class; IC states are exactly `v = s = 0`; the transient by the
 //! spectral scheme at `n_ref` with a small fixed step.
 use crate::error::SweepError;
-use crate::execute::progress_bar;
+use crate::progress::progress_bar;
 use droplet_solver::steady::MirrorAxis;
 use droplet_solver::{
     simulate, InitialCondition, ModelParams, RunOutcome, RunStatus, SchemeKind, SolverSettings,

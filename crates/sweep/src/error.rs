@@ -47,7 +47,7 @@ pub enum SweepError {
     #[error("{0}")]
     Invalid(String),
     #[error("{} of {} runs are missing or unreadable in {} (e.g. {}); no tables written; re-run the sweep (or the shard) to recompute them", .0.runs_missing, .0.runs_total, .0.output.display(), .0.missing_examples.first().map(String::as_str).unwrap_or("-"))]
-    Incomplete(Box<crate::execute::MergeReport>),
+    Incomplete(Box<crate::merge_report::MergeReport>),
 }
 
 impl SweepError {

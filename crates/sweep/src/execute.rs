@@ -1,18 +1,17 @@
 //! Runs a sweep: the pending tasks of a plan in a rayon pool, each persisted as it finishes,
 //! with progress (runs done / total, ETA, classes so far), then the final tables and picture.
 use crate::error::SweepError;
-use crate::plan::{plan, Plan, Task};
+use crate::plan::{plan, Task};
+use crate::progress::progress_bar;
 use crate::shard::{indices_of, Shard};
 use crate::spec::SweepSpec;
-use crate::status::tally;
 use crate::store::{CorruptRun, RunRecord, Store, Stored};
 use crate::tables;
+use crate::tally::tally;
 use droplet_solver::{simulate, SOLVER_VERSION};
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rayon::prelude::*;
 use serde::Serialize;
-use std::collections::{BTreeMap, HashMap};
-use std::io::IsTerminal;
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use std::time::Instant;
@@ -69,28 +68,6 @@ pub fn run_task(task: &Task) -> Result<RunRecord, SweepError> {
         solver_version: SOLVER_VERSION.to_string(),
         outcome,
     })
-}
-
-/// A progress bar over `total` items called `unit` (drawn only on a terminal, and only when
-/// `show`), with elapsed time and ETA, starting at `done`.
-pub(crate) fn progress_bar(total: u64, done: u64, show: bool, unit: &str) -> ProgressBar {
-    let pb = ProgressBar::with_draw_target(
-        Some(total),
-        if show && std::io::stderr().is_terminal() {
-            ProgressDrawTarget::stderr()
-        } else {
-            ProgressDrawTarget::hidden()
-        },
-    );
-    pb.set_style(
-        ProgressStyle::with_template(&format!(
-            "{{bar:30}} {{pos}}/{{len}} {unit}  {{elapsed_precise}} elapsed, ETA {{eta_precise}}  {{msg}}"
-        ))
-        .expect("valid template"),
-    );
-    pb.set_position(done);
-    pb.reset_eta();
-    pb
 }
 
 /// Runs every pending task of `spec` into `out` and writes the tables.
@@ -169,13 +146,13 @@ pub fn run_sweep(
         if records.len() != plan.len() {
             // Only another process touching runs/ meanwhile can cause this: never write
             // tables with rows missing.
-            return Err(SweepError::Incomplete(Box::new(missing_report(
-                out, &plan, &store,
-            ))));
+            return Err(SweepError::Incomplete(Box::new(
+                store.report_missing(&plan),
+            )));
         }
-        tables = write_tables(&store, spec, &plan, &records)?;
+        tables = tables::write_tables(&store, spec, &plan, &records)?;
         if opts.plot {
-            tables.extend(crate::status::plot_records(out, spec, &plan, &records)?);
+            tables.extend(crate::pictures::plot_records(out, spec, &plan, &records)?);
         }
     }
     let point_classes = tally(
@@ -208,97 +185,4 @@ pub fn run_sweep(
         dt_warnings,
         tables,
     })
-}
-
-/// Writes `runs.parquet` and `points.parquet` for `plan` from the store.
-pub fn write_tables(
-    store: &Store,
-    spec: &SweepSpec,
-    plan: &Plan,
-    records: &HashMap<String, RunRecord>,
-) -> Result<Vec<PathBuf>, SweepError> {
-    let meta = tables::metadata(Some(&spec.source));
-    let runs_path = store.dir().join("runs.parquet");
-    let points_path = store.dir().join("points.parquet");
-    tables::write_parquet(
-        &mut tables::runs_frame(plan, records)?,
-        &runs_path,
-        meta.clone(),
-    )?;
-    tables::write_parquet(
-        &mut tables::points_frame(plan, records)?,
-        &points_path,
-        meta,
-    )?;
-    Ok(vec![runs_path, points_path])
-}
-
-/// Result of [`merge`].
-#[derive(Debug, Clone, Serialize)]
-pub struct MergeReport {
-    pub output: PathBuf,
-    pub runs_total: usize,
-    /// Runs with no valid record: absent, or unreadable (see `runs_unreadable`).
-    pub runs_missing: usize,
-    /// Of those, runs whose file exists but cannot be used (left in place; the next sweep or
-    /// shard on the directory moves it to `corrupt/` and recomputes the run).
-    pub runs_unreadable: usize,
-    /// Up to 20 missing runs as `eta_t, kappa2, ic` (and why, when unreadable).
-    pub missing_examples: Vec<String>,
-    pub tables: Vec<PathBuf>,
-}
-
-/// The runs of `plan` that have no valid record in `store`.
-fn missing_report(dir: &Path, plan: &Plan, store: &Store) -> MergeReport {
-    let (mut missing, mut unreadable, mut examples) = (0, 0, Vec::new());
-    for t in plan.tasks() {
-        let why = match store.check(&t.key) {
-            Stored::Valid(_) => continue,
-            Stored::Missing => String::new(),
-            Stored::Corrupt(reason) => {
-                unreadable += 1;
-                format!(": runs/{}.json unreadable ({reason})", t.key)
-            }
-        };
-        missing += 1;
-        if examples.len() < 20 {
-            examples.push(format!(
-                "eta_t = {}, kappa2 = {}, ic = {}{why}",
-                t.params.eta_t, t.params.kappa2, t.ic.name
-            ));
-        }
-    }
-    MergeReport {
-        output: dir.to_path_buf(),
-        runs_total: plan.len(),
-        runs_missing: missing,
-        runs_unreadable: unreadable,
-        missing_examples: examples,
-        tables: Vec::new(),
-    }
-}
-
-/// Builds the final tables of the sweep in `dir` from all its stored runs (e.g. after the
-/// shards of an array job). With runs missing or unreadable, writes nothing and fails with a
-/// report. Idempotent: the tables depend only on the stored runs. `draw` adds the pictures.
-pub fn merge(dir: &Path, draw: bool) -> Result<MergeReport, SweepError> {
-    let store = Store::open_read(dir)?;
-    let spec = crate::status::stored_spec(dir)?;
-    let plan = plan(&spec);
-    let report = missing_report(dir, &plan, &store);
-    if report.runs_missing > 0 {
-        return Err(SweepError::Incomplete(Box::new(report)));
-    }
-    let records = store.load_many(plan.tasks().map(|t| t.key));
-    if records.len() != plan.len() {
-        // A run went bad between the check and the load.
-        return Err(SweepError::Incomplete(Box::new(missing_report(
-            dir, &plan, &store,
-        ))));
-    }
-    let mut tables = write_tables(&store, &spec, &plan, &records)?;
-    if draw {
-        tables.extend(crate::status::plot_records(dir, &spec, &plan, &records)?);
-    }
-    Ok(MergeReport { tables, ..report })
 }

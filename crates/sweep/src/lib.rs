@@ -1,21 +1,29 @@
 //! Sweeps of the droplet model over `(eta_t, kappa2)`: YAML specs, content-keyed run store
 //! with resume, parallel execution, point classification, Parquet tables and pictures.
 //! Data flows one way: spec -> plan -> runs (store) -> tables -> pictures.
+pub mod atomic;
 pub mod bench;
 pub mod branch_lines;
 pub mod error;
 pub mod execute;
+pub mod merge;
+pub mod merge_report;
 pub mod phase;
+pub mod pictures;
 pub mod plan;
 pub mod plot;
 pub mod precision_plot;
+pub mod progress;
 pub mod render;
 pub mod shard;
 pub mod spec;
 pub mod status;
 pub mod store;
 pub mod tables;
+pub mod tally;
 
 pub use error::{SpecError, SweepError};
-pub use execute::{merge, run_sweep, MergeReport, SweepOptions, SweepSummary};
+pub use execute::{run_sweep, SweepOptions, SweepSummary};
+pub use merge::merge;
+pub use merge_report::MergeReport;
 pub use spec::SweepSpec;

@@ -165,6 +165,13 @@ pub fn load(path: &Path) -> Result<SweepSpec, crate::SweepError> {
     Ok(parse(&text, &path.display().to_string(), &stem)?)
 }
 
+/// The spec stored in a sweep directory.
+pub fn load_stored(dir: &Path) -> Result<SweepSpec, crate::SweepError> {
+    let path = dir.join("spec.yaml");
+    let text = std::fs::read_to_string(&path).map_err(|e| crate::SweepError::io(&path, e))?;
+    Ok(parse(&text, &path.display().to_string(), "sweep")?)
+}
+
 /// The spec key of a field named in a [`droplet_solver::SolverError::InvalidParameter`].
 fn key_of(name: &str) -> [&str; 2] {
     match name {

@@ -1,13 +1,15 @@
 //! The run store of an output directory: one JSON file per finished run under `runs/`,
 //! written atomically (temporary file, fsync, rename) the moment the run finishes, and an
 //! exclusive lock so that two sweeps cannot write one directory at once.
+use crate::atomic::{create_output_dir, write_atomic};
 use crate::error::SweepError;
+use crate::merge_report::MergeReport;
+use crate::plan::Plan;
 use droplet_solver::{InitialCondition, ModelParams, RunOutcome, SolverSettings, SOLVER_VERSION};
 use fs2::FileExt;
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
 use std::fs::{self, File, OpenOptions};
-use std::io::Write;
 use std::path::{Path, PathBuf};
 
 /// A finished run as persisted.
@@ -201,6 +203,36 @@ impl Store {
         })
     }
 
+    /// The runs of `plan` that have no valid record here (absent, or unreadable).
+    pub fn report_missing(&self, plan: &Plan) -> MergeReport {
+        let (mut missing, mut unreadable, mut examples) = (0, 0, Vec::new());
+        for t in plan.tasks() {
+            let why = match self.check(&t.key) {
+                Stored::Valid(_) => continue,
+                Stored::Missing => String::new(),
+                Stored::Corrupt(reason) => {
+                    unreadable += 1;
+                    format!(": runs/{}.json unreadable ({reason})", t.key)
+                }
+            };
+            missing += 1;
+            if examples.len() < 20 {
+                examples.push(format!(
+                    "eta_t = {}, kappa2 = {}, ic = {}{why}",
+                    t.params.eta_t, t.params.kappa2, t.ic.name
+                ));
+            }
+        }
+        MergeReport {
+            output: self.dir.clone(),
+            runs_total: plan.len(),
+            runs_missing: missing,
+            runs_unreadable: unreadable,
+            missing_examples: examples,
+            tables: Vec::new(),
+        }
+    }
+
     /// Persists a finished run atomically.
     pub fn save(&self, record: &RunRecord) -> Result<(), SweepError> {
         let json = serde_json::to_vec(record).expect("records serialise");
@@ -237,34 +269,6 @@ impl Store {
     pub fn write_file(&self, name: &str, bytes: &[u8]) -> Result<PathBuf, SweepError> {
         write_atomic(&self.dir.join(name), bytes)
     }
-}
-
-/// Creates an output directory given by the user (`--out`, `output:`); failing is bad input
-/// (exit code 2), reported with the directory.
-pub fn create_output_dir(dir: &Path) -> Result<(), SweepError> {
-    fs::create_dir_all(dir).map_err(|e| SweepError::Output {
-        path: dir.to_path_buf(),
-        source: e,
-    })
-}
-
-/// Writes `bytes` to `path` via a temporary file (`<stem>.<pid>.tmp`), fsync and a rename, so a
-/// crash leaves either the old file or the new one, never a partial one (and a stale
-/// temporary that the next sweep on the directory removes). Errors name `path`; a failed
-/// write removes its temporary.
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<PathBuf, SweepError> {
-    let tmp = path.with_extension(format!("{}.tmp", std::process::id()));
-    let write = || -> std::io::Result<()> {
-        let mut f = File::create(&tmp)?;
-        f.write_all(bytes)?;
-        f.sync_all()?;
-        fs::rename(&tmp, path)
-    };
-    write().map_err(|e| {
-        let _ = fs::remove_file(&tmp);
-        SweepError::io(path, e)
-    })?;
-    Ok(path.to_path_buf())
 }
 
 #[cfg(test)]

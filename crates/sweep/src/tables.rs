@@ -3,13 +3,15 @@
 use crate::error::SweepError;
 use crate::phase::{classify_point, PointClass};
 use crate::plan::Plan;
+use crate::spec::SweepSpec;
 use crate::store::RunRecord;
+use crate::store::Store;
 use droplet_solver::SeriesRow;
 use polars::prelude::*;
 use sha2::{Digest, Sha256};
 use std::collections::HashMap;
 use std::fs::File;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// Git commit of the build (`-dirty` when the tree had changes).
 pub const GIT_COMMIT: &str = env!("DROPLET_GIT_COMMIT");
@@ -38,7 +40,7 @@ pub fn metadata(spec_text: Option<&str>) -> Vec<(String, String)> {
     kv
 }
 
-/// Writes `df` to `path` with metadata (atomically, see [`crate::store::write_atomic`]).
+/// Writes `df` to `path` with metadata (atomically, see [`crate::atomic::write_atomic`]).
 pub fn write_parquet(
     df: &mut DataFrame,
     path: &Path,
@@ -48,7 +50,7 @@ pub fn write_parquet(
     ParquetWriter::new(&mut bytes)
         .with_key_value_metadata(Some(KeyValueMetadata::from_static(meta)))
         .finish(df)?;
-    crate::store::write_atomic(path, &bytes)?;
+    crate::atomic::write_atomic(path, &bytes)?;
     Ok(())
 }
 
@@ -398,4 +400,18 @@ pub fn read_bench(path: &Path) -> Result<Vec<crate::bench::BenchRow>, SweepError
             wall_s: nan(wall[i]),
         })
         .collect())
+}
+/// Writes `runs.parquet` and `points.parquet` for `plan` from the store.
+pub fn write_tables(
+    store: &Store,
+    spec: &SweepSpec,
+    plan: &Plan,
+    records: &HashMap<String, RunRecord>,
+) -> Result<Vec<PathBuf>, SweepError> {
+    let meta = metadata(Some(&spec.source));
+    let runs_path = store.dir().join("runs.parquet");
+    let points_path = store.dir().join("points.parquet");
+    write_parquet(&mut runs_frame(plan, records)?, &runs_path, meta.clone())?;
+    write_parquet(&mut points_frame(plan, records)?, &points_path, meta)?;
+    Ok(vec![runs_path, points_path])
 }

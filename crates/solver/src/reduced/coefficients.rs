@@ -27,7 +27,6 @@ pub struct Coefficients {
 }
 
 /// The paper's fitted `h0` (Appendix E).
-
 pub use crate::settings::H0_PAPER;
 
 impl Coefficients {

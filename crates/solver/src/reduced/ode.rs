@@ -8,12 +8,12 @@
 use crate::classify::StateClass;
 use crate::error::{require, SolverError};
 use crate::initial::InitialCondition;
+use crate::outcome::{RunOutcome, RunStatus};
 use crate::params::ModelParams;
 use crate::reduced::Coefficients;
-use crate::outcome::{RunOutcome, RunStatus};
 use crate::settings::SolverSettings;
-use crate::stop_rule::{diverged, SteadyTest};
 use crate::state::DropletState;
+use crate::stop_rule::{diverged, SteadyTest};
 use std::time::Instant;
 
 /// Right-hand side `d(vx, vy, a2, b2)/dt` of eqs. (58)-(59).

@@ -25,10 +25,10 @@
 //! coefficients). Not done yet: AVX2 code generation for the passes (they compile to SSE2 for
 //! the generic x86-64 target), skipping the all-zero input rows in the column transforms, and
 //! a narrower band (`BAND_Q`).
+use crate::dynamics;
 use crate::etd::{EtdCoef, SeparableExp};
 use crate::fft2::PrunedFft2;
 use crate::forces::{ColumnSums, ForceSums, Forces, ShapeSampler};
-use crate::dynamics;
 use crate::grid::Grid;
 use crate::params::ModelParams;
 use crate::scheme::{Attempt, Field, Scheme};

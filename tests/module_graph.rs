@@ -1,0 +1,163 @@
+//! The module import graph of each library crate has no cycle: data and dependencies flow one
+//! way (spec -> plan -> runs -> tables -> pictures in the sweep crate; parameters and settings
+//! -> schemes -> run driver in the solver crate).
+//!
+//! A module is a top-level file or folder of `src/` (`scheme/comoving_etd.rs` belongs to
+//! `scheme`); it depends on another when its code (not its comments, not its `#[cfg(test)]`
+//! part) names `crate::other`. A cycle fails the test with the modules on it.
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::Path;
+
+/// Module -> the modules it names.
+type Graph = BTreeMap<String, BTreeSet<String>>;
+
+fn rust_files(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
+    for e in std::fs::read_dir(dir).unwrap().flatten() {
+        let p = e.path();
+        if p.is_dir() {
+            rust_files(&p, out);
+        } else if p.extension().is_some_and(|x| x == "rs") {
+            out.push(p);
+        }
+    }
+}
+
+/// The names following `crate::` in `code`, and in `use crate::{a, b::c}` groups.
+fn named_modules(code: &str) -> BTreeSet<String> {
+    let ident = |s: &str| -> String {
+        s.chars()
+            .take_while(|c| c.is_alphanumeric() || *c == '_')
+            .collect()
+    };
+    let mut out = BTreeSet::new();
+    for (i, _) in code.match_indices("crate::") {
+        let rest = &code[i + "crate::".len()..];
+        if let Some(group) = rest.strip_prefix('{') {
+            let end = group.find('}').unwrap_or(group.len());
+            for item in group[..end].split(',') {
+                let name = ident(item.trim());
+                if !name.is_empty() {
+                    out.insert(name);
+                }
+            }
+        } else {
+            let name = ident(rest);
+            if !name.is_empty() {
+                out.insert(name);
+            }
+        }
+    }
+    out
+}
+
+fn graph(src: &Path) -> Graph {
+    let mut files = Vec::new();
+    rust_files(src, &mut files);
+    let mut g = Graph::new();
+    for f in &files {
+        let rel = f.strip_prefix(src).unwrap();
+        let top = rel
+            .components()
+            .next()
+            .unwrap()
+            .as_os_str()
+            .to_string_lossy()
+            .trim_end_matches(".rs")
+            .to_string();
+        if top == "lib" || top == "main" {
+            continue;
+        }
+        let text = std::fs::read_to_string(f).unwrap();
+        let code_part = text.split("#[cfg(test)]").next().unwrap();
+        let code: String = code_part
+            .lines()
+            .filter(|l| !l.trim_start().starts_with("//"))
+            .collect::<Vec<_>>()
+            .join("\n");
+        let mut deps = named_modules(&code);
+        deps.remove(&top);
+        g.entry(top).or_default().extend(deps);
+    }
+    // Only edges between the crate's own modules.
+    let names: BTreeSet<String> = g.keys().cloned().collect();
+    for deps in g.values_mut() {
+        deps.retain(|d| names.contains(d));
+    }
+    g
+}
+
+/// A cycle, if any (depth-first search with an explicit path).
+fn find_cycle(g: &Graph) -> Option<Vec<String>> {
+    #[derive(Clone, Copy, PartialEq)]
+    enum Mark {
+        New,
+        Open,
+        Done,
+    }
+    fn visit(
+        g: &Graph,
+        v: &str,
+        marks: &mut BTreeMap<String, Mark>,
+        path: &mut Vec<String>,
+    ) -> Option<Vec<String>> {
+        marks.insert(v.to_string(), Mark::Open);
+        path.push(v.to_string());
+        for w in &g[v] {
+            match marks[w] {
+                Mark::Open => {
+                    let start = path.iter().position(|p| p == w).unwrap();
+                    let mut cycle = path[start..].to_vec();
+                    cycle.push(w.clone());
+                    return Some(cycle);
+                }
+                Mark::New => {
+                    if let Some(c) = visit(g, w, marks, path) {
+                        return Some(c);
+                    }
+                }
+                Mark::Done => {}
+            }
+        }
+        path.pop();
+        marks.insert(v.to_string(), Mark::Done);
+        None
+    }
+    let mut marks: BTreeMap<String, Mark> = g.keys().map(|k| (k.clone(), Mark::New)).collect();
+    for v in g.keys() {
+        if marks[v] == Mark::New {
+            if let Some(c) = visit(g, v, &mut marks, &mut Vec::new()) {
+                return Some(c);
+            }
+        }
+    }
+    None
+}
+
+#[test]
+fn the_checker_finds_a_planted_cycle() {
+    let mut g = Graph::new();
+    for (a, b) in [("spec", "error"), ("error", "merge"), ("merge", "error")] {
+        g.entry(a.into()).or_default().insert(b.into());
+        g.entry(b.into()).or_default();
+    }
+    assert_eq!(
+        find_cycle(&g),
+        Some(vec!["error".into(), "merge".into(), "error".into()])
+    );
+    assert_eq!(
+        named_modules("use crate::{a, b::c};\nlet x = crate::d::e();"),
+        ["a", "b", "d"].iter().map(|s| s.to_string()).collect()
+    );
+}
+
+#[test]
+fn library_crates_have_no_module_import_cycle() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    for krate in ["crates/solver", "crates/sweep"] {
+        let g = graph(&root.join(krate).join("src"));
+        assert!(g.len() > 10, "{krate}: only {} modules found", g.len());
+        if let Some(cycle) = find_cycle(&g) {
+            panic!("{krate}: module import cycle {}", cycle.join(" -> "));
+        }
+    }
+}
