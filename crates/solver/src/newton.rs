@@ -67,12 +67,14 @@ pub fn lu_solve(mut a: Vec<Vec<f64>>, b: &[f64]) -> Option<Vec<f64>> {
         }
         a.swap(k, p);
         x.swap(k, p);
-        for i in k + 1..n {
-            let m = a[i][k] / a[k][k];
-            for j in k..n {
-                a[i][j] -= m * a[k][j];
+        let (top, below) = a.split_at_mut(k + 1);
+        let pivot_row = &top[k];
+        for (i, row) in below.iter_mut().enumerate() {
+            let m = row[k] / pivot_row[k];
+            for (r, p) in row[k..].iter_mut().zip(&pivot_row[k..]) {
+                *r -= m * p;
             }
-            x[i] -= m * x[k];
+            x[k + 1 + i] -= m * x[k];
         }
     }
     for k in (0..n).rev() {
