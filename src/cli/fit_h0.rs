@@ -4,8 +4,6 @@ use droplet_solver::h0_fit::fit_h0;
 use droplet_solver::reduced::Coefficients;
 use droplet_solver::ModelParams;
 use droplet_sweep::plot::{h0_picture, H0Picture};
-use droplet_sweep::tables;
-use polars::prelude::*;
 use std::path::PathBuf;
 
 /// Fit kappa2 = p0 - p2 s^2 to deformation-only PDE steady states (droplet held in place)
@@ -75,37 +73,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
             code: 1,
         });
     }
-    let mut df = DataFrame::new(
-        fit.points.len(),
-        vec![
-            Column::new(
-                "kappa2".into(),
-                fit.points.iter().map(|p| p.0).collect::<Vec<_>>(),
-            ),
-            Column::new(
-                "s".into(),
-                fit.points.iter().map(|p| p.1).collect::<Vec<_>>(),
-            ),
-            Column::new(
-                "in_fit".into(),
-                fit.points
-                    .iter()
-                    .map(|p| p.1 > 1e-3 && p.1 < 0.3)
-                    .collect::<Vec<_>>(),
-            ),
-        ],
-    )
-    .map_err(droplet_sweep::SweepError::from)?;
-    let mut meta = tables::metadata(None);
-    meta.push(("p0".into(), fit.p0.to_string()));
-    meta.push(("p2".into(), fit.p2.to_string()));
-    meta.push((
-        "method".into(),
-        "exact steady evaluator (Newton, v = 0)".into(),
-    ));
-    meta.push(("n".into(), a.n.to_string()));
-    let table = a.out.join("h0_fit.parquet");
-    tables::write_parquet(&mut df, &table, meta)?;
+    let table = droplet_sweep::h0_table::write(&a.out, &fit, a.n)?;
     let g0t = Coefficients::new(base.radius, fit.p2).g0t;
     let pic = H0Picture {
         points: fit.points.clone(),

@@ -6,8 +6,6 @@ use droplet_solver::reduced::Coefficients;
 use droplet_solver::ModelParams;
 use droplet_sweep::branch_lines::{branch_lines, BranchSample};
 use droplet_sweep::plot::{vs_parameter, Marker};
-use droplet_sweep::tables;
-use polars::prelude::*;
 use std::path::PathBuf;
 
 /// The reduced ODE model (paper eqs. 58-59): coefficients and bifurcation diagrams. For ODE
@@ -156,73 +154,15 @@ pub fn run(a: Args) -> Result<(), CliError> {
                     p.kappa2
                 }
             };
-            let mut df = DataFrame::new(
-                pts.len(),
-                vec![
-                    Column::new(
-                        "branch".into(),
-                        pts.iter()
-                            .map(|p| p.branch.as_str().to_string())
-                            .collect::<Vec<_>>(),
-                    ),
-                    Column::new(
-                        "eta_t".into(),
-                        pts.iter().map(|p| p.eta_t).collect::<Vec<_>>(),
-                    ),
-                    Column::new(
-                        "kappa2".into(),
-                        pts.iter().map(|p| p.kappa2).collect::<Vec<_>>(),
-                    ),
-                    Column::new("v".into(), pts.iter().map(|p| p.v).collect::<Vec<_>>()),
-                    Column::new("s".into(), pts.iter().map(|p| p.s).collect::<Vec<_>>()),
-                    Column::new(
-                        "max_re_eigenvalue".into(),
-                        pts.iter().map(|p| p.max_re).collect::<Vec<_>>(),
-                    ),
-                    Column::new(
-                        "stable".into(),
-                        pts.iter().map(|p| p.stable).collect::<Vec<_>>(),
-                    ),
-                ],
-            )
-            .map_err(droplet_sweep::SweepError::from)?;
-            let mut ev = DataFrame::new(
-                events.len(),
-                vec![
-                    Column::new(
-                        "kind".into(),
-                        events
-                            .iter()
-                            .map(|e| e.kind.to_string())
-                            .collect::<Vec<_>>(),
-                    ),
-                    Column::new(
-                        "branch".into(),
-                        events
-                            .iter()
-                            .map(|e| e.branch.as_str().to_string())
-                            .collect::<Vec<_>>(),
-                    ),
-                    Column::new(
-                        x_label.into(),
-                        events.iter().map(|e| e.at).collect::<Vec<_>>(),
-                    ),
-                ],
-            )
-            .map_err(droplet_sweep::SweepError::from)?;
-            let mut meta = tables::metadata(None);
-            meta.push((
-                "coefficients".into(),
-                serde_json::to_string(&c).expect("json"),
-            ));
-            meta.push((
-                "line".into(),
-                format!("{fixed_label}, {x_label} from {from} to {to}"),
-            ));
-            let p1 = out.join(format!("{stem}.parquet"));
-            let p2 = out.join(format!("{stem}_events.parquet"));
-            tables::write_parquet(&mut df, &p1, meta.clone())?;
-            tables::write_parquet(&mut ev, &p2, meta)?;
+            let [p1, p2] = droplet_sweep::bifurcation_table::write(
+                &out,
+                &stem,
+                &pts,
+                &events,
+                axis,
+                &c,
+                &format!("{fixed_label}, {x_label} from {from} to {to}"),
+            )?;
             // Branches as lines (solid stable, dashed unstable); markers only at P / SN.
             let samples: Vec<BranchSample> = pts
                 .iter()

@@ -1,7 +1,7 @@
 //! `droplet simulate`: one run, its class, and optionally its time series and Fig. 1 picture.
 use super::{print_json, CliError};
 use droplet_solver::{InitialCondition, ModelParams, Run, SchemeKind, SolverSettings};
-use droplet_sweep::{plot, tables};
+use droplet_sweep::plot;
 use serde::Serialize;
 use std::path::PathBuf;
 
@@ -160,18 +160,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
     let out = run.execute();
     let mass_integral = run.scheme_mut().mass();
     if let Some(path) = &a.series {
-        let mut df = tables::series_frame(&out.series)?;
-        let mut meta = tables::metadata(None);
-        meta.push((
-            "params".into(),
-            serde_json::to_string(&params).expect("json"),
-        ));
-        meta.push((
-            "settings".into(),
-            serde_json::to_string(&settings).expect("json"),
-        ));
-        meta.push(("ic".into(), ic.name.clone()));
-        tables::write_parquet(&mut df, path, meta)?;
+        droplet_sweep::series_table::write(path, &out.series, &params, &settings, &ic)?;
     }
     let mut pictures = Vec::new();
     if let Some(path) = &a.picture {

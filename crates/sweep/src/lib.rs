@@ -3,9 +3,13 @@
 //! Data flows one way: spec -> plan -> runs (store) -> tables -> pictures.
 pub mod atomic;
 pub mod bench;
+pub mod bench_run;
+pub mod bench_table;
+pub mod bifurcation_table;
 pub mod branch_lines;
 pub mod error;
 pub mod execute;
+pub mod h0_table;
 pub mod merge;
 pub mod merge_report;
 pub mod phase;
@@ -15,6 +19,7 @@ pub mod plot;
 pub mod precision_plot;
 pub mod progress;
 pub mod render;
+pub mod series_table;
 pub mod shard;
 pub mod spec;
 pub mod status;

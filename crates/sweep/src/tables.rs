@@ -6,7 +6,6 @@ use crate::plan::Plan;
 use crate::spec::SweepSpec;
 use crate::store::RunRecord;
 use crate::store::Store;
-use droplet_solver::SeriesRow;
 use polars::prelude::*;
 use sha2::{Digest, Sha256};
 use std::collections::HashMap;
@@ -67,11 +66,11 @@ pub fn read_metadata(path: &Path) -> Result<HashMap<String, String>, SweepError>
         .collect())
 }
 
-fn f64_col(name: &str, v: Vec<f64>) -> Column {
+pub(crate) fn f64_col(name: &str, v: Vec<f64>) -> Column {
     Column::new(name.into(), v)
 }
 
-fn str_col(name: &str, v: Vec<String>) -> Column {
+pub(crate) fn str_col(name: &str, v: Vec<String>) -> Column {
     Column::new(name.into(), v)
 }
 
@@ -255,23 +254,6 @@ pub fn points_frame(
     Ok(DataFrame::new(n, cols)?)
 }
 
-/// The time series of one run.
-pub fn series_frame(series: &[SeriesRow]) -> Result<DataFrame, SweepError> {
-    let f = |g: fn(&SeriesRow) -> f64| series.iter().map(g).collect::<Vec<f64>>();
-    let cols = vec![
-        f64_col("t", f(|r| r.t)),
-        f64_col("x", f(|r| r.x)),
-        f64_col("y", f(|r| r.y)),
-        f64_col("vx", f(|r| r.vx)),
-        f64_col("vy", f(|r| r.vy)),
-        f64_col("a2", f(|r| r.a2)),
-        f64_col("b2", f(|r| r.b2)),
-        f64_col("v", f(|r| r.v)),
-        f64_col("s", f(|r| r.s)),
-    ];
-    Ok(DataFrame::new(series.len(), cols)?)
-}
-
 /// The analytic boundaries of the reduced model as a long table (`curve`, `eta_t`, `kappa2`).
 pub fn boundaries_frame(
     curves: &[droplet_solver::reduced::boundaries::Boundary],
@@ -296,111 +278,6 @@ pub fn boundaries_frame(
     )?)
 }
 
-/// The work-precision benchmark's rows ([`crate::bench`]).
-pub fn bench_frame(rows: &[crate::bench::BenchRow]) -> Result<DataFrame, SweepError> {
-    use crate::bench::BenchRow;
-    let f = |g: fn(&BenchRow) -> f64| rows.iter().map(g).collect::<Vec<f64>>();
-    let st = |g: fn(&BenchRow) -> String| rows.iter().map(g).collect::<Vec<String>>();
-    let opt = |g: fn(&BenchRow) -> Option<f64>| rows.iter().map(g).collect::<Vec<Option<f64>>>();
-    let cols = vec![
-        str_col("case", st(|r| r.case.clone())),
-        str_col("family", st(|r| r.family.clone())),
-        str_col("scheme", st(|r| r.scheme.clone())),
-        Column::new(
-            "n".into(),
-            rows.iter().map(|r| r.n as u32).collect::<Vec<u32>>(),
-        ),
-        f64_col("dt", f(|r| r.dt)),
-        f64_col("tol", f(|r| r.tol)),
-        f64_col("dt_max", f(|r| r.dt_max)),
-        str_col("status", st(|r| r.status.clone())),
-        Column::new(
-            "class".into(),
-            rows.iter()
-                .map(|r| r.class.clone())
-                .collect::<Vec<Option<String>>>(),
-        ),
-        Column::new(
-            "class_ok".into(),
-            rows.iter().map(|r| r.class_ok).collect::<Vec<bool>>(),
-        ),
-        f64_col("v", f(|r| r.v)),
-        f64_col("s", f(|r| r.s)),
-        f64_col("err_v", f(|r| r.err_v)),
-        f64_col("err_s", f(|r| r.err_s)),
-        Column::new("err_series".into(), opt(|r| r.err_series)),
-        f64_col("t_end", f(|r| r.t_end)),
-        Column::new(
-            "steps".into(),
-            rows.iter().map(|r| r.steps).collect::<Vec<u64>>(),
-        ),
-        Column::new(
-            "rejected".into(),
-            rows.iter().map(|r| r.rejected).collect::<Vec<u64>>(),
-        ),
-        Column::new("max_step_error".into(), opt(|r| r.max_step_error)),
-        f64_col("wall_s", f(|r| r.wall_s)),
-    ];
-    Ok(DataFrame::new(rows.len(), cols)?)
-}
-
-/// Reads the rows of a `bench.parquet` written by [`bench_frame`].
-pub fn read_bench(path: &Path) -> Result<Vec<crate::bench::BenchRow>, SweepError> {
-    let file = File::open(path).map_err(|e| SweepError::io(path, e))?;
-    let df = ParquetReader::new(file).finish()?;
-    let h = df.height();
-    let s = |c: &str| -> Result<Vec<Option<String>>, SweepError> {
-        let col = df.column(c)?.str()?.clone();
-        Ok((0..h).map(|i| col.get(i).map(str::to_string)).collect())
-    };
-    let f = |c: &str| -> Result<Vec<Option<f64>>, SweepError> {
-        let col = df.column(c)?.f64()?.clone();
-        Ok((0..h).map(|i| col.get(i)).collect())
-    };
-    let u = |c: &str| -> Result<Vec<Option<u64>>, SweepError> {
-        let col = df.column(c)?.cast(&DataType::UInt64)?;
-        let col = col.u64()?;
-        Ok((0..h).map(|i| col.get(i)).collect())
-    };
-    let (case, family, scheme, status, class) = (
-        s("case")?,
-        s("family")?,
-        s("scheme")?,
-        s("status")?,
-        s("class")?,
-    );
-    let (n, steps, rejected) = (u("n")?, u("steps")?, u("rejected")?);
-    let (dt, tol, dt_max, v, sv) = (f("dt")?, f("tol")?, f("dt_max")?, f("v")?, f("s")?);
-    let (err_v, err_s, err_series) = (f("err_v")?, f("err_s")?, f("err_series")?);
-    let (t_end, mse, wall) = (f("t_end")?, f("max_step_error")?, f("wall_s")?);
-    let ok_col = df.column("class_ok")?.bool()?.clone();
-    let ok: Vec<Option<bool>> = (0..h).map(|i| ok_col.get(i)).collect();
-    let nan = |x: Option<f64>| x.unwrap_or(f64::NAN);
-    Ok((0..df.height())
-        .map(|i| crate::bench::BenchRow {
-            case: case[i].clone().unwrap_or_default(),
-            family: family[i].clone().unwrap_or_default(),
-            scheme: scheme[i].clone().unwrap_or_default(),
-            n: n[i].unwrap_or(0) as usize,
-            dt: nan(dt[i]),
-            tol: nan(tol[i]),
-            dt_max: nan(dt_max[i]),
-            status: status[i].clone().unwrap_or_default(),
-            class: class[i].clone(),
-            class_ok: ok[i].unwrap_or(false),
-            v: nan(v[i]),
-            s: nan(sv[i]),
-            err_v: nan(err_v[i]),
-            err_s: nan(err_s[i]),
-            err_series: err_series[i],
-            t_end: nan(t_end[i]),
-            steps: steps[i].unwrap_or(0),
-            rejected: rejected[i].unwrap_or(0),
-            max_step_error: mse[i],
-            wall_s: nan(wall[i]),
-        })
-        .collect())
-}
 /// Writes `runs.parquet` and `points.parquet` for `plan` from the store.
 pub fn write_tables(
     store: &Store,

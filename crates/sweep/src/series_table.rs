@@ -1,0 +1,46 @@
+//! A single run's time series, `(t, x, y, vx, vy, a2, b2, v, s)` per row, as Parquet with the
+//! run's parameters, settings and initial condition in the metadata.
+use crate::error::SweepError;
+use crate::tables::{f64_col, metadata, write_parquet};
+use droplet_solver::{InitialCondition, ModelParams, SeriesRow, SolverSettings};
+use polars::prelude::*;
+use std::path::Path;
+
+/// The time series of one run.
+pub fn series_frame(series: &[SeriesRow]) -> Result<DataFrame, SweepError> {
+    let f = |g: fn(&SeriesRow) -> f64| series.iter().map(g).collect::<Vec<f64>>();
+    let cols = vec![
+        f64_col("t", f(|r| r.t)),
+        f64_col("x", f(|r| r.x)),
+        f64_col("y", f(|r| r.y)),
+        f64_col("vx", f(|r| r.vx)),
+        f64_col("vy", f(|r| r.vy)),
+        f64_col("a2", f(|r| r.a2)),
+        f64_col("b2", f(|r| r.b2)),
+        f64_col("v", f(|r| r.v)),
+        f64_col("s", f(|r| r.s)),
+    ];
+    Ok(DataFrame::new(series.len(), cols)?)
+}
+/// Writes `series` to `path`.
+pub fn write(
+    path: &Path,
+    series: &[SeriesRow],
+    params: &ModelParams,
+    settings: &SolverSettings,
+    ic: &InitialCondition,
+) -> Result<(), SweepError> {
+    let mut df = series_frame(series)?;
+    let mut meta = metadata(None);
+    meta.push((
+        "params".into(),
+        serde_json::to_string(&params).expect("json"),
+    ));
+    meta.push((
+        "settings".into(),
+        serde_json::to_string(&settings).expect("json"),
+    ));
+    meta.push(("ic".into(), ic.name.clone()));
+    write_parquet(&mut df, path, meta)?;
+    Ok(())
+}
