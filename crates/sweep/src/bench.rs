@@ -519,7 +519,9 @@ pub fn summarise(refs: &References, rows: &[BenchRow]) -> BenchSummary {
     let d = SolverSettings::default();
     let fd_rate = rows
         .iter()
-        .find(|r| r.scheme == "paper-fd" && r.status != "diverged" && r.t_end > 0.0)
+        .find(|r| {
+            r.scheme == "paper-fd" && r.status != RunStatus::Diverged.as_str() && r.t_end > 0.0
+        })
         .map(|r| r.wall_s / r.t_end);
     let vs_paper_fd = rows
         .iter()
@@ -553,12 +555,12 @@ pub fn summarise(refs: &References, rows: &[BenchRow]) -> BenchSummary {
         vs_paper_fd,
         diverged: rows
             .iter()
-            .filter(|r| r.status == "diverged")
+            .filter(|r| r.status == RunStatus::Diverged.as_str())
             .map(describe)
             .collect(),
         class_mismatches: rows
             .iter()
-            .filter(|r| r.status != "diverged" && !r.class_ok)
+            .filter(|r| r.status != RunStatus::Diverged.as_str() && !r.class_ok)
             .map(describe)
             .collect(),
     }

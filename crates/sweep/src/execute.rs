@@ -1,6 +1,7 @@
 //! Runs a sweep: the pending tasks of a plan in a rayon pool, each persisted as it finishes,
 //! with progress (runs done / total, ETA, classes so far), then the final tables and picture.
 use crate::error::SweepError;
+use crate::phase_map::PhaseMap;
 use crate::plan::{plan, Task};
 use crate::progress::progress_bar;
 use crate::shard::{indices_of, Shard};
@@ -141,25 +142,25 @@ pub fn run_sweep(
     })?;
     pb.finish_and_clear();
     let records = store.load_many(plan.tasks().map(|t| t.key));
+    if opts.shard.is_none() && records.len() != plan.len() {
+        // Only another process touching runs/ meanwhile can cause this: never write tables
+        // with rows missing.
+        return Err(SweepError::Incomplete(Box::new(
+            store.report_missing(&plan),
+        )));
+    }
+    // Classified once, for the points table, the picture and the summary.
+    let map = PhaseMap::new(&plan, &records);
     let mut tables = Vec::new();
     if opts.shard.is_none() {
-        if records.len() != plan.len() {
-            // Only another process touching runs/ meanwhile can cause this: never write
-            // tables with rows missing.
-            return Err(SweepError::Incomplete(Box::new(
-                store.report_missing(&plan),
-            )));
-        }
-        tables = tables::write_tables(&store, spec, &plan, &records)?;
+        tables = tables::write_tables(&store, spec, &plan, &records, &map)?;
         if opts.plot {
-            tables.extend(crate::pictures::plot_records(out, spec, &plan, &records)?);
+            tables.extend(crate::pictures::plot_records(
+                out, spec, &plan, &records, &map,
+            )?);
         }
     }
-    let point_classes = tally(
-        tables::point_classes(&plan, &records)
-            .into_iter()
-            .map(|(c, _)| c.label),
-    );
+    let point_classes = tally(map.points.iter().map(|p| p.class.label.clone()));
     let run_statuses = tally(
         records
             .values()

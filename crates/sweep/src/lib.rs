@@ -13,6 +13,7 @@ pub mod h0_table;
 pub mod merge;
 pub mod merge_report;
 pub mod phase;
+pub mod phase_map;
 pub mod pictures;
 pub mod plan;
 pub mod plot;

@@ -1,6 +1,7 @@
 //! The final tables of a sharded sweep, built only when every run is present and valid.
 use crate::error::SweepError;
 use crate::merge_report::MergeReport;
+use crate::phase_map::PhaseMap;
 use crate::plan::plan;
 use crate::store::Store;
 use crate::tables::write_tables;
@@ -24,9 +25,12 @@ pub fn merge(dir: &Path, draw: bool) -> Result<MergeReport, SweepError> {
             store.report_missing(&plan),
         )));
     }
-    let mut tables = write_tables(&store, &spec, &plan, &records)?;
+    let map = PhaseMap::new(&plan, &records);
+    let mut tables = write_tables(&store, &spec, &plan, &records, &map)?;
     if draw {
-        tables.extend(crate::pictures::plot_records(dir, &spec, &plan, &records)?);
+        tables.extend(crate::pictures::plot_records(
+            dir, &spec, &plan, &records, &map,
+        )?);
     }
     Ok(MergeReport { tables, ..report })
 }

@@ -2,11 +2,11 @@
 //! analytic boundaries (and their table, `boundaries.parquet`), and for a 1-D sweep the
 //! bifurcation lines (Fig. 2b).
 use crate::error::SweepError;
+use crate::phase_map::PhaseMap;
 use crate::plan::plan;
 use crate::plot::{phase_map, vs_parameter, Curve, MapPoint, Marker};
 use crate::spec::SweepSpec;
 use crate::store::Store;
-use crate::tables::point_classes;
 use droplet_solver::reduced::boundaries::boundaries;
 use droplet_solver::reduced::Coefficients;
 use std::path::{Path, PathBuf};
@@ -17,7 +17,8 @@ pub fn plot(dir: &Path) -> Result<Vec<PathBuf>, SweepError> {
     let spec = crate::spec::load_stored(dir)?;
     let plan = plan(&spec);
     let records = store.load_many(plan.tasks().map(|t| t.key));
-    plot_records(dir, &spec, &plan, &records)
+    let map = PhaseMap::new(&plan, &records);
+    plot_records(dir, &spec, &plan, &records, &map)
 }
 
 /// As [`plot`], from records already loaded (a sweep or merge that just wrote the tables).
@@ -26,18 +27,15 @@ pub fn plot_records(
     spec: &SweepSpec,
     plan: &crate::plan::Plan,
     records: &std::collections::HashMap<String, crate::store::RunRecord>,
+    map: &PhaseMap,
 ) -> Result<Vec<PathBuf>, SweepError> {
-    let pts: Vec<MapPoint> = point_classes(plan, records)
-        .into_iter()
-        .zip(&plan.points)
-        .map(|((c, per_ic), &(eta_t, kappa2))| MapPoint {
-            eta_t,
-            kappa2,
-            label: if per_ic.iter().all(|x| x.is_some()) {
-                c.label
-            } else {
-                "missing".into()
-            },
+    let pts: Vec<MapPoint> = map
+        .points
+        .iter()
+        .map(|p| MapPoint {
+            eta_t: p.eta_t,
+            kappa2: p.kappa2,
+            label: p.shown_label().to_string(),
         })
         .collect();
     let model = spec.solver.model.as_str().to_uppercase();

@@ -3,6 +3,7 @@
 //! and SVG by [`render`].
 use crate::branch_lines::BranchLine;
 use crate::error::SweepError;
+use crate::phase::{DIVERGED, MISSING, NOT_CLASSIFIED};
 pub(crate) use crate::render::perr;
 use crate::render::{render, Figure};
 use droplet_solver::scheme::Field;
@@ -21,12 +22,12 @@ pub fn class_colour(label: &str) -> RGBColor {
         "IC/MD" => RGBColor(0, 200, 220),
         "ID/MD" => RGBColor(235, 205, 0),
         "IC/MC" => RGBColor(150, 150, 150),
-        "not classified" => RGBColor(140, 80, 20),
+        NOT_CLASSIFIED => RGBColor(140, 80, 20),
         "MC" => RGBColor(255, 140, 0),
         "IC/ID" => RGBColor(240, 120, 200),
         "MD/MC" => RGBColor(130, 60, 180),
         "ID/MC" => RGBColor(120, 130, 40),
-        "diverged" => RGBColor(0, 0, 0),
+        DIVERGED => RGBColor(0, 0, 0),
         "MD minor-axis" => RGBColor(0, 0, 139),
         "MD major-axis" => RGBColor(140, 80, 20),
         _ => RGBColor(255, 255, 255),
@@ -41,13 +42,13 @@ const ORDER: [&str; 13] = [
     "IC/MD",
     "ID/MD",
     "IC/MC",
-    "not classified",
+    NOT_CLASSIFIED,
     "MC",
     "IC/ID",
     "MD/MC",
     "ID/MC",
-    "diverged",
-    "missing",
+    DIVERGED,
+    MISSING,
 ];
 
 /// One point of a phase map.

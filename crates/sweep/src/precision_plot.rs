@@ -3,6 +3,7 @@
 use crate::bench::BenchRow;
 use crate::error::SweepError;
 use crate::render::{perr, render, Figure};
+use droplet_solver::RunStatus;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
@@ -94,7 +95,11 @@ impl Figure for WorkPrecision<'_> {
         for (panel, case) in panels.iter().zip(&cases) {
             let mine: Vec<&BenchRow> = rows
                 .iter()
-                .filter(|r| r.case == *case && r.status != "diverged" && r.error().is_finite())
+                .filter(|r| {
+                    r.case == *case
+                        && r.status != RunStatus::Diverged.as_str()
+                        && r.error().is_finite()
+                })
                 .collect();
             if mine.is_empty() {
                 continue;

@@ -1,8 +1,8 @@
 //! Progress and class counts of a sweep directory, finished or not.
 use crate::error::SweepError;
+use crate::phase_map::PhaseMap;
 use crate::plan::plan;
 use crate::store::Store;
-use crate::tables::point_classes;
 use crate::tally::tally;
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -56,12 +56,7 @@ pub fn status(dir: &Path) -> Result<SweepStatus, SweepError> {
     // A fold from +0.0 (an empty f64 sum is -0.0, printed "-0").
     let cpu_s = records.values().fold(0.0, |acc, r| acc + r.outcome.wall_s);
     // Point labels only over points whose runs are all done.
-    let point_counts = tally(
-        point_classes(&plan, &records)
-            .into_iter()
-            .filter(|(_, per_ic)| per_ic.iter().all(|x| x.is_some()))
-            .map(|(c, _)| c.label),
-    );
+    let point_counts = PhaseMap::new(&plan, &records).class_counts();
     Ok(SweepStatus {
         name: spec.name,
         output: dir.to_path_buf(),

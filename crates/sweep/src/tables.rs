@@ -1,7 +1,8 @@
 //! Parquet tables: `runs.parquet` (one row per run), `points.parquet` (one row per point),
 //! time series; each with key-value metadata (spec, its hash, versions, git commit).
 use crate::error::SweepError;
-use crate::phase::{classify_point, PointClass};
+use crate::phase::PointClass;
+use crate::phase_map::PhaseMap;
 use crate::plan::Plan;
 use crate::spec::SweepSpec;
 use crate::store::RunRecord;
@@ -177,60 +178,24 @@ pub fn runs_frame(
     Ok(DataFrame::new(rows.len(), cols)?)
 }
 
-/// Classification of every point of `plan` from the stored runs.
-pub fn point_classes(
-    plan: &Plan,
-    records: &HashMap<String, RunRecord>,
-) -> Vec<(PointClass, Vec<Option<String>>)> {
-    let mut by_point: Vec<Vec<Option<&RunRecord>>> =
-        vec![vec![None; plan.ic_names.len()]; plan.points.len()];
-    for t in plan.tasks() {
-        by_point[t.point][t.ic_index] = records.get(&t.key);
-    }
-    by_point
-        .iter()
-        .map(|runs| {
-            let class = classify_point(runs.iter().flatten().copied());
-            let per_ic = runs
-                .iter()
-                .map(|r| {
-                    r.map(|r| match r.outcome.status {
-                        droplet_solver::RunStatus::Diverged => "diverged".to_string(),
-                        _ => r
-                            .outcome
-                            .class
-                            .map(|c| c.as_str().to_string())
-                            .unwrap_or_default(),
-                    })
-                })
-                .collect();
-            (class, per_ic)
-        })
-        .collect()
-}
-
 /// The points table: coordinates, point class, the class from each initial condition.
-pub fn points_frame(
-    plan: &Plan,
-    records: &HashMap<String, RunRecord>,
-) -> Result<DataFrame, SweepError> {
-    let classes = point_classes(plan, records);
-    let n = plan.points.len();
+pub fn points_frame(map: &PhaseMap) -> Result<DataFrame, SweepError> {
+    let n = map.points.len();
     let mut cols = vec![
         Column::new("point".into(), (0..n as u32).collect::<Vec<u32>>()),
-        f64_col("eta_t", plan.points.iter().map(|p| p.0).collect()),
-        f64_col("kappa2", plan.points.iter().map(|p| p.1).collect()),
+        f64_col("eta_t", map.points.iter().map(|p| p.eta_t).collect()),
+        f64_col("kappa2", map.points.iter().map(|p| p.kappa2).collect()),
         str_col(
             "class",
-            classes.iter().map(|(c, _)| c.label.clone()).collect(),
+            map.points.iter().map(|p| p.class.label.clone()).collect(),
         ),
     ];
-    for (i, name) in plan.ic_names.iter().enumerate() {
+    for (i, name) in map.ic_names.iter().enumerate() {
         cols.push(Column::new(
             format!("class_{name}").as_str().into(),
-            classes
+            map.points
                 .iter()
-                .map(|(_, per)| per[i].clone())
+                .map(|p| p.per_ic[i].clone())
                 .collect::<Vec<Option<String>>>(),
         ));
     }
@@ -245,9 +210,9 @@ pub fn points_frame(
     ] {
         cols.push(Column::new(
             name.into(),
-            classes
+            map.points
                 .iter()
-                .map(|(c, _)| get(c) as u32)
+                .map(|p| get(&p.class) as u32)
                 .collect::<Vec<u32>>(),
         ));
     }
@@ -284,11 +249,12 @@ pub fn write_tables(
     spec: &SweepSpec,
     plan: &Plan,
     records: &HashMap<String, RunRecord>,
+    map: &PhaseMap,
 ) -> Result<Vec<PathBuf>, SweepError> {
     let meta = metadata(Some(&spec.source));
     let runs_path = store.dir().join("runs.parquet");
     let points_path = store.dir().join("points.parquet");
     write_parquet(&mut runs_frame(plan, records)?, &runs_path, meta.clone())?;
-    write_parquet(&mut points_frame(plan, records)?, &points_path, meta)?;
+    write_parquet(&mut points_frame(map)?, &points_path, meta)?;
     Ok(vec![runs_path, points_path])
 }

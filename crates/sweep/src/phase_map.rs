@@ -1,0 +1,86 @@
+//! The phase map of a sweep: every point with its class (from [`crate::phase`]) and the end
+//! of each of its runs, computed once from the plan and the stored runs, and read by the
+//! points table, `droplet status` and the picture.
+use crate::phase::{classify_point, PointClass, MISSING};
+use crate::plan::Plan;
+use crate::store::RunRecord;
+use crate::tally::tally;
+use droplet_solver::RunStatus;
+use std::collections::{BTreeMap, HashMap};
+
+/// One point of the map.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MapEntry {
+    pub eta_t: f64,
+    pub kappa2: f64,
+    pub class: PointClass,
+    /// How the run from each initial condition ended (spec order): its class, or
+    /// `diverged`; `None` while the run is not stored.
+    pub per_ic: Vec<Option<String>>,
+}
+
+impl MapEntry {
+    /// Every run of the point is stored.
+    pub fn complete(&self) -> bool {
+        self.per_ic.iter().all(Option::is_some)
+    }
+
+    /// The label to show: the point class, or `missing` while runs are outstanding.
+    pub fn shown_label(&self) -> &str {
+        if self.complete() {
+            &self.class.label
+        } else {
+            MISSING
+        }
+    }
+}
+
+/// All points of a plan, classified.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PhaseMap {
+    pub points: Vec<MapEntry>,
+    pub ic_names: Vec<String>,
+}
+
+/// How one run ended, as the points table shows it.
+fn run_end(r: &RunRecord) -> String {
+    match (r.outcome.status, r.outcome.class) {
+        (RunStatus::Diverged, _) | (_, None) => RunStatus::Diverged.as_str().to_string(),
+        (_, Some(c)) => c.as_str().to_string(),
+    }
+}
+
+impl PhaseMap {
+    /// Classifies every point of `plan` from `records` (runs not stored count as absent).
+    pub fn new(plan: &Plan, records: &HashMap<String, RunRecord>) -> Self {
+        let mut by_point: Vec<Vec<Option<&RunRecord>>> =
+            vec![vec![None; plan.ic_names.len()]; plan.points.len()];
+        for t in plan.tasks() {
+            by_point[t.point][t.ic_index] = records.get(&t.key);
+        }
+        let points = by_point
+            .iter()
+            .zip(&plan.points)
+            .map(|(runs, &(eta_t, kappa2))| MapEntry {
+                eta_t,
+                kappa2,
+                class: classify_point(runs.iter().flatten().copied()),
+                per_ic: runs.iter().map(|r| r.map(run_end)).collect(),
+            })
+            .collect();
+        Self {
+            points,
+            ic_names: plan.ic_names.clone(),
+        }
+    }
+
+    /// Count of each point class over the complete points.
+    pub fn class_counts(&self) -> BTreeMap<String, usize> {
+        tally(
+            self.points
+                .iter()
+                .filter(|p| p.complete())
+                .map(|p| p.class.label.clone()),
+        )
+    }
+}
