@@ -142,7 +142,12 @@ impl SolverSettings {
 
     pub fn validate(&self) -> Result<(), SolverError> {
         require(self.dt > 0.0, "dt", self.dt, "a finite number > 0")?;
-        require(self.t_max > 0.0, "t_max", self.t_max, "a finite number > 0")?;
+        require(
+            self.t_max >= self.dt,
+            "t_max",
+            self.t_max,
+            format!("a finite number >= dt = {}", self.dt),
+        )?;
         require(
             self.tol >= 0.0,
             "tol",
@@ -176,11 +181,12 @@ impl SolverSettings {
             "a finite number >= dt",
         )?;
         require(
-            self.n >= 16 && self.n.is_multiple_of(2),
+            (16..=4096).contains(&self.n) && self.n.is_multiple_of(2),
             "n",
             self.n as f64,
-            "an even integer >= 16",
+            "an even integer from 16 to 4096",
         )?;
+        require(self.h0 > 0.0, "h0", self.h0, "a finite number > 0")?;
         self.check_steps()
     }
 }

@@ -2,6 +2,7 @@
 //! steady state: branch, parameters, `v`, `s`, largest real part of the eigenvalues,
 //! stability) and `<stem>_events.parquet` (P / SN points), with the coefficients and the line
 //! in the metadata.
+use crate::axes::{ETA_T, KAPPA2};
 use crate::error::SweepError;
 use crate::tables::{metadata, write_parquet};
 use droplet_solver::reduced::bifurcation::{Axis, Event, SteadyPoint};
@@ -20,8 +21,8 @@ pub fn write(
     line: &str,
 ) -> Result<[PathBuf; 2], SweepError> {
     let x_label = match axis {
-        Axis::EtaT => "eta_t",
-        Axis::Kappa2 => "kappa2",
+        Axis::EtaT => ETA_T,
+        Axis::Kappa2 => KAPPA2,
     };
     let mut df = DataFrame::new(
         pts.len(),
@@ -33,11 +34,11 @@ pub fn write(
                     .collect::<Vec<_>>(),
             ),
             Column::new(
-                "eta_t".into(),
+                ETA_T.into(),
                 pts.iter().map(|p| p.eta_t).collect::<Vec<_>>(),
             ),
             Column::new(
-                "kappa2".into(),
+                KAPPA2.into(),
                 pts.iter().map(|p| p.kappa2).collect::<Vec<_>>(),
             ),
             Column::new("v".into(), pts.iter().map(|p| p.v).collect::<Vec<_>>()),

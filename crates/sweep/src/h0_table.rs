@@ -1,5 +1,6 @@
 //! The Appendix E fit's table, `h0_fit.parquet`: every deformation-only steady state
 //! `(kappa2, s)`, whether it entered the fit, and `p0`, `p2` in the metadata.
+use crate::axes::KAPPA2;
 use crate::error::SweepError;
 use crate::tables::{metadata, write_parquet};
 use droplet_solver::h0_fit::H0Fit;
@@ -12,7 +13,7 @@ pub fn write(dir: &Path, fit: &H0Fit, n: usize) -> Result<PathBuf, SweepError> {
         fit.points.len(),
         vec![
             Column::new(
-                "kappa2".into(),
+                KAPPA2.into(),
                 fit.points.iter().map(|p| p.0).collect::<Vec<_>>(),
             ),
             Column::new(

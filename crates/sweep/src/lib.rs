@@ -2,6 +2,7 @@
 //! with resume, parallel execution, point classification, Parquet tables and pictures.
 //! Data flows one way: spec -> plan -> runs (store) -> tables -> pictures.
 pub mod atomic;
+pub mod axes;
 pub mod bench;
 pub mod bench_run;
 pub mod bench_table;

@@ -1,6 +1,7 @@
 //! The pictures of a sweep from its runs: the phase map (Fig. 2a) with the reduced model's
 //! analytic boundaries (and their table, `boundaries.parquet`), and for a 1-D sweep the
 //! bifurcation lines (Fig. 2b).
+use crate::axes::{ETA_T, KAPPA2};
 use crate::error::SweepError;
 use crate::phase_map::PhaseMap;
 use crate::plan::plan;
@@ -82,8 +83,8 @@ fn lines(
     records: &std::collections::HashMap<String, crate::store::RunRecord>,
 ) -> Result<Vec<PathBuf>, SweepError> {
     let (along_eta, fixed) = match (spec.eta_t.len(), spec.kappa2.len()) {
-        (n, 1) if n > 1 => (true, format!("kappa2 = {}", spec.kappa2[0])),
-        (1, n) if n > 1 => (false, format!("eta_t = {}", spec.eta_t[0])),
+        (n, 1) if n > 1 => (true, format!("{KAPPA2} = {}", spec.kappa2[0])),
+        (1, n) if n > 1 => (false, format!("{ETA_T} = {}", spec.eta_t[0])),
         _ => return Ok(Vec::new()),
     };
     let markers: Vec<Marker> = plan
@@ -118,7 +119,7 @@ fn lines(
         dir,
         "bifurcation_lines",
         &title,
-        if along_eta { "eta_t" } else { "kappa2" },
+        if along_eta { ETA_T } else { KAPPA2 },
         &markers,
         &[],
         &[],

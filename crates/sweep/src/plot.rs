@@ -1,6 +1,7 @@
 //! Pictures: the phase map (paper Fig. 2a), the single-run panels (Fig. 1), `v` and `s`
 //! against a parameter (Fig. 2b, 3b) and the Appendix E fit, each a [`Figure`] drawn as PNG
 //! and SVG by [`render`].
+use crate::axes::{ETA_T, KAPPA2};
 use crate::branch_lines::BranchLine;
 use crate::error::SweepError;
 use crate::phase::{DIVERGED, MISSING, NOT_CLASSIFIED};
@@ -151,8 +152,8 @@ impl Figure for PhaseMap<'_> {
         chart
             .configure_mesh()
             .disable_mesh()
-            .x_desc("eta_t")
-            .y_desc("kappa2")
+            .x_desc(ETA_T)
+            .y_desc(KAPPA2)
             .label_style(("sans-serif", 15))
             .axis_desc_style(("sans-serif", 18))
             .x_label_formatter(&|v| format!("{v:.3}"))
@@ -642,7 +643,7 @@ impl Figure for H0Picture {
         chart
             .configure_mesh()
             .disable_mesh()
-            .x_desc("kappa2")
+            .x_desc(KAPPA2)
             .y_desc("s")
             .label_style(("sans-serif", 14))
             .axis_desc_style(("sans-serif", 16))

@@ -2,6 +2,7 @@
 //! written atomically (temporary file, fsync, rename) the moment the run finishes, and an
 //! exclusive lock so that two sweeps cannot write one directory at once.
 use crate::atomic::{create_output_dir, write_atomic};
+use crate::axes::{ETA_T, KAPPA2};
 use crate::error::SweepError;
 use crate::merge_report::MergeReport;
 use crate::plan::Plan;
@@ -218,7 +219,7 @@ impl Store {
             missing += 1;
             if examples.len() < 20 {
                 examples.push(format!(
-                    "eta_t = {}, kappa2 = {}, ic = {}{why}",
+                    "{ETA_T} = {}, {KAPPA2} = {}, ic = {}{why}",
                     t.params.eta_t, t.params.kappa2, t.ic.name
                 ));
             }

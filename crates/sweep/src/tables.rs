@@ -1,5 +1,6 @@
 //! Parquet tables: `runs.parquet` (one row per run), `points.parquet` (one row per point),
 //! time series; each with key-value metadata (spec, its hash, versions, git commit).
+use crate::axes::{ETA_T, KAPPA2};
 use crate::error::SweepError;
 use crate::phase::PointClass;
 use crate::phase_map::PhaseMap;
@@ -92,8 +93,8 @@ pub fn runs_frame(
                 .map(|(t, _)| t.point as u32)
                 .collect::<Vec<u32>>(),
         ),
-        f64_col("eta_t", f(&|r| r.params.eta_t)),
-        f64_col("kappa2", f(&|r| r.params.kappa2)),
+        f64_col(ETA_T, f(&|r| r.params.eta_t)),
+        f64_col(KAPPA2, f(&|r| r.params.kappa2)),
         str_col("ic", rows.iter().map(|(t, _)| t.ic.name.clone()).collect()),
         f64_col("ic_vx", f(&|r| r.ic.vx)),
         f64_col("ic_vy", f(&|r| r.ic.vy)),
@@ -183,8 +184,8 @@ pub fn points_frame(map: &PhaseMap) -> Result<DataFrame, SweepError> {
     let n = map.points.len();
     let mut cols = vec![
         Column::new("point".into(), (0..n as u32).collect::<Vec<u32>>()),
-        f64_col("eta_t", map.points.iter().map(|p| p.eta_t).collect()),
-        f64_col("kappa2", map.points.iter().map(|p| p.kappa2).collect()),
+        f64_col(ETA_T, map.points.iter().map(|p| p.eta_t).collect()),
+        f64_col(KAPPA2, map.points.iter().map(|p| p.kappa2).collect()),
         str_col(
             "class",
             map.points.iter().map(|p| p.class.label.clone()).collect(),
@@ -237,8 +238,8 @@ pub fn boundaries_frame(
         n,
         vec![
             str_col("curve", name),
-            f64_col("eta_t", e),
-            f64_col("kappa2", k),
+            f64_col(ETA_T, e),
+            f64_col(KAPPA2, k),
         ],
     )?)
 }

@@ -1,0 +1,123 @@
+//! What every section parser of a spec needs: the file and text (for the line of a key),
+//! typed accessors that fail with the key path, the value and what is allowed, and the spec
+//! key of a solver error's field.
+use crate::axes::AXES;
+use crate::error::SpecError;
+use serde_yaml::Value;
+
+/// Where a spec came from, for error messages.
+pub(super) struct Ctx<'a> {
+    pub file: &'a str,
+    pub text: &'a str,
+}
+
+impl Ctx<'_> {
+    pub fn err(
+        &self,
+        path: &[&str],
+        value: impl std::fmt::Display,
+        allowed: impl Into<String>,
+    ) -> SpecError {
+        SpecError {
+            file: self.file.to_string(),
+            path: path.join("."),
+            line: locate(self.text, path),
+            value: value.to_string(),
+            allowed: allowed.into(),
+        }
+    }
+
+    pub fn mapping<'v>(
+        &self,
+        v: &'v Value,
+        path: &[&str],
+        keys: &[&str],
+    ) -> Result<&'v serde_yaml::Mapping, SpecError> {
+        let map = v
+            .as_mapping()
+            .ok_or_else(|| self.err(path, show(v), "a mapping (key: value)"))?;
+        for k in map.keys() {
+            let name = k.as_str().unwrap_or("");
+            if !keys.contains(&name) {
+                let mut p = path.to_vec();
+                p.push(name);
+                return Err(self.err(
+                    &p,
+                    format!("unknown key `{}`", show(k)),
+                    format!("one of: {}", keys.join(", ")),
+                ));
+            }
+        }
+        Ok(map)
+    }
+
+    pub fn number(
+        &self,
+        v: &Value,
+        path: &[&str],
+        ok: impl Fn(f64) -> bool,
+        allowed: &str,
+    ) -> Result<f64, SpecError> {
+        match v.as_f64() {
+            Some(x) if x.is_finite() && ok(x) => Ok(x),
+            _ => Err(self.err(path, show(v), allowed)),
+        }
+    }
+}
+
+/// Renders a YAML value compactly for messages.
+pub(super) fn show(v: &Value) -> String {
+    match v {
+        Value::String(s) => format!("{s:?}"),
+        Value::Null => "null (empty)".into(),
+        other => serde_yaml::to_string(other)
+            .map(|s| s.trim().replace('\n', " "))
+            .unwrap_or_else(|_| "?".into()),
+    }
+}
+
+/// 1-based line of the key at `path` in block-style YAML (the deepest key found).
+pub fn locate(text: &str, path: &[&str]) -> Option<usize> {
+    let mut depth = 0;
+    let mut indent_at_depth: Vec<usize> = Vec::new();
+    let mut best = None;
+    for (no, line) in text.lines().enumerate() {
+        let trimmed = line.trim_start();
+        if trimmed.is_empty() || trimmed.starts_with('#') {
+            continue;
+        }
+        let indent = line.len() - trimmed.len();
+        while let Some(&i) = indent_at_depth.last() {
+            if indent <= i {
+                indent_at_depth.pop();
+                depth = indent_at_depth.len();
+            } else {
+                break;
+            }
+        }
+        if depth < path.len() {
+            let key = path[depth];
+            let matches = trimmed
+                .strip_prefix(key)
+                .is_some_and(|rest| rest.trim_start().starts_with(':'));
+            if matches {
+                best = Some(no + 1);
+                indent_at_depth.push(indent);
+                depth += 1;
+                if depth == path.len() {
+                    return best;
+                }
+            }
+        }
+    }
+    best
+}
+
+/// The spec key of a field named in a [`droplet_solver::SolverError::InvalidParameter`].
+pub(super) fn key_of(name: &str) -> [&str; 2] {
+    match name {
+        "eta2" | "radius" | "sigma" | "box_len" | "mass" => ["params", name],
+        n if AXES.contains(&n) => ["grid", name],
+        _ => ["solver", name],
+    }
+}

@@ -1,0 +1,49 @@
+//! The `initial_conditions` section: names of the paper's conditions or custom ones, each once
+//! (default: the paper's four, i-iv).
+use super::context::{show, Ctx};
+use crate::error::SpecError;
+use droplet_solver::{InitialCondition, SolverError};
+use serde_yaml::Mapping;
+
+/// The `initial_conditions` section.
+pub(super) fn parse(ctx: &Ctx, top: &Mapping) -> Result<Vec<InitialCondition>, SpecError> {
+    let path = ["initial_conditions"];
+    let Some(v) = top.get("initial_conditions") else {
+        return Ok(droplet_solver::initial::PAPER_FOUR
+            .iter()
+            .map(|n| InitialCondition::parse(n).expect("named"))
+            .collect());
+    };
+    let seq = v.as_sequence().filter(|s| !s.is_empty()).ok_or_else(|| {
+        ctx.err(
+            &path,
+            show(v),
+            "a non-empty list of i, ii, iii, iv, i', ii', custom:vx,vy,a2,b2",
+        )
+    })?;
+    let mut out: Vec<InitialCondition> = Vec::new();
+    for item in seq {
+        let s = item.as_str().ok_or_else(|| {
+            ctx.err(
+                &path,
+                show(item),
+                "a name such as i or ii' (quote names with ')",
+            )
+        })?;
+        let ic = InitialCondition::parse(s).map_err(|e| {
+            ctx.err(
+                &path,
+                show(item),
+                match e {
+                    SolverError::InvalidInitialCondition { reason, .. } => reason,
+                    _ => "i, ii, iii, iv, i', ii' or custom:vx,vy,a2,b2 with s < 1".into(),
+                },
+            )
+        })?;
+        if out.iter().any(|o| o.name == ic.name) {
+            return Err(ctx.err(&path, show(item), "each initial condition once"));
+        }
+        out.push(ic);
+    }
+    Ok(out)
+}

@@ -1,0 +1,194 @@
+//! Sweep specs (YAML): strict parsing with the file, key path, line, bad value and what is
+//! allowed in every error.
+//!
+//! ```yaml
+//! name: smoke                 # [A-Za-z0-9_.-]+ ; default: the file's stem
+//! output: out/smoke           # default: out/<name>
+//! model: pde                  # pde (Sect. 3) or ode (reduced model, eqs. 58-59)
+//! params: {eta2: 0.1, radius: 1, sigma: 0.03, box_len: 7, mass: 0.1}   # paper defaults
+//! grid:
+//!   eta_t: {start: 0.07, stop: 0.10, step: 0.01}    # inclusive range ...
+//!   kappa2: [0.11, 0.12]                            # ... or an explicit list
+//! initial_conditions: [i, ii, iii, iv]              # default: the paper's four
+//! solver: {scheme: spectral, n: 192, dt: 0.02, tol: 1.0e-4, dt_max: 0.25, t_max: 2000,
+//!          steady_tol: 1.0e-6, steady_window: 0.1}
+//!                             # tol: adaptive stepping (0 = fixed step dt; spectral only)
+//!                             # ode: dt default 0.05, and h0 (default 0.1436)
+//! ```
+//!
+//! One file per section: [`context`] (locating keys, typed accessors, error paths),
+//! [`grid`], [`params`], [`initial`], [`solver`]. Range checks are the solver crate's own
+//! (`ModelParams::validate`, `SolverSettings::validate`, `limits::check_run`), the same as for
+//! `droplet simulate`.
+mod context;
+mod grid;
+mod initial;
+mod params;
+mod solver;
+
+use crate::error::SpecError;
+use context::{show, Ctx};
+use droplet_solver::{InitialCondition, ModelKind, ModelParams, SolverSettings};
+use serde::Serialize;
+use serde_yaml::Value;
+use std::path::{Path, PathBuf};
+
+pub use context::locate;
+pub use grid::{round12, MAX_AXIS_POINTS};
+
+/// A validated sweep spec.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SweepSpec {
+    pub name: String,
+    pub output: PathBuf,
+    /// Fixed parameters; `eta_t` and `kappa2` are overwritten per point.
+    pub params: ModelParams,
+    pub eta_t: Vec<f64>,
+    pub kappa2: Vec<f64>,
+    pub initial_conditions: Vec<InitialCondition>,
+    pub solver: SolverSettings,
+    /// The spec's text, stored in the output metadata.
+    #[serde(skip)]
+    pub source: String,
+}
+
+/// Reads and validates a spec file. A file that cannot be read (missing, a directory, not
+/// UTF-8) is a spec error too (exit code 2), naming the file and why.
+pub fn load(path: &Path) -> Result<SweepSpec, crate::SweepError> {
+    let text = std::fs::read_to_string(path).map_err(|e| SpecError {
+        file: path.display().to_string(),
+        path: "(file)".into(),
+        line: None,
+        value: format!("cannot be read ({e})"),
+        allowed: "a readable UTF-8 YAML file".into(),
+    })?;
+    let stem = path
+        .file_stem()
+        .and_then(|s| s.to_str())
+        .unwrap_or("sweep")
+        .to_string();
+    Ok(parse(&text, &path.display().to_string(), &stem)?)
+}
+
+/// The spec stored in a sweep directory.
+pub fn load_stored(dir: &Path) -> Result<SweepSpec, crate::SweepError> {
+    let path = dir.join("spec.yaml");
+    let text = std::fs::read_to_string(&path).map_err(|e| crate::SweepError::io(&path, e))?;
+    Ok(parse(&text, &path.display().to_string(), "sweep")?)
+}
+
+/// Parses and validates a spec's text; `file` names it in errors, `stem` is the default name.
+pub fn parse(text: &str, file: &str, stem: &str) -> Result<SweepSpec, SpecError> {
+    let ctx = Ctx { file, text };
+    let doc: Value = serde_yaml::from_str(text).map_err(|e| SpecError {
+        file: file.to_string(),
+        path: "(document)".into(),
+        line: e.location().map(|l| l.line()),
+        value: "not valid YAML".into(),
+        allowed: e.to_string(),
+    })?;
+    let top = ctx.mapping(
+        &doc,
+        &[],
+        &[
+            "name",
+            "output",
+            "model",
+            "params",
+            "grid",
+            "initial_conditions",
+            "solver",
+        ],
+    )?;
+
+    let name = match top.get("name") {
+        None => stem.to_string(),
+        Some(v) => {
+            let s = v.as_str().unwrap_or("");
+            let ok = !s.is_empty()
+                && s.chars()
+                    .all(|c| c.is_ascii_alphanumeric() || "_.-".contains(c));
+            if !ok {
+                return Err(ctx.err(
+                    &["name"],
+                    show(v),
+                    "a non-empty name of letters, digits, _ . -",
+                ));
+            }
+            s.to_string()
+        }
+    };
+    let output = match top.get("output") {
+        None => PathBuf::from("out").join(&name),
+        Some(v) => match v.as_str() {
+            Some(s) if !s.trim().is_empty() => PathBuf::from(s),
+            _ => return Err(ctx.err(&["output"], show(v), "a directory path (string)")),
+        },
+    };
+    let model = match top.get("model") {
+        None => ModelKind::Pde,
+        Some(v) => match v.as_str() {
+            Some("pde") => ModelKind::Pde,
+            Some("ode") => ModelKind::Ode,
+            _ => return Err(ctx.err(&["model"], show(v), "pde or ode")),
+        },
+    };
+
+    let params = params::parse(&ctx, top)?;
+    let (eta_t, kappa2) = grid::parse(&ctx, top)?;
+    let initial_conditions = initial::parse(&ctx, top)?;
+    let solver = solver::parse(&ctx, top, model, &params)?;
+    Ok(SweepSpec {
+        name,
+        output,
+        params,
+        eta_t,
+        kappa2,
+        initial_conditions,
+        solver,
+        source: text.to_string(),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const GOOD: &str = "name: t\ngrid:\n  eta_t: {start: 0.07, stop: 0.1, step: 0.01}\n  kappa2: [0.11, 0.12]\nsolver:\n  n: 64\n  dt: 0.02\n";
+
+    #[test]
+    fn parses_a_good_spec() {
+        let s = parse(GOOD, "t.yaml", "t").unwrap();
+        assert_eq!(s.eta_t, vec![0.07, 0.08, 0.09, 0.1]);
+        assert_eq!(s.kappa2, vec![0.11, 0.12]);
+        assert_eq!(s.initial_conditions.len(), 4);
+        assert_eq!(s.solver.n, 64);
+        assert_eq!(s.output, PathBuf::from("out/t"));
+    }
+
+    #[test]
+    fn errors_name_the_key_and_line() {
+        let bad = GOOD.replace("step: 0.01", "step: -0.01");
+        let e = parse(&bad, "t.yaml", "t").unwrap_err();
+        assert_eq!(e.path, "grid.eta_t.step");
+        assert_eq!(e.line, Some(3));
+        let bad = GOOD.replace("  n: 64", "  nn: 64");
+        let e = parse(&bad, "t.yaml", "t").unwrap_err();
+        assert_eq!(e.path, "solver.nn");
+        assert_eq!(e.line, Some(6));
+    }
+
+    #[test]
+    fn ode_model_has_its_own_defaults() {
+        let s = parse(
+            &format!("model: ode\n{GOOD}").replace("  dt: 0.02\n", ""),
+            "t.yaml",
+            "t",
+        )
+        .unwrap();
+        assert_eq!(s.solver.model, ModelKind::Ode);
+        assert_eq!(s.solver.dt, 0.05);
+        let e = parse(&format!("model: fem\n{GOOD}"), "t.yaml", "t").unwrap_err();
+        assert_eq!((e.path.as_str(), e.line), ("model", Some(1)));
+    }
+}

@@ -1,0 +1,80 @@
+//! The `solver` section: the types are read here (a scheme name, an integer `n`, finite
+//! numbers); every range and consistency check is `SolverSettings::validate` and
+//! `droplet_solver::limits::check_run`, the same checks `droplet simulate` makes, with the
+//! offending field mapped back to its key.
+use super::context::{key_of, show, Ctx};
+use crate::error::SpecError;
+use droplet_solver::error::show_number;
+use droplet_solver::{ModelKind, ModelParams, SchemeKind, SolverError, SolverSettings};
+use serde_yaml::Mapping;
+
+/// The keys of the section.
+const KEYS: [&str; 9] = [
+    "scheme",
+    "n",
+    "dt",
+    "tol",
+    "dt_max",
+    "t_max",
+    "steady_tol",
+    "steady_window",
+    "h0",
+];
+
+/// The `solver` section for `model`, validated against `params`.
+pub(super) fn parse(
+    ctx: &Ctx,
+    top: &Mapping,
+    model: ModelKind,
+    params: &ModelParams,
+) -> Result<SolverSettings, SpecError> {
+    let mut solver = match model {
+        ModelKind::Pde => SolverSettings::default(),
+        ModelKind::Ode => SolverSettings::ode(),
+    };
+    if let Some(v) = top.get("solver") {
+        let m = ctx.mapping(v, &["solver"], &KEYS)?;
+        if let Some(x) = m.get("scheme") {
+            solver.scheme = x
+                .as_str()
+                .and_then(|s| s.parse::<SchemeKind>().ok())
+                .ok_or_else(|| ctx.err(&["solver", "scheme"], show(x), "spectral or paper-fd"))?;
+            if solver.scheme == SchemeKind::PaperFd {
+                let fd = SolverSettings::paper_fd();
+                (solver.n, solver.dt, solver.tol) = (fd.n, fd.dt, fd.tol);
+            }
+        }
+        if let Some(x) = m.get("n") {
+            solver.n = x
+                .as_u64()
+                .and_then(|n| usize::try_from(n).ok())
+                .ok_or_else(|| ctx.err(&["solver", "n"], show(x), "an even integer"))?;
+        }
+        for key in &KEYS[2..] {
+            if let Some(x) = m.get(*key) {
+                let val = ctx.number(x, &["solver", key], |_| true, "a finite number")?;
+                match *key {
+                    "dt" => solver.dt = val,
+                    "tol" => solver.tol = val,
+                    "dt_max" => solver.dt_max = val,
+                    "t_max" => solver.t_max = val,
+                    "steady_tol" => solver.steady_tol = val,
+                    "steady_window" => solver.steady_window = val,
+                    _ => solver.h0 = val,
+                }
+            }
+        }
+    }
+    // Step counts, the droplet resolved by the grid, the explicit scheme's stability limit.
+    if let Err(SolverError::InvalidParameter {
+        name,
+        value,
+        allowed,
+    }) = solver
+        .validate()
+        .and_then(|()| droplet_solver::limits::check_run(params, &solver))
+    {
+        return Err(ctx.err(&key_of(name), show_number(value), allowed));
+    }
+    Ok(solver)
+}
