@@ -22,7 +22,7 @@ pub struct Args {
     /// Initial condition: i, ii, iii, iv (paper Sect. 3), i', ii' (Fig. 2b; also ip, iip), or custom:vx,vy,a2,b2.
     #[arg(long, default_value = "i")]
     ic: String,
-    /// Inertia m (0 = overdamped; design.md Decision 1).
+    /// Inertia m (0 = overdamped; 0.1 reproduces the paper's IC/MD bistability).
     #[arg(long, default_value_t = 0.1)]
     mass: f64,
     /// Mode-2 friction eta2.

@@ -2,7 +2,8 @@
 //!
 //! On the grid `F = -dx^2 Sum grad(u) Theta`, `Ga = -dx^2 Sum (X u_x - Y u_y) Theta`,
 //! `Gb = -dx^2 Sum (Y u_x + X u_y) Theta` with the spectral gradient of `u` (Nyquist mode
-//! zeroed), as design.md prescribes. By Parseval these sums are evaluated in Fourier space:
+//! zeroed), the discretisation the design notes (Sect. 2) prescribe: `grad u` by spectral
+//! derivative, multiplied by `Theta` and summed over the droplet's window only. By Parseval these sums are evaluated in Fourier space:
 //! `Sum f g = Sum_k f_hat conj(g_hat)`, so with the transforms of `Theta`, `X Theta`, `Y Theta`
 //! no inverse transform is needed. Measured: at N = 192 these forces are within 1e-5 (relative)
 //! of the N = 512 values, where integrating by parts against the analytic `grad Theta` was
@@ -17,7 +18,9 @@ use crate::grid::Grid;
 use crate::shape::ShapeParams;
 use rustfft::num_complex::Complex64;
 
-/// Forces on the droplet and the numerical area of `Theta` (design.md Decision 2).
+/// Forces on the droplet and the numerical area `A = Sum(Theta) dx^2` of `Theta` (design notes,
+/// Decision 2: the numerical area, recomputed with the shape, reproduces the paper's Appendix E
+/// fit; the constant `pi R^2` gives `p2 ~ 0.09` instead of 0.144).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Forces {
     pub fx: f64,
