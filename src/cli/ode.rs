@@ -1,11 +1,9 @@
 //! `droplet ode`: the reduced model's coefficients and bifurcation diagrams (Fig. 3b).
 use super::{print_json, CliError};
 use clap::Subcommand;
-use droplet_solver::reduced::bifurcation::{diagram, Axis, Branch};
+use droplet_solver::reduced::bifurcation::{diagram, Axis};
 use droplet_solver::reduced::Coefficients;
 use droplet_solver::ModelParams;
-use droplet_sweep::branch_lines::{branch_lines, BranchSample};
-use droplet_sweep::plot::{vs_parameter, Marker};
 use std::path::PathBuf;
 
 /// The reduced ODE model (paper eqs. 58-59): coefficients and bifurcation diagrams. For ODE
@@ -147,13 +145,6 @@ pub fn run(a: Args) -> Result<(), CliError> {
                 .collect();
             let (pts, events) = diagram(&c, &base, axis, &values);
             let stem = format!("bifurcation_{}", fixed_label.replace(" = ", "_"));
-            let x_of = |p: &droplet_solver::reduced::bifurcation::SteadyPoint| {
-                if axis == Axis::EtaT {
-                    p.eta_t
-                } else {
-                    p.kappa2
-                }
-            };
             let [p1, p2] = droplet_sweep::bifurcation_table::write(
                 &out,
                 &stem,
@@ -163,56 +154,16 @@ pub fn run(a: Args) -> Result<(), CliError> {
                 &c,
                 &format!("{fixed_label}, {x_label} from {from} to {to}"),
             )?;
-            // Branches as lines (solid stable, dashed unstable); markers only at P / SN.
-            let samples: Vec<BranchSample> = pts
-                .iter()
-                .map(|p| BranchSample {
-                    key: p.branch.as_str().to_string(),
-                    x: x_of(p),
-                    v: p.v,
-                    s: p.s,
-                    stable: p.stable,
-                })
-                .collect();
-            let at: Vec<(String, f64)> = events
-                .iter()
-                .map(|e| (e.branch.as_str().to_string(), e.at))
-                .collect();
-            let lines = branch_lines(&samples, &at);
-            let markers: Vec<Marker> = events
-                .iter()
-                .filter_map(|e| {
-                    // The state of the event's branch nearest to the event.
-                    samples
-                        .iter()
-                        .filter(|p| p.key == e.branch.as_str())
-                        .min_by(|a, b| (a.x - e.at).abs().total_cmp(&(b.x - e.at).abs()))
-                        .map(|p| Marker {
-                            x: e.at,
-                            v: p.v,
-                            s: p.s,
-                            key: p.key.clone(),
-                            bold: true,
-                        })
-                })
-                .collect();
-            // Label each bifurcation once (the first of a cluster).
-            let mut vlines: Vec<(f64, String)> = Vec::new();
-            for e in &events {
-                if e.branch == Branch::MdMajor {
-                    continue;
-                }
-                if !vlines
-                    .iter()
-                    .any(|(x, l)| (x - e.at).abs() < (to - from) * 0.004 && l == e.kind)
-                {
-                    vlines.push((e.at, e.kind.to_string()));
-                }
-            }
-            let title = format!(
-                "ODE model, {fixed_label}: solid = stable, dashed = unstable, dots = P / SN"
-            );
-            let mut files = vs_parameter(&out, &stem, &title, x_label, &markers, &lines, &vlines)?;
+            let mut files = droplet_sweep::pictures::ode_bifurcation(
+                &out,
+                &stem,
+                &pts,
+                &events,
+                axis,
+                &format!(
+                    "ODE model, {fixed_label}: solid = stable, dashed = unstable, dots = P / SN"
+                ),
+            )?;
             files.extend([p1, p2]);
             if json {
                 print_json(

@@ -2,12 +2,14 @@
 //! analytic boundaries (and their table, `boundaries.parquet`), and for a 1-D sweep the
 //! bifurcation lines (Fig. 2b).
 use crate::axes::{ETA_T, KAPPA2};
+use crate::branch_lines::{branch_lines, BranchSample};
 use crate::error::SweepError;
 use crate::phase_map::PhaseMap;
 use crate::plan::plan;
 use crate::plot::{phase_map, vs_parameter, Curve, MapPoint, Marker};
 use crate::spec::SweepSpec;
 use crate::store::Store;
+use droplet_solver::reduced::bifurcation::{Axis, Branch, Event, SteadyPoint};
 use droplet_solver::reduced::boundaries::boundaries;
 use droplet_solver::reduced::Coefficients;
 use std::path::{Path, PathBuf};
@@ -124,4 +126,89 @@ fn lines(
         &[],
         &[],
     )
+}
+
+/// The reduced model's bifurcation diagram along a line (Fig. 3b style) as `<stem>.png` and
+/// `.svg` in `dir`: branches as lines (solid stable, dashed unstable, closed up at their
+/// events), markers only at the P / SN points, each bifurcation labelled once.
+pub fn ode_bifurcation(
+    dir: &Path,
+    stem: &str,
+    pts: &[SteadyPoint],
+    events: &[Event],
+    axis: Axis,
+    title: &str,
+) -> Result<Vec<PathBuf>, SweepError> {
+    let x_label = match axis {
+        Axis::EtaT => ETA_T,
+        Axis::Kappa2 => KAPPA2,
+    };
+    let x_of = |p: &SteadyPoint| {
+        if axis == Axis::EtaT {
+            p.eta_t
+        } else {
+            p.kappa2
+        }
+    };
+    let (lo, hi) = pts
+        .iter()
+        .map(x_of)
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+            (a.min(x), b.max(x))
+        });
+    let span = hi - lo;
+    let x_of = |p: &droplet_solver::reduced::bifurcation::SteadyPoint| {
+        if axis == Axis::EtaT {
+            p.eta_t
+        } else {
+            p.kappa2
+        }
+    };
+    // Branches as lines (solid stable, dashed unstable); markers only at P / SN.
+    let samples: Vec<BranchSample> = pts
+        .iter()
+        .map(|p| BranchSample {
+            key: p.branch.as_str().to_string(),
+            x: x_of(p),
+            v: p.v,
+            s: p.s,
+            stable: p.stable,
+        })
+        .collect();
+    let at: Vec<(String, f64)> = events
+        .iter()
+        .map(|e| (e.branch.as_str().to_string(), e.at))
+        .collect();
+    let lines = branch_lines(&samples, &at);
+    let markers: Vec<Marker> = events
+        .iter()
+        .filter_map(|e| {
+            // The state of the event's branch nearest to the event.
+            samples
+                .iter()
+                .filter(|p| p.key == e.branch.as_str())
+                .min_by(|a, b| (a.x - e.at).abs().total_cmp(&(b.x - e.at).abs()))
+                .map(|p| Marker {
+                    x: e.at,
+                    v: p.v,
+                    s: p.s,
+                    key: p.key.clone(),
+                    bold: true,
+                })
+        })
+        .collect();
+    // Label each bifurcation once (the first of a cluster).
+    let mut vlines: Vec<(f64, String)> = Vec::new();
+    for e in events {
+        if e.branch == Branch::MdMajor {
+            continue;
+        }
+        if !vlines
+            .iter()
+            .any(|(x, l)| (x - e.at).abs() < span * 0.004 && l == e.kind)
+        {
+            vlines.push((e.at, e.kind.to_string()));
+        }
+    }
+    vs_parameter(dir, stem, title, x_label, &markers, &lines, &vlines)
 }
