@@ -57,55 +57,25 @@ pub fn run(a: Args) -> Result<(), CliError> {
     }
     droplet_sweep::plan::check_size(&sweep, a.max_runs)?;
     let out = abs(&a.out.clone().unwrap_or_else(|| sweep.output.clone()));
-    let spec_path = abs(&a.spec);
     let exe = match &a.droplet {
         Some(p) => abs(p),
         None => {
             std::env::current_exe().map_err(|e| CliError::from(SweepError::io("droplet", e)))?
         }
     };
-    let dir = out.join("slurm");
-    std::fs::create_dir_all(&dir).map_err(|e| {
-        CliError::from(SweepError::Output {
-            path: dir.clone(),
-            source: e,
-        })
+    let scripts = droplet_sweep::slurm::write_scripts(&droplet_sweep::slurm::SlurmJob {
+        name: sweep.name.clone(),
+        spec: abs(&a.spec),
+        out: out.clone(),
+        exe,
+        shards: a.shards,
+        cpus: a.cpus,
+        partition: a.partition.clone(),
+        time: a.time.clone(),
+        mem: a.mem.clone(),
+        max_runs: a.max_runs,
     })?;
-    let partition = a
-        .partition
-        .as_ref()
-        .map(|p| format!("#SBATCH --partition={p}\n"))
-        .unwrap_or_default();
-    let header = |name: &str, extra: &str| {
-        format!(
-            "#!/bin/bash\n#SBATCH --job-name={name}\n{partition}#SBATCH --time={}\n#SBATCH --mem={}\n#SBATCH --output={}/%x-%A_%a.out\n{extra}set -euo pipefail\n",
-            a.time,
-            a.mem,
-            dir.display()
-        )
-    };
-    let sweep_script = format!(
-        "{}# Shard $SLURM_ARRAY_TASK_ID of {n}: finished runs are skipped, so resubmitting resumes.\n\"{}\" sweep \"{}\" --out \"{}\" --shard \"$SLURM_ARRAY_TASK_ID/{n}\" --jobs \"${{SLURM_CPUS_PER_TASK:-1}}\" --max-runs {max_runs} --json\n",
-        header(&format!("droplet-{}", sweep.name), &format!("#SBATCH --array=0-{}\n#SBATCH --cpus-per-task={}\n", a.shards - 1, a.cpus)),
-        exe.display(),
-        spec_path.display(),
-        out.display(),
-        n = a.shards,
-        max_runs = a.max_runs,
-    );
-    let merge_script = format!(
-        "{}\"{}\" merge \"{}\" --json\n",
-        header(
-            &format!("droplet-{}-merge", sweep.name),
-            "#SBATCH --cpus-per-task=1\n"
-        ),
-        exe.display(),
-        out.display()
-    );
-    let sweep_path = dir.join("sweep.sbatch");
-    let merge_path = dir.join("merge.sbatch");
-    droplet_sweep::atomic::write_atomic(&sweep_path, sweep_script.as_bytes())?;
-    droplet_sweep::atomic::write_atomic(&merge_path, merge_script.as_bytes())?;
+    let (sweep_path, merge_path) = (scripts[0].clone(), scripts[1].clone());
     let mut jobs = Vec::new();
     if a.submit {
         let sbatch = |args: &[&str]| -> Result<String, CliError> {

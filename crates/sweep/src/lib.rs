@@ -23,6 +23,7 @@ pub mod progress;
 pub mod render;
 pub mod series_table;
 pub mod shard;
+pub mod slurm;
 pub mod spec;
 pub mod status;
 pub mod store;
