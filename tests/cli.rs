@@ -1,15 +1,10 @@
 //! End-to-end tests through the `droplet` binary.
 mod common;
 
-use common::{droplet, read, table_without_wall};
+use common::{droplet, json, read, run, table_without_wall, write_spec};
 use polars::prelude::*;
-use std::path::{Path, PathBuf};
-use std::process::{Output, Stdio};
+use std::process::Stdio;
 use std::time::Duration;
-
-fn run(args: &[&str]) -> Output {
-    droplet().args(args).output().expect("binary runs")
-}
 
 /// A tiny sweep (coarse grid, N = 32, fixed steps so that it lasts long enough to be
 /// interrupted): seconds, enough for resume and locking tests.
@@ -24,21 +19,6 @@ solver:
   tol: 0
   t_max: 150
 ";
-
-fn write_spec(dir: &Path, name: &str, text: &str) -> PathBuf {
-    let p = dir.join(name);
-    std::fs::write(&p, text).unwrap();
-    p
-}
-
-fn json(out: &Output) -> serde_json::Value {
-    assert!(
-        out.status.success(),
-        "stderr: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).expect("one JSON object")
-}
 
 #[test]
 fn smoke_sweep_produces_typed_tables_and_a_picture() {

@@ -14,29 +14,10 @@
 //! (`inputs.md`, `kills.md`): the README's reliability section quotes them.
 mod common;
 
-use common::{droplet, table_without_wall};
+use common::{droplet, json, run, table_without_wall, write_spec};
 use std::path::{Path, PathBuf};
 use std::process::{Output, Stdio};
 use std::time::{Duration, Instant};
-
-fn run(args: &[&str]) -> Output {
-    droplet().args(args).output().expect("binary runs")
-}
-
-fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
-    let p = dir.join(name);
-    std::fs::write(&p, text).unwrap();
-    p
-}
-
-fn ok_json(out: &Output) -> serde_json::Value {
-    assert!(
-        out.status.success(),
-        "stderr: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).expect("one JSON object")
-}
 
 /// Writes a report section when `DROPLET_RELIABILITY_DIR` is set.
 fn report(name: &str, text: &str) {
@@ -94,11 +75,11 @@ fn run_files(dir: &Path) -> Vec<PathBuf> {
 #[test]
 fn corrupt_stored_runs_are_moved_aside_and_recomputed_and_merge_refuses_gaps() {
     let dir = tempfile::tempdir().unwrap();
-    let spec = write(dir.path(), "tiny.yaml", TINY);
+    let spec = write_spec(dir.path(), "tiny.yaml", TINY);
     let reference = dir.path().join("ref");
-    ok_json(&sweep(&spec, &reference, &[]));
+    json(&sweep(&spec, &reference, &[]));
     let out = dir.path().join("o");
-    ok_json(&sweep(&spec, &out, &[]));
+    json(&sweep(&spec, &out, &[]));
     let files = run_files(&out);
     assert_eq!(files.len(), 12);
     // Truncated, empty, garbage, and another run's (valid) record under this key.
@@ -117,13 +98,13 @@ fn corrupt_stored_runs_are_moved_aside_and_recomputed_and_merge_refuses_gaps() {
     assert!(err.contains("unreadable"), "{err}");
     assert!(!out.join("runs.parquet").exists());
     // status counts them.
-    let st = ok_json(&run(&["status", out.to_str().unwrap(), "--json"]));
+    let st = json(&run(&["status", out.to_str().unwrap(), "--json"]));
     assert_eq!(st["runs_corrupt"], 4, "{st}");
     assert_eq!(st["runs_done"], 8, "{st}");
 
     // The sweep moves them aside (never deletes), recomputes them, and the tables are whole.
     let o = sweep(&spec, &out, &[]);
-    let summary = ok_json(&o);
+    let summary = json(&o);
     assert_eq!(summary["computed"], 4, "{summary}");
     assert_eq!(summary["reused"], 8, "{summary}");
     assert_eq!(summary["corrupt"].as_array().unwrap().len(), 4, "{summary}");
@@ -152,8 +133,8 @@ fn corrupt_stored_runs_are_moved_aside_and_recomputed_and_merge_refuses_gaps() {
             .unwrap(),
         before
     );
-    ok_json(&sweep(&spec, &out, &[]));
-    ok_json(&run(&[
+    json(&sweep(&spec, &out, &[]));
+    json(&run(&[
         "merge",
         out.to_str().unwrap(),
         "--json",
@@ -167,7 +148,7 @@ fn an_oversized_spec_is_refused_before_anything_is_written() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("huge-out");
     // 1e5 x 1e5 points x 4 initial conditions = 4e10 runs.
-    let spec = write(
+    let spec = write_spec(
         dir.path(),
         "huge.yaml",
         &format!(
@@ -185,12 +166,12 @@ fn an_oversized_spec_is_refused_before_anything_is_written() {
     assert!(!out.exists(), "output directory created");
     // The limit is a deliberate choice: a small sweep over a lowered limit is refused too,
     // and runs once the limit allows it.
-    let tiny = write(dir.path(), "tiny.yaml", TINY);
+    let tiny = write_spec(dir.path(), "tiny.yaml", TINY);
     let o2 = dir.path().join("o2");
     let o = sweep(&tiny, &o2, &["--max-runs", "11"]);
     assert_eq!(o.status.code(), Some(2));
     assert!(!o2.exists());
-    ok_json(&sweep(&tiny, &o2, &["--max-runs", "12"]));
+    json(&sweep(&tiny, &o2, &["--max-runs", "12"]));
     let o = run(&["slurm", spec.to_str().unwrap(), "--shards", "4"]);
     assert_eq!(o.status.code(), Some(2));
     assert!(!out.exists(), "slurm wrote into the output directory");
@@ -616,7 +597,7 @@ fn catalogue() -> Vec<Case> {
 fn malformed_and_extreme_inputs_exit_with_their_code_name_the_problem_and_never_hang() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
-    let file = write(d, "a-file", "x");
+    let file = write_spec(d, "a-file", "x");
     let binary = d.join("bin.yaml");
     std::fs::write(&binary, b"name: \xff\xfe\n").unwrap();
     let cases = catalogue();
@@ -628,7 +609,7 @@ fn malformed_and_extreme_inputs_exit_with_their_code_name_the_problem_and_never_
             .iter()
             .map(|a| {
                 if let Some(text) = a.strip_prefix("SPEC:") {
-                    write(d, &format!("spec-{i}.yaml"), text)
+                    write_spec(d, &format!("spec-{i}.yaml"), text)
                         .display()
                         .to_string()
                 } else {
@@ -686,10 +667,10 @@ fn sigkill_at_many_moments_then_resume_gives_identical_tables() {
     let dir = tempfile::tempdir().unwrap();
     // Slow enough to be cut mid-way: 12 runs at N = 64.
     let spec_text = TINY.replace("n: 32", "n: 64");
-    let spec = write(dir.path(), "tiny.yaml", &spec_text);
+    let spec = write_spec(dir.path(), "tiny.yaml", &spec_text);
     let reference = dir.path().join("ref");
     let started = Instant::now();
-    ok_json(&sweep(&spec, &reference, &["--jobs", "2"]));
+    json(&sweep(&spec, &reference, &["--jobs", "2"]));
     let full_ms = started.elapsed().as_millis() as u64;
     let resumed = dir.path().join("resumed");
     // Moments spread over the sweep's length by a fixed-seed generator (LCG).
@@ -727,7 +708,7 @@ fn sigkill_at_many_moments_then_resume_gives_identical_tables() {
         }
     }
     assert!(kills >= 8, "only {kills} of {tries} tries were interrupted");
-    ok_json(&sweep(&spec, &resumed, &[]));
+    json(&sweep(&spec, &resumed, &[]));
     assert_eq!(run_files(&resumed).len(), 12);
     tables_equal(&reference, &resumed);
     report(
@@ -745,9 +726,9 @@ fn child_done(out: &Path) -> bool {
 #[test]
 fn stale_temporaries_of_interrupted_writes_are_gone_after_the_next_run() {
     let dir = tempfile::tempdir().unwrap();
-    let spec = write(dir.path(), "tiny.yaml", TINY);
+    let spec = write_spec(dir.path(), "tiny.yaml", TINY);
     let out = dir.path().join("o");
-    ok_json(&sweep(&spec, &out, &[]));
+    json(&sweep(&spec, &out, &[]));
     // What a SIGKILL during the table, picture or run writes leaves behind.
     let old = std::time::SystemTime::now() - Duration::from_secs(3600);
     let stale: Vec<PathBuf> = [
@@ -769,7 +750,7 @@ fn stale_temporaries_of_interrupted_writes_are_gone_after_the_next_run() {
         out.to_str().unwrap(),
         "--json",
     ]);
-    ok_json(&o);
+    json(&o);
     for p in &stale {
         assert!(!p.exists(), "{} survived", p.display());
     }
@@ -800,7 +781,7 @@ fn a_whole_sweep_and_a_shard_never_share_a_directory() {
     let slow = TINY
         .replace("n: 32", "n: 64")
         .replace("t_max: 150", "t_max: 600");
-    let spec = write(dir.path(), "slow.yaml", &slow);
+    let spec = write_spec(dir.path(), "slow.yaml", &slow);
     for (first, second) in [(None, Some("0/2")), (Some("1/2"), None)] {
         let out = dir.path().join(format!("o-{}", first.is_some()));
         let args = |shard: Option<&str>| {
@@ -858,7 +839,7 @@ fn a_full_disk_is_named_and_leaves_no_partial_file() {
         return;
     }
     let result = std::panic::catch_unwind(|| {
-        let spec = write(dir.path(), "tiny.yaml", TINY);
+        let spec = write_spec(dir.path(), "tiny.yaml", TINY);
         let out = mnt.join("o");
         // Fill the disk, then free room step by step: each failure must be clean.
         let filler = mnt.join("filler");

@@ -1,7 +1,7 @@
 //! Helpers shared by the end-to-end test binaries.
 use polars::prelude::*;
-use std::path::Path;
-use std::process::Command;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
 
 /// The `droplet` binary under test.
 pub fn droplet() -> Command {
@@ -23,4 +23,31 @@ pub fn table_without_wall(path: &Path) -> DataFrame {
     } else {
         df
     }
+}
+
+// Not every test binary uses every helper below.
+
+/// Runs the binary to the end.
+#[allow(dead_code)]
+pub fn run(args: &[&str]) -> Output {
+    droplet().args(args).output().expect("binary runs")
+}
+
+/// Writes a spec (or any text) file `name` into `dir`.
+#[allow(dead_code)]
+pub fn write_spec(dir: &Path, name: &str, text: &str) -> PathBuf {
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+/// The one JSON object a successful `--json` command printed.
+#[allow(dead_code)]
+pub fn json(out: &Output) -> serde_json::Value {
+    assert!(
+        out.status.success(),
+        "stderr: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).expect("one JSON object")
 }
