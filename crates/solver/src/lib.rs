@@ -21,6 +21,7 @@ pub mod run;
 pub mod scheme;
 pub mod settings;
 pub mod shape;
+pub mod stability;
 pub mod state;
 pub mod steady;
 pub mod step_control;

@@ -106,6 +106,20 @@ impl SteadySolver {
         (&self.w, f)
     }
 
+    /// The packed shape transforms of a droplet `(a2, b2)` (of `Theta + X Theta` and of
+    /// `Y Theta`, raw, `[kx][ky]`; see [`crate::forces`]) and its area `A`.
+    pub fn shape_spectra(&mut self, a2: f64, b2: f64) -> (Vec<Complex64>, Vec<Complex64>, f64) {
+        let (lo, hi) = self.sampler.span(a2, b2);
+        let area = self.sampler.sample(a2, b2, &mut self.p, &mut self.y);
+        self.fft.forward(&mut self.p, &mut self.ph, lo, hi);
+        self.fft.forward(&mut self.y, &mut self.yh, lo, hi);
+        (self.ph.clone(), self.yh.clone(), area)
+    }
+
+    pub fn params(&self) -> &ModelParams {
+        &self.params
+    }
+
     /// The steady field in real space (co-moving, droplet at the grid centre; row-major,
     /// `values[iy * n + ix]` at `((ix - n/2) dx, (iy - n/2) dx)`).
     pub fn field(&mut self, vx: f64, vy: f64, a2: f64, b2: f64) -> Vec<f64> {

@@ -1,0 +1,465 @@
+//! Linear stability of a steady or steadily moving state, field included (design notes,
+//! Sect. 6). In the co-moving frame the linearisation about `(u0, z0)`, `z = (vx, vy, a2, b2)`,
+//! is
+//!
+//! `du_t = D du + B dz`,  `M dz_t = E dz + C du`,  `M = diag(m, m, eta2, eta2)`,
+//!
+//! with `D = -(1 + k^2) + i k.v` diagonal in Fourier space (`Re D <= -1`), `B`'s columns the
+//! field equation's sensitivity to `z` (`i k_x u0`, `i k_y u0`, `d(Theta/A)/da2`,
+//! `d(Theta/A)/db2`), `C du` the forces `(F, Ga, Gb)` of a field `du` at the frozen shape, and
+//! `E` the rest (`-eta_t` on the velocity, `-kappa2` on the shape, and the forces' shape
+//! derivatives at fixed `u0`). Every eigenvalue with `Re lambda > -1` solves the 4 x 4
+//! nonlinear eigenproblem
+//!
+//! `T(lambda) dz = 0`,  `T(lambda) = lambda M - E - C (lambda - D)^(-1) B`,
+//!
+//! whose entries are single sums over the modes: the field's own modes decay at rate >= 1 and
+//! cannot destabilise anything. The eigenvalues are found as fixed points
+//! `lambda = mu(lambda)` of the eigenvalues `mu` of `M^(-1) (E + C (lambda - D)^(-1) B)`,
+//! started from `lambda = 0`.
+use crate::dynamics;
+use crate::forces::{spectral_forces, Forces};
+use crate::steady::SteadySolver;
+use rustfft::num_complex::Complex64;
+
+type C64 = Complex64;
+
+/// The linearisation of one state.
+pub struct Linearization {
+    /// `d(k)` for every stored mode.
+    d: Vec<C64>,
+    /// The columns of `B` (half spectra of real fields, normalised like the steady field).
+    b: [Vec<C64>; 4],
+    /// The frozen shape's transforms, for `C`.
+    ph: Vec<C64>,
+    yh: Vec<C64>,
+    area: f64,
+    e: [[f64; 4]; 4],
+    m: [f64; 4],
+    grid: crate::grid::Grid,
+}
+
+fn as_array(f: &Forces) -> [f64; 4] {
+    [f.fx, f.fy, f.ga, f.gb]
+}
+
+/// Step of the central differences in the shape.
+const SHAPE_STEP: f64 = 1e-6;
+
+impl Linearization {
+    /// Linearises the steady state `z0 = (vx, vy, a2, b2)` of `solver`'s parameters (a root of
+    /// the force balance; the linearisation is taken wherever `z0` is). Needs inertia `m > 0`.
+    pub fn at(solver: &mut SteadySolver, z0: [f64; 4]) -> Self {
+        let p = *solver.params();
+        let [vx, vy, a2, b2] = z0;
+        let grid = solver.grid().clone();
+        let n = grid.n;
+        let (w0, _) = solver.field_and_forces(vx, vy, a2, b2);
+        let w0 = w0.to_vec();
+        let (ph, yh, area) = solver.shape_spectra(a2, b2);
+        let mut d = Vec::with_capacity(grid.spectral_len());
+        for jx in 0..=n / 2 {
+            for jy in 0..n {
+                let (kx, ky) = (grid.kx[jx], grid.ky[jy]);
+                let kv = grid.kx_d[jx] * vx + grid.ky_d[jy] * vy;
+                d.push(C64::new(-(1.0 + kx * kx + ky * ky), kv));
+            }
+        }
+        let advect = |use_x: bool| -> Vec<C64> {
+            let mut out = Vec::with_capacity(w0.len());
+            for jx in 0..=n / 2 {
+                for jy in 0..n {
+                    let k = if use_x { grid.kx_d[jx] } else { grid.ky_d[jy] };
+                    out.push(C64::new(0.0, k) * w0[jx * n + jy]);
+                }
+            }
+            out
+        };
+        // The source Theta_hat / A (normalised as the steady field) of a shape.
+        let norm = 1.0 / (n * n) as f64;
+        let mut source = |a: f64, b: f64| -> (Vec<C64>, [f64; 4]) {
+            let (p2, y2, ar) = solver.shape_spectra(a, b);
+            let s: Vec<C64> = p2.iter().map(|q| C64::new(q.re * norm / ar, 0.0)).collect();
+            // Forces of the frozen field w0 on this shape.
+            let f = spectral_forces(&grid, &w0, &p2, &y2, ar);
+            (s, as_array(&f))
+        };
+        let h = SHAPE_STEP;
+        let (sa_p, fa_p) = source(a2 + h, b2);
+        let (sa_m, fa_m) = source(a2 - h, b2);
+        let (sb_p, fb_p) = source(a2, b2 + h);
+        let (sb_m, fb_m) = source(a2, b2 - h);
+        let diff = |p: &[C64], m: &[C64]| -> Vec<C64> {
+            p.iter().zip(m).map(|(a, b)| (a - b) / (2.0 * h)).collect()
+        };
+        let b = [
+            advect(true),
+            advect(false),
+            diff(&sa_p, &sa_m),
+            diff(&sb_p, &sb_m),
+        ];
+        // E: the force balance's derivatives at the frozen field.
+        let zero = Forces::default();
+        let mut e = [[0.0; 4]; 4];
+        for (j, col) in [(0usize, [1.0, 0.0, 0.0, 0.0]), (1, [0.0, 1.0, 0.0, 0.0])] {
+            let fb = dynamics::force_balance(&p, col, &zero);
+            for i in 0..4 {
+                e[i][j] = fb[i];
+            }
+        }
+        for (j, (fp, fm), unit) in [
+            (2usize, (fa_p, fa_m), [0.0, 0.0, 1.0, 0.0]),
+            (3, (fb_p, fb_m), [0.0, 0.0, 0.0, 1.0]),
+        ] {
+            let linear = dynamics::force_balance(&p, unit, &zero);
+            for i in 0..4 {
+                e[i][j] = (fp[i] - fm[i]) / (2.0 * h) + linear[i];
+            }
+        }
+        Self {
+            d,
+            b,
+            ph,
+            yh,
+            area,
+            e,
+            m: [p.mass, p.mass, p.eta2, p.eta2],
+            grid,
+        }
+    }
+
+    /// `C (lambda - D)^(-1) B` (complex `lambda`: the response field is split into the real
+    /// fields of its real and imaginary parts, each a half spectrum).
+    fn response(&self, lambda: C64) -> [[C64; 4]; 4] {
+        let mut out = [[C64::default(); 4]; 4];
+        let conj = lambda.conj();
+        let mut re = vec![C64::default(); self.d.len()];
+        let mut im = vec![C64::default(); self.d.len()];
+        for (j, bj) in self.b.iter().enumerate() {
+            for (k, (d, b)) in self.d.iter().zip(bj).enumerate() {
+                let g1 = 1.0 / (lambda - d);
+                let g2 = 1.0 / (conj - d);
+                re[k] = 0.5 * (g1 + g2) * b;
+                im[k] = C64::new(0.0, -0.5) * (g1 - g2) * b;
+            }
+            let fr = as_array(&spectral_forces(
+                &self.grid, &re, &self.ph, &self.yh, self.area,
+            ));
+            let fi = as_array(&spectral_forces(
+                &self.grid, &im, &self.ph, &self.yh, self.area,
+            ));
+            for i in 0..4 {
+                out[i][j] = C64::new(fr[i], 0.0) + C64::new(0.0, 1.0) * fi[i];
+            }
+        }
+        out
+    }
+
+    /// `T(lambda) = lambda M - E - C (lambda - D)^(-1) B`.
+    pub fn t_matrix(&self, lambda: C64) -> [[C64; 4]; 4] {
+        let r = self.response(lambda);
+        let mut t = [[C64::default(); 4]; 4];
+        for i in 0..4 {
+            for j in 0..4 {
+                let diag = if i == j {
+                    lambda * self.m[i]
+                } else {
+                    C64::default()
+                };
+                t[i][j] = diag - self.e[i][j] - r[i][j];
+            }
+        }
+        t
+    }
+
+    /// `-T(0)`: the Jacobian of the steady force balance `R(z)` (with the steady field
+    /// following `z`), the `lambda = 0` limit.
+    pub fn jacobian0(&self) -> [[f64; 4]; 4] {
+        let t = self.t_matrix(C64::default());
+        let mut j = [[0.0; 4]; 4];
+        for r in 0..4 {
+            for c in 0..4 {
+                j[r][c] = -t[r][c].re;
+            }
+        }
+        j
+    }
+
+    /// `M^(-1) (E + C (lambda - D)^(-1) B)`, whose eigenvalues equal `lambda` at a solution.
+    fn k_matrix(&self, lambda: C64) -> [[C64; 4]; 4] {
+        let r = self.response(lambda);
+        let mut k = [[C64::default(); 4]; 4];
+        for i in 0..4 {
+            for j in 0..4 {
+                k[i][j] = (self.e[i][j] + r[i][j]) / self.m[i];
+            }
+        }
+        k
+    }
+
+    /// `det T(lambda)`.
+    pub fn det(&self, lambda: C64) -> C64 {
+        det4(self.t_matrix(lambda))
+    }
+
+    /// The eigenvalues with `Re lambda > -1` (the only ones the field's decay leaves), with
+    /// multiplicity, sorted by decreasing real part: roots of `det T(lambda)` by Newton's
+    /// method, each one divided out before the next is sought, started from the eigenvalues of
+    /// the `lambda = 0` problem `M^(-1) (E + C (-D)^(-1) B)` (real states: their real and
+    /// imaginary parts, so complex pairs are found as pairs).
+    pub fn eigenvalues(&self) -> Vec<C64> {
+        let guesses = eig4(&self.k_matrix(C64::default()));
+        let mut found: Vec<C64> = Vec::new();
+        let deflated = |lambda: C64, found: &[C64]| {
+            found.iter().fold(self.det(lambda), |f, r| f / (lambda - r))
+        };
+        let h = 1e-6;
+        for guess in guesses.iter().chain(&guesses) {
+            if found.len() == 4 {
+                break;
+            }
+            let mut lambda = C64::new(guess.re.max(-0.99), guess.im);
+            for _ in 0..100 {
+                let f = deflated(lambda, &found);
+                let df = (deflated(lambda + h, &found) - deflated(lambda - h, &found)) / (2.0 * h);
+                let mut step = f / df;
+                if !step.is_finite() {
+                    break;
+                }
+                // Damped: never more than 0.2 at once, never into the field's spectrum.
+                if step.norm() > 0.2 {
+                    step *= 0.2 / step.norm();
+                }
+                lambda -= step;
+                if lambda.re < -0.999 {
+                    lambda.re = -0.999;
+                }
+                if step.norm() < 1e-12 {
+                    break;
+                }
+            }
+            let root_ok = self.det(lambda).norm() <= 1e-9 * self.det(lambda + 0.1).norm();
+            if lambda.re > -0.999 && root_ok {
+                found.push(if lambda.im.abs() < 1e-10 {
+                    C64::new(lambda.re, 0.0)
+                } else {
+                    lambda
+                });
+            }
+        }
+        found.sort_by(|a, b| b.re.total_cmp(&a.re));
+        found
+    }
+}
+
+/// The determinant of a complex 4 x 4 matrix (LU with partial pivoting).
+fn det4(mut a: [[C64; 4]; 4]) -> C64 {
+    let mut det = C64::new(1.0, 0.0);
+    for k in 0..4 {
+        let p = (k..4)
+            .max_by(|&i, &j| a[i][k].norm().total_cmp(&a[j][k].norm()))
+            .expect("rows");
+        if a[p][k].norm() == 0.0 {
+            return C64::default();
+        }
+        if p != k {
+            a.swap(p, k);
+            det = -det;
+        }
+        det *= a[k][k];
+        let pivot = a[k];
+        for row in a.iter_mut().skip(k + 1) {
+            let m = row[k] / pivot[k];
+            for (x, p) in row[k..].iter_mut().zip(&pivot[k..]) {
+                *x -= m * p;
+            }
+        }
+    }
+    det
+}
+
+/// The eigenvalues of a complex 4 x 4 matrix: the characteristic polynomial (Faddeev-LeVerrier)
+/// and its roots (Durand-Kerner, polished by Newton).
+fn eig4(a: &[[C64; 4]; 4]) -> Vec<C64> {
+    // p(x) = x^4 + c1 x^3 + c2 x^2 + c3 x + c4.
+    let mul = |x: &[[C64; 4]; 4], y: &[[C64; 4]; 4]| {
+        let mut z = [[C64::default(); 4]; 4];
+        for i in 0..4 {
+            for j in 0..4 {
+                for k in 0..4 {
+                    z[i][j] += x[i][k] * y[k][j];
+                }
+            }
+        }
+        z
+    };
+    let trace = |x: &[[C64; 4]; 4]| (0..4).map(|i| x[i][i]).sum::<C64>();
+    let mut c = [C64::new(1.0, 0.0); 5];
+    let mut mk = [[C64::default(); 4]; 4];
+    for k in 1..=4 {
+        // M_k = A M_{k-1} + c_{k-1} I, c_k = -tr(A M_k) / k.
+        let mut next = mul(a, &mk);
+        for (i, row) in next.iter_mut().enumerate() {
+            row[i] += c[k - 1];
+        }
+        mk = next;
+        c[k] = -trace(&mul(a, &mk)) / k as f64;
+    }
+    let p = |x: C64| (((x + c[1]) * x + c[2]) * x + c[3]) * x + c[4];
+    let dp = |x: C64| ((4.0 * x + 3.0 * c[1]) * x + 2.0 * c[2]) * x + c[3];
+    let scale = c[1..].iter().map(|v| v.norm()).fold(1.0f64, f64::max);
+    let seed = C64::new(0.4, 0.9) * scale;
+    let mut roots: Vec<C64> = (0..4).map(|i| seed.powu(i as u32 + 1)).collect();
+    for _ in 0..500 {
+        let mut moved = 0.0f64;
+        for i in 0..4 {
+            let mut den = C64::new(1.0, 0.0);
+            for j in 0..4 {
+                if i != j {
+                    den *= roots[i] - roots[j];
+                }
+            }
+            let step = p(roots[i]) / den;
+            roots[i] -= step;
+            moved = moved.max(step.norm());
+        }
+        if moved < 1e-15 * scale {
+            break;
+        }
+    }
+    for r in &mut roots {
+        for _ in 0..3 {
+            let d = dp(*r);
+            if d.norm() > 0.0 {
+                let step = p(*r) / d;
+                if step.is_finite() && step.norm() < 1e-6 * scale {
+                    *r -= step;
+                }
+            }
+        }
+    }
+    roots
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::params::ModelParams;
+    use crate::settings::SolverSettings;
+
+    fn eigs(p: ModelParams, z: [f64; 4]) -> Vec<C64> {
+        let mut s = SteadySolver::new(p, 192).unwrap();
+        Linearization::at(&mut s, z).eigenvalues()
+    }
+
+    #[test]
+    fn lambda_zero_is_the_jacobian_of_the_steady_equations() {
+        // The MD state of Fig. 1c, on the x axis.
+        let p = ModelParams::at(0.085, 0.112);
+        let mut s = SteadySolver::new(p, 192).unwrap();
+        let st = s.newton(0.59, -0.27, 1e-12).unwrap();
+        let z0 = [st.v, 0.0, st.a2, 0.0];
+        let lin = Linearization::at(&mut s, z0);
+        let j0 = lin.jacobian0();
+        let mut residual = |z: &[f64]| {
+            let f = s.forces(z[0], z[1], z[2], z[3]);
+            dynamics::force_balance(&p, [z[0], z[1], z[2], z[3]], &f).to_vec()
+        };
+        let fd = crate::newton::fd_jacobian(&mut residual, &z0, 1e-6);
+        let scale = fd.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+        for i in 0..4 {
+            for j in 0..4 {
+                assert!(
+                    (j0[i][j] - fd[i][j]).abs() < 1e-6 * scale,
+                    "({i}, {j}): {} vs {}",
+                    j0[i][j],
+                    fd[i][j]
+                );
+            }
+        }
+    }
+
+    fn assert_close(got: &[C64], want: &[f64], tol: f64) {
+        assert_eq!(got.len(), want.len(), "{got:?}");
+        for (g, w) in got.iter().zip(want) {
+            assert!(
+                g.im.abs() < 1e-9 && (g.re - w).abs() < tol,
+                "{got:?} vs {want:?}"
+            );
+        }
+    }
+
+    /// The leading eigenvalues of design notes Sect. 6, from an independent numpy
+    /// implementation at N = 192 (IC: drift pair and the shape pair split by the square box;
+    /// MD: the rotation-like mode first).
+    #[test]
+    fn eigenvalues_match_the_independent_computation() {
+        let ic = |e, k| eigs(ModelParams::at(e, k), [0.0; 4]);
+        assert_close(
+            &ic(0.085, 0.13),
+            &[-0.066267, -0.066267, -0.146358, -0.152733],
+            2e-6,
+        );
+        // Just past the onset of motion: the drift pair is unstable.
+        let onset = ic(0.0763, 0.16);
+        assert_close(&onset[..2], &[0.001445, 0.001445], 2e-6);
+        assert_close(
+            &ic(0.085, 0.112),
+            &[0.087228, 0.082111, -0.066267, -0.066267],
+            2e-6,
+        );
+        let p = ModelParams::at(0.085, 0.112);
+        let mut s = SteadySolver::new(p, 192).unwrap();
+        let st = s.newton(0.59, -0.27, 1e-12).unwrap();
+        let md = Linearization::at(&mut s, [st.v, 0.0, st.a2, 0.0]).eigenvalues();
+        assert_close(&md, &[-0.008436, -0.052054, -0.361618, -0.434750], 2e-6);
+    }
+
+    /// Against time stepping (N = 128, the same discretisation on both sides): small `a2` and
+    /// `b2` deformations of the resting droplet decay at the shape eigenvalues (mirror symmetry
+    /// keeps `v = 0`); the rate is measured between t = 6 and 12, when the field's own
+    /// transients (rate >= 1) have died out.
+    #[test]
+    fn shape_eigenvalues_are_the_time_steppers_decay_rates() {
+        let p = ModelParams::at(0.0763, 0.16);
+        let n = 128;
+        let lambda = {
+            let mut s = SteadySolver::new(p, n).unwrap();
+            Linearization::at(&mut s, [0.0; 4]).eigenvalues()
+        };
+        let settings = |t_max| SolverSettings {
+            n,
+            dt: 0.005,
+            tol: 0.0,
+            t_max,
+            steady_tol: 1e-30,
+            ..SolverSettings::default()
+        };
+        let mut rates = Vec::new();
+        for ic in ["custom:0,0,0.001,0", "custom:0,0,0,0.001"] {
+            let ic = crate::initial::InitialCondition::parse(ic).unwrap();
+            let s = |t| crate::run::simulate(&p, &ic, &settings(t)).unwrap().s;
+            rates.push((s(12.0) / s(6.0)).ln() / 6.0);
+        }
+        // Each rate is one of the two shape eigenvalues (the square box and the grid split
+        // them by about 5e-3), and they are different ones.
+        let shape: Vec<f64> = lambda[2..].iter().map(|l| l.re).collect();
+        let nearest = |r: f64| {
+            (0..2)
+                .min_by(|&i, &j| (shape[i] - r).abs().total_cmp(&(shape[j] - r).abs()))
+                .unwrap()
+        };
+        let (i, j) = (nearest(rates[0]), nearest(rates[1]));
+        assert_ne!(i, j, "{rates:?} vs {lambda:?}");
+        assert!(
+            (rates[0] - shape[i]).abs() < 1e-3,
+            "{rates:?} vs {lambda:?}"
+        );
+        assert!(
+            (rates[1] - shape[j]).abs() < 1e-3,
+            "{rates:?} vs {lambda:?}"
+        );
+        // The drift pair is the unstable one here, as at N = 192.
+        assert!(lambda[0].re > 0.0 && lambda[1].re > 0.0);
+    }
+}
