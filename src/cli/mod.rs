@@ -6,6 +6,7 @@ mod ode;
 mod plot;
 mod simulate;
 mod slurm;
+mod stability;
 mod status;
 mod sweep;
 
@@ -31,6 +32,7 @@ enum Command {
     Merge(merge::Args),
     Slurm(slurm::Args),
     Bench(bench::Args),
+    Stability(stability::Args),
 }
 
 /// Exit codes: 0 success, 1 failure while working, 2 bad input.
@@ -46,6 +48,7 @@ pub fn main() -> i32 {
         Command::Merge(a) => merge::run(a),
         Command::Slurm(a) => slurm::run(a),
         Command::Bench(a) => bench::run(a),
+        Command::Stability(a) => stability::run(a),
     };
     match result {
         Ok(()) => 0,
@@ -86,10 +89,9 @@ impl From<droplet_solver::SolverError> for CliError {
     }
 }
 
-/// Prints one JSON object.
+/// Prints one JSON object. A closed pipe (`droplet ... --json | head`) is not an error.
 pub fn print_json<T: serde::Serialize>(value: &T) {
-    println!(
-        "{}",
-        serde_json::to_string_pretty(value).expect("serialisable")
-    );
+    use std::io::Write;
+    let text = serde_json::to_string_pretty(value).expect("serialisable");
+    let _ = writeln!(std::io::stdout(), "{text}");
 }

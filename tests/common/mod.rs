@@ -9,6 +9,7 @@ pub fn droplet() -> Command {
 }
 
 /// A Parquet table.
+#[allow(dead_code)]
 pub fn read(path: &Path) -> DataFrame {
     ParquetReader::new(std::fs::File::open(path).unwrap())
         .finish()
@@ -16,6 +17,7 @@ pub fn read(path: &Path) -> DataFrame {
 }
 
 /// A table without its wall-clock column (the one value that differs between two runs).
+#[allow(dead_code)]
 pub fn table_without_wall(path: &Path) -> DataFrame {
     let df = read(path);
     if df.schema().contains("wall_s") {

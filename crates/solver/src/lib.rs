@@ -13,6 +13,7 @@ pub mod grid;
 pub mod h0_fit;
 pub mod initial;
 pub mod limits;
+pub mod named_state;
 pub mod newton;
 pub mod outcome;
 pub mod params;

@@ -1,0 +1,154 @@
+//! The steady states the paper names, computed as roots and linearised: the resting disk (IC),
+//! the resting deformed droplet (ID) and the droplet moving along its minor axis (MD), each on
+//! a mirror axis of the box (motion along x or along the diagonal). Newton starts from the
+//! reduced model's state (Sect. 5) unless a seed is given.
+use crate::error::SolverError;
+use crate::params::ModelParams;
+use crate::reduced::bifurcation::md_states;
+use crate::reduced::Coefficients;
+use crate::stability::Linearization;
+use crate::steady::{MirrorAxis, SteadySolver};
+use rustfft::num_complex::Complex64;
+use serde::Serialize;
+
+/// Which state.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum StateKind {
+    IC,
+    ID,
+    MD,
+}
+
+impl std::str::FromStr for StateKind {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s.to_ascii_lowercase().as_str() {
+            "ic" => Ok(Self::IC),
+            "id" => Ok(Self::ID),
+            "md" => Ok(Self::MD),
+            other => Err(format!("unknown state `{other}`: ic, id or md")),
+        }
+    }
+}
+
+/// A steady state with its leading eigenvalues.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NamedState {
+    /// `(vx, vy, a2, b2)`.
+    pub z: [f64; 4],
+    /// Max norm of the force balance at `z`.
+    pub residual: f64,
+    /// Eigenvalues with `Re > -1`, decreasing real part ([`Linearization::eigenvalues`]).
+    pub eigenvalues: Vec<Complex64>,
+}
+
+/// `(speed along the axis, shape amplitude on it)` -> `(vx, vy, a2, b2)`.
+fn on_axis(axis: MirrorAxis, v: f64, c: f64) -> [f64; 4] {
+    match axis {
+        MirrorAxis::X => [v, 0.0, c, 0.0],
+        MirrorAxis::Diagonal => {
+            let d = v * std::f64::consts::FRAC_1_SQRT_2;
+            [d, d, 0.0, c]
+        }
+    }
+}
+
+/// Finds `kind` at `params` on `axis` with an `n x n` grid (Newton to 1e-12 from `seed`, or
+/// from the reduced model's state), then linearises it. Needs inertia `m > 0`.
+pub fn find(
+    params: &ModelParams,
+    n: usize,
+    kind: StateKind,
+    axis: MirrorAxis,
+    seed: Option<(f64, f64)>,
+) -> Result<NamedState, SolverError> {
+    crate::error::require(
+        params.mass > 0.0,
+        "mass",
+        params.mass,
+        "a finite number > 0 for the linearisation (the overdamped velocity has no dynamics)",
+    )?;
+    let mut solver = SteadySolver::new(*params, n)?;
+    let c = Coefficients::new(params.radius, crate::settings::H0_PAPER);
+    // The ID seed's sign: a2 > 0 on x (long axis along x), b2 > 0 on the diagonal.
+    let id_seed = ((c.g0t - params.kappa2).max(0.0) / c.h0).sqrt().max(0.05);
+    let (v, shape, residual) = match kind {
+        StateKind::IC => (0.0, 0.0, 0.0),
+        StateKind::ID | StateKind::MD => {
+            let seeds: Vec<(f64, f64)> = match (seed, kind) {
+                (Some(s), _) => vec![s],
+                (None, StateKind::ID) => vec![(0.0, id_seed)],
+                _ => {
+                    let mut v: Vec<(f64, f64)> = md_states(&c, params.eta_t, params.kappa2, -1.0)
+                        .into_iter()
+                        .rev()
+                        .map(|(v, s)| (v, -s))
+                        .collect();
+                    v.extend([(0.6, -0.27), (0.9, -0.35), (0.3, -0.1)]);
+                    v
+                }
+            };
+            let mut last = None;
+            let mut found = None;
+            for (v0, c0) in seeds {
+                let v0 = if kind == StateKind::ID { 0.0 } else { v0 };
+                match solver.newton_on(axis, v0, c0, 1e-12) {
+                    Ok(st) if kind == StateKind::ID || st.v.abs() > 1e-6 => {
+                        found = Some((st.v, st.a2, st.residual));
+                        break;
+                    }
+                    Ok(st) => {
+                        last = Some(SolverError::NewtonFailed {
+                            residual: st.residual,
+                            iterations: st.iterations,
+                        })
+                    }
+                    Err(e) => last = Some(e),
+                }
+            }
+            found.ok_or_else(|| {
+                last.unwrap_or(SolverError::NewtonFailed {
+                    residual: f64::NAN,
+                    iterations: 0,
+                })
+            })?
+        }
+    };
+    let z = on_axis(axis, v, shape);
+    let eigenvalues = Linearization::at(&mut solver, z).eigenvalues();
+    Ok(NamedState {
+        z,
+        residual,
+        eigenvalues,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn md_from_the_reduced_models_seed_is_the_time_steppers_state() {
+        // Fig. 1c: the time stepper's steady MD state is v = 0.592462, s = 0.270056 (README).
+        let st = find(
+            &ModelParams::at(0.085, 0.112),
+            192,
+            StateKind::MD,
+            MirrorAxis::X,
+            None,
+        )
+        .unwrap();
+        assert!((st.z[0] - 0.592462).abs() < 1e-6, "{st:?}");
+        assert!((st.z[2] + 0.270056).abs() < 1e-6, "{st:?}");
+        assert!(st.eigenvalues.iter().all(|l| l.re < 0.0), "{st:?}");
+        let id = find(
+            &ModelParams::at(0.1, 0.105),
+            96,
+            StateKind::ID,
+            MirrorAxis::X,
+            None,
+        )
+        .unwrap();
+        assert!(id.z[2] > 0.1 && id.z[0] == 0.0, "{id:?}");
+    }
+}
