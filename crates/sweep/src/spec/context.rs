@@ -3,6 +3,8 @@
 //! key of a solver error's field.
 use crate::axes::AXES;
 use crate::error::SpecError;
+use droplet_solver::error::show_number;
+use droplet_solver::SolverError;
 use serde_yaml::Value;
 
 /// Where a spec came from, for error messages.
@@ -49,6 +51,38 @@ impl Ctx<'_> {
             }
         }
         Ok(map)
+    }
+
+    /// Reads each of `keys` present in `m` (the mapping at `section`) as a finite number and
+    /// hands it to `set`; the ranges are the solver crate's to check ([`Self::checked`]).
+    pub fn numbers(
+        &self,
+        m: &serde_yaml::Mapping,
+        section: &str,
+        keys: &[&str],
+        mut set: impl FnMut(&str, f64),
+    ) -> Result<(), SpecError> {
+        for key in keys {
+            if let Some(x) = m.get(*key) {
+                set(
+                    key,
+                    self.number(x, &[section, key], |_| true, "a finite number")?,
+                );
+            }
+        }
+        Ok(())
+    }
+
+    /// A solver-crate check, its failure reported at the spec key of the field it names.
+    pub fn checked(&self, check: Result<(), SolverError>) -> Result<(), SpecError> {
+        check.map_err(|e| match e {
+            SolverError::InvalidParameter {
+                name,
+                value,
+                allowed,
+            } => self.err(&key_of(name), show_number(value), allowed),
+            other => self.err(&["(spec)"], "", other.to_string()),
+        })
     }
 
     pub fn number(
@@ -114,7 +148,7 @@ pub fn locate(text: &str, path: &[&str]) -> Option<usize> {
 }
 
 /// The spec key of a field named in a [`droplet_solver::SolverError::InvalidParameter`].
-pub(super) fn key_of(name: &str) -> [&str; 2] {
+fn key_of(name: &str) -> [&str; 2] {
     match name {
         "eta2" | "radius" | "sigma" | "box_len" | "mass" => ["params", name],
         n if AXES.contains(&n) => ["grid", name],

@@ -1,9 +1,8 @@
 //! The `params` section: the fixed model parameters (paper defaults where absent), checked by
 //! `ModelParams::validate` (the solver's one source of truth) after the types are read.
-use super::context::{key_of, Ctx};
+use super::context::Ctx;
 use crate::error::SpecError;
-use droplet_solver::error::show_number;
-use droplet_solver::{ModelParams, SolverError};
+use droplet_solver::ModelParams;
 use serde_yaml::Mapping;
 
 /// The `params` section.
@@ -14,25 +13,13 @@ pub(super) fn parse(ctx: &Ctx, top: &Mapping) -> Result<ModelParams, SpecError> 
     };
     let keys = ["eta2", "radius", "sigma", "box_len", "mass"];
     let m = ctx.mapping(v, &["params"], &keys)?;
-    for key in keys {
-        if let Some(x) = m.get(key) {
-            let val = ctx.number(x, &["params", key], |_| true, "a finite number")?;
-            match key {
-                "eta2" => params.eta2 = val,
-                "radius" => params.radius = val,
-                "sigma" => params.sigma = val,
-                "box_len" => params.box_len = val,
-                _ => params.mass = val,
-            }
-        }
-    }
-    if let Err(SolverError::InvalidParameter {
-        name,
-        value,
-        allowed,
-    }) = params.validate()
-    {
-        return Err(ctx.err(&key_of(name), show_number(value), allowed));
-    }
+    ctx.numbers(m, "params", &keys, |key, val| match key {
+        "eta2" => params.eta2 = val,
+        "radius" => params.radius = val,
+        "sigma" => params.sigma = val,
+        "box_len" => params.box_len = val,
+        _ => params.mass = val,
+    })?;
+    ctx.checked(params.validate())?;
     Ok(params)
 }

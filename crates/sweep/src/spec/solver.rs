@@ -2,10 +2,9 @@
 //! numbers); every range and consistency check is `SolverSettings::validate` and
 //! `droplet_solver::limits::check_run`, the same checks `droplet simulate` makes, with the
 //! offending field mapped back to its key.
-use super::context::{key_of, show, Ctx};
+use super::context::{show, Ctx};
 use crate::error::SpecError;
-use droplet_solver::error::show_number;
-use droplet_solver::{ModelKind, ModelParams, SchemeKind, SolverError, SolverSettings};
+use droplet_solver::{ModelKind, ModelParams, SchemeKind, SolverSettings};
 use serde_yaml::Mapping;
 
 /// The keys of the section.
@@ -50,31 +49,21 @@ pub(super) fn parse(
                 .and_then(|n| usize::try_from(n).ok())
                 .ok_or_else(|| ctx.err(&["solver", "n"], show(x), "an even integer"))?;
         }
-        for key in &KEYS[2..] {
-            if let Some(x) = m.get(*key) {
-                let val = ctx.number(x, &["solver", key], |_| true, "a finite number")?;
-                match *key {
-                    "dt" => solver.dt = val,
-                    "tol" => solver.tol = val,
-                    "dt_max" => solver.dt_max = val,
-                    "t_max" => solver.t_max = val,
-                    "steady_tol" => solver.steady_tol = val,
-                    "steady_window" => solver.steady_window = val,
-                    _ => solver.h0 = val,
-                }
-            }
-        }
+        ctx.numbers(m, "solver", &KEYS[2..], |key, val| match key {
+            "dt" => solver.dt = val,
+            "tol" => solver.tol = val,
+            "dt_max" => solver.dt_max = val,
+            "t_max" => solver.t_max = val,
+            "steady_tol" => solver.steady_tol = val,
+            "steady_window" => solver.steady_window = val,
+            _ => solver.h0 = val,
+        })?;
     }
     // Step counts, the droplet resolved by the grid, the explicit scheme's stability limit.
-    if let Err(SolverError::InvalidParameter {
-        name,
-        value,
-        allowed,
-    }) = solver
-        .validate()
-        .and_then(|()| droplet_solver::limits::check_run(params, &solver))
-    {
-        return Err(ctx.err(&key_of(name), show_number(value), allowed));
-    }
+    ctx.checked(
+        solver
+            .validate()
+            .and_then(|()| droplet_solver::limits::check_run(params, &solver)),
+    )?;
     Ok(solver)
 }
