@@ -1,6 +1,6 @@
 //! `droplet stability`: one named steady state as a root, and its leading eigenvalues.
 use super::{print_json, CliError};
-use droplet_solver::named_state::{find, StateKind};
+use droplet_solver::named_state::{find, ic_thresholds, IcThresholds, StateKind};
 use droplet_solver::steady::MirrorAxis;
 use droplet_solver::ModelParams;
 use serde::Serialize;
@@ -12,6 +12,8 @@ use serde::Serialize;
 /// an eigenvalue of positive real part is unstable. Moving and deformed states have one
 /// near-neutral eigenvalue (the rotation of the direction of motion or of the long axis,
 /// weakly broken by the periodic box); it is listed with the others and counts in `stable`.
+/// For the resting disk it also prints where the disk loses stability: the eta_t below which
+/// it starts to move and the kappa2 below which it deforms, exact at the grid (no scan).
 #[derive(clap::Args)]
 #[command(
     allow_negative_numbers = true,
@@ -40,7 +42,8 @@ pub struct Args {
     #[arg(long, default_value_t = 0.1)]
     mass: f64,
     /// Print one JSON object (keys: state, axis, eta_t, kappa2, n, vx, vy, a2, b2, v, s,
-    /// residual, eigenvalues [{re, im}], unstable, stable).
+    /// residual, eigenvalues [{re, im}], unstable, stable, ic_thresholds {eta_t, kappa2_a2,
+    /// kappa2_b2} for the resting disk, else null).
     #[arg(long)]
     json: bool,
 }
@@ -69,6 +72,8 @@ struct Report {
     /// Eigenvalues with a positive real part.
     unstable: usize,
     stable: bool,
+    /// For the resting disk: where it loses stability (independent of the point).
+    ic_thresholds: Option<IcThresholds>,
 }
 
 pub fn run(a: Args) -> Result<(), CliError> {
@@ -141,6 +146,10 @@ pub fn run(a: Args) -> Result<(), CliError> {
             .collect(),
         unstable,
         stable: unstable == 0,
+        ic_thresholds: match a.state {
+            StateKind::IC => Some(ic_thresholds(&params, a.n)?),
+            _ => None,
+        },
     };
     if a.json {
         print_json(&report);
@@ -151,6 +160,12 @@ pub fn run(a: Args) -> Result<(), CliError> {
         );
         for l in &report.eigenvalues {
             println!("  eigenvalue {:+.6} {:+.6}i", l.re, l.im);
+        }
+        if let Some(th) = &report.ic_thresholds {
+            println!(
+                "resting disk: moves for eta_t < {:.9}; deforms (a2) for kappa2 < {:.9}, (b2, diagonal) for kappa2 < {:.9}",
+                th.eta_t, th.kappa2_a2, th.kappa2_b2
+            );
         }
         println!(
             "{}",

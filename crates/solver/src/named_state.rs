@@ -123,6 +123,35 @@ pub fn find(
     })
 }
 
+/// Where the resting disk loses stability, at the grid and box of `params` (its other
+/// parameters fixed). At the disk the linearisation decouples (drift `(vx, vy)`, shape `a2`,
+/// shape `b2`) and neither block depends on the other parameter, so each threshold is one
+/// number, read off the `lambda = 0` Jacobian `-T(0)`: its drift entry is `-eta_t + c` with
+/// `c` the field's feedback, so the drift pair crosses zero at `eta_t = c`; likewise the shape
+/// entries give the `kappa2` at which an `a2` (axis-aligned) or a `b2` (diagonal) deformation
+/// sets in. Real crossings: pitchforks (the eigenvalues here are real).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct IcThresholds {
+    /// Onset of motion: the disk is unstable to drift for `eta_t` below this.
+    pub eta_t: f64,
+    /// Onset of an `a2` deformation: unstable for `kappa2` below this.
+    pub kappa2_a2: f64,
+    /// Onset of a `b2` deformation (long axis on the box diagonal).
+    pub kappa2_b2: f64,
+}
+
+/// The resting disk's thresholds (see [`IcThresholds`]); `params.eta_t` and `params.kappa2`
+/// do not matter.
+pub fn ic_thresholds(params: &ModelParams, n: usize) -> Result<IcThresholds, SolverError> {
+    let mut solver = SteadySolver::new(*params, n)?;
+    let j0 = Linearization::at(&mut solver, [0.0; 4]).jacobian0();
+    Ok(IcThresholds {
+        eta_t: j0[0][0] + params.eta_t,
+        kappa2_a2: j0[2][2] + params.kappa2,
+        kappa2_b2: j0[3][3] + params.kappa2,
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -150,5 +179,39 @@ mod tests {
         )
         .unwrap();
         assert!(id.z[2] > 0.1 && id.z[0] == 0.0, "{id:?}");
+    }
+
+    #[test]
+    fn the_resting_disks_thresholds_are_where_its_eigenvalues_cross_zero() {
+        let th = ic_thresholds(&ModelParams::at(0.085, 0.13), 192).unwrap();
+        // Bracketed by the design notes' eigenvalues: drift +0.001445 at eta_t = 0.0763 and
+        // -0.004036 at 0.077; shape > 0 at kappa2 = 0.112, < 0 at 0.13.
+        assert!(th.eta_t > 0.0763 && th.eta_t < 0.077, "{th:?}");
+        for k in [th.kappa2_a2, th.kappa2_b2] {
+            assert!(k > 0.112 && k < 0.13, "{th:?}");
+        }
+        // The same numbers whatever the other parameter.
+        let other = ic_thresholds(&ModelParams::at(0.1, 0.16), 192).unwrap();
+        assert!((other.eta_t - th.eta_t).abs() < 1e-9, "{other:?}");
+        assert!((other.kappa2_a2 - th.kappa2_a2).abs() < 1e-9, "{other:?}");
+        // At the threshold the drift pair's eigenvalue is zero, the shape's at its own.
+        let at = |eta_t, kappa2| {
+            find(
+                &ModelParams::at(eta_t, kappa2),
+                192,
+                StateKind::IC,
+                MirrorAxis::X,
+                None,
+            )
+            .unwrap()
+            .eigenvalues
+        };
+        let drift = at(th.eta_t, 0.13);
+        assert!(
+            drift[0].re.abs() < 1e-8 && drift[1].re.abs() < 1e-8,
+            "{drift:?}"
+        );
+        let shape = at(0.085, th.kappa2_b2.max(th.kappa2_a2));
+        assert!(shape[0].re.abs() < 1e-8, "{shape:?}");
     }
 }
