@@ -1,7 +1,7 @@
 //! End-to-end tests through the `droplet` binary.
 mod common;
 
-use common::{droplet, json, read, run, table_without_wall, write_spec};
+use common::{droplet, json, read, run, sweep_in_background, table_without_wall, write_spec};
 use polars::prelude::*;
 use std::process::Stdio;
 use std::time::Duration;
@@ -108,20 +108,7 @@ fn sigkill_at_several_moments_then_resume_gives_identical_tables() {
     let resumed = dir.path().join("resumed");
     let mut kills = 0;
     for wait_ms in [150u64, 400, 700, 1000] {
-        let mut child = droplet()
-            .args([
-                "sweep",
-                spec.to_str().unwrap(),
-                "--out",
-                resumed.to_str().unwrap(),
-                "--jobs",
-                "2",
-                "--json",
-            ])
-            .stdout(Stdio::null())
-            .stderr(Stdio::null())
-            .spawn()
-            .unwrap();
+        let mut child = sweep_in_background(&spec, &resumed);
         std::thread::sleep(Duration::from_millis(wait_ms));
         if child.try_wait().unwrap().is_none() {
             child.kill().unwrap(); // SIGKILL

@@ -14,7 +14,7 @@
 //! (`inputs.md`, `kills.md`): the README's reliability section quotes them.
 mod common;
 
-use common::{droplet, json, run, table_without_wall, write_spec};
+use common::{droplet, json, run, sweep_in_background, table_without_wall, write_spec};
 use std::path::{Path, PathBuf};
 use std::process::{Output, Stdio};
 use std::time::{Duration, Instant};
@@ -682,20 +682,7 @@ fn sigkill_at_many_moments_then_resume_gives_identical_tables() {
             .wrapping_mul(6364136223846793005)
             .wrapping_add(1442695040888963407);
         let wait = 20 + (x >> 33) % full_ms.max(50);
-        let mut child = droplet()
-            .args([
-                "sweep",
-                spec.to_str().unwrap(),
-                "--out",
-                resumed.to_str().unwrap(),
-                "--jobs",
-                "2",
-                "--json",
-            ])
-            .stdout(Stdio::null())
-            .stderr(Stdio::null())
-            .spawn()
-            .unwrap();
+        let mut child = sweep_in_background(&spec, &resumed);
         std::thread::sleep(Duration::from_millis(wait));
         if child.try_wait().unwrap().is_none() {
             child.kill().unwrap(); // SIGKILL

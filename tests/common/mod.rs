@@ -1,7 +1,7 @@
 //! Helpers shared by the end-to-end test binaries.
 use polars::prelude::*;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::{Child, Command, Output, Stdio};
 
 /// The `droplet` binary under test.
 pub fn droplet() -> Command {
@@ -52,4 +52,23 @@ pub fn json(out: &Output) -> serde_json::Value {
         String::from_utf8_lossy(&out.stderr)
     );
     serde_json::from_slice(&out.stdout).expect("one JSON object")
+}
+
+/// Starts `droplet sweep SPEC --out OUT --jobs 2 --json` without waiting (to be killed).
+#[allow(dead_code)]
+pub fn sweep_in_background(spec: &Path, out: &Path) -> Child {
+    droplet()
+        .args([
+            "sweep",
+            spec.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--jobs",
+            "2",
+            "--json",
+        ])
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap()
 }

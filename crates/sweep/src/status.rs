@@ -32,17 +32,7 @@ pub fn status(dir: &Path) -> Result<SweepStatus, SweepError> {
     let store = Store::open_read(dir)?;
     let spec = crate::spec::load_stored(dir)?;
     let plan = plan(&spec);
-    let mut records = std::collections::HashMap::new();
-    let mut runs_corrupt = 0;
-    for t in plan.tasks() {
-        match store.check(&t.key) {
-            crate::store::Stored::Valid(r) => {
-                records.insert(t.key, *r);
-            }
-            crate::store::Stored::Corrupt(_) => runs_corrupt += 1,
-            crate::store::Stored::Missing => {}
-        }
-    }
+    let (records, runs_corrupt) = store.load_counting(plan.tasks().map(|t| t.key));
     let run_statuses = tally(
         records
             .values()

@@ -258,12 +258,26 @@ impl Store {
         &self,
         keys: impl IntoIterator<Item = K>,
     ) -> HashMap<String, RunRecord> {
-        keys.into_iter()
-            .filter_map(|k| {
-                let k = k.as_ref();
-                self.load(k).map(|r| (k.to_string(), r))
-            })
-            .collect()
+        self.load_counting(keys).0
+    }
+
+    /// As [`Self::load_many`], also counting the keys whose file is corrupt.
+    pub fn load_counting<K: AsRef<str>>(
+        &self,
+        keys: impl IntoIterator<Item = K>,
+    ) -> (HashMap<String, RunRecord>, usize) {
+        let mut records = HashMap::new();
+        let mut corrupt = 0;
+        for k in keys {
+            match self.check(k.as_ref()) {
+                Stored::Valid(r) => {
+                    records.insert(k.as_ref().to_string(), *r);
+                }
+                Stored::Corrupt(_) => corrupt += 1,
+                Stored::Missing => {}
+            }
+        }
+        (records, corrupt)
     }
 
     /// Writes `bytes` to `name` in the output directory atomically.
