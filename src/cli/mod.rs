@@ -1,5 +1,6 @@
 //! Command-line front end.
 mod bench;
+mod continuation;
 mod fit_h0;
 mod merge;
 mod ode;
@@ -33,6 +34,7 @@ enum Command {
     Slurm(slurm::Args),
     Bench(bench::Args),
     Stability(stability::Args),
+    Continue(continuation::Args),
 }
 
 /// Exit codes: 0 success, 1 failure while working, 2 bad input.
@@ -49,6 +51,7 @@ pub fn main() -> i32 {
         Command::Slurm(a) => slurm::run(a),
         Command::Bench(a) => bench::run(a),
         Command::Stability(a) => stability::run(a),
+        Command::Continue(a) => continuation::run(a),
     };
     match result {
         Ok(()) => 0,

@@ -23,6 +23,9 @@ pub enum SolverError {
     /// The Newton iteration of the exact steady-state solver did not converge.
     #[error("steady-state Newton solve did not converge (residual {residual:e} after {iterations} iterations)")]
     NewtonFailed { residual: f64, iterations: usize },
+    /// Continuation found no state of the family anywhere on its line.
+    #[error("no {family} state found on the line (Newton from the reduced model's states failed at 9 points); try another range or --axis")]
+    NoBranch { family: &'static str },
 }
 
 /// A number as a person reads it: plain for ordinary magnitudes, in exponent form when tiny

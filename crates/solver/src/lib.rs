@@ -4,6 +4,7 @@
 //! stop rules and the classification of Sect. 3.
 pub mod bessel;
 pub mod classify;
+pub mod continuation;
 pub mod dynamics;
 pub mod error;
 pub mod etd;

@@ -1,5 +1,5 @@
-//! Newton's method for small dense systems `f(x) = 0` (the steady states' force balance, and
-//! the continuation to come): central-difference Jacobian, LU with partial pivoting, damping
+//! Newton's method for small dense systems `f(x) = 0` (the steady states' force balance; the
+//! continuation's corrector): central-difference Jacobian, LU with partial pivoting (nalgebra), damping
 //! by a per-component step cap, and a convergence test on the residual (max norm) instead of
 //! a fixed number of iterations. No line search on the residual: the force balance always has
 //! the resting disk as a root, and a residual-decreasing search is drawn to it from states
@@ -56,32 +56,15 @@ pub fn fd_jacobian(f: &mut impl FnMut(&[f64]) -> Vec<f64>, x: &[f64], h: f64) ->
         .collect()
 }
 
-/// Solves `a x = b` by LU with partial pivoting; `None` when `a` is singular.
-pub fn lu_solve(mut a: Vec<Vec<f64>>, b: &[f64]) -> Option<Vec<f64>> {
+/// Solves `a x = b` (`a[row][col]`) by LU with partial pivoting (nalgebra); `None` when `a`
+/// is singular or the solution is not finite.
+pub fn lu_solve(a: Vec<Vec<f64>>, b: &[f64]) -> Option<Vec<f64>> {
     let n = b.len();
-    let mut x = b.to_vec();
-    for k in 0..n {
-        let p = (k..n).max_by(|&i, &j| a[i][k].abs().total_cmp(&a[j][k].abs()))?;
-        if a[p][k] == 0.0 || !a[p][k].is_finite() {
-            return None;
-        }
-        a.swap(k, p);
-        x.swap(k, p);
-        let (top, below) = a.split_at_mut(k + 1);
-        let pivot_row = &top[k];
-        for (i, row) in below.iter_mut().enumerate() {
-            let m = row[k] / pivot_row[k];
-            for (r, p) in row[k..].iter_mut().zip(&pivot_row[k..]) {
-                *r -= m * p;
-            }
-            x[k + 1 + i] -= m * x[k];
-        }
-    }
-    for k in (0..n).rev() {
-        let s: f64 = (k + 1..n).map(|j| a[k][j] * x[j]).sum();
-        x[k] = (x[k] - s) / a[k][k];
-    }
-    x.iter().all(|v| v.is_finite()).then_some(x)
+    let m = nalgebra::DMatrix::from_fn(n, n, |i, j| a[i][j]);
+    let x = m.lu().solve(&nalgebra::DVector::from_column_slice(b))?;
+    x.iter()
+        .all(|v| v.is_finite())
+        .then(|| x.iter().copied().collect())
 }
 
 /// Solves `f(x) = 0` from `x0`. Each step is the Newton step scaled down to respect

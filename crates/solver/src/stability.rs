@@ -202,6 +202,23 @@ impl Linearization {
         det4(self.t_matrix(lambda))
     }
 
+    /// The mode `dz` of an eigenvalue `lambda` (`T(lambda) dz = 0`), unit length, its largest
+    /// component real and positive (a real eigenvalue's mode is then real).
+    pub fn mode(&self, lambda: C64) -> [C64; 4] {
+        let v = null_vector(&self.t_matrix(lambda));
+        let big = v
+            .iter()
+            .copied()
+            .max_by(|a, b| a.norm().total_cmp(&b.norm()))
+            .expect("four");
+        let phase = if big.norm() > 0.0 {
+            big.conj() / big.norm()
+        } else {
+            C64::new(1.0, 0.0)
+        };
+        v.map(|c| c * phase)
+    }
+
     /// The eigenvalues with `Re lambda > -1` (the only ones the field's decay leaves), with
     /// multiplicity, sorted by decreasing real part: roots of `det T(lambda)` by Newton's
     /// method, each one divided out before the next is sought, started from the eigenvalues of
@@ -252,93 +269,33 @@ impl Linearization {
     }
 }
 
-/// The determinant of a complex 4 x 4 matrix (LU with partial pivoting).
-fn det4(mut a: [[C64; 4]; 4]) -> C64 {
-    let mut det = C64::new(1.0, 0.0);
-    for k in 0..4 {
-        let p = (k..4)
-            .max_by(|&i, &j| a[i][k].norm().total_cmp(&a[j][k].norm()))
-            .expect("rows");
-        if a[p][k].norm() == 0.0 {
-            return C64::default();
-        }
-        if p != k {
-            a.swap(p, k);
-            det = -det;
-        }
-        det *= a[k][k];
-        let pivot = a[k];
-        for row in a.iter_mut().skip(k + 1) {
-            let m = row[k] / pivot[k];
-            for (x, p) in row[k..].iter_mut().zip(&pivot[k..]) {
-                *x -= m * p;
-            }
-        }
-    }
-    det
+fn matrix4(a: &[[C64; 4]; 4]) -> nalgebra::Matrix4<C64> {
+    nalgebra::Matrix4::from_fn(|i, j| a[i][j])
 }
 
-/// The eigenvalues of a complex 4 x 4 matrix: the characteristic polynomial (Faddeev-LeVerrier)
-/// and its roots (Durand-Kerner, polished by Newton).
+/// The determinant of a complex 4 x 4 matrix (LU with partial pivoting).
+fn det4(a: [[C64; 4]; 4]) -> C64 {
+    matrix4(&a).lu().determinant()
+}
+
+/// The eigenvalues of a complex 4 x 4 matrix (complex Schur form).
 fn eig4(a: &[[C64; 4]; 4]) -> Vec<C64> {
-    // p(x) = x^4 + c1 x^3 + c2 x^2 + c3 x + c4.
-    let mul = |x: &[[C64; 4]; 4], y: &[[C64; 4]; 4]| {
-        let mut z = [[C64::default(); 4]; 4];
-        for i in 0..4 {
-            for j in 0..4 {
-                for k in 0..4 {
-                    z[i][j] += x[i][k] * y[k][j];
-                }
-            }
-        }
-        z
-    };
-    let trace = |x: &[[C64; 4]; 4]| (0..4).map(|i| x[i][i]).sum::<C64>();
-    let mut c = [C64::new(1.0, 0.0); 5];
-    let mut mk = [[C64::default(); 4]; 4];
-    for k in 1..=4 {
-        // M_k = A M_{k-1} + c_{k-1} I, c_k = -tr(A M_k) / k.
-        let mut next = mul(a, &mk);
-        for (i, row) in next.iter_mut().enumerate() {
-            row[i] += c[k - 1];
-        }
-        mk = next;
-        c[k] = -trace(&mul(a, &mk)) / k as f64;
+    match matrix4(a).schur().eigenvalues() {
+        Some(e) => e.iter().copied().collect(),
+        // The Schur iteration did not converge: start from the diagonal.
+        None => (0..4).map(|i| a[i][i]).collect(),
     }
-    let p = |x: C64| (((x + c[1]) * x + c[2]) * x + c[3]) * x + c[4];
-    let dp = |x: C64| ((4.0 * x + 3.0 * c[1]) * x + 2.0 * c[2]) * x + c[3];
-    let scale = c[1..].iter().map(|v| v.norm()).fold(1.0f64, f64::max);
-    let seed = C64::new(0.4, 0.9) * scale;
-    let mut roots: Vec<C64> = (0..4).map(|i| seed.powu(i as u32 + 1)).collect();
-    for _ in 0..500 {
-        let mut moved = 0.0f64;
-        for i in 0..4 {
-            let mut den = C64::new(1.0, 0.0);
-            for j in 0..4 {
-                if i != j {
-                    den *= roots[i] - roots[j];
-                }
-            }
-            let step = p(roots[i]) / den;
-            roots[i] -= step;
-            moved = moved.max(step.norm());
-        }
-        if moved < 1e-15 * scale {
-            break;
-        }
-    }
-    for r in &mut roots {
-        for _ in 0..3 {
-            let d = dp(*r);
-            if d.norm() > 0.0 {
-                let step = p(*r) / d;
-                if step.is_finite() && step.norm() < 1e-6 * scale {
-                    *r -= step;
-                }
-            }
-        }
-    }
-    roots
+}
+
+/// A unit null vector of a (numerically) singular complex 4 x 4 matrix: the right singular
+/// vector of its smallest singular value.
+fn null_vector(a: &[[C64; 4]; 4]) -> [C64; 4] {
+    let svd = matrix4(a).svd(false, true);
+    let v_t = svd.v_t.expect("requested");
+    let k = (0..4)
+        .min_by(|&i, &j| svd.singular_values[i].total_cmp(&svd.singular_values[j]))
+        .expect("four values");
+    std::array::from_fn(|j| v_t[(k, j)].conj())
 }
 
 #[cfg(test)]

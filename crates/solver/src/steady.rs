@@ -30,7 +30,8 @@ pub struct SteadySolver {
 /// A mirror line of the periodic square box on which [`SteadySolver::newton_on`] works: the
 /// steady states symmetric about it form a 2-unknown problem (speed along it, one shape
 /// amplitude).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
 pub enum MirrorAxis {
     /// Motion along x, shape `(a2, 0)`.
     X,
@@ -118,6 +119,13 @@ impl SteadySolver {
 
     pub fn params(&self) -> &ModelParams {
         &self.params
+    }
+
+    /// Moves the solver to another `(eta_t, kappa2)`: they enter only the force balance, so
+    /// nothing sampled or planned changes (the continuation's parameters).
+    pub fn set_control(&mut self, eta_t: f64, kappa2: f64) {
+        self.params.eta_t = eta_t;
+        self.params.kappa2 = kappa2;
     }
 
     /// The steady field in real space (co-moving, droplet at the grid centre; row-major,

@@ -8,6 +8,7 @@ pub mod bench_run;
 pub mod bench_table;
 pub mod bifurcation_table;
 pub mod branch_lines;
+pub mod continuation_table;
 pub mod error;
 pub mod execute;
 pub mod h0_table;

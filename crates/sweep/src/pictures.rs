@@ -212,3 +212,77 @@ pub fn ode_bifurcation(
     }
     vs_parameter(dir, stem, title, x_label, &markers, &lines, &vlines)
 }
+
+/// The full model's branches along a line (PDE Fig. 3b): `<stem>.png` / `.svg` in `dir`, each
+/// branch drawn in its order along the continuation, solid where stable and dashed where
+/// unstable (the rotation mode set aside), a marker and a labelled vertical line at every
+/// P / SN / H point.
+pub fn continuation(
+    dir: &Path,
+    stem: &str,
+    branches: &[droplet_solver::continuation::Branch],
+    axis: Axis,
+    title: &str,
+) -> Result<Vec<PathBuf>, SweepError> {
+    use crate::branch_lines::BranchLine;
+    let x_of = |p: &droplet_solver::continuation::BranchPoint| match axis {
+        Axis::EtaT => p.eta_t,
+        Axis::Kappa2 => p.kappa2,
+    };
+    let mut lines: Vec<BranchLine> = Vec::new();
+    let mut markers = Vec::new();
+    let mut vlines: Vec<(f64, String)> = Vec::new();
+    for b in branches {
+        let key = b.family.as_str().to_string();
+        let mut current: Option<BranchLine> = None;
+        for p in &b.points {
+            let stable = p.verdict.stable();
+            let xyz = (x_of(p), p.v, p.s);
+            match current.as_mut() {
+                Some(line) if line.stable == stable => line.points.push(xyz),
+                _ => {
+                    if let Some(mut done) = current.take() {
+                        // The pieces meet at the state where stability changes.
+                        done.points.push(xyz);
+                        lines.push(done);
+                    }
+                    current = Some(BranchLine {
+                        key: key.clone(),
+                        points: vec![xyz],
+                        stable,
+                    });
+                }
+            }
+        }
+        lines.extend(current);
+        for e in &b.events {
+            let x = x_of(&e.point);
+            markers.push(Marker {
+                x,
+                v: e.point.v,
+                s: e.point.s,
+                key: key.clone(),
+                bold: true,
+            });
+            let (lo, hi) = b
+                .points
+                .iter()
+                .map(x_of)
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, c), x| {
+                    (a.min(x), c.max(x))
+                });
+            let near = (hi - lo).abs() * 0.004;
+            if !vlines
+                .iter()
+                .any(|(at, k)| (at - x).abs() <= near && k == e.kind)
+            {
+                vlines.push((x, e.kind.to_string()));
+            }
+        }
+    }
+    let x_label = match axis {
+        Axis::EtaT => ETA_T,
+        Axis::Kappa2 => KAPPA2,
+    };
+    vs_parameter(dir, stem, title, x_label, &markers, &lines, &vlines)
+}

@@ -1,0 +1,339 @@
+//! One branch of steady states followed along a parameter line with its stability, and its
+//! bifurcation points (the PDE's Fig. 3b): a root of the family is found somewhere on the line
+//! ([`Problem::root_at`]) and followed both ways by pseudo-arclength continuation
+//! ([`crate::continuation::arclength`]) until the line's ends, the branch's end on another
+//! family (`v -> 0`: it meets IC or ID), a deformation beyond the 2-mode model, or a loss of
+//! convergence, each reported.
+//!
+//! Events between two accepted points, each located on the branch by the Illinois method in
+//! arclength (to `1e-12` in arclength, far below `1e-7` in the parameter):
+//! - `SN`: the parameter component of the tangent changes sign (a fold);
+//! - `P`: a real eigenvalue crosses zero (the rotation mode excluded), or the branch ends on
+//!   IC / ID (`v = 0`, or `c = 0` for ID);
+//! - `H`: a complex pair crosses zero (an oscillating state would bifurcate: new physics).
+use crate::classify::StateClass;
+use crate::continuation::arclength::{point_at, start, ArclengthOptions, CurvePoint, Stepper};
+use crate::continuation::modes::Verdict;
+use crate::continuation::problem::{Family, Problem};
+use crate::error::SolverError;
+use crate::params::ModelParams;
+use crate::reduced::bifurcation::Axis as Parameter;
+use crate::steady::MirrorAxis;
+use serde::Serialize;
+
+/// A line of parameter values and how to follow a branch along it.
+#[derive(Debug, Clone)]
+pub struct Line {
+    /// Parameters (the varied one is overwritten).
+    pub base: ModelParams,
+    pub n: usize,
+    pub parameter: Parameter,
+    pub from: f64,
+    pub to: f64,
+    /// Most points per direction.
+    pub max_points: usize,
+    pub opts: ArclengthOptions,
+}
+
+/// One state of a branch.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct BranchPoint {
+    pub eta_t: f64,
+    pub kappa2: f64,
+    /// `(vx, vy, a2, b2)`.
+    pub z: [f64; 4],
+    pub v: f64,
+    pub s: f64,
+    /// The paper's class of the state (thresholds 0.01).
+    pub class: StateClass,
+    pub verdict: Verdict,
+}
+
+/// A bifurcation point on a branch.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct BranchEvent {
+    /// `P`, `SN` or `H`.
+    pub kind: &'static str,
+    /// What happens there, e.g. "fold", "real eigenvalue crosses 0", "meets IC".
+    pub what: String,
+    pub point: BranchPoint,
+    /// The crossing eigenvalue at the event (`[re, im]`; `im` is the frequency at a Hopf
+    /// point), for `P` / `H` by eigenvalue.
+    pub eigenvalue: Option<[f64; 2]>,
+}
+
+/// A followed branch.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Branch {
+    pub family: Family,
+    pub mirror: MirrorAxis,
+    /// In order along the branch.
+    pub points: Vec<BranchPoint>,
+    pub events: Vec<BranchEvent>,
+    /// How the branch ends, at its first and at its last point.
+    pub ends: [String; 2],
+}
+
+/// Where a branch stops although the step still converged.
+enum Stop {
+    /// Left the line at `q = 0` or `1`.
+    Range(f64),
+    /// `v` (or `c` for ID) reached zero: the branch meets IC or ID.
+    Meets,
+    /// Deformation at or beyond this (outside the 2-mode model).
+    Deformation,
+}
+
+/// Largest deformation followed.
+pub const MAX_DEFORMATION: f64 = 0.9;
+
+struct Tracer<'a> {
+    prob: &'a mut Problem,
+    opts: ArclengthOptions,
+}
+
+impl Tracer<'_> {
+    fn point(&mut self, y: &[f64], verdict: Verdict) -> BranchPoint {
+        let (eta_t, kappa2) = self.prob.control(*y.last().expect("q"));
+        let z = self.prob.state(y);
+        let (v, s) = (z[0].hypot(z[1]), z[2].hypot(z[3]));
+        BranchPoint {
+            eta_t,
+            kappa2,
+            z,
+            v,
+            s,
+            class: StateClass::of(v, s),
+            verdict,
+        }
+    }
+
+    /// The point between `a` (`g(a) = ga`) and `a`'s arclength `ds` (`g = gb`, opposite
+    /// sign) where `g` vanishes: the Illinois variant of regula falsi in arclength.
+    fn locate(
+        &mut self,
+        a: &CurvePoint,
+        ds: f64,
+        (ga, gb): (f64, f64),
+        g: &mut dyn FnMut(&mut Problem, &CurvePoint) -> f64,
+    ) -> Option<CurvePoint> {
+        let (mut lo, mut hi, mut glo, mut ghi) = (0.0, ds, ga, gb);
+        let mut side = 0i32;
+        let mut best: Option<CurvePoint> = None;
+        for _ in 0..60 {
+            let s = if (ghi - glo).abs() > 0.0 {
+                (lo * ghi - hi * glo) / (ghi - glo)
+            } else {
+                0.5 * (lo + hi)
+            };
+            let s = if s > lo && s < hi { s } else { 0.5 * (lo + hi) };
+            let prob = &mut *self.prob;
+            let (p, _) = point_at(&mut |y: &[f64]| prob.residual(y), a, s, &self.opts)?;
+            let gs = g(self.prob, &p);
+            best = Some(p);
+            if gs == 0.0 || hi - lo < 1e-12 {
+                break;
+            }
+            if gs.signum() == glo.signum() {
+                lo = s;
+                glo = gs;
+                if side == -1 {
+                    ghi *= 0.5;
+                }
+                side = -1;
+            } else {
+                hi = s;
+                ghi = gs;
+                if side == 1 {
+                    glo *= 0.5;
+                }
+                side = 1;
+            }
+            if (hi - lo) < 1e-12 {
+                break;
+            }
+        }
+        best
+    }
+
+    /// Follows the branch from `first` (tangent oriented) until it stops.
+    fn trace(
+        &mut self,
+        first: CurvePoint,
+        max_points: usize,
+    ) -> (Vec<BranchPoint>, Vec<BranchEvent>, String) {
+        let family = self.prob.family;
+        let mut stepper = Stepper::new(self.opts.clone());
+        let first_verdict = self.prob.verdict(&first.y);
+        let mut out = vec![self.point(&first.y, first_verdict.clone())];
+        let mut events = Vec::new();
+        let (mut a, mut va) = (first, first_verdict);
+        let q_last = |p: &CurvePoint| *p.y.last().expect("q");
+        let tq = |p: &CurvePoint| *p.tangent.last().expect("q");
+        let along = |p: &CurvePoint| -> f64 {
+            match family {
+                Family::IC => 1.0,
+                Family::ID => p.y[0],
+                Family::MdMinor | Family::MdMajor => p.y[0],
+            }
+        };
+        let end = loop {
+            if out.len() >= max_points {
+                break format!("stopped after {max_points} points (--max-points)");
+            }
+            let prob = &mut *self.prob;
+            let Some(step) = stepper.advance(&mut |y: &[f64]| prob.residual(y), &a) else {
+                let (e, k) = self.prob.control(q_last(&a));
+                break format!(
+                    "no convergence beyond eta_t = {e:.7}, kappa2 = {k:.7} (step below {:e})",
+                    self.opts.ds_min
+                );
+            };
+            let b = step.point;
+            let (_, cb) = self.prob.speed_and_shape(&b.y);
+            let stop = if !(0.0..=1.0).contains(&q_last(&b)) {
+                Some(Stop::Range(if q_last(&b) < 0.0 { 0.0 } else { 1.0 }))
+            } else if family != Family::IC && along(&b).signum() != along(&a).signum() {
+                Some(Stop::Meets)
+            } else if cb.abs() >= MAX_DEFORMATION {
+                Some(Stop::Deformation)
+            } else {
+                None
+            };
+            match stop {
+                Some(Stop::Range(bound)) => {
+                    let (g0, g1) = (q_last(&a) - bound, q_last(&b) - bound);
+                    let mut g = |_: &mut Problem, p: &CurvePoint| q_last(p) - bound;
+                    if let Some(p) = self.locate(&a, step.ds, (g0, g1), &mut g) {
+                        let v = self.prob.verdict(&p.y);
+                        out.push(self.point(&p.y, v));
+                    }
+                    break "end of the line".to_string();
+                }
+                Some(Stop::Meets) => {
+                    let Some(y) = self.prob.meeting(&a.y) else {
+                        break "meets another family (not located)".to_string();
+                    };
+                    let verdict = self.prob.verdict(&y);
+                    let pt = self.point(&y, verdict);
+                    let other = if family == Family::ID || pt.s < 1e-6 {
+                        "IC"
+                    } else {
+                        "ID"
+                    };
+                    events.push(BranchEvent {
+                        kind: "P",
+                        what: format!("meets {other}"),
+                        point: pt.clone(),
+                        eigenvalue: None,
+                    });
+                    out.push(pt);
+                    break format!("meets {other} (pitchfork)");
+                }
+                Some(Stop::Deformation) => {
+                    break format!("deformation reached {MAX_DEFORMATION}");
+                }
+                None => {}
+            }
+            let vb = self.prob.verdict(&b.y);
+            if tq(&a) != 0.0 && tq(&b).signum() != tq(&a).signum() {
+                let mut g = |_: &mut Problem, p: &CurvePoint| tq(p);
+                if let Some(p) = self.locate(&a, step.ds, (tq(&a), tq(&b)), &mut g) {
+                    let verdict = self.prob.verdict(&p.y);
+                    let pt = self.point(&p.y, verdict);
+                    events.push(BranchEvent {
+                        kind: "SN",
+                        what: "fold".into(),
+                        point: pt,
+                        eigenvalue: None,
+                    });
+                }
+            } else if va.unstable != vb.unstable {
+                let idx = va.unstable.min(vb.unstable);
+                let re_at = |v: &Verdict| v.decisive().get(idx).map_or(-1.0, |l| l.re);
+                let (g0, g1) = (re_at(&va), re_at(&vb));
+                let mut g = |prob: &mut Problem, p: &CurvePoint| re_at(&prob.verdict(&p.y));
+                if let Some(p) = self.locate(&a, step.ds, (g0, g1), &mut g) {
+                    let verdict = self.prob.verdict(&p.y);
+                    let lambda = verdict.decisive().get(idx).copied();
+                    let complex = lambda.is_some_and(|l| l.im.abs() > 1e-7);
+                    let pt = self.point(&p.y, verdict);
+                    events.push(BranchEvent {
+                        kind: if complex { "H" } else { "P" },
+                        what: if complex {
+                            "complex pair crosses 0 (Hopf)".into()
+                        } else {
+                            "real eigenvalue crosses 0".into()
+                        },
+                        point: pt,
+                        eigenvalue: lambda.map(|l| [l.re, l.im]),
+                    });
+                }
+            }
+            out.push(self.point(&b.y, vb.clone()));
+            a = b;
+            va = vb;
+        };
+        (out, events, end)
+    }
+}
+
+/// Follows `family` on `mirror` along `line`. Errors: bad parameters, or no state of the
+/// family found anywhere on the line.
+pub fn follow(line: &Line, family: Family, mirror: MirrorAxis) -> Result<Branch, SolverError> {
+    let mut prob = Problem::new(
+        &line.base,
+        line.n,
+        family,
+        mirror,
+        line.parameter,
+        line.from,
+        line.to,
+    )?;
+    // Where to look for a first state: the ends, then ever finer points in between.
+    let qs = [0.0, 1.0, 0.5, 0.25, 0.75, 0.125, 0.375, 0.625, 0.875];
+    let y0 = qs
+        .iter()
+        .find_map(|&q| prob.root_at(prob.value(q)))
+        .ok_or(SolverError::NoBranch {
+            family: family.as_str(),
+        })?;
+    let k = y0.len();
+    let mut e_q = vec![0.0; k];
+    let opts = line.opts.clone();
+    let mut traces = Vec::new();
+    for sign in [-1.0, 1.0] {
+        e_q[k - 1] = sign;
+        let first = {
+            let prob = &mut prob;
+            start(&mut |y: &[f64]| prob.residual(y), &y0, &e_q, &opts)
+        };
+        let Some(first) = first else {
+            traces.push((
+                Vec::new(),
+                Vec::new(),
+                "singular at the first state".to_string(),
+            ));
+            continue;
+        };
+        let mut tracer = Tracer {
+            prob: &mut prob,
+            opts: opts.clone(),
+        };
+        traces.push(tracer.trace(first, line.max_points));
+    }
+    let (back, fwd) = (traces.remove(0), traces.remove(0));
+    let mut points: Vec<BranchPoint> = back.0.into_iter().rev().collect();
+    // The first state is in both traces.
+    points.extend(fwd.0.into_iter().skip(usize::from(!points.is_empty())));
+    let mut events = back.1;
+    events.reverse();
+    events.extend(fwd.1);
+    Ok(Branch {
+        family,
+        mirror,
+        points,
+        events,
+        ends: [back.2, fwd.2],
+    })
+}

@@ -1,0 +1,259 @@
+//! `droplet continue`: branches of steady states of the full model followed in one parameter,
+//! with their stability and bifurcation points (the PDE's Fig. 3b).
+use super::{print_json, CliError};
+use droplet_solver::continuation::arclength::ArclengthOptions;
+use droplet_solver::continuation::{follow, Branch, Family, Line};
+use droplet_solver::reduced::bifurcation::Axis;
+use droplet_solver::steady::MirrorAxis;
+use droplet_solver::ModelParams;
+use std::path::PathBuf;
+use std::time::Instant;
+
+/// Follow steady states of the full model (field included, N x N spectral grid) as roots of
+/// the co-moving force balance, by pseudo-arclength continuation in eta_t or kappa2 through
+/// folds, with the linear stability of every state (eigenvalues with Re > -1 of the 4 x 4
+/// nonlinear eigenproblem; the near-neutral rotation mode, a box effect, is reported apart
+/// and left out of the verdict). Pitchfork (P), saddle-node (SN) and Hopf (H) points are
+/// located on the branch to ~1e-10 in the parameter. Writes DIR/<stem>.parquet (every state),
+/// DIR/<stem>_events.parquet and DIR/<stem>.png/.svg (solid stable, dashed unstable), with
+/// <stem> = continuation_<fixed parameter>_<value>.
+#[derive(clap::Args)]
+#[command(
+    allow_negative_numbers = true,
+    after_help = "Examples:\n  droplet continue --kappa2 0.13 --from 0.070 --to 0.100 --out results/continuation    # all branches, vary eta_t\n  droplet continue --eta-t 0.085 --from 0.100 --to 0.170 --out results/continuation   # vary kappa2\n  droplet continue --branch md --kappa2 0.13 --from 0.07 --to 0.1 --json             # the MD branch and its fold"
+)]
+pub struct Args {
+    /// Which branch: all, ic, id, md (moving along its minor axis), md-major.
+    #[arg(long, default_value = "all")]
+    branch: String,
+    /// Fix eta_t and vary kappa2.
+    #[arg(long, conflicts_with = "kappa2", required_unless_present = "kappa2")]
+    eta_t: Option<f64>,
+    /// Fix kappa2 and vary eta_t.
+    #[arg(long)]
+    kappa2: Option<f64>,
+    /// Start of the varied parameter.
+    #[arg(long)]
+    from: f64,
+    /// End of the varied parameter.
+    #[arg(long)]
+    to: f64,
+    /// The mirror axis the states lie on: x (motion along x), or diagonal.
+    #[arg(long, default_value = "x")]
+    axis: String,
+    /// Grid points per side.
+    #[arg(long, default_value_t = 192)]
+    n: usize,
+    /// Inertia m (> 0: it scales the eigenvalues, not the states).
+    #[arg(long, default_value_t = 0.1)]
+    mass: f64,
+    /// Most states per branch and direction.
+    #[arg(long, default_value_t = 400)]
+    max_points: usize,
+    /// Longest continuation step (arclength in (v, shape, parameter scaled to [0, 1])).
+    #[arg(long, default_value_t = 0.03)]
+    ds_max: f64,
+    /// Output directory.
+    #[arg(long, default_value = "out/continuation")]
+    out: PathBuf,
+    /// Print one JSON object (keys: line, n, seconds, branches [{branch, mirror, points,
+    /// stable_points, ends}], events [{kind, what, branch, eta_t, kappa2, v, s, eigenvalue}],
+    /// files).
+    #[arg(long)]
+    json: bool,
+}
+
+pub fn run(a: Args) -> Result<(), CliError> {
+    let mirror = match a.axis.as_str() {
+        "x" => MirrorAxis::X,
+        "diagonal" => MirrorAxis::Diagonal,
+        other => {
+            return Err(CliError::usage(format!(
+                "invalid --axis `{other}`: x or diagonal"
+            )))
+        }
+    };
+    let families: Vec<Family> = if a.branch == "all" {
+        vec![Family::IC, Family::ID, Family::MdMinor, Family::MdMajor]
+    } else {
+        vec![a
+            .branch
+            .parse()
+            .map_err(|e: String| CliError::usage(format!("invalid --branch: {e}, or all")))?]
+    };
+    if !(a.from.is_finite() && a.to.is_finite() && a.from < a.to) {
+        return Err(CliError::usage(format!(
+            "invalid line --from {} --to {}: two finite numbers with from < to",
+            a.from, a.to
+        )));
+    }
+    if !(16..=1024).contains(&a.n) || !a.n.is_multiple_of(2) {
+        return Err(CliError::usage(format!(
+            "invalid --n {}: an even integer from 16 to 1024",
+            a.n
+        )));
+    }
+    if !(2..=100_000).contains(&a.max_points) {
+        return Err(CliError::usage(format!(
+            "invalid --max-points {}: from 2 to 100000",
+            a.max_points
+        )));
+    }
+    if !(a.ds_max > 0.0 && a.ds_max <= 0.5) {
+        return Err(CliError::usage(format!(
+            "invalid --ds-max {}: a number in (0, 0.5]",
+            a.ds_max
+        )));
+    }
+    let (parameter, fixed_name, fixed) = match (a.eta_t, a.kappa2) {
+        (Some(e), _) => (Axis::Kappa2, "eta_t", e),
+        (_, Some(k)) => (Axis::EtaT, "kappa2", k),
+        _ => unreachable!("clap requires one"),
+    };
+    let varied = if parameter == Axis::EtaT {
+        "eta_t"
+    } else {
+        "kappa2"
+    };
+    let mut base = ModelParams {
+        mass: a.mass,
+        ..ModelParams::default()
+    };
+    match parameter {
+        Axis::EtaT => (base.eta_t, base.kappa2) = (a.from, fixed),
+        Axis::Kappa2 => (base.eta_t, base.kappa2) = (fixed, a.from),
+    }
+    // Both ends of the line must be valid parameters.
+    base.validate()?;
+    let mut end = base;
+    match parameter {
+        Axis::EtaT => end.eta_t = a.to,
+        Axis::Kappa2 => end.kappa2 = a.to,
+    }
+    end.validate()?;
+    if a.mass.is_nan() || a.mass <= 0.0 {
+        return Err(CliError::usage(format!(
+            "invalid --mass {}: a finite number > 0 for the linearisation",
+            a.mass
+        )));
+    }
+    droplet_sweep::atomic::create_output_dir(&a.out)?;
+    let line = Line {
+        base,
+        n: a.n,
+        parameter,
+        from: a.from,
+        to: a.to,
+        max_points: a.max_points,
+        opts: ArclengthOptions {
+            ds_max: a.ds_max,
+            ..ArclengthOptions::default()
+        },
+    };
+    let started = Instant::now();
+    let mut branches: Vec<Branch> = Vec::new();
+    for f in &families {
+        let t0 = Instant::now();
+        eprint!("following {} ({}) ... ", f.as_str(), a.axis);
+        match follow(&line, *f, mirror) {
+            Ok(b) => {
+                eprintln!(
+                    "{} states, {} events in {:.1} s",
+                    b.points.len(),
+                    b.events.len(),
+                    t0.elapsed().as_secs_f64()
+                );
+                branches.push(b);
+            }
+            Err(droplet_solver::SolverError::NoBranch { .. }) if families.len() > 1 => {
+                eprintln!("none on this line");
+            }
+            Err(e) => {
+                eprintln!();
+                return Err(CliError {
+                    message: e.to_string(),
+                    code: 1,
+                });
+            }
+        }
+    }
+    let seconds = started.elapsed().as_secs_f64();
+    let stem = format!("continuation_{fixed_name}_{fixed}");
+    let desc = format!(
+        "{fixed_name} = {fixed}, {varied} from {} to {}",
+        a.from, a.to
+    );
+    let [p1, p2] = droplet_sweep::continuation_table::write(&a.out, &stem, &branches, &desc, a.n)?;
+    let mut files = droplet_sweep::pictures::continuation(
+        &a.out,
+        &stem,
+        &branches,
+        parameter,
+        &format!(
+            "PDE (N = {}), {fixed_name} = {fixed}: solid = stable, dashed = unstable",
+            a.n
+        ),
+    )?;
+    files.extend([p1, p2]);
+    let at = |p: &droplet_solver::continuation::BranchPoint| {
+        if parameter == Axis::EtaT {
+            p.eta_t
+        } else {
+            p.kappa2
+        }
+    };
+    if a.json {
+        let events: Vec<_> = branches
+            .iter()
+            .flat_map(|b| {
+                b.events.iter().map(move |e| {
+                    serde_json::json!({
+                        "kind": e.kind, "what": e.what, "branch": b.family.as_str(),
+                        "mirror": b.mirror, "eta_t": e.point.eta_t, "kappa2": e.point.kappa2,
+                        "v": e.point.v, "s": e.point.s, "eigenvalue": e.eigenvalue,
+                    })
+                })
+            })
+            .collect();
+        let summary: Vec<_> = branches
+            .iter()
+            .map(|b| {
+                serde_json::json!({
+                    "branch": b.family.as_str(), "mirror": b.mirror, "points": b.points.len(),
+                    "stable_points": b.points.iter().filter(|p| p.verdict.stable()).count(),
+                    "ends": b.ends,
+                })
+            })
+            .collect();
+        print_json(&serde_json::json!({
+            "line": desc, "n": a.n, "seconds": seconds, "branches": summary,
+            "events": events, "files": files,
+        }));
+    } else {
+        for b in &branches {
+            println!(
+                "{:<14} {:>4} states ({} stable); ends: {} | {}",
+                b.family.as_str(),
+                b.points.len(),
+                b.points.iter().filter(|p| p.verdict.stable()).count(),
+                b.ends[0],
+                b.ends[1]
+            );
+            for e in &b.events {
+                println!(
+                    "  {:>2} at {varied} = {:.9}  v = {:.6}  s = {:.6}  ({})",
+                    e.kind,
+                    at(&e.point),
+                    e.point.v,
+                    e.point.s,
+                    e.what
+                );
+            }
+        }
+        for f in files {
+            println!("wrote {}", f.display());
+        }
+        println!("{seconds:.1} s");
+    }
+    Ok(())
+}
