@@ -1,5 +1,6 @@
 //! Command-line front end.
 mod bench;
+mod boundaries;
 mod continuation;
 mod fit_h0;
 mod merge;
@@ -35,6 +36,7 @@ enum Command {
     Bench(bench::Args),
     Stability(stability::Args),
     Continue(continuation::Args),
+    Boundaries(boundaries::Args),
 }
 
 /// Exit codes: 0 success, 1 failure while working, 2 bad input.
@@ -52,6 +54,7 @@ pub fn main() -> i32 {
         Command::Bench(a) => bench::run(a),
         Command::Stability(a) => stability::run(a),
         Command::Continue(a) => continuation::run(a),
+        Command::Boundaries(a) => boundaries::run(a),
     };
     match result {
         Ok(()) => 0,

@@ -7,6 +7,7 @@ pub mod bench;
 pub mod bench_run;
 pub mod bench_table;
 pub mod bifurcation_table;
+pub mod boundary_table;
 pub mod branch_lines;
 pub mod continuation_table;
 pub mod error;

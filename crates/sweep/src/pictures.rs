@@ -2,6 +2,7 @@
 //! analytic boundaries (and their table, `boundaries.parquet`), and for a 1-D sweep the
 //! bifurcation lines (Fig. 2b).
 use crate::axes::{ETA_T, KAPPA2};
+use crate::boundary_table::NamedCurve;
 use crate::branch_lines::{branch_lines, BranchSample};
 use crate::error::SweepError;
 use crate::phase_map::PhaseMap;
@@ -55,14 +56,20 @@ pub fn plot_records(
                 (a.min(x), b.max(x))
             })
     };
-    let curves = boundaries(&coef, span(&spec.eta_t), span(&spec.kappa2));
-    let mut df = crate::tables::boundaries_frame(&curves)?;
-    let path = dir.join("boundaries.parquet");
-    crate::tables::write_parquet(&mut df, &path, crate::tables::metadata(Some(&spec.source)))?;
-    let drawn: Vec<Curve> = curves
+    let ode = NamedCurve::from_boundaries(
+        "ode",
+        &boundaries(&coef, span(&spec.eta_t), span(&spec.kappa2)),
+    );
+    // The full model's boundaries, if `droplet boundaries` put them here, are kept.
+    let path = dir.join(crate::boundary_table::FILE);
+    let pde = crate::boundary_table::read(&path, "pde")?;
+    let all: Vec<NamedCurve> = pde.into_iter().chain(ode).collect();
+    crate::boundary_table::write(&path, &all, Some(&spec.source), Vec::new())?;
+    let drawn: Vec<Curve> = all
         .into_iter()
         .map(|c| Curve {
-            label: format!("ODE: {}", c.name),
+            label: format!("{}: {}", c.model.to_uppercase(), c.name),
+            dashed: c.model == "ode",
             points: c.points,
         })
         .collect();

@@ -65,6 +65,8 @@ pub struct MapPoint {
 pub struct Curve {
     pub label: String,
     pub points: Vec<(f64, f64)>,
+    /// Drawn dashed (the reduced model's boundaries) or solid (the full model's).
+    pub dashed: bool,
 }
 
 fn spacing(v: &mut Vec<f64>) -> f64 {
@@ -120,7 +122,7 @@ struct PhaseMap<'a> {
 }
 
 /// Width of the legend panel beside a phase map.
-const LEGEND_W: u32 = 250;
+const LEGEND_W: u32 = 340;
 
 impl Figure for PhaseMap<'_> {
     fn size(&self) -> (u32, u32) {
@@ -185,32 +187,140 @@ impl Figure for PhaseMap<'_> {
                 .map_err(perr)?;
             legend.push((format!("{label} ({})", mine.len()), LegendKey::Box(colour)));
         }
-        let styles = [
-            BLACK,
-            RGBColor(90, 90, 90),
-            RGBColor(160, 0, 160),
-            RGBColor(0, 110, 110),
-        ];
-        for (i, c) in curves.iter().enumerate() {
-            let style = styles[i % styles.len()].stroke_width(2);
-            let inside: Vec<(f64, f64)> = c
-                .points
-                .iter()
-                .copied()
-                .filter(|(x, y)| (x0..=x1).contains(x) && (y0..=y1).contains(y))
-                .collect();
-            if inside.len() < 2 {
-                continue;
-            }
-            chart
-                .draw_series(LineSeries::new(inside, style))
-                .map_err(perr)?;
-            legend.push((c.label.clone(), LegendKey::Line(style)));
-        }
+        draw_curves(&mut chart, curves, (x0, x1), (y0, y1), &mut legend)?;
         draw_legend(&legend_area, &legend)?;
         root.present().map_err(perr)?;
         Ok(())
     }
+}
+
+/// Draws `curves` (the part inside the window) on a phase-plane chart, adding each to the
+/// legend: the full model's solid, the reduced model's dashed, each in its own colour.
+fn draw_curves<DB: DrawingBackend>(
+    chart: &mut ChartContext<
+        '_,
+        DB,
+        Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+    >,
+    curves: &[Curve],
+    (x0, x1): (f64, f64),
+    (y0, y1): (f64, f64),
+    legend: &mut Vec<(String, LegendKey)>,
+) -> Result<(), SweepError>
+where
+    DB::ErrorType: 'static,
+{
+    let styles = [
+        BLACK,
+        RGBColor(90, 90, 90),
+        RGBColor(160, 0, 160),
+        RGBColor(0, 110, 110),
+        RGBColor(200, 90, 0),
+        RGBColor(0, 150, 60),
+    ];
+    // The reduced model's curves in lighter colours of their own.
+    let light = [
+        RGBColor(120, 120, 120),
+        RGBColor(200, 120, 200),
+        RGBColor(90, 170, 220),
+        RGBColor(220, 170, 60),
+    ];
+    let (mut solid, mut dashed) = (0, 0);
+    for c in curves {
+        let colour = if c.dashed {
+            dashed += 1;
+            light[(dashed - 1) % light.len()]
+        } else {
+            solid += 1;
+            styles[(solid - 1) % styles.len()]
+        };
+        let style = colour.stroke_width(if c.dashed { 2 } else { 3 });
+        let inside: Vec<(f64, f64)> = c
+            .points
+            .iter()
+            .copied()
+            .filter(|(x, y)| (x0..=x1).contains(x) && (y0..=y1).contains(y))
+            .collect();
+        if inside.len() < 2 {
+            continue;
+        }
+        if c.dashed {
+            chart
+                .draw_series(DashedLineSeries::new(inside, 8, 6, style))
+                .map_err(perr)?;
+        } else {
+            chart
+                .draw_series(LineSeries::new(inside, style))
+                .map_err(perr)?;
+        }
+        legend.push((c.label.clone(), LegendKey::Line(style)));
+    }
+    Ok(())
+}
+
+/// Phase boundaries alone in the `(eta_t, kappa2)` window (`droplet boundaries`).
+struct BoundaryFigure<'a> {
+    title: &'a str,
+    curves: &'a [Curve],
+    eta_t: (f64, f64),
+    kappa2: (f64, f64),
+}
+
+impl Figure for BoundaryFigure<'_> {
+    fn size(&self) -> (u32, u32) {
+        (900 + LEGEND_W + 80, 760)
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: DrawingArea<DB, Shift>) -> Result<(), SweepError>
+    where
+        DB::ErrorType: 'static,
+    {
+        root.fill(&WHITE).map_err(perr)?;
+        let (plot_area, legend_area) = root.split_horizontally(900);
+        let (x, y) = (self.eta_t, self.kappa2);
+        let mut chart = ChartBuilder::on(&plot_area)
+            .caption(self.title, ("sans-serif", 22))
+            .margin(12)
+            .x_label_area_size(48)
+            .y_label_area_size(64)
+            .build_cartesian_2d(x.0..x.1, y.0..y.1)
+            .map_err(perr)?;
+        chart
+            .configure_mesh()
+            .x_desc(ETA_T)
+            .y_desc(KAPPA2)
+            .label_style(("sans-serif", 15))
+            .axis_desc_style(("sans-serif", 18))
+            .x_label_formatter(&|v| format!("{v:.3}"))
+            .y_label_formatter(&|v| format!("{v:.3}"))
+            .draw()
+            .map_err(perr)?;
+        let mut legend = Vec::new();
+        draw_curves(&mut chart, self.curves, x, y, &mut legend)?;
+        draw_legend(&legend_area, &legend)?;
+        root.present().map_err(perr)?;
+        Ok(())
+    }
+}
+
+/// Renders `<stem>.png` and `.svg` in `dir`: `curves` in the window; returns both paths.
+pub fn boundary_picture(
+    dir: &Path,
+    stem: &str,
+    title: &str,
+    curves: &[Curve],
+    eta_t: (f64, f64),
+    kappa2: (f64, f64),
+) -> Result<Vec<PathBuf>, SweepError> {
+    render(
+        &dir.join(format!("{stem}.png")),
+        &BoundaryFigure {
+            title,
+            curves,
+            eta_t,
+            kappa2,
+        },
+    )
 }
 
 /// Renders `<stem>.png` and `<stem>.svg` in `dir`; returns both paths.

@@ -220,30 +220,6 @@ pub fn points_frame(map: &PhaseMap) -> Result<DataFrame, SweepError> {
     Ok(DataFrame::new(n, cols)?)
 }
 
-/// The analytic boundaries of the reduced model as a long table (`curve`, `eta_t`, `kappa2`).
-pub fn boundaries_frame(
-    curves: &[droplet_solver::reduced::boundaries::Boundary],
-) -> Result<DataFrame, SweepError> {
-    let mut name = Vec::new();
-    let (mut e, mut k) = (Vec::new(), Vec::new());
-    for c in curves {
-        for &(x, y) in &c.points {
-            name.push(c.name.to_string());
-            e.push(x);
-            k.push(y);
-        }
-    }
-    let n = name.len();
-    Ok(DataFrame::new(
-        n,
-        vec![
-            str_col("curve", name),
-            f64_col(ETA_T, e),
-            f64_col(KAPPA2, k),
-        ],
-    )?)
-}
-
 /// Writes `runs.parquet` and `points.parquet` for `plan` from the store.
 pub fn write_tables(
     store: &Store,

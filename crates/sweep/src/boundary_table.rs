@@ -1,0 +1,114 @@
+//! `boundaries.parquet`: phase boundaries as a long table (`model` = `pde` / `ode`, `curve`,
+//! `eta_t`, `kappa2`, points in order along each curve). The reduced model's are analytic
+//! (Fig. 3a); the full model's come from `droplet boundaries` (continuation of the
+//! bifurcation points). A sweep's `droplet plot` rewrites the ODE rows and keeps the PDE rows.
+use crate::axes::{ETA_T, KAPPA2};
+use crate::error::SweepError;
+use crate::tables::{metadata, write_parquet};
+use polars::prelude::*;
+use std::path::Path;
+
+/// The file's name in a directory.
+pub const FILE: &str = "boundaries.parquet";
+
+/// One boundary curve of one model.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NamedCurve {
+    /// `pde` or `ode`.
+    pub model: String,
+    pub name: String,
+    /// `(eta_t, kappa2)` in order along the curve.
+    pub points: Vec<(f64, f64)>,
+}
+
+impl NamedCurve {
+    pub fn from_boundaries(
+        model: &str,
+        curves: &[droplet_solver::reduced::boundaries::Boundary],
+    ) -> Vec<Self> {
+        curves
+            .iter()
+            .map(|c| Self {
+                model: model.to_string(),
+                name: c.name.to_string(),
+                points: c.points.clone(),
+            })
+            .collect()
+    }
+}
+
+/// Writes `curves` to `path`, with the sweep's spec (if any) and `extra` in the metadata.
+pub fn write(
+    path: &Path,
+    curves: &[NamedCurve],
+    spec: Option<&str>,
+    extra: Vec<(String, String)>,
+) -> Result<(), SweepError> {
+    let rows: Vec<(&NamedCurve, (f64, f64))> = curves
+        .iter()
+        .flat_map(|c| c.points.iter().map(move |p| (c, *p)))
+        .collect();
+    let mut df = DataFrame::new(
+        rows.len(),
+        vec![
+            Column::new(
+                "model".into(),
+                rows.iter()
+                    .map(|(c, _)| c.model.clone())
+                    .collect::<Vec<_>>(),
+            ),
+            Column::new(
+                "curve".into(),
+                rows.iter().map(|(c, _)| c.name.clone()).collect::<Vec<_>>(),
+            ),
+            Column::new(
+                ETA_T.into(),
+                rows.iter().map(|(_, p)| p.0).collect::<Vec<_>>(),
+            ),
+            Column::new(
+                KAPPA2.into(),
+                rows.iter().map(|(_, p)| p.1).collect::<Vec<_>>(),
+            ),
+        ],
+    )?;
+    let mut meta = metadata(spec);
+    meta.extend(extra);
+    write_parquet(&mut df, path, meta)
+}
+
+/// The curves of `model` stored in `path` (none if the file does not exist or predates the
+/// `model` column).
+pub fn read(path: &Path, model: &str) -> Result<Vec<NamedCurve>, SweepError> {
+    if !path.exists() {
+        return Ok(Vec::new());
+    }
+    let file = std::fs::File::open(path).map_err(|e| SweepError::io(path, e))?;
+    let df = ParquetReader::new(file).finish()?;
+    if df.column("model").is_err() {
+        return Ok(Vec::new());
+    }
+    let models = df.column("model")?.str()?.clone();
+    let names = df.column("curve")?.str()?.clone();
+    let eta = df.column(ETA_T)?.f64()?.clone();
+    let kappa = df.column(KAPPA2)?.f64()?.clone();
+    let mut out: Vec<NamedCurve> = Vec::new();
+    for i in 0..df.height() {
+        if models.get(i) != Some(model) {
+            continue;
+        }
+        let name = names.get(i).unwrap_or_default().to_string();
+        let p = (
+            eta.get(i).unwrap_or(f64::NAN),
+            kappa.get(i).unwrap_or(f64::NAN),
+        );
+        match out.last_mut() {
+            Some(c) if c.name == name => c.points.push(p),
+            _ => out.push(NamedCurve {
+                model: model.to_string(),
+                name,
+                points: vec![p],
+            }),
+        }
+    }
+    Ok(out)
+}
