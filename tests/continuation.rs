@@ -1,0 +1,139 @@
+//! `droplet continue` and `droplet boundaries` end to end: branches, events, tables,
+//! pictures, a sweep's phase map redrawn with the boundaries, and bad input.
+mod common;
+
+use common::{json, read, run};
+use polars::prelude::*;
+
+#[test]
+fn continue_follows_md_through_its_fold_to_the_onset_of_motion() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().to_str().unwrap();
+    let args = [
+        "continue", "--kappa2", "0.13", "--from", "0.07", "--to", "0.1", "--n", "96", "--out", out,
+        "--json",
+    ];
+    let j = json(&run(&args));
+    let events = j["events"].as_array().unwrap();
+    let at = |kind: &str, branch: &str| {
+        events
+            .iter()
+            .find(|e| e["kind"] == kind && e["branch"] == branch)
+            .map(|e| e["eta_t"].as_f64().unwrap())
+    };
+    // Subcritical onset of motion: the MD branch meets IC where the disk loses stability,
+    // and folds back above it (bistable IC/MD in between).
+    let p_ic = at("P", "IC").expect("the disk's drift pitchfork");
+    let meets = events
+        .iter()
+        .find(|e| e["what"] == "meets IC")
+        .expect("MD meets IC");
+    assert!(
+        (meets["eta_t"].as_f64().unwrap() - p_ic).abs() < 1e-9,
+        "{j}"
+    );
+    let sn = at("SN", "MD minor-axis").expect("a fold");
+    assert!(sn > p_ic + 0.001 && sn < 0.085, "{j}");
+    let branches = j["branches"].as_array().unwrap();
+    let md = branches
+        .iter()
+        .find(|b| b["branch"] == "MD minor-axis")
+        .unwrap();
+    assert!(md["stable_points"].as_u64().unwrap() > 5, "{md}");
+    assert!(md["points"].as_u64().unwrap() > md["stable_points"].as_u64().unwrap());
+    // Tables and picture.
+    let df = read(&dir.path().join("continuation_kappa2_0.13.parquet"));
+    let stable = df.column("stable").unwrap().bool().unwrap();
+    assert!((0..stable.len()).any(|i| stable.get(i) == Some(false)));
+    let ev = read(&dir.path().join("continuation_kappa2_0.13_events.parquet"));
+    assert_eq!(ev.height(), events.len());
+    assert!(dir.path().join("continuation_kappa2_0.13.png").exists());
+    assert!(dir.path().join("continuation_kappa2_0.13.svg").exists());
+}
+
+#[test]
+fn boundaries_are_written_and_drawn_over_a_sweeps_map() {
+    let dir = tempfile::tempdir().unwrap();
+    let sweep = dir.path().join("smoke");
+    let s = sweep.to_str().unwrap();
+    assert!(run(&["sweep", "sweeps/smoke.yaml", "--out", s])
+        .status
+        .success());
+    let j = json(&run(&[
+        "boundaries",
+        "--out",
+        s,
+        "--n",
+        "96",
+        "--samples",
+        "6",
+        "--json",
+    ]));
+    // The sweep's window is the default.
+    assert_eq!(j["eta_t"][0].as_f64(), Some(0.07), "{j}");
+    let curves = j["curves"].as_array().unwrap();
+    let fold = curves
+        .iter()
+        .find(|c| c["model"] == "pde" && c["curve"] == "MD saddle-node (x axis)")
+        .expect("the fold curve");
+    assert!(fold["points"].as_u64().unwrap() > 10, "{fold}");
+    let df = read(&sweep.join("boundaries.parquet"));
+    let model = df.column("model").unwrap().str().unwrap();
+    let models: Vec<&str> = (0..model.len()).filter_map(|i| model.get(i)).collect();
+    assert!(models.contains(&"pde") && models.contains(&"ode"));
+    // Redrawing the sweep keeps the full model's rows.
+    assert!(run(&["plot", s]).status.success());
+    let again = read(&sweep.join("boundaries.parquet"));
+    assert_eq!(again.height(), df.height());
+    for f in ["boundaries.png", "boundaries.svg", "phase_map.png"] {
+        assert!(sweep.join(f).exists(), "{f}");
+    }
+}
+
+#[test]
+fn bad_input_exits_2_naming_the_option() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().to_str().unwrap();
+    let cases: [(&[&str], &str); 6] = [
+        (
+            &[
+                "continue", "--kappa2", "0.13", "--from", "0.1", "--to", "0.07",
+            ],
+            "--from",
+        ),
+        (
+            &[
+                "continue", "--kappa2", "0.13", "--from", "0.07", "--to", "0.1", "--branch", "xx",
+            ],
+            "--branch",
+        ),
+        (
+            &[
+                "continue", "--kappa2", "0.13", "--from", "0.07", "--to", "0.1", "--axis", "z",
+            ],
+            "--axis",
+        ),
+        (
+            &[
+                "continue", "--kappa2", "0.13", "--from", "0.07", "--to", "0.1", "--n", "7",
+            ],
+            "--n",
+        ),
+        (
+            &[
+                "continue", "--kappa2", "0.13", "--from", "-0.1", "--to", "0.1",
+            ],
+            "eta_t",
+        ),
+        (&["boundaries", "--eta-t", "0.1,0.07"], "--eta-t"),
+    ];
+    for (args, needle) in cases {
+        let mut all = args.to_vec();
+        all.extend(["--out", out]);
+        let o = run(&all);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(needle), "{args:?}: {err}");
+        assert!(!err.contains("panicked"), "{err}");
+    }
+}
