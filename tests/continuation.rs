@@ -3,7 +3,6 @@
 mod common;
 
 use common::{json, read, run};
-use polars::prelude::*;
 
 #[test]
 fn continue_follows_md_through_its_fold_to_the_onset_of_motion() {
