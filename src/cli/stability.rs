@@ -11,7 +11,8 @@ use serde::Serialize;
 /// the 4 x 4 nonlinear eigenproblem det(lambda M - E - C (lambda - D)^-1 B) = 0. A state with
 /// an eigenvalue of positive real part is unstable. Moving and deformed states have one
 /// near-neutral eigenvalue (the rotation of the direction of motion or of the long axis,
-/// weakly broken by the periodic box); it is listed with the others and counts in `stable`.
+/// weakly broken by the periodic box); it is listed with the others, identified by its mode
+/// (`rotation`), and left out of `stable` / `unstable`, which decide the state's class.
 /// For the resting disk it also prints where the disk loses stability: the eta_t below which
 /// it starts to move and the kappa2 below which it deforms, exact at the grid (no scan).
 #[derive(clap::Args)]
@@ -42,7 +43,8 @@ pub struct Args {
     #[arg(long, default_value_t = 0.1)]
     mass: f64,
     /// Print one JSON object (keys: state, axis, eta_t, kappa2, n, vx, vy, a2, b2, v, s,
-    /// residual, eigenvalues [{re, im}], unstable, stable, ic_thresholds {eta_t, kappa2_a2,
+    /// residual, eigenvalues [{re, im}], rotation (the rotation mode's eigenvalue or null),
+    /// unstable (rotation excluded), stable, ic_thresholds {eta_t, kappa2_a2,
     /// kappa2_b2} for the resting disk, else null).
     #[arg(long)]
     json: bool,
@@ -69,7 +71,9 @@ struct Report {
     s: f64,
     residual: f64,
     eigenvalues: Vec<Eigen>,
-    /// Eigenvalues with a positive real part.
+    /// The near-neutral rotation mode's eigenvalue (moving or deformed states).
+    rotation: Option<f64>,
+    /// Eigenvalues with a positive real part, the rotation mode excluded.
     unstable: usize,
     stable: bool,
     /// For the resting disk: where it loses stability (independent of the point).
@@ -125,7 +129,12 @@ pub fn run(a: Args) -> Result<(), CliError> {
         other => CliError::from(other),
     })?;
     let [vx, vy, a2, b2] = st.z;
-    let unstable = st.eigenvalues.iter().filter(|l| l.re > 0.0).count();
+    let verdict = {
+        let mut solver = droplet_solver::SteadySolver::new(params, a.n)?;
+        let lin = droplet_solver::stability::Linearization::at(&mut solver, st.z);
+        droplet_solver::continuation::modes::assess(&lin, st.z)
+    };
+    let unstable = verdict.unstable;
     let report = Report {
         state: a.state,
         axis: a.axis.clone(),
@@ -144,6 +153,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
             .iter()
             .map(|l| Eigen { re: l.re, im: l.im })
             .collect(),
+        rotation: verdict.rotation,
         unstable,
         stable: unstable == 0,
         ic_thresholds: match a.state {
@@ -175,6 +185,11 @@ pub fn run(a: Args) -> Result<(), CliError> {
                 format!("unstable ({unstable} eigenvalues with positive real part)")
             }
         );
+        if let Some(r) = report.rotation {
+            println!(
+                "rotation mode {r:+.6} (box effect: which orientation the box prefers; not counted)"
+            );
+        }
     }
     Ok(())
 }

@@ -13,6 +13,7 @@ pub mod continuation_table;
 pub mod error;
 pub mod execute;
 pub mod h0_table;
+pub mod line_compare;
 pub mod merge;
 pub mod merge_report;
 pub mod phase;
