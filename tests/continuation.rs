@@ -142,24 +142,10 @@ fn fig2b_class_changes_fall_between_the_committed_bifurcation_points() {
     // The committed Fig. 2b sweeps against the committed continuation of the same lines
     // (results/continuation/run.sh): every class change between neighbouring grid points has a
     // P / SN point between them, or is a resting class where that state is unstable.
-    let lines = [
-        ("i", "eta_t", "0.082", "kappa2"),
-        ("ii", "eta_t", "0.09", "kappa2"),
-        ("iii", "kappa2", "0.16", "eta_t"),
-        ("iv", "kappa2", "0.13", "eta_t"),
-        ("v", "kappa2", "0.117", "eta_t"),
-        ("vi", "kappa2", "0.1", "eta_t"),
-    ];
     let mut bracketed = 0;
-    for (name, fixed, value, axis) in lines {
-        let stem = format!("results/continuation/continuation_{fixed}_{value}");
-        let changes = droplet_sweep::line_compare::compare(
-            std::path::Path::new(&format!("results/fig2b-{name}/points.parquet")),
-            std::path::Path::new(&format!("{stem}.parquet")),
-            std::path::Path::new(&format!("{stem}_events.parquet")),
-            axis,
-        )
-        .unwrap();
+    for line in droplet_sweep::line_compare::FIG2B_LINES {
+        let name = line.0;
+        let changes = droplet_sweep::line_compare::compare_fig2b(line).unwrap();
         assert!(!changes.is_empty(), "line {name}");
         for c in &changes {
             assert!(c.explained(), "line {name}: {c:?}");

@@ -74,12 +74,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
         (None, Some(s)) if s.kappa2.len() > 1 => span(&s.kappa2),
         _ => (0.10, 0.17),
     };
-    if !(16..=1024).contains(&a.n) || !a.n.is_multiple_of(2) {
-        return Err(CliError::usage(format!(
-            "invalid --n {}: an even integer from 16 to 1024",
-            a.n
-        )));
-    }
+    super::check_grid(a.n)?;
     if !(2..=10_000).contains(&a.samples) {
         return Err(CliError::usage(format!(
             "invalid --samples {}: from 2 to 10000",

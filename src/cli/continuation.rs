@@ -4,7 +4,6 @@ use super::{print_json, CliError};
 use droplet_solver::continuation::arclength::ArclengthOptions;
 use droplet_solver::continuation::{follow, Branch, Family, Line};
 use droplet_solver::reduced::bifurcation::Axis;
-use droplet_solver::steady::MirrorAxis;
 use droplet_solver::ModelParams;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -64,15 +63,7 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<(), CliError> {
-    let mirror = match a.axis.as_str() {
-        "x" => MirrorAxis::X,
-        "diagonal" => MirrorAxis::Diagonal,
-        other => {
-            return Err(CliError::usage(format!(
-                "invalid --axis `{other}`: x or diagonal"
-            )))
-        }
-    };
+    let mirror = super::mirror_axis(&a.axis)?;
     let families: Vec<Family> = if a.branch == "all" {
         vec![Family::IC, Family::ID, Family::MdMinor, Family::MdMajor]
     } else {
@@ -87,12 +78,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
             a.from, a.to
         )));
     }
-    if !(16..=1024).contains(&a.n) || !a.n.is_multiple_of(2) {
-        return Err(CliError::usage(format!(
-            "invalid --n {}: an even integer from 16 to 1024",
-            a.n
-        )));
-    }
+    super::check_grid(a.n)?;
     if !(2..=100_000).contains(&a.max_points) {
         return Err(CliError::usage(format!(
             "invalid --max-points {}: from 2 to 100000",

@@ -95,6 +95,28 @@ impl From<droplet_solver::SolverError> for CliError {
     }
 }
 
+/// Checks `--n` for the root-finding commands (stability, continue, boundaries).
+pub fn check_grid(n: usize) -> Result<(), CliError> {
+    if (16..=1024).contains(&n) && n.is_multiple_of(2) {
+        Ok(())
+    } else {
+        Err(CliError::usage(format!(
+            "invalid --n {n}: an even integer from 16 to 1024"
+        )))
+    }
+}
+
+/// Parses `--axis`: the mirror line a state lies on.
+pub fn mirror_axis(text: &str) -> Result<droplet_solver::steady::MirrorAxis, CliError> {
+    match text {
+        "x" => Ok(droplet_solver::steady::MirrorAxis::X),
+        "diagonal" => Ok(droplet_solver::steady::MirrorAxis::Diagonal),
+        other => Err(CliError::usage(format!(
+            "invalid --axis `{other}`: x or diagonal"
+        ))),
+    }
+}
+
 /// Prints one JSON object. A closed pipe (`droplet ... --json | head`) is not an error.
 pub fn print_json<T: serde::Serialize>(value: &T) {
     use std::io::Write;

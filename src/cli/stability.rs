@@ -1,7 +1,6 @@
 //! `droplet stability`: one named steady state as a root, and its leading eigenvalues.
 use super::{print_json, CliError};
 use droplet_solver::named_state::{find, ic_thresholds, IcThresholds, StateKind};
-use droplet_solver::steady::MirrorAxis;
 use droplet_solver::ModelParams;
 use serde::Serialize;
 
@@ -81,15 +80,7 @@ struct Report {
 }
 
 pub fn run(a: Args) -> Result<(), CliError> {
-    let axis = match a.axis.as_str() {
-        "x" => MirrorAxis::X,
-        "diagonal" => MirrorAxis::Diagonal,
-        other => {
-            return Err(CliError::usage(format!(
-                "invalid --axis `{other}`: x or diagonal"
-            )))
-        }
-    };
+    let axis = super::mirror_axis(&a.axis)?;
     let seed = match &a.seed {
         None => None,
         Some(text) => {
@@ -115,12 +106,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
         ..ModelParams::default()
     };
     params.validate()?;
-    if !(16..=1024).contains(&a.n) || !a.n.is_multiple_of(2) {
-        return Err(CliError::usage(format!(
-            "invalid --n {}: an even integer from 16 to 1024",
-            a.n
-        )));
-    }
+    super::check_grid(a.n)?;
     let st = find(&params, a.n, a.state, axis, seed).map_err(|e| match e {
         droplet_solver::SolverError::NewtonFailed { .. } => CliError {
             message: format!("{e}; try another --seed or --axis"),

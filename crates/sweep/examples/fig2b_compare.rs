@@ -2,18 +2,9 @@
 //! changes against the continuation's bifurcation points on the same line.
 //!
 //! `cargo run --release -p droplet-sweep --example fig2b_compare > results/continuation/fig2b_comparison.md`
-use droplet_sweep::line_compare::compare;
-use std::path::Path;
+use droplet_sweep::line_compare::{compare_fig2b, FIG2B_LINES};
 
 fn main() {
-    let lines = [
-        ("i", "eta_t", "0.082", "kappa2"),
-        ("ii", "eta_t", "0.09", "kappa2"),
-        ("iii", "kappa2", "0.16", "eta_t"),
-        ("iv", "kappa2", "0.13", "eta_t"),
-        ("v", "kappa2", "0.117", "eta_t"),
-        ("vi", "kappa2", "0.1", "eta_t"),
-    ];
     println!("# Fig. 2b: time-stepping class changes against continuation (N = 192)\n");
     println!(
         "Each row is a class change between two neighbouring points of a committed Fig. 2b sweep"
@@ -23,15 +14,9 @@ fn main() {
     println!("`cargo run --release -p droplet-sweep --example fig2b_compare`.\n");
     println!("| line | between | classes | continuation events between | verdict |");
     println!("|---|---|---|---|---|");
-    for (name, fixed, value, axis) in lines {
-        let stem = format!("results/continuation/continuation_{fixed}_{value}");
-        let changes = compare(
-            Path::new(&format!("results/fig2b-{name}/points.parquet")),
-            Path::new(&format!("{stem}.parquet")),
-            Path::new(&format!("{stem}_events.parquet")),
-            axis,
-        )
-        .unwrap_or_else(|e| panic!("line {name}: {e}"));
+    for line in FIG2B_LINES {
+        let (name, fixed, value, axis) = line;
+        let changes = compare_fig2b(line).unwrap_or_else(|e| panic!("line {name}: {e}"));
         for c in changes {
             let events: Vec<String> = c
                 .events

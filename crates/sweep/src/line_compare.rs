@@ -9,6 +9,18 @@ use crate::error::SweepError;
 use polars::prelude::*;
 use std::path::Path;
 
+/// The Fig. 2b lines as committed: `(name, fixed parameter, its value, varied parameter)`;
+/// the sweep is `results/fig2b-<name>`, the continuation
+/// `results/continuation/continuation_<fixed>_<value>`.
+pub const FIG2B_LINES: [(&str, &str, &str, &str); 6] = [
+    ("i", ETA_T, "0.082", KAPPA2),
+    ("ii", ETA_T, "0.09", KAPPA2),
+    ("iii", KAPPA2, "0.16", ETA_T),
+    ("iv", KAPPA2, "0.13", ETA_T),
+    ("v", KAPPA2, "0.117", ETA_T),
+    ("vi", KAPPA2, "0.1", ETA_T),
+];
+
 /// One class change between neighbouring grid points, and what continuation says there.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ClassChange {
@@ -44,6 +56,19 @@ fn strings(df: &DataFrame, name: &str) -> Result<Vec<String>, SweepError> {
     Ok((0..c.len())
         .map(|i| c.get(i).unwrap_or_default().to_string())
         .collect())
+}
+
+/// [`compare`] for one of [`FIG2B_LINES`], from the repository root.
+pub fn compare_fig2b(
+    (name, fixed, value, axis): (&str, &str, &str, &str),
+) -> Result<Vec<ClassChange>, SweepError> {
+    let stem = format!("results/continuation/continuation_{fixed}_{value}");
+    compare(
+        Path::new(&format!("results/fig2b-{name}/points.parquet")),
+        Path::new(&format!("{stem}.parquet")),
+        Path::new(&format!("{stem}_events.parquet")),
+        axis,
+    )
 }
 
 /// Compares a line sweep's `points.parquet` with a continuation's `<stem>.parquet` and

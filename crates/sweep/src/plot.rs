@@ -144,24 +144,7 @@ impl Figure for PhaseMap<'_> {
         let dy = if dy.is_finite() { dy } else { 0.01 };
         let (x0, x1) = (xs[0] - dx / 2.0, xs[xs.len() - 1] + dx / 2.0);
         let (y0, y1) = (ys[0] - dy / 2.0, ys[ys.len() - 1] + dy / 2.0);
-        let mut chart = ChartBuilder::on(&plot_area)
-            .caption(self.title, ("sans-serif", 22))
-            .margin(12)
-            .x_label_area_size(48)
-            .y_label_area_size(64)
-            .build_cartesian_2d(x0..x1, y0..y1)
-            .map_err(perr)?;
-        chart
-            .configure_mesh()
-            .disable_mesh()
-            .x_desc(ETA_T)
-            .y_desc(KAPPA2)
-            .label_style(("sans-serif", 15))
-            .axis_desc_style(("sans-serif", 18))
-            .x_label_formatter(&|v| format!("{v:.3}"))
-            .y_label_formatter(&|v| format!("{v:.3}"))
-            .draw()
-            .map_err(perr)?;
+        let mut chart = plane_chart(&plot_area, self.title, (x0, x1), (y0, y1), false)?;
         let mut legend = Vec::new();
         for label in ORDER.iter().copied().chain(
             pts.iter()
@@ -192,6 +175,46 @@ impl Figure for PhaseMap<'_> {
         root.present().map_err(perr)?;
         Ok(())
     }
+}
+
+/// The `(eta_t, kappa2)` plane over `x` and `y` with its axes drawn (and a mesh if `mesh`).
+fn plane_chart<'a, DB: DrawingBackend>(
+    area: &'a DrawingArea<DB, Shift>,
+    title: &str,
+    x: (f64, f64),
+    y: (f64, f64),
+    mesh: bool,
+) -> Result<
+    ChartContext<
+        'a,
+        DB,
+        Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+    >,
+    SweepError,
+>
+where
+    DB::ErrorType: 'static,
+{
+    let mut chart = ChartBuilder::on(area)
+        .caption(title, ("sans-serif", 22))
+        .margin(12)
+        .x_label_area_size(48)
+        .y_label_area_size(64)
+        .build_cartesian_2d(x.0..x.1, y.0..y.1)
+        .map_err(perr)?;
+    let mut m = chart.configure_mesh();
+    if !mesh {
+        m.disable_mesh();
+    }
+    m.x_desc(ETA_T)
+        .y_desc(KAPPA2)
+        .label_style(("sans-serif", 15))
+        .axis_desc_style(("sans-serif", 18))
+        .x_label_formatter(&|v| format!("{v:.3}"))
+        .y_label_formatter(&|v| format!("{v:.3}"))
+        .draw()
+        .map_err(perr)?;
+    Ok(chart)
 }
 
 /// Draws `curves` (the part inside the window) on a phase-plane chart, adding each to the
@@ -278,23 +301,7 @@ impl Figure for BoundaryFigure<'_> {
         root.fill(&WHITE).map_err(perr)?;
         let (plot_area, legend_area) = root.split_horizontally(900);
         let (x, y) = (self.eta_t, self.kappa2);
-        let mut chart = ChartBuilder::on(&plot_area)
-            .caption(self.title, ("sans-serif", 22))
-            .margin(12)
-            .x_label_area_size(48)
-            .y_label_area_size(64)
-            .build_cartesian_2d(x.0..x.1, y.0..y.1)
-            .map_err(perr)?;
-        chart
-            .configure_mesh()
-            .x_desc(ETA_T)
-            .y_desc(KAPPA2)
-            .label_style(("sans-serif", 15))
-            .axis_desc_style(("sans-serif", 18))
-            .x_label_formatter(&|v| format!("{v:.3}"))
-            .y_label_formatter(&|v| format!("{v:.3}"))
-            .draw()
-            .map_err(perr)?;
+        let mut chart = plane_chart(&plot_area, self.title, x, y, true)?;
         let mut legend = Vec::new();
         draw_curves(&mut chart, self.curves, x, y, &mut legend)?;
         draw_legend(&legend_area, &legend)?;

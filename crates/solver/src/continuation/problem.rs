@@ -27,14 +27,20 @@ pub enum Family {
 }
 
 impl Family {
-    /// The name used in tables and pictures (the same as the reduced model's branches).
-    pub fn as_str(&self) -> &'static str {
+    /// The reduced model's branch of the same family.
+    pub fn reduced(&self) -> crate::reduced::bifurcation::Branch {
+        use crate::reduced::bifurcation::Branch;
         match self {
-            Self::IC => "IC",
-            Self::ID => "ID",
-            Self::MdMinor => "MD minor-axis",
-            Self::MdMajor => "MD major-axis",
+            Self::IC => Branch::IC,
+            Self::ID => Branch::ID,
+            Self::MdMinor => Branch::MdMinor,
+            Self::MdMajor => Branch::MdMajor,
         }
+    }
+
+    /// The name used in tables and pictures (the reduced model's branch name).
+    pub fn as_str(&self) -> &'static str {
+        self.reduced().as_str()
     }
 
     /// Unknowns besides the parameter.
