@@ -12,5 +12,7 @@ done
 for k in 0.16 0.13 0.117 0.1; do
   $d continue --kappa2 $k --from 0.070 --to 0.100 --out $out --json > $out/continuation_kappa2_$k.json
 done
+# The same at eta_t = 0.085 on the box diagonal (the orientation ID droplets settle on).
+$d continue --eta-t 0.085 --from 0.100 --to 0.170 --axis diagonal --out $out --json > $out/continuation_eta_t_0.085_diagonal.json
 $d boundaries --out results/boundaries --json > results/boundaries/boundaries.json
 $d boundaries --out results/fig2a --json > results/fig2a/boundaries.json

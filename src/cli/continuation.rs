@@ -15,7 +15,7 @@ use std::time::Instant;
 /// and left out of the verdict). Pitchfork (P), saddle-node (SN) and Hopf (H) points are
 /// located on the branch to ~1e-10 in the parameter. Writes DIR/<stem>.parquet (every state),
 /// DIR/<stem>_events.parquet and DIR/<stem>.png/.svg (solid stable, dashed unstable), with
-/// <stem> = continuation_<fixed parameter>_<value>.
+/// <stem> = continuation_<fixed parameter>_<value> (+ _diagonal for --axis diagonal).
 #[derive(clap::Args)]
 #[command(
     allow_negative_numbers = true,
@@ -164,7 +164,12 @@ pub fn run(a: Args) -> Result<(), CliError> {
         }
     }
     let seconds = started.elapsed().as_secs_f64();
-    let stem = format!("continuation_{fixed_name}_{fixed}");
+    let stem = match mirror {
+        droplet_solver::steady::MirrorAxis::X => format!("continuation_{fixed_name}_{fixed}"),
+        droplet_solver::steady::MirrorAxis::Diagonal => {
+            format!("continuation_{fixed_name}_{fixed}_diagonal")
+        }
+    };
     let desc = format!(
         "{fixed_name} = {fixed}, {varied} from {} to {}",
         a.from, a.to
