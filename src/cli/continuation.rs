@@ -25,18 +25,8 @@ pub struct Args {
     /// Which branch: all, ic, id, md (moving along its minor axis), md-major.
     #[arg(long, default_value = "all")]
     branch: String,
-    /// Fix eta_t and vary kappa2.
-    #[arg(long, conflicts_with = "kappa2", required_unless_present = "kappa2")]
-    eta_t: Option<f64>,
-    /// Fix kappa2 and vary eta_t.
-    #[arg(long)]
-    kappa2: Option<f64>,
-    /// Start of the varied parameter.
-    #[arg(long)]
-    from: f64,
-    /// End of the varied parameter.
-    #[arg(long)]
-    to: f64,
+    #[command(flatten)]
+    line: super::line::LineArgs,
     /// The mirror axis the states lie on: x (motion along x), or diagonal.
     #[arg(long, default_value = "x")]
     axis: String,
@@ -72,12 +62,6 @@ pub fn run(a: Args) -> Result<(), CliError> {
             .parse()
             .map_err(|e: String| CliError::usage(format!("invalid --branch: {e}, or all")))?]
     };
-    if !(a.from.is_finite() && a.to.is_finite() && a.from < a.to) {
-        return Err(CliError::usage(format!(
-            "invalid line --from {} --to {}: two finite numbers with from < to",
-            a.from, a.to
-        )));
-    }
     super::check_grid(a.n)?;
     if !(2..=100_000).contains(&a.max_points) {
         return Err(CliError::usage(format!(
@@ -91,32 +75,12 @@ pub fn run(a: Args) -> Result<(), CliError> {
             a.ds_max
         )));
     }
-    let (parameter, fixed_name, fixed) = match (a.eta_t, a.kappa2) {
-        (Some(e), _) => (Axis::Kappa2, "eta_t", e),
-        (_, Some(k)) => (Axis::EtaT, "kappa2", k),
-        _ => unreachable!("clap requires one"),
-    };
-    let varied = if parameter == Axis::EtaT {
-        "eta_t"
-    } else {
-        "kappa2"
-    };
-    let mut base = ModelParams {
+    let (parameter, fixed_name, fixed) = a.line.parameter();
+    let varied = a.line.varied();
+    let base = a.line.start(ModelParams {
         mass: a.mass,
         ..ModelParams::default()
-    };
-    match parameter {
-        Axis::EtaT => (base.eta_t, base.kappa2) = (a.from, fixed),
-        Axis::Kappa2 => (base.eta_t, base.kappa2) = (fixed, a.from),
-    }
-    // Both ends of the line must be valid parameters.
-    base.validate()?;
-    let mut end = base;
-    match parameter {
-        Axis::EtaT => end.eta_t = a.to,
-        Axis::Kappa2 => end.kappa2 = a.to,
-    }
-    end.validate()?;
+    })?;
     if a.mass.is_nan() || a.mass <= 0.0 {
         return Err(CliError::usage(format!(
             "invalid --mass {}: a finite number > 0 for the linearisation",
@@ -128,8 +92,8 @@ pub fn run(a: Args) -> Result<(), CliError> {
         base,
         n: a.n,
         parameter,
-        from: a.from,
-        to: a.to,
+        from: a.line.from,
+        to: a.line.to,
         max_points: a.max_points,
         opts: ArclengthOptions {
             ds_max: a.ds_max,
@@ -172,7 +136,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
     };
     let desc = format!(
         "{fixed_name} = {fixed}, {varied} from {} to {}",
-        a.from, a.to
+        a.line.from, a.line.to
     );
     let [p1, p2] = droplet_sweep::continuation_table::write(&a.out, &stem, &branches, &desc, a.n)?;
     let mut files = droplet_sweep::pictures::continuation(

@@ -3,6 +3,7 @@ mod bench;
 mod boundaries;
 mod continuation;
 mod fit_h0;
+mod line;
 mod merge;
 mod ode;
 mod plot;

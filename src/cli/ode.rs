@@ -1,7 +1,7 @@
 //! `droplet ode`: the reduced model's coefficients and bifurcation diagrams (Fig. 3b).
 use super::{print_json, CliError};
 use clap::Subcommand;
-use droplet_solver::reduced::bifurcation::{diagram, Axis};
+use droplet_solver::reduced::bifurcation::diagram;
 use droplet_solver::reduced::Coefficients;
 use droplet_solver::ModelParams;
 use std::path::PathBuf;
@@ -36,18 +36,8 @@ enum OdeCommand {
         after_help = "Examples:\n  droplet ode bifurcation --kappa2 0.130 --from 0.07 --to 0.10 --out results/ode   # vary eta_t\n  droplet ode bifurcation --eta-t 0.085 --from 0.10 --to 0.17 --out results/ode    # vary kappa2"
     )]
     Bifurcation {
-        /// Fix eta_t and vary kappa2.
-        #[arg(long, conflicts_with = "kappa2", required_unless_present = "kappa2")]
-        eta_t: Option<f64>,
-        /// Fix kappa2 and vary eta_t.
-        #[arg(long)]
-        kappa2: Option<f64>,
-        /// Start of the varied parameter.
-        #[arg(long)]
-        from: f64,
-        /// End of the varied parameter.
-        #[arg(long)]
-        to: f64,
+        #[command(flatten)]
+        line: super::line::LineArgs,
         /// Samples along the line.
         #[arg(long, default_value_t = 600)]
         steps: usize,
@@ -95,10 +85,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
             Ok(())
         }
         OdeCommand::Bifurcation {
-            eta_t,
-            kappa2,
-            from,
-            to,
+            line,
             steps,
             radius,
             h0,
@@ -107,38 +94,22 @@ pub fn run(a: Args) -> Result<(), CliError> {
             out,
             json,
         } => {
-            if !(from.is_finite()
-                && to.is_finite()
-                && from < to
-                && (2..=MAX_STEPS).contains(&steps))
-            {
-                return Err(CliError::usage(format!("invalid line --from {from} --to {to} --steps {steps}: need from < to and 2 <= steps <= {MAX_STEPS}")));
+            if !(2..=MAX_STEPS).contains(&steps) {
+                return Err(CliError::usage(format!(
+                    "invalid --steps {steps}: from 2 to {MAX_STEPS}"
+                )));
             }
+            let (axis, fixed_name, fixed) = line.parameter();
+            let x_label = line.varied();
+            let fixed_label = format!("{fixed_name} = {fixed}");
+            let (from, to) = (line.from, line.to);
+            let base = line.start(ModelParams {
+                mass,
+                eta2,
+                radius,
+                ..ModelParams::default()
+            })?;
             droplet_sweep::atomic::create_output_dir(&out)?;
-            let (axis, fixed, x_label, fixed_label) = match (eta_t, kappa2) {
-                (Some(e), _) => (Axis::Kappa2, e, "kappa2", format!("eta_t = {e}")),
-                (_, Some(k)) => (Axis::EtaT, k, "eta_t", format!("kappa2 = {k}")),
-                _ => unreachable!("clap requires one"),
-            };
-            let base = match axis {
-                Axis::Kappa2 => ModelParams {
-                    eta_t: fixed,
-                    kappa2: from,
-                    mass,
-                    eta2,
-                    radius,
-                    ..ModelParams::default()
-                },
-                Axis::EtaT => ModelParams {
-                    eta_t: from,
-                    kappa2: fixed,
-                    mass,
-                    eta2,
-                    radius,
-                    ..ModelParams::default()
-                },
-            };
-            base.validate()?;
             let c = Coefficients::new(radius, h0);
             let values: Vec<f64> = (0..steps)
                 .map(|i| from + (to - from) * i as f64 / (steps - 1) as f64)
