@@ -64,6 +64,13 @@ pub struct Args {
     /// Window of the steady test in time units.
     #[arg(long, default_value_t = 0.1)]
     steady_window: f64,
+    /// How the run decides it is steady: newton (default for the spectral scheme: once the
+    /// run slows down, Newton on the steady equations; it ends at a root only if the root is
+    /// stable and the run is approaching it) or test (the paper's test alone; default for
+    /// paper-fd). With test, a steady run is checked afterwards and a warning printed if the
+    /// state it stopped on is unstable.
+    #[arg(long)]
+    steady: Option<droplet_solver::newton_finish::SteadyMethod>,
     /// Hold the centre fixed (deformation-only run, Appendix E).
     #[arg(long)]
     pinned: bool,
@@ -79,6 +86,16 @@ pub struct Args {
     /// Print one JSON object instead of text.
     #[arg(long)]
     json: bool,
+}
+
+#[derive(Serialize)]
+struct FinalState {
+    stable: bool,
+    /// Largest real part of the root's eigenvalues.
+    slowest_eigenvalue: f64,
+    /// Growing modes (rotation mode excluded).
+    unstable: usize,
+    note: String,
 }
 
 #[derive(Serialize)]
@@ -100,6 +117,13 @@ struct Report {
     max_step_error: Option<f64>,
     /// Set when a fixed step is too large to trust (see `RunOutcome::dt_warning`).
     dt_warning: Option<String>,
+    /// `steady_by_test` or `steady_by_newton` for a steady run.
+    ended_by: Option<String>,
+    /// For a run that did not finish: what the steady equations say near its end.
+    diagnosis: Option<String>,
+    /// For a run that the paper's test alone ended: the stability of the steady state it
+    /// stopped at (a root found by Newton from there; rotation mode included).
+    final_state: Option<FinalState>,
     wall_s: f64,
     mass_integral: f64,
     params: ModelParams,
@@ -125,6 +149,11 @@ pub fn run(a: Args) -> Result<(), CliError> {
         steady_tol: a.steady_tol,
         steady_window: a.steady_window,
         pinned: a.pinned,
+        steady: match (a.steady, a.pinned) {
+            (Some(m), _) => m,
+            (None, true) => droplet_solver::newton_finish::SteadyMethod::Test,
+            (None, false) => base.steady,
+        },
         ..base
     };
     let params = ModelParams {
@@ -176,6 +205,20 @@ pub fn run(a: Args) -> Result<(), CliError> {
         );
         pictures = plot::run_picture(path, &title, &params, &field, &out.state, &out.series)?;
     }
+    let final_state = (out.ended_by == Some(droplet_solver::newton_finish::Ending::Test)
+        && settings.steady == droplet_solver::newton_finish::SteadyMethod::Test
+        && settings.scheme == SchemeKind::Spectral
+        && !settings.pinned)
+        .then(|| {
+            let mut f = droplet_solver::newton_finish::NewtonFinish::new(&params, &settings);
+            f.root_near(out.state.monitored()).ok().map(|found| FinalState {
+                stable: found.stable(),
+                slowest_eigenvalue: found.slowest(),
+                unstable: found.verdict.unstable,
+                note: found.describe(),
+            })
+        })
+        .flatten();
     let report = Report {
         status: out.status.as_str().into(),
         class: out.class.map(|c| c.as_str().into()),
@@ -193,6 +236,9 @@ pub fn run(a: Args) -> Result<(), CliError> {
         rejected: out.rejected,
         max_step_error: out.max_step_error,
         dt_warning: out.dt_warning(&settings),
+        ended_by: out.ended_by.map(|e| e.as_str().into()),
+        diagnosis: out.diagnosis.clone(),
+        final_state,
         wall_s: out.wall_s,
         mass_integral,
         params,
@@ -214,6 +260,18 @@ pub fn run(a: Args) -> Result<(), CliError> {
             report.steps,
             report.wall_s
         );
+        if let Some(e) = &report.ended_by {
+            println!("ended by {}", e.replace('_', " "));
+        }
+        if let Some(d) = &report.diagnosis {
+            println!("not finished: {d}");
+        }
+        if let Some(f) = report.final_state.as_ref().filter(|f| !f.stable) {
+            eprintln!(
+                "warning: the paper's test stopped this run on an unstable state ({}); with --steady newton it would go on",
+                f.note
+            );
+        }
         if let Some(w) = &report.dt_warning {
             eprintln!("warning: {w}");
         }

@@ -11,6 +11,13 @@ pub enum SolverError {
         value: f64,
         allowed: String,
     },
+    /// A named option with a value that is not allowed here.
+    #[error("invalid `{name}` = {value}: {allowed}")]
+    InvalidChoice {
+        name: &'static str,
+        value: String,
+        allowed: String,
+    },
     /// A named initial condition that does not exist.
     #[error("unknown initial condition `{0}`: allowed are i, ii, iii, iv, i', ii' or custom:vx,vy,a2,b2")]
     UnknownInitialCondition(String),

@@ -16,6 +16,7 @@ pub mod initial;
 pub mod limits;
 pub mod named_state;
 pub mod newton;
+pub mod newton_finish;
 pub mod outcome;
 pub mod params;
 pub mod reduced;
@@ -26,6 +27,7 @@ pub mod shape;
 pub mod stability;
 pub mod state;
 pub mod steady;
+pub mod steady_method;
 pub mod step_control;
 pub mod stop_rule;
 

@@ -83,6 +83,13 @@ pub struct RunOutcome {
     #[serde(default)]
     pub max_step_error: Option<f64>,
     pub wall_s: f64,
+    /// What ended a steady run (`None` otherwise, and in records from before it existed).
+    #[serde(default)]
+    pub ended_by: Option<crate::steady_method::Ending>,
+    /// For a run that did not finish (`t_max`, `step_limit`): what the steady equations say
+    /// near its final state (see [`crate::steady_method::Finding::describe`]).
+    #[serde(default)]
+    pub diagnosis: Option<String>,
     /// Recorded time series (empty unless asked for).
     pub series: Vec<SeriesRow>,
 }

@@ -4,6 +4,7 @@
 use crate::classify::StateClass;
 use crate::error::SolverError;
 use crate::initial::InitialCondition;
+use crate::newton_finish::{Decision, Ending, NewtonFinish, SteadyMethod};
 use crate::outcome::{RunOutcome, RunStatus, SeriesRow};
 use crate::params::ModelParams;
 use crate::scheme::{ComovingEtd, PaperFd, Scheme, SchemeKind};
@@ -14,6 +15,7 @@ use std::time::Instant;
 
 /// A run in progress: the scheme plus the stop rules.
 pub struct Run {
+    params: ModelParams,
     scheme: Box<dyn Scheme>,
     settings: SolverSettings,
     record_every: Option<f64>,
@@ -46,6 +48,7 @@ impl Run {
             }
         };
         Ok(Self {
+            params: *params,
             scheme,
             settings: *settings,
             record_every: None,
@@ -91,6 +94,10 @@ impl Run {
         let mut max_step_error: Option<f64> = None;
         let mut status = RunStatus::TMax;
         let mut t_steady = None;
+        let mut finish =
+            (cfg.steady == SteadyMethod::Newton).then(|| NewtonFinish::new(&self.params, &cfg));
+        let mut ended_by = None;
+        let mut polished: Option<[f64; 4]> = None;
         loop {
             if adaptive {
                 if t >= cfg.t_max - slack {
@@ -139,13 +146,34 @@ impl Run {
                     next_record = Some(tr + every);
                 }
             }
-            if steady_test.is_steady(t, st.monitored()) {
+            let Some(change) = steady_test.judge(t, st.monitored()) else {
+                continue;
+            };
+            let fired = change < cfg.steady_tol;
+            let decision = match finish.as_mut() {
+                None if fired => Decision::End(Ending::Test, st.monitored()),
+                None => Decision::Continue,
+                Some(f) => f.consider(t, st.monitored(), change, fired),
+            };
+            if let Decision::End(ending, z) = decision {
                 status = RunStatus::Steady;
                 t_steady = Some(t);
+                ended_by = Some(ending);
+                if finish.is_some() {
+                    polished = Some(z);
+                }
                 break;
             }
         }
-        let state = self.scheme.state();
+        let mut state = self.scheme.state();
+        if series.last().is_some_and(|r| r.t < t - slack) {
+            series.push(SeriesRow::at(t, &state));
+        }
+        if let Some([vx, vy, a2, b2]) = polished {
+            (state.vx, state.vy, state.a2, state.b2) = (vx, vy, a2, b2);
+        }
+        let diagnosis = matches!(status, RunStatus::TMax | RunStatus::StepLimit)
+            .then(|| self.diagnose(finish.as_mut(), state.monitored()));
         if series.last().is_some_and(|r| r.t < t - slack) {
             series.push(SeriesRow::at(t, &state));
         }
@@ -162,7 +190,29 @@ impl Run {
             rejected,
             max_step_error,
             wall_s: started.elapsed().as_secs_f64(),
+            ended_by,
+            diagnosis,
             series,
+        }
+    }
+
+    /// Why a run did not finish: what a Newton try from its final state `z` finds (spectral
+    /// runs only; one try, about 0.1 s at N = 192).
+    fn diagnose(&self, finish: Option<&mut NewtonFinish>, z: [f64; 4]) -> String {
+        if self.settings.scheme != SchemeKind::Spectral || self.settings.pinned {
+            return "not diagnosed (the steady equations are the spectral scheme's)".into();
+        }
+        let mut own;
+        let f = match finish {
+            Some(f) => f,
+            None => {
+                own = NewtonFinish::new(&self.params, &self.settings);
+                &mut own
+            }
+        };
+        match f.root_near(z) {
+            Ok(found) => found.describe(),
+            Err(_) => "no steady state near the final state (Newton did not converge)".into(),
         }
     }
 }

@@ -2,6 +2,7 @@
 //! validation, shared by the PDE run driver, the ODE model and the sweep specs.
 use crate::error::{require, SolverError};
 use crate::scheme::SchemeKind;
+use crate::steady_method::SteadyMethod;
 use serde::{Deserialize, Serialize};
 
 pub const H0_PAPER: f64 = 0.1436;
@@ -59,6 +60,11 @@ pub struct SolverSettings {
     pub steady_window: f64,
     /// Hold the centre fixed (deformation-only runs).
     pub pinned: bool,
+    /// How a run decides it is steady: the paper's test, or the Newton finish
+    /// ([`crate::newton_finish`]). Records written before it existed used the test; a run
+    /// with the test has the run key it had before.
+    #[serde(default, skip_serializing_if = "SteadyMethod::is_test")]
+    pub steady: SteadyMethod,
 }
 
 /// Default adaptive tolerance, chosen with `droplet bench` (results/bench): at N = 192 the
@@ -84,6 +90,7 @@ impl Default for SolverSettings {
             steady_tol: 1e-6,
             steady_window: 0.1,
             pinned: false,
+            steady: SteadyMethod::default_for_runs(),
         }
     }
 }
@@ -96,6 +103,7 @@ impl SolverSettings {
             n: 280,
             dt: 1e-4,
             tol: 0.0,
+            steady: SteadyMethod::Test,
             ..Self::default()
         }
     }
@@ -106,6 +114,7 @@ impl SolverSettings {
             model: ModelKind::Ode,
             dt: 0.05,
             tol: 0.0,
+            steady: SteadyMethod::Test,
             ..Self::default()
         }
     }
@@ -187,6 +196,15 @@ impl SolverSettings {
             "an even integer from 16 to 4096",
         )?;
         require(self.h0 > 0.0, "h0", self.h0, "a finite number > 0")?;
+        if self.steady == SteadyMethod::Newton
+            && (self.model != ModelKind::Pde || self.scheme != SchemeKind::Spectral || self.pinned)
+        {
+            return Err(SolverError::InvalidChoice {
+                name: "steady",
+                value: "newton".into(),
+                allowed: "test: the Newton finish needs the spectral PDE scheme with a free droplet".into(),
+            });
+        }
         self.check_steps()
     }
 }

@@ -35,9 +35,15 @@ impl SteadyTest {
 
     /// Feeds the state at `t`; true when the state is steady.
     pub fn is_steady(&mut self, t: f64, monitored: [f64; 4]) -> bool {
+        self.judge(t, monitored).is_some_and(|change| change < self.tol)
+    }
+
+    /// Feeds the state at `t`: once a window has passed since the last judgement, the change
+    /// since then scaled to one window (steady when below the tolerance); else `None`.
+    pub fn judge(&mut self, t: f64, monitored: [f64; 4]) -> Option<f64> {
         let elapsed = t - self.checkpoint.0;
         if elapsed < self.window - self.slack {
-            return false;
+            return None;
         }
         let change = monitored
             .iter()
@@ -45,7 +51,7 @@ impl SteadyTest {
             .map(|(a, b)| (a - b).abs())
             .fold(0.0, f64::max);
         self.checkpoint = (t, monitored);
-        change * (self.window / elapsed).min(1.0) < self.tol
+        Some(change * (self.window / elapsed).min(1.0))
     }
 }
 

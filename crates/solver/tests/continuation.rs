@@ -49,10 +49,12 @@ fn stable_states_are_the_time_steppers_steady_states() {
         let b = branch(family, kappa2, eta_t, eta_t + 0.002, n);
         let p = at(&b, eta_t);
         assert!(p.verdict.stable(), "{family:?} at {eta_t}: {p:?}");
+        // Time stepping alone (the paper's test, tightened), the independent computation.
         let settings = SolverSettings {
             n,
             steady_tol: 1e-10,
             t_max: 5000.0,
+            steady: droplet_solver::newton_finish::SteadyMethod::Test,
             ..SolverSettings::default()
         };
         let ic = InitialCondition::parse(ic).unwrap();

@@ -98,6 +98,7 @@ impl BenchPlan {
             t_max,
             tol: 0.0,
             dt_max: 1.0,
+            steady: droplet_solver::newton_finish::SteadyMethod::Test,
             ..SolverSettings::default()
         };
         // Fixed steps: N x dt; adaptive: N x dt_max x tol.

@@ -91,6 +91,8 @@ mod tests {
                 rejected: 0,
                 max_step_error: None,
                 wall_s: 0.0,
+                ended_by: None,
+                diagnosis: None,
                 series: vec![],
             },
         }

@@ -314,6 +314,8 @@ mod tests {
                 rejected: 0,
                 max_step_error: None,
                 wall_s: 0.1,
+                ended_by: None,
+                diagnosis: None,
                 series: vec![],
             },
         }

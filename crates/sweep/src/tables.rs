@@ -131,6 +131,12 @@ pub fn runs_frame(
         f64_col("steady_tol", f(&|r| r.settings.steady_tol)),
         f64_col("steady_window", f(&|r| r.settings.steady_window)),
         str_col(
+            "steady",
+            rows.iter()
+                .map(|(_, r)| r.settings.steady.as_str().to_string())
+                .collect(),
+        ),
+        str_col(
             "status",
             rows.iter()
                 .map(|(_, r)| r.outcome.status.as_str().to_string())
@@ -172,6 +178,18 @@ pub fn runs_frame(
             rows.iter()
                 .map(|(_, r)| r.outcome.max_step_error)
                 .collect::<Vec<Option<f64>>>(),
+        ),
+        Column::new(
+            "ended_by".into(),
+            rows.iter()
+                .map(|(_, r)| r.outcome.ended_by.map(|e| e.as_str().to_string()))
+                .collect::<Vec<Option<String>>>(),
+        ),
+        Column::new(
+            "diagnosis".into(),
+            rows.iter()
+                .map(|(_, r)| r.outcome.diagnosis.clone())
+                .collect::<Vec<Option<String>>>(),
         ),
         f64_col("wall_s", f(&|r| r.outcome.wall_s)),
         str_col("key", rows.iter().map(|(t, _)| t.key.clone()).collect()),

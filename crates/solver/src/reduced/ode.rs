@@ -116,6 +116,8 @@ pub fn simulate(
         rejected: 0,
         max_step_error: None,
         wall_s: started.elapsed().as_secs_f64(),
+        ended_by: (status == RunStatus::Steady).then_some(crate::steady_method::Ending::Test),
+        diagnosis: None,
         series: Vec::new(),
     })
 }

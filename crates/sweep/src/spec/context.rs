@@ -81,6 +81,11 @@ impl Ctx<'_> {
                 value,
                 allowed,
             } => self.err(&key_of(name), show_number(value), allowed),
+            SolverError::InvalidChoice {
+                name,
+                value,
+                allowed,
+            } => self.err(&key_of(name), value, allowed),
             other => self.err(&["(spec)"], "", other.to_string()),
         })
     }

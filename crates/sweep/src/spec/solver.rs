@@ -8,8 +8,9 @@ use droplet_solver::{ModelKind, ModelParams, SchemeKind, SolverSettings};
 use serde_yaml::Mapping;
 
 /// The keys of the section.
-const KEYS: [&str; 9] = [
+const KEYS: [&str; 10] = [
     "scheme",
+    "steady",
     "n",
     "dt",
     "tol",
@@ -40,7 +41,7 @@ pub(super) fn parse(
                 .ok_or_else(|| ctx.err(&["solver", "scheme"], show(x), "spectral or paper-fd"))?;
             if solver.scheme == SchemeKind::PaperFd {
                 let fd = SolverSettings::paper_fd();
-                (solver.n, solver.dt, solver.tol) = (fd.n, fd.dt, fd.tol);
+                (solver.n, solver.dt, solver.tol, solver.steady) = (fd.n, fd.dt, fd.tol, fd.steady);
             }
         }
         if let Some(x) = m.get("n") {
@@ -49,7 +50,19 @@ pub(super) fn parse(
                 .and_then(|n| usize::try_from(n).ok())
                 .ok_or_else(|| ctx.err(&["solver", "n"], show(x), "an even integer"))?;
         }
-        ctx.numbers(m, "solver", &KEYS[2..], |key, val| match key {
+        if let Some(x) = m.get("steady") {
+            solver.steady = x
+                .as_str()
+                .and_then(|s| s.parse().ok())
+                .ok_or_else(|| {
+                    ctx.err(
+                        &["solver", "steady"],
+                        show(x),
+                        "newton (default for the spectral scheme) or test (the paper's test alone)",
+                    )
+                })?;
+        }
+        ctx.numbers(m, "solver", &KEYS[3..], |key, val| match key {
             "dt" => solver.dt = val,
             "tol" => solver.tol = val,
             "dt_max" => solver.dt_max = val,

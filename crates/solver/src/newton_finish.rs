@@ -1,0 +1,300 @@
+//! Finishing a run by Newton instead of creeping to the paper's steady test (design notes
+//! Sect. 6): the state a run converges to is a root of the co-moving force balance, which
+//! [`SteadySolver`] computes directly, and its stability ([`crate::continuation::modes`])
+//! says whether time stepping would stay there.
+//!
+//! When it is tried: once the run's change per steady window falls below
+//! [`TRIGGER_FACTOR`] times the steady tolerance (the run is near a fixed point or creeping
+//! along a slow mode), and whenever the paper's test fires; after a try that did not end the
+//! run, not again for `max(10, t / 4)` time units (a saddle's neighbourhood, where runs slow
+//! down too, is not retried every window).
+//!
+//! When it ends the run: Newton on all four unknowns `(vx, vy, a2, b2)` from the current state
+//! converges to a root `z*` whose eigenvalues all have negative real parts (the rotation mode
+//! included: the run ends where the box would leave it), and the run is on its way there: its
+//! speed and deformation differ from `z*`'s by at most 10 times what the linear decay at the
+//! slowest decisive rate predicts from its present change (`(change / window) / |lambda|`),
+//! and at most [`MAX_SETTLED`]. The run then ends `steady` at `z*` (`ended_by`: `newton`, or
+//! `test` if the paper's test fired first). A state the paper's test would accept but whose
+//! root is unstable (a slowly growing mode, e.g. the resting disk just past the onset of
+//! motion) does not end the run: it keeps stepping.
+//!
+//! Neutral modes, deliberately: translation is absent (co-moving frame). Rotation: a moving
+//! droplet in the square box turns, over thousands of time units, from the mirror line whose
+//! state is unstable in its rotation mode to the other one (axis <-> diagonal), if it leans
+//! away from the first at all. When the root near the run is unstable only in that mode, the
+//! lean `phi` of the run from it decides ([`NewtonFinish::stable_root`]): if
+//! `phi exp(lambda_rot (t_max - t)) < TURN` the run cannot turn before `t_max` (a
+//! mirror-symmetric run has `phi = 0`; leans below 1e-9 rad are its round-off) and ends at
+//! that root, as the paper's test would end it;
+//! otherwise the root of the state turned by 45 degrees is tried, and if it is stable the run
+//! ends there: speed and deformation settle long before the orientation, and that root's `v`
+//! and `s` are what the time stepper reaches after the turn (they differ between the two
+//! orientations by the box's anisotropy).
+use crate::continuation::modes::{assess, Verdict};
+use crate::dynamics::force_balance;
+use crate::error::SolverError;
+use crate::newton::{solve, NewtonOptions};
+use crate::params::ModelParams;
+use crate::settings::SolverSettings;
+use crate::stability::Linearization;
+use crate::steady::SteadySolver;
+pub use crate::steady_method::{Ending, SteadyMethod};
+
+/// Newton is first tried when the change per window is below this many steady tolerances.
+pub const TRIGGER_FACTOR: f64 = 100.0;
+
+/// What the last Newton try found (for runs that hit `t_max`: why they did not finish).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Finding {
+    /// The root, `(vx, vy, a2, b2)`.
+    pub z: [f64; 4],
+    pub verdict: Verdict,
+    /// Max-norm distance from the run's state to the root.
+    pub distance: f64,
+}
+
+impl Finding {
+    /// Largest real part of all eigenvalues, the rotation mode included.
+    pub fn slowest(&self) -> f64 {
+        self.verdict
+            .eigenvalues
+            .first()
+            .map_or(-1.0, |l| l[0])
+    }
+
+    /// Every eigenvalue decays (the rotation mode included).
+    pub fn stable(&self) -> bool {
+        self.slowest() < 0.0
+    }
+
+    /// A sentence for the `diagnosis` column.
+    pub fn describe(&self) -> String {
+        let rot = self.verdict.rotation;
+        if self.verdict.unstable > 0 {
+            format!(
+                "near an unstable steady state ({} growing mode(s), largest {:+.2e})",
+                self.verdict.unstable, self.verdict.max_re
+            )
+        } else if let Some(r) = rot.filter(|r| *r >= self.verdict.max_re) {
+            format!(
+                "rotation mode {r:+.2e}: the direction of motion / long axis turns slowly (box effect); v and s are settled"
+            )
+        } else {
+            format!(
+                "slowest eigenvalue {:+.2e}: converging slowly",
+                self.slowest()
+            )
+        }
+    }
+}
+
+/// Largest difference in speed or deformation between a run and the root it is taken to be
+/// approaching.
+pub const MAX_SETTLED: f64 = 0.05;
+
+/// Smallest turn (radians) of the direction of motion before `t_max` for which a run is taken
+/// to leave an orientation that is unstable in its rotation mode.
+pub const TURN: f64 = 1e-2;
+
+/// Leans (radians) below this are round-off of a mirror-symmetric run and count as none.
+pub const LEAN_FLOOR: f64 = 1e-9;
+
+/// The direction of motion, or for a resting droplet the direction of its long axis.
+fn orientation(z: &[f64; 4]) -> f64 {
+    if z[0].hypot(z[1]) > 1e-9 {
+        z[1].atan2(z[0])
+    } else {
+        0.5 * z[3].atan2(z[2])
+    }
+}
+
+/// Max of the differences in speed and in deformation (invariant under rotation).
+fn invariant_distance(a: &[f64; 4], b: &[f64; 4]) -> f64 {
+    let (va, vb) = (a[0].hypot(a[1]), b[0].hypot(b[1]));
+    let (sa, sb) = (a[2].hypot(a[3]), b[2].hypot(b[3]));
+    (va - vb).abs().max((sa - sb).abs())
+}
+
+/// The decision after one judged window.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Decision {
+    Continue,
+    /// End steady at this `(vx, vy, a2, b2)`.
+    End(Ending, [f64; 4]),
+}
+
+/// The Newton finish of one run.
+pub struct NewtonFinish {
+    params: ModelParams,
+    n: usize,
+    t_max: f64,
+    solver: Option<SteadySolver>,
+    trigger: f64,
+    window: f64,
+    next_try: f64,
+    /// The last try's finding (`None` if Newton failed or nothing was tried).
+    pub last: Option<Finding>,
+    /// Tries so far.
+    pub tries: u32,
+}
+
+impl NewtonFinish {
+    /// For a run of `settings` (its grid, steady tolerance and window, and `t_max`).
+    pub fn new(params: &ModelParams, settings: &SolverSettings) -> Self {
+        let (n, steady_tol, window) = (settings.n, settings.steady_tol, settings.steady_window);
+        Self {
+            params: *params,
+            n,
+            t_max: settings.t_max,
+            solver: None,
+            trigger: TRIGGER_FACTOR * steady_tol,
+            window,
+            next_try: 0.0,
+            last: None,
+            tries: 0,
+        }
+    }
+
+    /// Newton from `z` on all four unknowns, and the root's verdict.
+    pub fn root_near(&mut self, z: [f64; 4]) -> Result<Finding, SolverError> {
+        if self.solver.is_none() {
+            self.solver = Some(SteadySolver::new(self.params, self.n)?);
+        }
+        let solver = self.solver.as_mut().expect("made above");
+        let p = self.params;
+        let opts = NewtonOptions {
+            tol: 1e-12,
+            max_iter: 30,
+            fd_step: 1e-6,
+            max_step: vec![f64::INFINITY, f64::INFINITY, 0.2, 0.2],
+        };
+        let sol = solve(
+            |x| {
+                let f = solver.forces(x[0], x[1], x[2], x[3]);
+                force_balance(&p, [x[0], x[1], x[2], x[3]], &f).to_vec()
+            },
+            &z,
+            &opts,
+        )?;
+        let root = [sol.x[0], sol.x[1], sol.x[2], sol.x[3]];
+        let verdict = assess(&Linearization::at(solver, root), root);
+        let distance = root
+            .iter()
+            .zip(&z)
+            .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+        Ok(Finding {
+            z: root,
+            verdict,
+            distance,
+        })
+    }
+
+    /// The root the run at `z` (time `t`) ends at, if Newton finds one, and whether it may
+    /// end there: the root near `z`, if every eigenvalue decays. If that root is unstable only
+    /// in its rotation mode (an orientation the box turns away from), the run turns away only
+    /// if it already leans: a lean `phi` grows like `phi exp(lambda_rot (t_max - t))`, and a
+    /// run that cannot turn by [`TURN`] before `t_max` (a mirror-symmetric run: `phi = 0`)
+    /// ends at the root like the paper's test would. A run that can turn goes to the root of
+    /// the state turned by 45 degrees (motion and long axis together, towards the side it
+    /// leans to), where the box's other mirror line is, if that root is stable.
+    pub fn stable_root(&mut self, t: f64, z: [f64; 4]) -> Option<(Finding, bool)> {
+        let near = self.root_near(z).ok()?;
+        let Some(rot) = near.verdict.rotation.filter(|_| !near.stable()) else {
+            let ok = near.stable();
+            return Some((near, ok));
+        };
+        if near.verdict.unstable > 0 {
+            return Some((near, false));
+        }
+        let lean = orientation(&z) - orientation(&near.z);
+        let lean = lean.sin().asin();
+        // Below LEAN_FLOOR a lean is the round-off of a mirror-symmetric run: none.
+        let lean = if lean.abs() < LEAN_FLOOR { 0.0 } else { lean };
+        if lean.abs() * (rot * (self.t_max - t).max(0.0)).min(700.0).exp() < TURN {
+            return Some((near, true));
+        }
+        let side = if lean >= 0.0 { 1.0 } else { -1.0 };
+        let angle = side * std::f64::consts::FRAC_PI_4;
+        let [vx, vy, a2, b2] = near.z;
+        let (c, s) = (angle.cos(), angle.sin());
+        // The shape's mode 2 turns by twice the angle: (a2, b2) -> (-b2, a2) at 45 degrees.
+        let turned = [c * vx - s * vy, s * vx + c * vy, -side * b2, side * a2];
+        match self.root_near(turned) {
+            Ok(other) if other.stable() => {
+                let distance = other
+                    .z
+                    .iter()
+                    .zip(&z)
+                    .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+                Some((Finding { distance, ..other }, true))
+            }
+            _ => Some((near, false)),
+        }
+    }
+
+    /// One judged window at time `t`: the state `z`, its change over the window (scaled to
+    /// one window), and whether the paper's test fired.
+    pub fn consider(&mut self, t: f64, z: [f64; 4], change: f64, test_fired: bool) -> Decision {
+        if t < self.next_try || !(test_fired || change < self.trigger) {
+            return Decision::Continue;
+        }
+        self.tries += 1;
+        let found = self.stable_root(t, z);
+        self.last = found.as_ref().map(|(f, _)| f.clone());
+        let Some((f, may_end)) = found else {
+            // No root near: the paper's test is all there is.
+            return if test_fired {
+                Decision::End(Ending::Test, z)
+            } else {
+                self.back_off(t);
+                Decision::Continue
+            };
+        };
+        // The run's speed and deformation relax at the decisive rates; its orientation, at
+        // the rotation rate, may still be turning towards the root's.
+        let settled = invariant_distance(&z, &f.z);
+        let rate = f.verdict.max_re.abs().max(1e-12);
+        let predicted = (change / self.window) / rate;
+        let approaching = settled <= (10.0 * predicted).min(MAX_SETTLED) + 1e-9;
+        if may_end && (test_fired || approaching) {
+            let ending = if test_fired {
+                Ending::Test
+            } else {
+                Ending::Newton
+            };
+            return Decision::End(ending, f.z);
+        }
+        self.back_off(t);
+        Decision::Continue
+    }
+
+    fn back_off(&mut self, t: f64) {
+        self.next_try = t + (0.25 * t).max(10.0);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_root_near_a_moving_state_is_the_md_state_and_is_stable() {
+        let p = ModelParams::at(0.085, 0.112);
+        let settings = SolverSettings {
+            n: 96,
+            ..SolverSettings::default()
+        };
+        let mut f = NewtonFinish::new(&p, &settings);
+        // Near MD, off the axis: Newton on all four unknowns finds the MD state (v and s as on
+        // the axis, the box's weak anisotropy aside) and it is stable.
+        let found = f.root_near([0.58, 0.05, -0.26, 0.02]).unwrap();
+        let v = found.z[0].hypot(found.z[1]);
+        assert!(v > 0.5 && v < 0.7, "{found:?}");
+        // The resting disk is a root too, and unstable here (it deforms).
+        let ic = f.root_near([1e-3, 0.0, 1e-3, 0.0]).unwrap();
+        assert!(ic.z.iter().all(|x| x.abs() < 1e-10), "{ic:?}");
+        assert!(!ic.stable() && ic.verdict.unstable > 0, "{ic:?}");
+        assert!(ic.describe().contains("unstable"), "{}", ic.describe());
+    }
+}
