@@ -211,12 +211,14 @@ pub fn run(a: Args) -> Result<(), CliError> {
         && !settings.pinned)
         .then(|| {
             let mut f = droplet_solver::newton_finish::NewtonFinish::new(&params, &settings);
-            f.root_near(out.state.monitored()).ok().map(|found| FinalState {
-                stable: found.stable(),
-                slowest_eigenvalue: found.slowest(),
-                unstable: found.verdict.unstable,
-                note: found.describe(),
-            })
+            f.root_near(out.state.monitored())
+                .ok()
+                .map(|found| FinalState {
+                    stable: found.stable(),
+                    slowest_eigenvalue: found.slowest(),
+                    unstable: found.verdict.unstable,
+                    note: found.describe(),
+                })
         })
         .flatten();
     let report = Report {

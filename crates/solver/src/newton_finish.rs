@@ -14,7 +14,8 @@
 //! included: the run ends where the box would leave it), and the run is on its way there: its
 //! speed and deformation differ from `z*`'s by at most 10 times what the linear decay at the
 //! slowest decisive rate predicts from its present change (`(change / window) / |lambda|`),
-//! and at most [`MAX_SETTLED`]. The run then ends `steady` at `z*` (`ended_by`: `newton`, or
+//! and at most [`MAX_SETTLED`]; and its orientation is within [`ORIENTATION`] of `z*`'s, or
+//! closer to it than at the previous try (it turns at the slow rotation rate). The run then ends `steady` at `z*` (`ended_by`: `newton`, or
 //! `test` if the paper's test fired first). A state the paper's test would accept but whose
 //! root is unstable (a slowly growing mode, e.g. the resting disk just past the onset of
 //! motion) does not end the run: it keeps stepping.
@@ -52,15 +53,14 @@ pub struct Finding {
     pub verdict: Verdict,
     /// Max-norm distance from the run's state to the root.
     pub distance: f64,
+    /// The root of the turned state (the run is to turn there), not the one near the run.
+    pub turned: bool,
 }
 
 impl Finding {
     /// Largest real part of all eigenvalues, the rotation mode included.
     pub fn slowest(&self) -> f64 {
-        self.verdict
-            .eigenvalues
-            .first()
-            .map_or(-1.0, |l| l[0])
+        self.verdict.eigenvalues.first().map_or(-1.0, |l| l[0])
     }
 
     /// Every eigenvalue decays (the rotation mode included).
@@ -92,6 +92,10 @@ impl Finding {
 /// Largest difference in speed or deformation between a run and the root it is taken to be
 /// approaching.
 pub const MAX_SETTLED: f64 = 0.05;
+
+/// Largest angle between a run's orientation and a stable root's for the run to be taken to
+/// be turning towards it.
+pub const ORIENTATION: f64 = std::f64::consts::PI / 16.0;
 
 /// Smallest turn (radians) of the direction of motion before `t_max` for which a run is taken
 /// to leave an orientation that is unstable in its rotation mode.
@@ -130,6 +134,8 @@ pub struct NewtonFinish {
     n: usize,
     t_max: f64,
     solver: Option<SteadySolver>,
+    /// The root of the last try and the run's angle to it then.
+    last_turn: Option<([f64; 4], f64)>,
     trigger: f64,
     window: f64,
     next_try: f64,
@@ -147,6 +153,7 @@ impl NewtonFinish {
             params: *params,
             n,
             t_max: settings.t_max,
+            last_turn: None,
             solver: None,
             trigger: TRIGGER_FACTOR * steady_tol,
             window,
@@ -158,6 +165,12 @@ impl NewtonFinish {
 
     /// Newton from `z` on all four unknowns, and the root's verdict.
     pub fn root_near(&mut self, z: [f64; 4]) -> Result<Finding, SolverError> {
+        crate::error::require(
+            self.params.mass > 0.0,
+            "mass",
+            self.params.mass,
+            "> 0 for the linearisation (an overdamped droplet is finished by the paper's test)",
+        )?;
         if self.solver.is_none() {
             self.solver = Some(SteadySolver::new(self.params, self.n)?);
         }
@@ -187,6 +200,7 @@ impl NewtonFinish {
             z: root,
             verdict,
             distance,
+            turned: false,
         })
     }
 
@@ -227,7 +241,14 @@ impl NewtonFinish {
                     .iter()
                     .zip(&z)
                     .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
-                Some((Finding { distance, ..other }, true))
+                Some((
+                    Finding {
+                        distance,
+                        turned: true,
+                        ..other
+                    },
+                    true,
+                ))
             }
             _ => Some((near, false)),
         }
@@ -251,12 +272,20 @@ impl NewtonFinish {
                 Decision::Continue
             };
         };
-        // The run's speed and deformation relax at the decisive rates; its orientation, at
-        // the rotation rate, may still be turning towards the root's.
-        let settled = invariant_distance(&z, &f.z);
+        // The run's speed and deformation relax at the decisive rates: their distance to the
+        // root's, against what the linear decay at the slowest decisive rate predicts from
+        // the run's present change. Its orientation relaxes at the rotation rate, slowly: it
+        // need only be within ORIENTATION of the root's, or closer to it than at the last try
+        // (turning towards it), or the root be the turned one.
         let rate = f.verdict.max_re.abs().max(1e-12);
-        let predicted = (change / self.window) / rate;
-        let approaching = settled <= (10.0 * predicted).min(MAX_SETTLED) + 1e-9;
+        let settled = invariant_distance(&z, &f.z)
+            <= (10.0 * (change / self.window) / rate).min(MAX_SETTLED) + 1e-9;
+        let turn = (orientation(&z) - orientation(&f.z)).sin().asin().abs();
+        let turning_to = self.last_turn.is_some_and(|(root, before)| {
+            root.iter().zip(&f.z).all(|(a, b)| (a - b).abs() < 1e-6) && turn < before
+        });
+        self.last_turn = Some((f.z, turn));
+        let approaching = settled && (f.turned || turn <= ORIENTATION || turning_to);
         if may_end && (test_fired || approaching) {
             let ending = if test_fired {
                 Ending::Test

@@ -212,7 +212,10 @@ impl Run {
         };
         match f.root_near(z) {
             Ok(found) => found.describe(),
-            Err(_) => "no steady state near the final state (Newton did not converge)".into(),
+            Err(SolverError::NewtonFailed { .. }) => {
+                "no steady state near the final state (Newton did not converge)".into()
+            }
+            Err(e) => format!("not diagnosed: {e}"),
         }
     }
 }

@@ -202,7 +202,9 @@ impl SolverSettings {
             return Err(SolverError::InvalidChoice {
                 name: "steady",
                 value: "newton".into(),
-                allowed: "test: the Newton finish needs the spectral PDE scheme with a free droplet".into(),
+                allowed:
+                    "test: the Newton finish needs the spectral PDE scheme with a free droplet"
+                        .into(),
             });
         }
         self.check_steps()

@@ -280,9 +280,15 @@ fn det4(a: [[C64; 4]; 4]) -> C64 {
 
 /// The eigenvalues of a complex 4 x 4 matrix (complex Schur form).
 fn eig4(a: &[[C64; 4]; 4]) -> Vec<C64> {
-    match matrix4(a).schur().eigenvalues() {
+    let m = matrix4(a);
+    let schur = m
+        .iter()
+        .all(|x| x.re.is_finite() && x.im.is_finite())
+        .then(|| m.try_schur(1e-15, 1000))
+        .flatten();
+    match schur.and_then(|sch| sch.eigenvalues()) {
         Some(e) => e.iter().copied().collect(),
-        // The Schur iteration did not converge: start from the diagonal.
+        // Not finite, or the Schur iteration did not converge: start from the diagonal.
         None => (0..4).map(|i| a[i][i]).collect(),
     }
 }
@@ -290,8 +296,12 @@ fn eig4(a: &[[C64; 4]; 4]) -> Vec<C64> {
 /// A unit null vector of a (numerically) singular complex 4 x 4 matrix: the right singular
 /// vector of its smallest singular value.
 fn null_vector(a: &[[C64; 4]; 4]) -> [C64; 4] {
-    let svd = matrix4(a).svd(false, true);
-    let v_t = svd.v_t.expect("requested");
+    let Some(svd) = matrix4(a).try_svd(false, true, 1e-15, 1000) else {
+        return [C64::default(); 4];
+    };
+    let Some(v_t) = svd.v_t else {
+        return [C64::default(); 4];
+    };
     let k = (0..4)
         .min_by(|&i, &j| svd.singular_values[i].total_cmp(&svd.singular_values[j]))
         .expect("four values");

@@ -35,7 +35,8 @@ impl SteadyTest {
 
     /// Feeds the state at `t`; true when the state is steady.
     pub fn is_steady(&mut self, t: f64, monitored: [f64; 4]) -> bool {
-        self.judge(t, monitored).is_some_and(|change| change < self.tol)
+        self.judge(t, monitored)
+            .is_some_and(|change| change < self.tol)
     }
 
     /// Feeds the state at `t`: once a window has passed since the last judgement, the change

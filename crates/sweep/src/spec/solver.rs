@@ -51,16 +51,13 @@ pub(super) fn parse(
                 .ok_or_else(|| ctx.err(&["solver", "n"], show(x), "an even integer"))?;
         }
         if let Some(x) = m.get("steady") {
-            solver.steady = x
-                .as_str()
-                .and_then(|s| s.parse().ok())
-                .ok_or_else(|| {
-                    ctx.err(
-                        &["solver", "steady"],
-                        show(x),
-                        "newton (default for the spectral scheme) or test (the paper's test alone)",
-                    )
-                })?;
+            solver.steady = x.as_str().and_then(|s| s.parse().ok()).ok_or_else(|| {
+                ctx.err(
+                    &["solver", "steady"],
+                    show(x),
+                    "newton (default for the spectral scheme) or test (the paper's test alone)",
+                )
+            })?;
         }
         ctx.numbers(m, "solver", &KEYS[3..], |key, val| match key {
             "dt" => solver.dt = val,
