@@ -45,14 +45,12 @@ pub use crate::steady_method::{Ending, SteadyMethod};
 /// Newton is first tried when the change per window is below this many steady tolerances.
 pub const TRIGGER_FACTOR: f64 = 100.0;
 
-/// What the last Newton try found (for runs that hit `t_max`: why they did not finish).
+/// What a Newton try found: the root, its stability, and whether it is the turned root.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Finding {
     /// The root, `(vx, vy, a2, b2)`.
     pub z: [f64; 4],
     pub verdict: Verdict,
-    /// Max-norm distance from the run's state to the root.
-    pub distance: f64,
     /// The root of the turned state (the run is to turn there), not the one near the run.
     pub turned: bool,
 }
@@ -139,10 +137,6 @@ pub struct NewtonFinish {
     trigger: f64,
     window: f64,
     next_try: f64,
-    /// The last try's finding (`None` if Newton failed or nothing was tried).
-    pub last: Option<Finding>,
-    /// Tries so far.
-    pub tries: u32,
 }
 
 impl NewtonFinish {
@@ -158,8 +152,6 @@ impl NewtonFinish {
             trigger: TRIGGER_FACTOR * steady_tol,
             window,
             next_try: 0.0,
-            last: None,
-            tries: 0,
         }
     }
 
@@ -192,14 +184,9 @@ impl NewtonFinish {
         )?;
         let root = [sol.x[0], sol.x[1], sol.x[2], sol.x[3]];
         let verdict = assess(&Linearization::at(solver, root), root);
-        let distance = root
-            .iter()
-            .zip(&z)
-            .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
         Ok(Finding {
             z: root,
             verdict,
-            distance,
             turned: false,
         })
     }
@@ -235,21 +222,13 @@ impl NewtonFinish {
         // The shape's mode 2 turns by twice the angle: (a2, b2) -> (-b2, a2) at 45 degrees.
         let turned = [c * vx - s * vy, s * vx + c * vy, -side * b2, side * a2];
         match self.root_near(turned) {
-            Ok(other) if other.stable() => {
-                let distance = other
-                    .z
-                    .iter()
-                    .zip(&z)
-                    .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
-                Some((
-                    Finding {
-                        distance,
-                        turned: true,
-                        ..other
-                    },
-                    true,
-                ))
-            }
+            Ok(other) if other.stable() => Some((
+                Finding {
+                    turned: true,
+                    ..other
+                },
+                true,
+            )),
             _ => Some((near, false)),
         }
     }
@@ -260,9 +239,7 @@ impl NewtonFinish {
         if t < self.next_try || !(test_fired || change < self.trigger) {
             return Decision::Continue;
         }
-        self.tries += 1;
         let found = self.stable_root(t, z);
-        self.last = found.as_ref().map(|(f, _)| f.clone());
         let Some((f, may_end)) = found else {
             // No root near: the paper's test is all there is.
             return if test_fired {
