@@ -166,6 +166,8 @@ impl Run {
             }
         }
         let mut state = self.scheme.state();
+        // The series ends with the time-stepped state; the outcome, with the root if the
+        // Newton finish ended the run.
         if series.last().is_some_and(|r| r.t < t - slack) {
             series.push(SeriesRow::at(t, &state));
         }
@@ -174,9 +176,6 @@ impl Run {
         }
         let diagnosis = matches!(status, RunStatus::TMax | RunStatus::StepLimit)
             .then(|| self.diagnose(finish.as_mut(), state.monitored()));
-        if series.last().is_some_and(|r| r.t < t - slack) {
-            series.push(SeriesRow::at(t, &state));
-        }
         let (v, s) = (state.speed(), state.deformation());
         RunOutcome {
             status,
