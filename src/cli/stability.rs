@@ -115,12 +115,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
         other => CliError::from(other),
     })?;
     let [vx, vy, a2, b2] = st.z;
-    let verdict = {
-        let mut solver = droplet_solver::SteadySolver::new(params, a.n)?;
-        let lin = droplet_solver::stability::Linearization::at(&mut solver, st.z);
-        droplet_solver::continuation::modes::assess(&lin, st.z)
-    };
-    let unstable = verdict.unstable;
+    let unstable = st.verdict.unstable;
     let report = Report {
         state: a.state,
         axis: a.axis.clone(),
@@ -139,7 +134,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
             .iter()
             .map(|l| Eigen { re: l.re, im: l.im })
             .collect(),
-        rotation: verdict.rotation,
+        rotation: st.verdict.rotation,
         unstable,
         stable: unstable == 0,
         ic_thresholds: match a.state {

@@ -30,6 +30,7 @@ pub mod steady;
 pub mod steady_method;
 pub mod step_control;
 pub mod stop_rule;
+pub mod verdict;
 
 pub use classify::StateClass;
 pub use error::SolverError;

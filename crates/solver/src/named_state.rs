@@ -8,6 +8,7 @@ use crate::reduced::bifurcation::md_states;
 use crate::reduced::Coefficients;
 use crate::stability::Linearization;
 use crate::steady::{MirrorAxis, SteadySolver};
+use crate::verdict::{assess, Verdict};
 use rustfft::num_complex::Complex64;
 use serde::Serialize;
 
@@ -40,6 +41,9 @@ pub struct NamedState {
     pub residual: f64,
     /// Eigenvalues with `Re > -1`, decreasing real part ([`Linearization::eigenvalues`]).
     pub eigenvalues: Vec<Complex64>,
+    /// What they say: the rotation mode identified and set aside
+    /// ([`crate::verdict::assess`]).
+    pub verdict: Verdict,
 }
 
 /// `(speed along the axis, shape amplitude on it)` -> `(vx, vy, a2, b2)`.
@@ -51,6 +55,22 @@ fn on_axis(axis: MirrorAxis, v: f64, c: f64) -> [f64; 4] {
             [d, d, 0.0, c]
         }
     }
+}
+
+/// Newton's start for an ID state: the reduced model's amplitude (at least 0.05), positive
+/// (long axis along x on the x axis, along the diagonal on the diagonal).
+pub fn id_seed(c: &Coefficients, params: &ModelParams) -> f64 {
+    ((c.g0t - params.kappa2).max(0.0) / c.h0).sqrt().max(0.05)
+}
+
+/// Newton's starts for MD states moving along the minor (`sign = -1`) or major (`+1`) axis:
+/// the reduced model's states `(v, sign s)`, largest deformation first.
+pub fn md_seeds(c: &Coefficients, params: &ModelParams, sign: f64) -> Vec<(f64, f64)> {
+    md_states(c, params.eta_t, params.kappa2, sign)
+        .into_iter()
+        .rev()
+        .map(|(v, s)| (v, sign * s))
+        .collect()
 }
 
 /// Finds `kind` at `params` on `axis` with an `n x n` grid (Newton to 1e-12 from `seed`, or
@@ -70,8 +90,7 @@ pub fn find(
     )?;
     let mut solver = SteadySolver::new(*params, n)?;
     let c = Coefficients::new(params.radius, crate::settings::H0_PAPER);
-    // The ID seed's sign: a2 > 0 on x (long axis along x), b2 > 0 on the diagonal.
-    let id_seed = ((c.g0t - params.kappa2).max(0.0) / c.h0).sqrt().max(0.05);
+    let id_seed = id_seed(&c, params);
     let (v, shape, residual) = match kind {
         StateKind::IC => (0.0, 0.0, 0.0),
         StateKind::ID | StateKind::MD => {
@@ -79,11 +98,7 @@ pub fn find(
                 (Some(s), _) => vec![s],
                 (None, StateKind::ID) => vec![(0.0, id_seed)],
                 _ => {
-                    let mut v: Vec<(f64, f64)> = md_states(&c, params.eta_t, params.kappa2, -1.0)
-                        .into_iter()
-                        .rev()
-                        .map(|(v, s)| (v, -s))
-                        .collect();
+                    let mut v = md_seeds(&c, params, -1.0);
                     v.extend([(0.6, -0.27), (0.9, -0.35), (0.3, -0.1)]);
                     v
                 }
@@ -115,11 +130,16 @@ pub fn find(
         }
     };
     let z = on_axis(axis, v, shape);
-    let eigenvalues = Linearization::at(&mut solver, z).eigenvalues();
+    let verdict = assess(&Linearization::at(&mut solver, z), z);
     Ok(NamedState {
         z,
         residual,
-        eigenvalues,
+        eigenvalues: verdict
+            .eigenvalues
+            .iter()
+            .map(|[re, im]| Complex64::new(*re, *im))
+            .collect(),
+        verdict,
     })
 }
 

@@ -1,6 +1,6 @@
 //! Finishing a run by Newton instead of creeping to the paper's steady test (design notes
 //! Sect. 6): the state a run converges to is a root of the co-moving force balance, which
-//! [`SteadySolver`] computes directly, and its stability ([`crate::continuation::modes`])
+//! [`SteadySolver`] computes directly, and its stability ([`crate::verdict`])
 //! says whether time stepping would stay there.
 //!
 //! When it is tried: once the run's change per steady window falls below
@@ -32,7 +32,6 @@
 //! ends there: speed and deformation settle long before the orientation, and that root's `v`
 //! and `s` are what the time stepper reaches after the turn (they differ between the two
 //! orientations by the box's anisotropy).
-use crate::continuation::modes::{assess, Verdict};
 use crate::dynamics::force_balance;
 use crate::error::SolverError;
 use crate::newton::{solve, NewtonOptions};
@@ -41,6 +40,7 @@ use crate::settings::SolverSettings;
 use crate::stability::Linearization;
 use crate::steady::SteadySolver;
 pub use crate::steady_method::{Ending, SteadyMethod};
+use crate::verdict::{assess, Verdict};
 
 /// Newton is first tried when the change per window is below this many steady tolerances.
 pub const TRIGGER_FACTOR: f64 = 100.0;

@@ -13,12 +13,12 @@
 //! - `H`: a complex pair crosses zero (an oscillating state would bifurcate: new physics).
 use crate::classify::StateClass;
 use crate::continuation::arclength::{point_at, start, ArclengthOptions, CurvePoint, Stepper};
-use crate::continuation::modes::Verdict;
 use crate::continuation::problem::{Family, Problem};
 use crate::error::SolverError;
 use crate::params::ModelParams;
 use crate::reduced::bifurcation::Axis as Parameter;
 use crate::steady::MirrorAxis;
+use crate::verdict::Verdict;
 use serde::Serialize;
 
 /// A line of parameter values and how to follow a branch along it.

@@ -7,12 +7,12 @@
 //! - ID: the shape amplitude `c` on the axis, `v = 0` (one equation: the shape balance).
 //! - MD moving along its minor axis (`c < 0`) or its major axis (`c > 0`): `(v, c)`, speed
 //!   along the axis (two equations).
-use crate::continuation::modes::{assess, Verdict};
 use crate::error::SolverError;
 use crate::params::ModelParams;
 use crate::reduced::bifurcation::Axis as Parameter;
 use crate::stability::Linearization;
 use crate::steady::{MirrorAxis, SteadySolver};
+use crate::verdict::{assess, Verdict};
 use serde::Serialize;
 
 /// A family of steady states.
@@ -234,7 +234,7 @@ impl Problem {
         match self.family {
             Family::IC => Some(self.y_of(0.0, 0.0, value)),
             Family::ID => {
-                let seed = ((coef.g0t - p.kappa2).max(0.0) / coef.h0).sqrt().max(0.05);
+                let seed = crate::named_state::id_seed(&coef, &p);
                 let st = self.solver.newton_on(self.mirror, 0.0, seed, 1e-12).ok()?;
                 (st.a2.abs() > 1e-4 && st.a2.abs() < 0.9).then(|| self.y_of(0.0, st.a2, value))
             }
@@ -244,12 +244,7 @@ impl Problem {
                 } else {
                     1.0
                 };
-                let mut seeds: Vec<(f64, f64)> =
-                    crate::reduced::bifurcation::md_states(&coef, p.eta_t, p.kappa2, sign)
-                        .into_iter()
-                        .rev()
-                        .map(|(v, s)| (v, sign * s))
-                        .collect();
+                let mut seeds = crate::named_state::md_seeds(&coef, &p, sign);
                 seeds.extend([0.6, 0.3, 0.9].map(|v| (v, sign * 0.27 * v / 0.6)));
                 seeds.into_iter().find_map(|(v0, c0)| {
                     let st = self.solver.newton_on(self.mirror, v0, c0, 1e-12).ok()?;
