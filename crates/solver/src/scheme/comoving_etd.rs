@@ -31,20 +31,23 @@
 use crate::dynamics;
 use crate::etd::{EtdCoef, SeparableExp};
 use crate::fft2::PrunedFft2;
-use crate::forces::{ColumnSums, ForceSums, Forces, ShapeSampler};
+use crate::forces::{Forces, ShapeSampler};
 use crate::grid::Grid;
 use crate::params::ModelParams;
+use crate::scheme::spectral_pass::{CorrectorPass, Modes, PredictorPass, PredictorShape};
 use crate::scheme::{Attempt, Field, Scheme};
 use crate::shape::ShapeParams;
 use crate::state::DropletState;
 use rustfft::num_complex::Complex64;
 
-/// Packed transforms of one droplet shape (`p`: `Theta + X Theta`, `y`: `Y Theta`) and its
-/// area.
+/// Packed transforms of one droplet shape (`p`: `Theta + X Theta`, `y`: `Y Theta`), its
+/// area and the shape `(a2, b2)` they belong to.
 struct ShapeSpectra {
     p: Vec<Complex64>,
     y: Vec<Complex64>,
     area: f64,
+    a2: f64,
+    b2: f64,
 }
 
 impl ShapeSpectra {
@@ -54,6 +57,8 @@ impl ShapeSpectra {
             p: vec![z; len],
             y: vec![z; len],
             area: 0.0,
+            a2: 0.0,
+            b2: 0.0,
         }
     }
 }
@@ -79,10 +84,15 @@ pub struct ComovingEtd {
     a_hat: Vec<Complex64>,
     /// Explicit part of the field at the step's start.
     n0: Vec<Complex64>,
-    /// Shape spectra at the current state, the predictor, and the candidate new state.
+    /// Shape spectra at the current state, at the state before it (valid when
+    /// `prev_valid`), and at the candidate new state (or the predictor, see
+    /// [`ComovingEtd::predictor_shape`]).
     cur: ShapeSpectra,
-    pred: ShapeSpectra,
+    prev: ShapeSpectra,
+    prev_valid: bool,
     next: ShapeSpectra,
+    /// `Theta_hat` (raw, real) at the predictor.
+    pred_th: Vec<f64>,
     scratch: ShapeScratch,
     /// Forces at the current state, if known.
     forces0: Option<Forces>,
@@ -123,8 +133,10 @@ impl ComovingEtd {
             a_hat: vec![zero; len],
             n0: vec![zero; len],
             cur: ShapeSpectra::new(len),
-            pred: ShapeSpectra::new(len),
+            prev: ShapeSpectra::new(len),
+            prev_valid: false,
             next: ShapeSpectra::new(len),
+            pred_th: vec![0.0; len],
             scratch: ShapeScratch {
                 p: vec![0.0; n * n],
                 y: vec![0.0; n * n],
@@ -173,6 +185,7 @@ impl ComovingEtd {
     ) {
         let (lo, hi) = sampler.span(a2, b2);
         out.area = sampler.sample(a2, b2, &mut scratch.p, &mut scratch.y);
+        (out.a2, out.b2) = (a2, b2);
         fft.forward(&mut scratch.p, &mut out.p, lo, hi);
         fft.forward(&mut scratch.y, &mut out.y, lo, hi);
     }
@@ -182,6 +195,7 @@ impl ComovingEtd {
         if let Some(f) = self.forces0 {
             return f;
         }
+        self.prev_valid = false;
         let st = self.state;
         Self::shape_spectra(
             &mut self.fft,
@@ -201,6 +215,43 @@ impl ComovingEtd {
         self.set_overdamped_velocity(&f);
         self.forces0 = Some(f);
         f
+    }
+
+    /// The predictor's shape spectra for the shape `(a2, b2)`: `Some(alpha)` when they are the
+    /// extrapolation `cur + alpha (cur - prev)` along the last accepted step, else `None`
+    /// after transforming them into `next` (which the new state overwrites later).
+    ///
+    /// `alpha` projects the predictor's shape change onto the last step's; the part across it
+    /// is `O(h^2)`, as is the curvature of the path, so the predictor's shape is off by
+    /// `O(h^2)`. It enters the step only through the corrector's `h phi2 (N(a) - N(y_n))`, so
+    /// the local error stays `O(h^3)` and the scheme second order; at a fixed point the shape
+    /// does not change and the extrapolation is exact. Extrapolating further than
+    /// `MAX_ALPHA` steps, or with no previous state, transforms the shape instead.
+    fn predictor_shape(&mut self, a2: f64, b2: f64) -> Option<f64> {
+        const MAX_ALPHA: f64 = 2.0;
+        if self.prev_valid {
+            let (c, q) = (&self.cur, &self.prev);
+            let back = (c.a2 - q.a2, c.b2 - q.b2);
+            let ahead = (a2 - c.a2, b2 - c.b2);
+            let norm2 = back.0 * back.0 + back.1 * back.1;
+            let alpha = if norm2 > 0.0 {
+                (ahead.0 * back.0 + ahead.1 * back.1) / norm2
+            } else {
+                0.0
+            };
+            if alpha.abs() <= MAX_ALPHA {
+                return Some(alpha);
+            }
+        }
+        Self::shape_spectra(
+            &mut self.fft,
+            &self.sampler,
+            &mut self.scratch,
+            a2,
+            b2,
+            &mut self.next,
+        );
+        None
     }
 
     /// In the overdamped limit (`m = 0`) the velocity is `F / eta_t` at every state.
@@ -252,49 +303,39 @@ impl Scheme for ComovingEtd {
         let (vxa, vya) = (vel.predict(st.vx, r0[0]), vel.predict(st.vy, r0[1]));
         let a2a = shp.predict(st.a2, r0[2]);
         let b2a = shp.predict(st.b2, r0[3]);
-        Self::shape_spectra(
-            &mut self.fft,
-            &self.sampler,
-            &mut self.scratch,
-            a2a,
-            b2a,
-            &mut self.pred,
-        );
+        let alpha = self.predictor_shape(a2a, b2a);
 
         // Field predictor fused with the forces at the predictor.
-        let src0 = norm / self.cur.area;
-        let inv_h = 1.0 / h;
-        let mut sums = ForceSums::default();
-        for jx in 0..=n / 2 {
-            let (kx, ax) = (self.grid.kx_d[jx], self.exp.ax[jx]);
-            let row = jx * n..(jx + 1) * n;
-            let mut col = ColumnSums::default();
-            let modes = self
-                .grid
-                .ky_d
-                .iter()
-                .zip(&self.exp.ay)
-                .zip(&self.inv_c[row.clone()]);
-            let fields = self.w_hat[row.clone()].iter().zip(&self.cur.p[row.clone()]);
-            let outs = self.n0[row.clone()]
-                .iter_mut()
-                .zip(&mut self.a_hat[row.clone()]);
-            let shape = self.pred.p[row.clone()].iter().zip(&self.pred.y[row]);
-            for ((((ky, ay), ic), (w, th)), ((n0, ah), (pp, py))) in
-                modes.zip(fields).zip(outs.zip(shape))
-            {
-                let cf = SeparableExp::coef(ax, *ay, *ic, h, inv_h);
-                let kv = kx * v0x + ky * v0y;
-                // Advection i k.v w plus the source Theta_hat / A (= Re p, see forces.rs).
-                let nw = Complex64::new(-kv * w.im + th.re * src0, kv * w.re);
-                *n0 = nw;
-                let a = *w * cf.e + nw * cf.p1;
-                *ah = a;
-                col.add(*ky, a, *pp, *py);
-            }
-            sums.column(self.grid.column_weight(jx), kx, &col);
+        let (base, back, alpha) = match alpha {
+            Some(alpha) => (&self.cur, &self.prev, alpha),
+            None => (&self.next, &self.next, 0.0),
+        };
+        let area_a = base.area + alpha * (base.area - back.area);
+        let modes = Modes {
+            grid: &self.grid,
+            exp: &self.exp,
+            inv_c: &self.inv_c,
+            h,
+        };
+        let sums = PredictorPass {
+            modes,
+            velocity: (v0x, v0y),
+            src0: norm / self.cur.area,
+            w: &self.w_hat,
+            cur_p: &self.cur.p,
+            shape: PredictorShape {
+                base_p: &base.p,
+                base_y: &base.y,
+                back_p: &back.p,
+                back_y: &back.y,
+                alpha,
+            },
+            n0: &mut self.n0,
+            a_hat: &mut self.a_hat,
+            pred_th: &mut self.pred_th,
         }
-        let fa = sums.finish(da, self.pred.area);
+        .run();
+        let fa = sums.finish(da, area_a);
 
         // Corrector for the scalars, then the new state's shape spectra.
         let (vax, vay) = self.stage_velocity(&fa, (vxa, vya));
@@ -346,41 +387,30 @@ impl Scheme for ComovingEtd {
         }
 
         // Field corrector fused with the forces at the new state.
-        let srca = norm / self.pred.area;
-        let mut sums = ForceSums::default();
-        for jx in 0..=n / 2 {
-            let (kx, ax) = (self.grid.kx_d[jx], self.exp.ax[jx]);
-            let row = jx * n..(jx + 1) * n;
-            let mut col = ColumnSums::default();
-            let modes = self
-                .grid
-                .ky_d
-                .iter()
-                .zip(&self.exp.ay)
-                .zip(&self.inv_c[row.clone()]);
-            let fields = self.a_hat[row.clone()]
-                .iter()
-                .zip(&self.pred.p[row.clone()])
-                .zip(&self.n0[row.clone()]);
-            let shape = self.next.p[row.clone()]
-                .iter()
-                .zip(&self.next.y[row.clone()]);
-            for ((((ky, ay), ic), ((a, th), n0)), ((np, ny), wn)) in
-                modes.zip(fields).zip(shape.zip(&mut self.w_new[row]))
-            {
-                let cf = SeparableExp::coef(ax, *ay, *ic, h, inv_h);
-                let kv = kx * vax + ky * vay;
-                let na = Complex64::new(-kv * a.im + th.re * srca, kv * a.re);
-                let w = *a + (na - *n0) * cf.p2;
-                *wn = w;
-                col.add(*ky, w, *np, *ny);
-            }
-            sums.column(self.grid.column_weight(jx), kx, &col);
+        let modes = Modes {
+            grid: &self.grid,
+            exp: &self.exp,
+            inv_c: &self.inv_c,
+            h,
+        };
+        let sums = CorrectorPass {
+            modes,
+            velocity: (vax, vay),
+            srca: norm / area_a,
+            a_hat: &self.a_hat,
+            pred_th: &self.pred_th,
+            n0: &self.n0,
+            next_p: &self.next.p,
+            next_y: &self.next.y,
+            w_new: &mut self.w_new,
         }
+        .run();
         std::mem::swap(&mut self.w_hat, &mut self.w_new);
         self.state = next;
         if sample_next {
+            std::mem::swap(&mut self.prev, &mut self.cur);
             std::mem::swap(&mut self.cur, &mut self.next);
+            self.prev_valid = true;
             let f = sums.finish(da, self.cur.area);
             self.set_overdamped_velocity(&f);
             self.forces0 = Some(f);

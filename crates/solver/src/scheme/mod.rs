@@ -1,6 +1,7 @@
 //! Time integrators of the droplet model. Each owns its field and the droplet state.
 pub mod comoving_etd;
 pub mod paper_fd;
+pub mod spectral_pass;
 
 use crate::error::SolverError;
 use crate::state::DropletState;
