@@ -18,7 +18,7 @@
 //! `lambda = mu(lambda)` of the eigenvalues `mu` of `M^(-1) (E + C (lambda - D)^(-1) B)`,
 //! started from `lambda = 0`.
 use crate::dynamics;
-use crate::forces::{spectral_forces, Forces};
+use crate::forces::{spectral_forces, ColumnSums, ForceSums, Forces};
 use crate::steady::SteadySolver;
 use rustfft::num_complex::Complex64;
 
@@ -131,28 +131,92 @@ impl Linearization {
     /// `C (lambda - D)^(-1) B` (complex `lambda`: the response field is split into the real
     /// fields of its real and imaginary parts, each a half spectrum).
     fn response(&self, lambda: C64) -> [[C64; 4]; 4] {
-        let mut out = [[C64::default(); 4]; 4];
+        self.response_derivatives(lambda, 0)[0]
+    }
+
+    /// `R(lambda) = C (lambda - D)^(-1) B` and its first `order` derivatives in `lambda`
+    /// (`R' = -C (lambda - D)^(-2) B`, `R'' = 2 C (lambda - D)^(-3) B`), in one pass over the
+    /// modes: `(lambda - d)^(-1)` once per mode for all four columns, and the forces of the
+    /// response fields accumulated on the fly (no field is stored).
+    ///
+    /// With `g1 = (lambda - d)^(-1)`, `g2 = (conj(lambda) - d)^(-1)`, the real and imaginary
+    /// parts of the response to column `b` have the half spectra `(g1 + g2) b / 2` and
+    /// `-i (g1 - g2) b / 2` (the field at `-k` has `d(-k) = conj(d(k))`); the derivatives
+    /// replace `g` by `-g^2` and `2 g^3` in both.
+    fn response_derivatives(&self, lambda: C64, order: usize) -> [[[C64; 4]; 4]; 3] {
+        let grid = &self.grid;
+        let n = grid.n;
         let conj = lambda.conj();
-        let mut re = vec![C64::default(); self.d.len()];
-        let mut im = vec![C64::default(); self.d.len()];
-        for (j, bj) in self.b.iter().enumerate() {
-            for (k, (d, b)) in self.d.iter().zip(bj).enumerate() {
-                let g1 = 1.0 / (lambda - d);
-                let g2 = 1.0 / (conj - d);
-                re[k] = 0.5 * (g1 + g2) * b;
-                im[k] = C64::new(0.0, -0.5) * (g1 - g2) * b;
+        let half_i = C64::new(0.0, -0.5);
+        // [column][derivative][re, im]
+        let mut sums = [[[ForceSums::default(); 2]; 3]; 4];
+        for jx in 0..=n / 2 {
+            let mut cols = [[[ColumnSums::default(); 2]; 3]; 4];
+            let row = jx * n..(jx + 1) * n;
+            let modes = grid
+                .ky_d
+                .iter()
+                .zip(&self.d[row.clone()])
+                .zip(self.ph[row.clone()].iter().zip(&self.yh[row.clone()]));
+            for (k, ((ky, d), (p, y))) in row.clone().zip(modes) {
+                let (g1, g2) = ((lambda - d).inv(), (conj - d).inv());
+                let mut g = [(g1, g2); 3];
+                if order >= 1 {
+                    g[1] = (-g1 * g1, -g2 * g2);
+                }
+                if order >= 2 {
+                    g[2] = (-2.0 * g[1].0 * g1, -2.0 * g[1].1 * g2);
+                }
+                for (o, (h1, h2)) in g.iter().enumerate().take(order + 1) {
+                    let (he, ho) = (0.5 * (h1 + h2), half_i * (h1 - h2));
+                    for (col, b) in cols.iter_mut().zip(&self.b) {
+                        let b = b[k];
+                        col[o][0].add(*ky, he * b, *p, *y);
+                        col[o][1].add(*ky, ho * b, *p, *y);
+                    }
+                }
             }
-            let fr = as_array(&spectral_forces(
-                &self.grid, &re, &self.ph, &self.yh, self.area,
-            ));
-            let fi = as_array(&spectral_forces(
-                &self.grid, &im, &self.ph, &self.yh, self.area,
-            ));
-            for i in 0..4 {
-                out[i][j] = C64::new(fr[i], 0.0) + C64::new(0.0, 1.0) * fi[i];
+            let (wt, kx) = (grid.column_weight(jx), grid.kx_d[jx]);
+            for (s, c) in sums.iter_mut().zip(&cols) {
+                for (s, c) in s.iter_mut().zip(c).take(order + 1) {
+                    s[0].column(wt, kx, &c[0]);
+                    s[1].column(wt, kx, &c[1]);
+                }
+            }
+        }
+        let da = grid.dx * grid.dx;
+        let mut out = [[[C64::default(); 4]; 4]; 3];
+        for (j, s) in sums.iter().enumerate() {
+            for (o, [re, im]) in s.iter().enumerate().take(order + 1) {
+                let (fr, fi) = (
+                    as_array(&re.finish(da, self.area)),
+                    as_array(&im.finish(da, self.area)),
+                );
+                for i in 0..4 {
+                    out[o][i][j] = C64::new(fr[i], fi[i]);
+                }
             }
         }
         out
+    }
+
+    /// `T(lambda)`, `T'(lambda) = M - R'(lambda)` and `T''(lambda) = -R''(lambda)`.
+    fn t_derivatives(&self, lambda: C64) -> [[[C64; 4]; 4]; 3] {
+        let r = self.response_derivatives(lambda, 2);
+        let mut t = [[[C64::default(); 4]; 4]; 3];
+        for i in 0..4 {
+            for j in 0..4 {
+                let (diag, ddiag) = if i == j {
+                    (lambda * self.m[i], C64::new(self.m[i], 0.0))
+                } else {
+                    (C64::default(), C64::default())
+                };
+                t[0][i][j] = diag - self.e[i][j] - r[0][i][j];
+                t[1][i][j] = ddiag - r[1][i][j];
+                t[2][i][j] = -r[2][i][j];
+            }
+        }
+        t
     }
 
     /// `T(lambda) = lambda M - E - C (lambda - D)^(-1) B`.
@@ -220,26 +284,34 @@ impl Linearization {
     }
 
     /// The eigenvalues with `Re lambda > -1` (the only ones the field's decay leaves), with
-    /// multiplicity, sorted by decreasing real part: roots of `det T(lambda)` by Newton's
-    /// method, each one divided out before the next is sought, started from the eigenvalues of
+    /// multiplicity, sorted by decreasing real part: roots of `det T(lambda)` by Schroeder's
+    /// method (Newton on `det / det'`, exact derivatives from `T'`, `T''`; quadratic at
+    /// multiple roots), each one divided out before the next is sought, started from the eigenvalues of
     /// the `lambda = 0` problem `M^(-1) (E + C (-D)^(-1) B)` (real states: their real and
     /// imaginary parts, so complex pairs are found as pairs).
     pub fn eigenvalues(&self) -> Vec<C64> {
         let guesses = eig4(&self.k_matrix(C64::default()));
         let mut found: Vec<C64> = Vec::new();
-        let deflated = |lambda: C64, found: &[C64]| {
-            found.iter().fold(self.det(lambda), |f, r| f / (lambda - r))
-        };
-        let h = 1e-6;
         for guess in guesses.iter().chain(&guesses) {
             if found.len() == 4 {
                 break;
             }
             let mut lambda = C64::new(guess.re.max(-0.99), guess.im);
             for _ in 0..100 {
-                let f = deflated(lambda, &found);
-                let df = (deflated(lambda + h, &found) - deflated(lambda - h, &found)) / (2.0 * h);
-                let mut step = f / df;
+                // Newton on f / f' with f = det T / prod (lambda - r) (Schroeder's method,
+                // quadratic at the IC state's double roots too): with L = f'/f =
+                // tr(T^(-1) T') - sum 1 / (lambda - r) and
+                // L' = tr(T^(-1) T'') - tr((T^(-1) T')^2) + sum 1 / (lambda - r)^2,
+                // the step is -L / L'.
+                let [t, dt, ddt] = self.t_derivatives(lambda).map(|m| matrix4(&m));
+                let lu = t.lu();
+                let (Some(x1), Some(x2)) = (lu.solve(&dt), lu.solve(&ddt)) else {
+                    break; // T singular: lambda is a root
+                };
+                let poles = found.iter().map(|r| (lambda - r).inv());
+                let l1 = x1.trace() - poles.clone().sum::<C64>();
+                let l1_slope = x2.trace() - (x1 * x1).trace() + poles.map(|p| p * p).sum::<C64>();
+                let mut step = -l1 / l1_slope;
                 if !step.is_finite() {
                     break;
                 }
