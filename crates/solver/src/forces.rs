@@ -141,59 +141,68 @@ impl ShapeSampler {
         }
     }
 
-    /// Index span `[lo, hi]` of the rows (and columns) that can hold `Theta > 0`.
+    /// Index span `[lo, hi]` of the rows (and columns) that can hold `Theta > 0`, symmetric
+    /// about the centre `N/2` and inside `1..=N-1` (the point mirror of index 0 is itself).
     pub fn span(&self, a2: f64, b2: f64) -> (usize, usize) {
-        let half = (self.n / 2) as isize;
-        let w = (self.shape.outer_radius(a2, b2) / self.dx).ceil() as isize;
-        (
-            (half - w).max(0) as usize,
-            ((half + w) as usize).min(self.n - 1),
-        )
+        let c = self.n / 2;
+        let w = ((self.shape.outer_radius(a2, b2) / self.dx).ceil() as usize).min(c - 1);
+        (c - w, c + w)
     }
 
-    /// Writes `Theta + X Theta` into `p` and `Y Theta` into `y` on rows `lo..=hi` (whole rows,
-    /// zero outside the window) and returns the area `A = Sum(Theta) dx^2`. Computes the
-    /// half `iy >= N/2` and mirrors it through the centre (`(ix, iy) -> (N - ix, N - iy)`).
-    pub fn sample(&self, a2: f64, b2: f64, p: &mut [f64], y: &mut [f64]) -> f64 {
+    /// Writes `Theta`, `X Theta` and `Y Theta` on the rows `N/2..=hi` into `th`, `x`, `y`
+    /// (row `r` is grid row `N/2 + r`; whole rows, zero outside the window) and returns the
+    /// area `A = Sum(Theta) dx^2` of the whole droplet. The other half is the point mirror
+    /// (`(ix, iy) -> (N - ix, N - iy)`: `Theta` even, `X Theta`, `Y Theta` odd); on the centre
+    /// row the half `ix >= N/2` is computed and mirrored, which makes the symmetry exact.
+    pub fn sample_upper(
+        &self,
+        a2: f64,
+        b2: f64,
+        th: &mut [f64],
+        x: &mut [f64],
+        y: &mut [f64],
+    ) -> f64 {
         let n = self.n;
         let c = n / 2;
         let (lo, hi) = self.span(a2, b2);
+        let rows = hi - c + 1;
         let r_out = self.shape.outer_radius(a2, b2);
         let r_in = self.shape.inner_radius(a2, b2);
         let (r_out2, r_in2) = (r_out * r_out, r_in * r_in);
-        for iy in lo..=hi {
-            for buf in [&mut *p, &mut *y] {
-                let row = &mut buf[iy * n..(iy + 1) * n];
+        for buf in [&mut *th, &mut *x, &mut *y] {
+            for row in buf.chunks_exact_mut(n).take(rows) {
                 row[..lo].fill(0.0);
                 row[hi + 1..].fill(0.0);
             }
         }
         let mut count = 0.0;
-        for iy in c..=hi {
-            let yc = self.coords[iy];
-            let my = n - iy;
-            let start = if iy == c { c } else { lo };
+        for r in 0..rows {
+            let yc = self.coords[c + r];
+            let start = if r == 0 { c } else { lo };
             for ix in start..=hi {
-                let x = self.coords[ix];
-                let r2 = x * x + yc * yc;
-                let th = if r2 < r_in2 {
+                let xc = self.coords[ix];
+                let r2 = xc * xc + yc * yc;
+                let t = if r2 < r_in2 {
                     1.0
                 } else if r2 > r_out2 {
                     0.0
                 } else {
-                    self.shape.theta(a2, b2, x, yc)
+                    self.shape.theta(a2, b2, xc, yc)
                 };
-                let i = iy * n + ix;
-                p[i] = th + x * th;
-                y[i] = yc * th;
-                let mx = n - ix;
-                if iy == c && ix == c {
-                    count += th;
+                let i = r * n + ix;
+                th[i] = t;
+                x[i] = xc * t;
+                y[i] = yc * t;
+                if r == 0 && ix == c {
+                    count += t;
                 } else {
-                    let m = my * n + mx;
-                    p[m] = th - x * th;
-                    y[m] = -yc * th;
-                    count += 2.0 * th;
+                    if r == 0 {
+                        let m = n - ix;
+                        th[m] = t;
+                        x[m] = -xc * t;
+                        y[m] = -yc * t;
+                    }
+                    count += 2.0 * t;
                 }
             }
         }
@@ -232,9 +241,9 @@ mod tests {
                 sigma: 0.03,
             },
         );
-        let (mut p, mut y) = (vec![0.0; n * n], vec![0.0; n * n]);
+        let (mut th, mut x, mut y) = (vec![0.0; n * n], vec![0.0; n * n], vec![0.0; n * n]);
         let (a2, b2) = (0.1, 0.05);
-        let area = sampler.sample(a2, b2, &mut p, &mut y);
+        let area = sampler.sample_upper(a2, b2, &mut th, &mut x, &mut y);
         let mut t = vec![0.0; n * n];
         sampler.theta(a2, b2, &mut t);
         let direct: f64 = t.iter().sum::<f64>() * grid.dx * grid.dx;
@@ -262,23 +271,20 @@ mod tests {
                 sigma: 0.1,
             },
         );
-        let (mut pr, mut yr) = (vec![0.0; n * n], vec![0.0; n * n]);
         let (a2, b2) = (-0.15, 0.07);
-        let area = sampler.sample(a2, b2, &mut pr, &mut yr);
         let mut t0 = vec![0.0; n * n];
         sampler.theta(a2, b2, &mut t0);
         let tx0: Vec<f64> = (0..n * n).map(|i| grid.coord(i % n) * t0[i]).collect();
         let ty0: Vec<f64> = (0..n * n).map(|i| grid.coord(i / n) * t0[i]).collect();
-        for i in 0..n * n {
-            assert!((pr[i] - t0[i] - tx0[i]).abs() < 1e-15, "{i}");
-            assert!((yr[i] - ty0[i]).abs() < 1e-15, "{i}");
-        }
+        let area = t0.iter().sum::<f64>() * grid.dx * grid.dx;
         let mut fft = PrunedFft2::new(n);
         let len = grid.spectral_len();
         let (mut ph, mut yh) = (
             vec![Complex64::default(); len],
             vec![Complex64::default(); len],
         );
+        let mut pr: Vec<f64> = (0..n * n).map(|i| t0[i] + tx0[i]).collect();
+        let mut yr = ty0.clone();
         fft.forward(&mut pr, &mut ph, 0, n - 1);
         fft.forward(&mut yr, &mut yh, 0, n - 1);
         // u(x, y) = exp(cos(k0 x) + 0.5 sin(k0 (x + y))), periodic, with u_x, u_y analytic.

@@ -24,6 +24,7 @@ pub mod run;
 pub mod scheme;
 pub mod settings;
 pub mod shape;
+pub mod shape_transform;
 pub mod stability;
 pub mod state;
 pub mod steady;

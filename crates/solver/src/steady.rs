@@ -7,11 +7,12 @@
 use crate::dynamics;
 use crate::error::SolverError;
 use crate::fft2::PrunedFft2;
-use crate::forces::{spectral_forces, Forces, ShapeSampler};
+use crate::forces::{spectral_forces, Forces};
 use crate::grid::Grid;
 use crate::newton::{self, NewtonOptions};
 use crate::params::ModelParams;
 use crate::shape::ShapeParams;
+use crate::shape_transform::ShapeTransform;
 use rustfft::num_complex::Complex64;
 
 /// Evaluates steady fields and force-balance residuals on an `N x N` co-moving grid.
@@ -19,9 +20,7 @@ pub struct SteadySolver {
     params: ModelParams,
     grid: Grid,
     fft: PrunedFft2,
-    sampler: ShapeSampler,
-    p: Vec<f64>,
-    y: Vec<f64>,
+    shapes: ShapeTransform,
     ph: Vec<Complex64>,
     yh: Vec<Complex64>,
     w: Vec<Complex64>,
@@ -66,9 +65,7 @@ impl SteadySolver {
         Ok(Self {
             params,
             fft: PrunedFft2::new(n),
-            sampler: ShapeSampler::new(&grid, shape),
-            p: vec![0.0; n * n],
-            y: vec![0.0; n * n],
+            shapes: ShapeTransform::new(&grid, shape),
             ph: vec![z; len],
             yh: vec![z; len],
             w: vec![z; len],
@@ -86,10 +83,7 @@ impl SteadySolver {
         b2: f64,
     ) -> (&[Complex64], Forces) {
         let n = self.grid.n;
-        let (lo, hi) = self.sampler.span(a2, b2);
-        let area = self.sampler.sample(a2, b2, &mut self.p, &mut self.y);
-        self.fft.forward(&mut self.p, &mut self.ph, lo, hi);
-        self.fft.forward(&mut self.y, &mut self.yh, lo, hi);
+        let area = self.shapes.transform(a2, b2, &mut self.ph, &mut self.yh);
         let norm = 1.0 / (area * (n * n) as f64);
         for jx in 0..=n / 2 {
             let kx = self.grid.kx[jx];
@@ -110,10 +104,7 @@ impl SteadySolver {
     /// The packed shape transforms of a droplet `(a2, b2)` (of `Theta + X Theta` and of
     /// `Y Theta`, raw, `[kx][ky]`; see [`crate::forces`]) and its area `A`.
     pub fn shape_spectra(&mut self, a2: f64, b2: f64) -> (Vec<Complex64>, Vec<Complex64>, f64) {
-        let (lo, hi) = self.sampler.span(a2, b2);
-        let area = self.sampler.sample(a2, b2, &mut self.p, &mut self.y);
-        self.fft.forward(&mut self.p, &mut self.ph, lo, hi);
-        self.fft.forward(&mut self.y, &mut self.yh, lo, hi);
+        let area = self.shapes.transform(a2, b2, &mut self.ph, &mut self.yh);
         (self.ph.clone(), self.yh.clone(), area)
     }
 

@@ -16,27 +16,32 @@
 //! known after the first half of the step (the predictor pass gives the forces the scalar
 //! corrector needs), so a refused step costs half a step and changes nothing.
 //!
-//! Cost per step: the shape at the predictor and at the new state, each as two row-pruned
-//! forward transforms (`Theta + X Theta` packed, and `Y Theta`; no inverse transform: forces
-//! by Parseval, [`crate::forces`]), and two fused passes over the spectrum that advance the
-//! field and accumulate the forces, with no exponential or division per mode.
+//! Cost per step: one shape transform (the new state's, [`crate::shape_transform`]: the
+//! point-symmetric half of the window, three row-pruned row transforms, one complex and one
+//! half-length real column transform; no inverse transform: forces by Parseval,
+//! [`crate::forces`]) and two fused passes over the spectrum that advance the field and
+//! accumulate the forces ([`super::spectral_pass`]), with no exponential or division per mode.
+//! The predictor's shape is extrapolated from the last two states
+//! ([`ComovingEtd::predictor_shape`]) rather than transformed.
 //!
-//! Profile at N = 192 (perf, `cargo build --profile profiling`, MD point): the two spectral
-//! passes ~30 %, the four row-pruned transforms ~35 %, sampling `Theta` in the window ~11 %,
-//! `exp` of the tanh band ~7 %, zero fills ~6 %. Measured steps: 1.07 ms (three transforms per
-//! stage, divisions per mode) -> 0.78 ms (packed transforms, mirrored sampling, division-free
-//! coefficients). Not done yet: AVX2 code generation for the passes (they compile to SSE2 for
-//! the generic x86-64 target), skipping the all-zero input rows in the column transforms, and
-//! a narrower band (`BAND_Q`).
+//! Measured at N = 192 (`cargo bench -p droplet-solver --bench step`, fixed dt = 0.02, MD
+//! point, one machine, one session): 435 us per step before (two shapes per step, each two
+//! plain row-pruned transforms) -> 300 us (predictor extrapolated) -> 285 us (symmetric
+//! transform). Profile now: the two passes ~46 %, transforms ~27 %, sampling `Theta` ~13 %
+//! (half of it `exp` in the tanh band). Tried and dropped: AVX2 code generation
+//! (`x86-64-v3`: 2 % faster; `native` with AVX-512 was 35 % slower), 4-lane accumulators in
+//! the passes (no gain), `1 / c` computed per mode instead of stored (9 % slower), a narrower
+//! band `BAND_Q = 12` (3.5 %, not worth changing `Theta` by 4e-11).
 use crate::dynamics;
 use crate::etd::{EtdCoef, SeparableExp};
 use crate::fft2::PrunedFft2;
-use crate::forces::{Forces, ShapeSampler};
+use crate::forces::Forces;
 use crate::grid::Grid;
 use crate::params::ModelParams;
 use crate::scheme::spectral_pass::{CorrectorPass, Modes, PredictorPass, PredictorShape};
 use crate::scheme::{Attempt, Field, Scheme};
 use crate::shape::ShapeParams;
+use crate::shape_transform::ShapeTransform;
 use crate::state::DropletState;
 use rustfft::num_complex::Complex64;
 
@@ -63,18 +68,12 @@ impl ShapeSpectra {
     }
 }
 
-/// Real-space scratch for sampling the shape.
-struct ShapeScratch {
-    p: Vec<f64>,
-    y: Vec<f64>,
-}
-
 /// The co-moving spectral integrator of one run.
 pub struct ComovingEtd {
     params: ModelParams,
     grid: Grid,
     fft: PrunedFft2,
-    sampler: ShapeSampler,
+    shapes: ShapeTransform,
     /// Hold the centre fixed (deformation-only runs, Appendix E).
     pinned: bool,
     state: DropletState,
@@ -93,7 +92,6 @@ pub struct ComovingEtd {
     next: ShapeSpectra,
     /// `Theta_hat` (raw, real) at the predictor.
     pred_th: Vec<f64>,
-    scratch: ShapeScratch,
     /// Forces at the current state, if known.
     forces0: Option<Forces>,
     exp: SeparableExp,
@@ -125,7 +123,7 @@ impl ComovingEtd {
         Ok(Self {
             params,
             fft: PrunedFft2::new(n),
-            sampler: ShapeSampler::new(&grid, shape),
+            shapes: ShapeTransform::new(&grid, shape),
             pinned,
             state,
             w_hat: vec![zero; len],
@@ -137,10 +135,6 @@ impl ComovingEtd {
             prev_valid: false,
             next: ShapeSpectra::new(len),
             pred_th: vec![0.0; len],
-            scratch: ShapeScratch {
-                p: vec![0.0; n * n],
-                y: vec![0.0; n * n],
-            },
             forces0: None,
             exp: SeparableExp::default(),
             inv_c: (0..len)
@@ -175,19 +169,9 @@ impl ComovingEtd {
     }
 
     /// Samples the shape `(a2, b2)` and transforms it into `out`.
-    fn shape_spectra(
-        fft: &mut PrunedFft2,
-        sampler: &ShapeSampler,
-        scratch: &mut ShapeScratch,
-        a2: f64,
-        b2: f64,
-        out: &mut ShapeSpectra,
-    ) {
-        let (lo, hi) = sampler.span(a2, b2);
-        out.area = sampler.sample(a2, b2, &mut scratch.p, &mut scratch.y);
+    fn shape_spectra(shapes: &mut ShapeTransform, a2: f64, b2: f64, out: &mut ShapeSpectra) {
+        out.area = shapes.transform(a2, b2, &mut out.p, &mut out.y);
         (out.a2, out.b2) = (a2, b2);
-        fft.forward(&mut scratch.p, &mut out.p, lo, hi);
-        fft.forward(&mut scratch.y, &mut out.y, lo, hi);
     }
 
     /// Shape spectra and forces at the current state (computed once per state).
@@ -197,14 +181,7 @@ impl ComovingEtd {
         }
         self.prev_valid = false;
         let st = self.state;
-        Self::shape_spectra(
-            &mut self.fft,
-            &self.sampler,
-            &mut self.scratch,
-            st.a2,
-            st.b2,
-            &mut self.cur,
-        );
+        Self::shape_spectra(&mut self.shapes, st.a2, st.b2, &mut self.cur);
         let f = crate::forces::spectral_forces(
             &self.grid,
             &self.w_hat,
@@ -243,14 +220,7 @@ impl ComovingEtd {
                 return Some(alpha);
             }
         }
-        Self::shape_spectra(
-            &mut self.fft,
-            &self.sampler,
-            &mut self.scratch,
-            a2,
-            b2,
-            &mut self.next,
-        );
+        Self::shape_spectra(&mut self.shapes, a2, b2, &mut self.next);
         None
     }
 
@@ -376,14 +346,7 @@ impl Scheme for ComovingEtd {
         }
         let sample_next = next.is_finite() && next.deformation() < 1.0;
         if sample_next {
-            Self::shape_spectra(
-                &mut self.fft,
-                &self.sampler,
-                &mut self.scratch,
-                next.a2,
-                next.b2,
-                &mut self.next,
-            );
+            Self::shape_spectra(&mut self.shapes, next.a2, next.b2, &mut self.next);
         }
 
         // Field corrector fused with the forces at the new state.
