@@ -153,50 +153,48 @@ mod tests {
 
     #[test]
     fn symmetric_transform_equals_the_plain_one() {
-        let n = 64;
-        let grid = Grid::new(n, 7.0).unwrap();
-        let shape = ShapeParams {
-            radius: 1.0,
-            sigma: 0.1,
-        };
-        let mut st = ShapeTransform::new(&grid, shape);
-        let mut plain = PrunedFft2::new(n);
-        let len = grid.spectral_len();
-        for (a2, b2) in [(0.0, 0.0), (-0.15, 0.07), (0.3, -0.2)] {
-            // Direct samples of Theta, packed as the forces expect.
-            let mut t = vec![0.0; n * n];
-            st.sampler().theta(a2, b2, &mut t);
-            let mut pr: Vec<f64> = (0..n * n)
-                .map(|i| t[i] * (1.0 + grid.coord(i % n)))
-                .collect();
-            let mut yr: Vec<f64> = (0..n * n).map(|i| t[i] * grid.coord(i / n)).collect();
-            let (mut p0, mut y0) = (
-                vec![Complex64::default(); len],
-                vec![Complex64::default(); len],
-            );
-            plain.forward(&mut pr, &mut p0, 0, n - 1);
-            plain.forward(&mut yr, &mut y0, 0, n - 1);
-            let (mut p1, mut y1) = (
-                vec![Complex64::default(); len],
-                vec![Complex64::default(); len],
-            );
-            let area = st.transform(a2, b2, &mut p1, &mut y1);
-            let direct: f64 = t.iter().sum::<f64>() * grid.dx * grid.dx;
-            assert!((area - direct).abs() < 1e-12, "area {area} vs {direct}");
-            let scale = p0[0].norm();
-            for i in 0..len {
-                assert!(
-                    (p0[i] - p1[i]).norm() < 1e-12 * scale,
-                    "p {i}: {} vs {}",
-                    p0[i],
-                    p1[i]
+        for (n, sigma) in [(64, 0.1), (96, 0.03)] {
+            let grid = Grid::new(n, 7.0).unwrap();
+            let shape = ShapeParams { radius: 1.0, sigma };
+            let mut st = ShapeTransform::new(&grid, shape);
+            let mut plain = PrunedFft2::new(n);
+            let len = grid.spectral_len();
+            for (a2, b2) in [(0.0, 0.0), (-0.15, 0.07), (0.3, -0.2), (-0.052, -0.032)] {
+                // Direct samples of Theta, packed as the forces expect.
+                let mut t = vec![0.0; n * n];
+                st.sampler().theta(a2, b2, &mut t);
+                let mut pr: Vec<f64> = (0..n * n)
+                    .map(|i| t[i] * (1.0 + grid.coord(i % n)))
+                    .collect();
+                let mut yr: Vec<f64> = (0..n * n).map(|i| t[i] * grid.coord(i / n)).collect();
+                let (mut p0, mut y0) = (
+                    vec![Complex64::default(); len],
+                    vec![Complex64::default(); len],
                 );
-                assert!(
-                    (y0[i] - y1[i]).norm() < 1e-12 * scale,
-                    "y {i}: {} vs {}",
-                    y0[i],
-                    y1[i]
+                plain.forward(&mut pr, &mut p0, 0, n - 1);
+                plain.forward(&mut yr, &mut y0, 0, n - 1);
+                let (mut p1, mut y1) = (
+                    vec![Complex64::default(); len],
+                    vec![Complex64::default(); len],
                 );
+                let area = st.transform(a2, b2, &mut p1, &mut y1);
+                let direct: f64 = t.iter().sum::<f64>() * grid.dx * grid.dx;
+                assert!((area - direct).abs() < 1e-12, "area {area} vs {direct}");
+                let scale = p0[0].norm();
+                for i in 0..len {
+                    assert!(
+                        (p0[i] - p1[i]).norm() < 1e-12 * scale,
+                        "p {i}: {} vs {}",
+                        p0[i],
+                        p1[i]
+                    );
+                    assert!(
+                        (y0[i] - y1[i]).norm() < 1e-12 * scale,
+                        "y {i}: {} vs {}",
+                        y0[i],
+                        y1[i]
+                    );
+                }
             }
         }
     }

@@ -13,6 +13,7 @@
 use crate::error::SweepError;
 use crate::progress::progress_bar;
 use droplet_solver::steady::MirrorAxis;
+use droplet_solver::steady_method::SteadyMethod;
 use droplet_solver::{
     simulate, InitialCondition, ModelParams, RunOutcome, RunStatus, SchemeKind, SolverSettings,
     StateClass, SteadySolver,
@@ -58,7 +59,9 @@ pub struct BenchPlan {
     pub methods: Vec<Method>,
     /// Time integration giving the reference class and the Newton seed.
     pub reference_run: SolverSettings,
-    /// Newton resolution of the reference steady states.
+    /// Newton resolution of the reference steady states (quick: the reference run's own, so
+    /// that the state the run found exists; a coarser run's ID state need not exist at a finer
+    /// N near the threshold).
     pub n_newton: usize,
     /// Reference time series: resolution and step.
     pub transient_reference: SolverSettings,
@@ -98,7 +101,7 @@ impl BenchPlan {
             t_max,
             tol: 0.0,
             dt_max: 1.0,
-            steady: droplet_solver::newton_finish::SteadyMethod::Test,
+            steady: SteadyMethod::Test,
             ..SolverSettings::default()
         };
         // Fixed steps: N x dt; adaptive: N x dt_max x tol.
@@ -156,6 +159,22 @@ impl BenchPlan {
                 }
             }
         }
+        // Adaptive steps finished by Newton (the default for sweeps), at the default step cap.
+        let dt_max = droplet_solver::settings::DEFAULT_DT_MAX;
+        for &n in adaptive_ns {
+            for &tol in tols {
+                methods.push(Method {
+                    family: format!("newton N={n} dt_max={dt_max}"),
+                    settings: SolverSettings {
+                        n,
+                        tol,
+                        dt_max,
+                        steady: SteadyMethod::Newton,
+                        ..base
+                    },
+                });
+            }
+        }
         Self {
             profile,
             cases,
@@ -164,7 +183,7 @@ impl BenchPlan {
                 n: if quick { 64 } else { 256 },
                 ..base
             },
-            n_newton: if quick { 96 } else { 384 },
+            n_newton: if quick { 64 } else { 384 },
             transient_reference: SolverSettings {
                 n: if quick { 64 } else { 256 },
                 dt: if quick { 0.005 } else { 0.001 },
@@ -178,6 +197,8 @@ impl BenchPlan {
     /// steady run is ~1e7 of its steps; its per-run time is extrapolated from the transient's
     /// rate, see [`BenchSummary`]). Fixed steps below 0.02 run the transient only: a steady
     /// state is a fixed point of the scheme for every `dt`, so they would change only the time.
+    /// The Newton finish runs the steady cases only: a transient window never stops early, so
+    /// it would repeat the adaptive run of the same settings.
     pub fn jobs(&self) -> Vec<(usize, usize)> {
         let mut jobs = Vec::new();
         for (ci, c) in self.cases.iter().enumerate() {
@@ -188,10 +209,24 @@ impl BenchPlan {
                 if steady && (fd || (!s.adaptive() && s.dt < 0.02)) {
                     continue;
                 }
+                if !steady && !s.steady.is_test() {
+                    continue;
+                }
                 jobs.push((ci, mi));
             }
         }
         jobs
+    }
+
+    /// Whether `other`'s references serve this plan: the same cases and reference settings
+    /// (the methods may differ; the references do not depend on them).
+    pub fn same_references(&self, other: &BenchPlan) -> bool {
+        self.profile == other.profile
+            && self.cases == other.cases
+            && self.reference_run == other.reference_run
+            && self.n_newton == other.n_newton
+            && self.transient_reference == other.transient_reference
+            && self.every == other.every
     }
 }
 
@@ -228,6 +263,8 @@ pub struct BenchRow {
     pub dt: f64,
     pub tol: f64,
     pub dt_max: f64,
+    /// How the run decided it was steady: `test` or `newton`.
+    pub steady: String,
     pub status: String,
     pub class: Option<String>,
     pub class_ok: bool,
@@ -432,6 +469,7 @@ pub fn run(refs: &References, progress: bool) -> Result<Vec<BenchRow>, SweepErro
                 dt: s.dt,
                 tol: s.tol,
                 dt_max: s.dt_max,
+                steady: s.steady.as_str().into(),
                 status: out.status.as_str().into(),
                 class: out.class.map(|k| k.as_str().to_string()),
                 class_ok: false,
@@ -541,7 +579,8 @@ pub fn summarise(refs: &References, rows: &[BenchRow]) -> BenchSummary {
                 tol: r.tol,
                 is_default: r.dt == d.dt
                     && r.tol == d.tol
-                    && (d.tol == 0.0 || r.dt_max == d.dt_max),
+                    && (d.tol == 0.0 || r.dt_max == d.dt_max)
+                    && r.steady == d.steady.as_str(),
                 err_v: r.err_v,
                 err_s: r.err_s,
                 class_ok: r.class_ok,
@@ -591,11 +630,21 @@ mod tests {
             .collect();
         assert_eq!(fd.len(), 1);
         assert!(p.cases[fd[0].0].window.is_some());
-        // Every method runs the transient.
+        // Every method runs the transient but the Newton finish, which runs every steady case.
         let transient = p.cases.iter().position(|c| c.window.is_some()).unwrap();
+        let newton: Vec<usize> = (0..p.methods.len())
+            .filter(|&m| p.methods[m].settings.steady == SteadyMethod::Newton)
+            .collect();
+        assert!(!newton.is_empty());
         assert_eq!(
             jobs.iter().filter(|(c, _)| *c == transient).count(),
-            p.methods.len()
+            p.methods.len() - newton.len()
         );
+        for m in newton {
+            assert_eq!(
+                jobs.iter().filter(|(_, j)| *j == m).count(),
+                p.cases.len() - 1
+            );
+        }
     }
 }

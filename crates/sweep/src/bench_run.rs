@@ -59,11 +59,22 @@ fn load_or_compute(dir: &Path, plan: &BenchPlan) -> Result<(References, bool), S
         let refs: References = serde_json::from_str(&text).map_err(|e| {
             SweepError::Invalid(format!("{}: not a bench reference: {e}", path.display()))
         })?;
-        if refs.plan != *plan {
+        if !refs.plan.same_references(plan) {
             return Err(SweepError::Invalid(format!(
-                "{} was computed for another benchmark plan (profile or version); move it away or use another --out",
+                "{} was computed for another benchmark plan (profile, cases or reference settings); move it away or use another --out",
                 path.display()
             )));
+        }
+        // Only the methods changed: the references stand; record the plan they now serve.
+        let mut refs = refs;
+        if refs.plan != *plan {
+            refs.plan = plan.clone();
+            crate::atomic::write_atomic(
+                &path,
+                serde_json::to_string_pretty(&refs)
+                    .expect("json")
+                    .as_bytes(),
+            )?;
         }
         return Ok((refs, true));
     }

@@ -23,6 +23,7 @@ pub fn bench_frame(rows: &[BenchRow]) -> Result<DataFrame, SweepError> {
         f64_col("dt", f(|r| r.dt)),
         f64_col("tol", f(|r| r.tol)),
         f64_col("dt_max", f(|r| r.dt_max)),
+        str_col("steady", st(|r| r.steady.clone())),
         str_col("status", st(|r| r.status.clone())),
         Column::new(
             "class".into(),
@@ -80,6 +81,12 @@ pub fn read_bench(path: &Path) -> Result<Vec<BenchRow>, SweepError> {
         s("class")?,
     );
     let (n, steps, rejected) = (u("n")?, u("steps")?, u("rejected")?);
+    // Tables written before the Newton finish have no `steady` column: all ran the test.
+    let steady = if df.get_column_names().iter().any(|c| c.as_str() == "steady") {
+        s("steady")?
+    } else {
+        vec![Some("test".to_string()); h]
+    };
     let (dt, tol, dt_max, v, sv) = (f("dt")?, f("tol")?, f("dt_max")?, f("v")?, f("s")?);
     let (err_v, err_s, err_series) = (f("err_v")?, f("err_s")?, f("err_series")?);
     let (t_end, mse, wall) = (f("t_end")?, f("max_step_error")?, f("wall_s")?);
@@ -95,6 +102,7 @@ pub fn read_bench(path: &Path) -> Result<Vec<BenchRow>, SweepError> {
             dt: nan(dt[i]),
             tol: nan(tol[i]),
             dt_max: nan(dt_max[i]),
+            steady: steady[i].clone().unwrap_or_else(|| "test".into()),
             status: status[i].clone().unwrap_or_default(),
             class: class[i].clone(),
             class_ok: ok[i].unwrap_or(false),

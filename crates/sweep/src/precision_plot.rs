@@ -12,7 +12,7 @@ use std::path::{Path, PathBuf};
 const FLOOR: f64 = 1e-10;
 
 /// Colour of a family: paper-fd black, fixed-step spectral in blues, adaptive in
-/// reds/oranges/greens by `dt_max`.
+/// reds/oranges/greens by `dt_max`, the Newton finish in purples.
 fn colour(family: &str, index: usize) -> RGBColor {
     if family == "paper-fd" {
         return BLACK;
@@ -23,6 +23,13 @@ fn colour(family: &str, index: usize) -> RGBColor {
             RGBColor(80, 140, 210),
             RGBColor(20, 80, 180),
             RGBColor(10, 30, 110),
+        ]
+    } else if family.starts_with("newton") {
+        [
+            RGBColor(200, 160, 230),
+            RGBColor(140, 80, 200),
+            RGBColor(90, 30, 150),
+            RGBColor(50, 0, 90),
         ]
     } else if family.contains("dt_max=0.1") {
         [
