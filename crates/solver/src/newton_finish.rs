@@ -111,6 +111,18 @@ fn orientation(z: &[f64; 4]) -> f64 {
     }
 }
 
+/// The state `z` turned by `angle`: the velocity by `angle`, the shape's mode 2 by twice it.
+fn rotated(z: &[f64; 4], angle: f64) -> [f64; 4] {
+    let (c, s) = (angle.cos(), angle.sin());
+    let (c2, s2) = ((2.0 * angle).cos(), (2.0 * angle).sin());
+    [
+        c * z[0] - s * z[1],
+        s * z[0] + c * z[1],
+        c2 * z[2] - s2 * z[3],
+        s2 * z[2] + c2 * z[3],
+    ]
+}
+
 /// Max of the differences in speed and in deformation (invariant under rotation).
 fn invariant_distance(a: &[f64; 4], b: &[f64; 4]) -> f64 {
     let (va, vb) = (a[0].hypot(a[1]), b[0].hypot(b[1]));
@@ -170,7 +182,9 @@ impl NewtonFinish {
         let p = self.params;
         let opts = NewtonOptions {
             tol: 1e-12,
-            max_iter: 30,
+            // Converging solves from a run near its root take 3 to 8 iterations; a failing
+            // one (a run mid-turn, see `aligned_root`) is not worth 30.
+            max_iter: 12,
             fd_step: 1e-6,
             max_step: vec![f64::INFINITY, f64::INFINITY, 0.2, 0.2],
         };
@@ -200,7 +214,10 @@ impl NewtonFinish {
     /// the state turned by 45 degrees (motion and long axis together, towards the side it
     /// leans to), where the box's other mirror line is, if that root is stable.
     pub fn stable_root(&mut self, t: f64, z: [f64; 4]) -> Option<(Finding, bool)> {
-        let near = self.root_near(z).ok()?;
+        let near = match self.root_near(z) {
+            Ok(near) => near,
+            Err(_) => self.aligned_root(z)?,
+        };
         let Some(rot) = near.verdict.rotation.filter(|_| !near.stable()) else {
             let ok = near.stable();
             return Some((near, ok));
@@ -217,11 +234,7 @@ impl NewtonFinish {
         }
         let side = if lean >= 0.0 { 1.0 } else { -1.0 };
         let angle = side * std::f64::consts::FRAC_PI_4;
-        let [vx, vy, a2, b2] = near.z;
-        let (c, s) = (angle.cos(), angle.sin());
-        // The shape's mode 2 turns by twice the angle: (a2, b2) -> (-b2, a2) at 45 degrees.
-        let turned = [c * vx - s * vy, s * vx + c * vy, -side * b2, side * a2];
-        match self.root_near(turned) {
+        match self.root_near(rotated(&near.z, angle)) {
             Ok(other) if other.stable() => Some((
                 Finding {
                     turned: true,
@@ -231,6 +244,28 @@ impl NewtonFinish {
             )),
             _ => Some((near, false)),
         }
+    }
+
+    /// The root of a run caught mid-turn, between the box's mirror lines, where Newton from
+    /// the run's own state need not converge: Newton from the state turned onto the nearest
+    /// mirror line (motion or long axis at a multiple of 45 degrees), then onto the next one
+    /// on the other side; the first stable root, else the first root found.
+    pub fn aligned_root(&mut self, z: [f64; 4]) -> Option<Finding> {
+        let quarter = std::f64::consts::FRAC_PI_4;
+        let phi = orientation(&z);
+        let nearest = (phi / quarter).round() * quarter;
+        let other = nearest + if phi >= nearest { quarter } else { -quarter };
+        let mut first = None;
+        for target in [nearest, other] {
+            let Ok(found) = self.root_near(rotated(&z, target - phi)) else {
+                continue;
+            };
+            if found.stable() {
+                return Some(found);
+            }
+            first.get_or_insert(found);
+        }
+        first
     }
 
     /// One judged window at time `t`: the state `z`, its change over the window (scaled to
@@ -302,5 +337,44 @@ mod tests {
         assert!(ic.z.iter().all(|x| x.abs() < 1e-10), "{ic:?}");
         assert!(!ic.stable() && ic.verdict.unstable > 0, "{ic:?}");
         assert!(ic.describe().contains("unstable"), "{}", ic.describe());
+    }
+
+    #[test]
+    fn turning_a_state_turns_its_motion_once_and_its_shape_twice() {
+        let z = [0.5, 0.1, -0.2, 0.05];
+        let q = rotated(&rotated(&z, 0.3), 0.4);
+        let direct = rotated(&z, 0.7);
+        assert!(q.iter().zip(&direct).all(|(a, b)| (a - b).abs() < 1e-15));
+        // 90 degrees: the velocity turns a quarter, the mode-2 shape changes sign.
+        let r = rotated(&z, std::f64::consts::FRAC_PI_2);
+        let expect = [-0.1, 0.5, 0.2, -0.05];
+        assert!(
+            r.iter().zip(&expect).all(|(a, b)| (a - b).abs() < 1e-15),
+            "{r:?}"
+        );
+    }
+
+    #[test]
+    fn a_run_caught_between_mirror_lines_finds_the_root_on_one() {
+        let p = ModelParams::at(0.085, 0.112);
+        let settings = SolverSettings {
+            n: 96,
+            ..SolverSettings::default()
+        };
+        let mut f = NewtonFinish::new(&p, &settings);
+        let axis = f.root_near([0.58, 0.0, -0.26, 0.0]).unwrap();
+        // Turned by 20 degrees, between the x axis and the diagonal.
+        let found = f
+            .aligned_root(rotated(&axis.z, 20f64.to_radians()))
+            .unwrap();
+        let phi = orientation(&found.z) / std::f64::consts::FRAC_PI_4;
+        assert!((phi - phi.round()).abs() < 1e-6, "{found:?}");
+        let speed = |z: &[f64; 4]| z[0].hypot(z[1]);
+        // The axis and diagonal states differ by the box's weak anisotropy only.
+        assert!(
+            (speed(&found.z) - speed(&axis.z)).abs() < 0.02,
+            "{found:?} {axis:?}"
+        );
+        assert!(found.verdict.unstable == 0, "{found:?}");
     }
 }

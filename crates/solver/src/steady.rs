@@ -21,6 +21,9 @@ pub struct SteadySolver {
     grid: Grid,
     fft: PrunedFft2,
     shapes: ShapeTransform,
+    /// The shape `(a2, b2)` whose transforms `ph`, `yh` hold, and its area: a residual at a
+    /// new velocity and the same shape (half of a Jacobian's columns) transforms nothing.
+    shape_of: Option<(f64, f64, f64)>,
     ph: Vec<Complex64>,
     yh: Vec<Complex64>,
     w: Vec<Complex64>,
@@ -66,6 +69,7 @@ impl SteadySolver {
             params,
             fft: PrunedFft2::new(n),
             shapes: ShapeTransform::new(&grid, shape),
+            shape_of: None,
             ph: vec![z; len],
             yh: vec![z; len],
             w: vec![z; len],
@@ -83,7 +87,7 @@ impl SteadySolver {
         b2: f64,
     ) -> (&[Complex64], Forces) {
         let n = self.grid.n;
-        let area = self.shapes.transform(a2, b2, &mut self.ph, &mut self.yh);
+        let area = self.transform(a2, b2);
         let norm = 1.0 / (area * (n * n) as f64);
         for jx in 0..=n / 2 {
             let kx = self.grid.kx[jx];
@@ -104,7 +108,7 @@ impl SteadySolver {
     /// The packed shape transforms of a droplet `(a2, b2)` (of `Theta + X Theta` and of
     /// `Y Theta`, raw, `[kx][ky]`; see [`crate::forces`]) and its area `A`.
     pub fn shape_spectra(&mut self, a2: f64, b2: f64) -> (Vec<Complex64>, Vec<Complex64>, f64) {
-        let area = self.shapes.transform(a2, b2, &mut self.ph, &mut self.yh);
+        let area = self.transform(a2, b2);
         (self.ph.clone(), self.yh.clone(), area)
     }
 
@@ -117,6 +121,18 @@ impl SteadySolver {
     pub fn set_control(&mut self, eta_t: f64, kappa2: f64) {
         self.params.eta_t = eta_t;
         self.params.kappa2 = kappa2;
+    }
+
+    /// Transforms the shape `(a2, b2)` into `ph`, `yh` unless they hold it; its area.
+    fn transform(&mut self, a2: f64, b2: f64) -> f64 {
+        match self.shape_of {
+            Some((a, b, area)) if a == a2 && b == b2 => area,
+            _ => {
+                let area = self.shapes.transform(a2, b2, &mut self.ph, &mut self.yh);
+                self.shape_of = Some((a2, b2, area));
+                area
+            }
+        }
     }
 
     /// The steady field in real space (co-moving, droplet at the grid centre; row-major,
