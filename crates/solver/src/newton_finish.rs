@@ -146,6 +146,9 @@ pub struct NewtonFinish {
     solver: Option<SteadySolver>,
     /// The root of the last try and the run's angle to it then.
     last_turn: Option<([f64; 4], f64)>,
+    /// Roots already assessed and their verdicts (a run's later tries usually find the same
+    /// root again; its eigenvalues are not recomputed).
+    assessed: Vec<([f64; 4], Verdict)>,
     trigger: f64,
     window: f64,
     next_try: f64,
@@ -160,6 +163,7 @@ impl NewtonFinish {
             n,
             t_max: settings.t_max,
             last_turn: None,
+            assessed: Vec::new(),
             solver: None,
             trigger: TRIGGER_FACTOR * steady_tol,
             window,
@@ -197,7 +201,19 @@ impl NewtonFinish {
             &opts,
         )?;
         let root = [sol.x[0], sol.x[1], sol.x[2], sol.x[3]];
-        let verdict = assess(&Linearization::at(solver, root), root);
+        // The same root as before (Newton's tolerance is 1e-12; 1e-9 is the same state).
+        let known = self
+            .assessed
+            .iter()
+            .find(|(z, _)| z.iter().zip(&root).all(|(a, b)| (a - b).abs() < 1e-9));
+        let verdict = match known {
+            Some((_, v)) => v.clone(),
+            None => {
+                let v = assess(&Linearization::at(solver, root), root);
+                self.assessed.push((root, v.clone()));
+                v
+            }
+        };
         Ok(Finding {
             z: root,
             verdict,
