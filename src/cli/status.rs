@@ -42,6 +42,20 @@ pub fn run(a: Args) -> Result<(), CliError> {
                 st.runs_corrupt
             );
         }
+        for l in &st.levels {
+            println!(
+                "level {}: {} points, {}/{} runs done",
+                l.level, l.points, l.runs_done, l.runs_total
+            );
+        }
+        if let (Some(eta), false) = (st.eta_cpu_s, st.complete) {
+            let more = if st.levels.is_empty() {
+                ""
+            } else {
+                " (of the levels known so far; the next follow from them)"
+            };
+            println!("remaining: about {eta:.0} CPU s at the mean cost of the finished runs{more}");
+        }
         println!("run statuses: {}", fmt(&st.run_statuses));
         println!("run classes: {}", fmt(&st.run_classes));
         println!(

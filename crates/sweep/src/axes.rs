@@ -8,3 +8,10 @@ pub const ETA_T: &str = "eta_t";
 pub const KAPPA2: &str = "kappa2";
 /// Both, in the order of a point's coordinates.
 pub const AXES: [&str; 2] = [ETA_T, KAPPA2];
+
+/// Rounds an axis value to 12 decimal places after the point: values on a decimal grid
+/// (`0.07 + 3 * 0.01` is `0.1`), so that equal points in two specs, or on two refinement
+/// levels, get equal run keys.
+pub fn round12(x: f64) -> f64 {
+    (x * 1e12).round() / 1e12
+}

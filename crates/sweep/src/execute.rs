@@ -2,8 +2,9 @@
 //! with progress (runs done / total, ETA, classes so far), then the final tables and picture.
 use crate::error::SweepError;
 use crate::phase_map::PhaseMap;
-use crate::plan::{plan, Task};
+use crate::plan::{plan, Plan, Task};
 use crate::progress::progress_bar;
+use crate::refine::Lattice;
 use crate::shard::{indices_of, Shard};
 use crate::spec::SweepSpec;
 use crate::store::{CorruptRun, RunRecord, Store, Stored};
@@ -71,29 +72,26 @@ pub fn run_task(task: &Task) -> Result<RunRecord, SweepError> {
     })
 }
 
-/// Runs every pending task of `spec` into `out` and writes the tables.
-pub fn run_sweep(
-    spec: &SweepSpec,
-    out: &Path,
-    opts: &SweepOptions,
-) -> Result<SweepSummary, SweepError> {
-    let started = Instant::now();
-    crate::plan::check_size(spec, opts.max_runs.unwrap_or(crate::plan::DEFAULT_MAX_RUNS))?;
-    let store = match opts.shard {
-        None => Store::open_locked(out)?,
-        Some(sh) => Store::open_shard(out, &sh.lock_name())?,
-    };
-    store.write_file("spec.yaml", spec.source.as_bytes())?;
-    let plan = plan(spec);
-    // Indices of this invocation's runs; runs are made on demand (memory per run: 8 bytes).
-    let mine: Vec<usize> = match opts.shard {
-        None => (0..plan.len()).collect(),
-        Some(sh) => indices_of(&plan, sh),
-    };
-    // Stored runs are reused only when valid; a corrupt one is moved aside and recomputed.
+/// What running one set of a plan's runs did.
+struct Ran {
+    computed: usize,
+    reused: usize,
+    corrupt: Vec<CorruptRun>,
+}
+
+/// Runs the runs `mine` of `plan` that are not validly stored (a corrupt one is moved aside
+/// and recomputed), each saved as it finishes, with a progress bar labelled `what`.
+fn run_pending(
+    store: &Store,
+    plan: &Plan,
+    mine: &[usize],
+    pool: &rayon::ThreadPool,
+    progress: bool,
+    what: &str,
+) -> Result<Ran, SweepError> {
     let mut pending: Vec<usize> = Vec::new();
     let mut corrupt = Vec::new();
-    for &i in &mine {
+    for &i in mine {
         let key = plan.task(i).key;
         match store.check(&key) {
             Stored::Valid(_) => {}
@@ -105,15 +103,7 @@ pub fn run_sweep(
         }
     }
     let reused = mine.len() - pending.len();
-    let jobs = opts
-        .jobs
-        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
-        .max(1);
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(jobs)
-        .build()
-        .map_err(|e| SweepError::Invalid(format!("cannot start {jobs} worker threads: {e}")))?;
-    let pb = progress_bar(mine.len() as u64, reused as u64, opts.progress, "runs");
+    let pb = progress_bar(mine.len() as u64, reused as u64, progress, what);
     let counts: Mutex<BTreeMap<String, usize>> = Mutex::new(BTreeMap::new());
     pool.install(|| {
         pending
@@ -141,6 +131,86 @@ pub fn run_sweep(
             })
     })?;
     pb.finish_and_clear();
+    Ok(Ran {
+        computed: pending.len(),
+        reused,
+        corrupt,
+    })
+}
+
+/// Runs a refined sweep level by level ([`crate::level_walk`]).
+fn run_refined(
+    spec: &SweepSpec,
+    lattice: &Lattice,
+    store: &Store,
+    pool: &rayon::ThreadPool,
+    progress: bool,
+) -> Result<(Plan, Ran), SweepError> {
+    let mut total = Ran {
+        computed: 0,
+        reused: 0,
+        corrupt: Vec::new(),
+    };
+    let plan = crate::level_walk::walk(spec, lattice, store, |level, plan, runs| {
+        let ran = run_pending(
+            store,
+            plan,
+            runs,
+            pool,
+            progress,
+            &format!("level {level} runs"),
+        )?;
+        total.computed += ran.computed;
+        total.reused += ran.reused;
+        total.corrupt.extend(ran.corrupt);
+        Ok(true)
+    })?;
+    Ok((plan, total))
+}
+
+/// Runs every pending task of `spec` into `out` and writes the tables.
+pub fn run_sweep(
+    spec: &SweepSpec,
+    out: &Path,
+    opts: &SweepOptions,
+) -> Result<SweepSummary, SweepError> {
+    let started = Instant::now();
+    crate::plan::check_size(spec, opts.max_runs.unwrap_or(crate::plan::DEFAULT_MAX_RUNS))?;
+    if spec.refine.is_some() && opts.shard.is_some() {
+        return Err(SweepError::Invalid(
+            "a spec with refine: runs unsharded for now (each level depends on the one before); run it without --shard".into(),
+        ));
+    }
+    let store = match opts.shard {
+        None => Store::open_locked(out)?,
+        Some(sh) => Store::open_shard(out, &sh.lock_name())?,
+    };
+    store.write_file("spec.yaml", spec.source.as_bytes())?;
+    let jobs = opts
+        .jobs
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
+        .max(1);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(jobs)
+        .build()
+        .map_err(|e| SweepError::Invalid(format!("cannot start {jobs} worker threads: {e}")))?;
+    let (plan, mine, ran) = match &spec.refine {
+        Some(lattice) => {
+            let (plan, ran) = run_refined(spec, lattice, &store, &pool, opts.progress)?;
+            let all = (0..plan.len()).collect();
+            (plan, all, ran)
+        }
+        None => {
+            let plan = plan(spec);
+            // This invocation's runs; runs are made on demand (memory per run: 8 bytes).
+            let mine: Vec<usize> = match opts.shard {
+                None => (0..plan.len()).collect(),
+                Some(sh) => indices_of(&plan, sh),
+            };
+            let ran = run_pending(&store, &plan, &mine, &pool, opts.progress, "runs")?;
+            (plan, mine, ran)
+        }
+    };
     let records = store.load_many(plan.tasks().map(|t| t.key));
     if opts.shard.is_none() && records.len() != plan.len() {
         // Only another process touching runs/ meanwhile can cause this: never write tables
@@ -176,9 +246,9 @@ pub fn run_sweep(
         points: plan.points.len(),
         runs: mine.len(),
         shard: opts.shard.map(|s| format!("{}/{}", s.index, s.count)),
-        computed: pending.len(),
-        reused,
-        corrupt,
+        computed: ran.computed,
+        reused: ran.reused,
+        corrupt: ran.corrupt,
         wall_s: started.elapsed().as_secs_f64(),
         jobs,
         point_classes,

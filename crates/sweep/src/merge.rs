@@ -2,7 +2,6 @@
 use crate::error::SweepError;
 use crate::merge_report::MergeReport;
 use crate::phase_map::PhaseMap;
-use crate::plan::plan;
 use crate::store::Store;
 use crate::tables::write_tables;
 use std::path::Path;
@@ -13,7 +12,7 @@ use std::path::Path;
 pub fn merge(dir: &Path, draw: bool) -> Result<MergeReport, SweepError> {
     let store = Store::open_read(dir)?;
     let spec = crate::spec::load_stored(dir)?;
-    let plan = plan(&spec);
+    let plan = crate::level_walk::stored_plan(&spec, &store)?;
     let report = store.report_missing(&plan);
     if report.runs_missing > 0 {
         return Err(SweepError::Incomplete(Box::new(report)));

@@ -13,6 +13,10 @@ use std::collections::{BTreeMap, HashMap};
 pub struct MapEntry {
     pub eta_t: f64,
     pub kappa2: f64,
+    /// Refinement level (0: the spec's grid).
+    pub level: u32,
+    /// Cell size `(d_eta_t, d_kappa2)` of its level.
+    pub cell: (f64, f64),
     pub class: PointClass,
     /// How the run from each initial condition ended (spec order): its class, or
     /// `diverged`; `None` while the run is not stored.
@@ -60,10 +64,12 @@ impl PhaseMap {
         }
         let points = by_point
             .iter()
-            .zip(&plan.points)
-            .map(|(runs, &(eta_t, kappa2))| MapEntry {
-                eta_t,
-                kappa2,
+            .enumerate()
+            .map(|(i, runs)| MapEntry {
+                eta_t: plan.points[i].0,
+                kappa2: plan.points[i].1,
+                level: plan.levels[i],
+                cell: plan.cells[i],
                 class: classify_point(runs.iter().flatten().copied()),
                 per_ic: runs.iter().map(|r| r.map(run_end)).collect(),
             })

@@ -6,7 +6,6 @@ use crate::boundary_table::NamedCurve;
 use crate::branch_lines::{branch_lines, BranchSample};
 use crate::error::SweepError;
 use crate::phase_map::PhaseMap;
-use crate::plan::plan;
 use crate::plot::{phase_map, vs_parameter, Curve, MapPoint, Marker};
 use crate::spec::SweepSpec;
 use crate::store::Store;
@@ -19,7 +18,7 @@ use std::path::{Path, PathBuf};
 pub fn plot(dir: &Path) -> Result<Vec<PathBuf>, SweepError> {
     let store = Store::open_read(dir)?;
     let spec = crate::spec::load_stored(dir)?;
-    let plan = plan(&spec);
+    let plan = crate::level_walk::stored_plan(&spec, &store)?;
     let records = store.load_many(plan.tasks().map(|t| t.key));
     let map = PhaseMap::new(&plan, &records);
     plot_records(dir, &spec, &plan, &records, &map)
@@ -33,6 +32,11 @@ pub fn plot_records(
     records: &std::collections::HashMap<String, crate::store::RunRecord>,
     map: &PhaseMap,
 ) -> Result<Vec<PathBuf>, SweepError> {
+    // A refined map: each point drawn as the quarters of the unsplit cells it is a corner of.
+    let mut tiles = spec.refine.map(|lattice| {
+        let nodes = plan.points.iter().map(|&p| lattice.node_of(p)).collect();
+        (lattice, lattice.tiles(&nodes))
+    });
     let pts: Vec<MapPoint> = map
         .points
         .iter()
@@ -40,6 +44,10 @@ pub fn plot_records(
             eta_t: p.eta_t,
             kappa2: p.kappa2,
             label: p.shown_label().to_string(),
+            tiles: tiles
+                .as_mut()
+                .and_then(|(l, t)| t.remove(&l.node_of((p.eta_t, p.kappa2))))
+                .unwrap_or_default(),
         })
         .collect();
     let model = spec.solver.model.as_str().to_uppercase();

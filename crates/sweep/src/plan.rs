@@ -1,5 +1,6 @@
 //! Spec -> tasks: every (point, initial condition) pair is one run, keyed by a hash of
 //! everything that determines its result.
+use crate::refine::{Lattice, Node};
 use crate::spec::SweepSpec;
 use droplet_solver::{InitialCondition, ModelParams, SolverSettings, SOLVER_VERSION};
 use serde::Serialize;
@@ -25,6 +26,11 @@ pub struct Task {
 pub struct Plan {
     /// `(eta_t, kappa2)` of each point.
     pub points: Vec<(f64, f64)>,
+    /// Refinement level of each point (0: the spec's grid; [`crate::refine`]).
+    pub levels: Vec<u32>,
+    /// Cell size `(d_eta_t, d_kappa2)` of each point: the grid step of its level (`NaN` on
+    /// an axis given as a list of one value).
+    pub cells: Vec<(f64, f64)>,
     pub ic_names: Vec<String>,
     ics: Vec<InitialCondition>,
     params: ModelParams,
@@ -115,16 +121,60 @@ pub fn run_key(params: &ModelParams, ic: &InitialCondition, settings: &SolverSet
     digest.iter().take(16).map(|b| format!("{b:02x}")).collect()
 }
 
+/// Smallest gap between the values of an axis (`NaN` for one value).
+fn spacing(values: &[f64]) -> f64 {
+    let mut v = values.to_vec();
+    v.sort_by(f64::total_cmp);
+    let gap = v
+        .windows(2)
+        .map(|w| w[1] - w[0])
+        .fold(f64::INFINITY, f64::min);
+    if gap.is_finite() {
+        gap
+    } else {
+        f64::NAN
+    }
+}
+
 /// Expands a spec into its points (eta_t-major) and initial conditions; runs are made on
-/// demand. Check [`check_size`] first: the points are allocated here.
+/// demand. Check [`check_size`] first: the points are allocated here. With `refine:` these
+/// are the points of level 0; [`plan_nodes`] plans the refined point set.
 pub fn plan(spec: &SweepSpec) -> Plan {
-    let points = spec
+    let points: Vec<(f64, f64)> = spec
         .eta_t
         .iter()
         .flat_map(|&eta_t| spec.kappa2.iter().map(move |&kappa2| (eta_t, kappa2)))
         .collect();
+    let cell = (spacing(&spec.eta_t), spacing(&spec.kappa2));
+    point_set(
+        spec,
+        points.clone(),
+        vec![0; points.len()],
+        vec![cell; points.len()],
+    )
+}
+
+/// The plan of a refined point set: `nodes` on `lattice`, each with its level.
+pub fn plan_nodes(spec: &SweepSpec, lattice: &Lattice, nodes: &[(Node, u32)]) -> Plan {
+    point_set(
+        spec,
+        nodes.iter().map(|&(n, _)| lattice.coords(n)).collect(),
+        nodes.iter().map(|&(_, l)| l).collect(),
+        nodes.iter().map(|&(_, l)| lattice.cell_size(l)).collect(),
+    )
+}
+
+/// A plan of arbitrary points with the spec's initial conditions, parameters and settings.
+fn point_set(
+    spec: &SweepSpec,
+    points: Vec<(f64, f64)>,
+    levels: Vec<u32>,
+    cells: Vec<(f64, f64)>,
+) -> Plan {
     Plan {
         points,
+        levels,
+        cells,
         ic_names: spec
             .initial_conditions
             .iter()

@@ -58,6 +58,9 @@ pub struct MapPoint {
     pub eta_t: f64,
     pub kappa2: f64,
     pub label: String,
+    /// The rectangles `[eta_t0, kappa2_0, eta_t1, kappa2_1]` the point stands for on a
+    /// refined map ([`crate::refine::Lattice::tiles`]); empty: a square of the grid spacing.
+    pub tiles: Vec<[f64; 4]>,
 }
 
 /// A curve drawn over a phase map (e.g. an analytic boundary).
@@ -142,8 +145,22 @@ impl Figure for PhaseMap<'_> {
         let dy = spacing(&mut ys);
         let dx = if dx.is_finite() { dx } else { 0.01 };
         let dy = if dy.is_finite() { dy } else { 0.01 };
-        let (x0, x1) = (xs[0] - dx / 2.0, xs[xs.len() - 1] + dx / 2.0);
-        let (y0, y1) = (ys[0] - dy / 2.0, ys[ys.len() - 1] + dy / 2.0);
+        let (mut x0, mut x1) = (xs[0] - dx / 2.0, xs[xs.len() - 1] + dx / 2.0);
+        let (mut y0, mut y1) = (ys[0] - dy / 2.0, ys[ys.len() - 1] + dy / 2.0);
+        let tiled = pts.iter().any(|p| !p.tiles.is_empty());
+        if tiled {
+            // A refined map is drawn edge to edge: its extent is the tiles'.
+            let rects = pts.iter().flat_map(|p| &p.tiles);
+            (x0, y0, x1, y1) = rects.fold(
+                (
+                    f64::INFINITY,
+                    f64::INFINITY,
+                    f64::NEG_INFINITY,
+                    f64::NEG_INFINITY,
+                ),
+                |(a, b, c, d), r| (a.min(r[0]), b.min(r[1]), c.max(r[2]), d.max(r[3])),
+            );
+        }
         let mut chart = plane_chart(&plot_area, self.title, (x0, x1), (y0, y1), false)?;
         let mut legend = Vec::new();
         for label in ORDER.iter().copied().chain(
@@ -157,17 +174,27 @@ impl Figure for PhaseMap<'_> {
                 continue;
             }
             let colour = class_colour(label);
-            chart
-                .draw_series(mine.iter().map(|p| {
-                    Rectangle::new(
-                        [
-                            (p.eta_t - 0.42 * dx, p.kappa2 - 0.42 * dy),
-                            (p.eta_t + 0.42 * dx, p.kappa2 + 0.42 * dy),
-                        ],
-                        colour.filled(),
+            if tiled {
+                chart
+                    .draw_series(
+                        mine.iter()
+                            .flat_map(|p| &p.tiles)
+                            .map(|r| Rectangle::new([(r[0], r[1]), (r[2], r[3])], colour.filled())),
                     )
-                }))
-                .map_err(perr)?;
+                    .map_err(perr)?;
+            } else {
+                chart
+                    .draw_series(mine.iter().map(|p| {
+                        Rectangle::new(
+                            [
+                                (p.eta_t - 0.42 * dx, p.kappa2 - 0.42 * dy),
+                                (p.eta_t + 0.42 * dx, p.kappa2 + 0.42 * dy),
+                            ],
+                            colour.filled(),
+                        )
+                    }))
+                    .map_err(perr)?;
+            }
             legend.push((format!("{label} ({})", mine.len()), LegendKey::Box(colour)));
         }
         draw_curves(&mut chart, curves, (x0, x1), (y0, y1), &mut legend)?;

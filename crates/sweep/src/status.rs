@@ -25,13 +25,49 @@ pub struct SweepStatus {
     /// Point labels over the points whose runs are all done.
     pub point_classes: BTreeMap<String, usize>,
     pub cpu_s: f64,
+    /// A refined sweep's levels so far (empty for a uniform one): the levels whose points
+    /// are known, the last one possibly unfinished (later levels follow from it).
+    pub levels: Vec<LevelStatus>,
+    /// Remaining CPU seconds of the known runs at the mean cost of the finished ones (a
+    /// refined sweep's later levels are not known yet).
+    pub eta_cpu_s: Option<f64>,
+}
+
+/// Progress of one refinement level.
+#[derive(Debug, Clone, Serialize)]
+pub struct LevelStatus {
+    pub level: u32,
+    pub points: usize,
+    pub runs_total: usize,
+    pub runs_done: usize,
 }
 
 /// Reads the status of the sweep in `dir`.
 pub fn status(dir: &Path) -> Result<SweepStatus, SweepError> {
     let store = Store::open_read(dir)?;
     let spec = crate::spec::load_stored(dir)?;
-    let plan = plan(&spec);
+    let mut levels = Vec::new();
+    let plan = match &spec.refine {
+        None => plan(&spec),
+        Some(lattice) => crate::level_walk::walk(&spec, lattice, &store, |level, plan, runs| {
+            let done = runs
+                .iter()
+                .filter(|&&i| {
+                    matches!(
+                        store.check(&plan.task(i).key),
+                        crate::store::Stored::Valid(_)
+                    )
+                })
+                .count();
+            levels.push(LevelStatus {
+                level,
+                points: runs.len() / plan.ic_names.len().max(1),
+                runs_total: runs.len(),
+                runs_done: done,
+            });
+            Ok(done == runs.len())
+        })?,
+    };
     let (records, runs_corrupt) = store.load_counting(plan.tasks().map(|t| t.key));
     let run_statuses = tally(
         records
@@ -47,6 +83,8 @@ pub fn status(dir: &Path) -> Result<SweepStatus, SweepError> {
     let cpu_s = records.values().fold(0.0, |acc, r| acc + r.outcome.wall_s);
     // Point labels only over points whose runs are all done.
     let point_counts = PhaseMap::new(&plan, &records).class_counts();
+    let eta_cpu_s = (!records.is_empty())
+        .then(|| cpu_s / records.len() as f64 * (plan.len() - records.len()) as f64);
     Ok(SweepStatus {
         name: spec.name,
         output: dir.to_path_buf(),
@@ -59,5 +97,7 @@ pub fn status(dir: &Path) -> Result<SweepStatus, SweepError> {
         run_classes,
         point_classes: point_counts,
         cpu_s,
+        levels,
+        eta_cpu_s,
     })
 }

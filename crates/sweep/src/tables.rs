@@ -197,13 +197,26 @@ pub fn runs_frame(
     Ok(DataFrame::new(rows.len(), cols)?)
 }
 
-/// The points table: coordinates, point class, the class from each initial condition.
+/// The points table: coordinates, refinement level and cell size (the grid step of the
+/// point's level), point class, the class from each initial condition.
 pub fn points_frame(map: &PhaseMap) -> Result<DataFrame, SweepError> {
     let n = map.points.len();
     let mut cols = vec![
         Column::new("point".into(), (0..n as u32).collect::<Vec<u32>>()),
         f64_col(ETA_T, map.points.iter().map(|p| p.eta_t).collect()),
         f64_col(KAPPA2, map.points.iter().map(|p| p.kappa2).collect()),
+        Column::new(
+            "level".into(),
+            map.points.iter().map(|p| p.level).collect::<Vec<u32>>(),
+        ),
+        f64_col(
+            &format!("d_{ETA_T}"),
+            map.points.iter().map(|p| p.cell.0).collect(),
+        ),
+        f64_col(
+            &format!("d_{KAPPA2}"),
+            map.points.iter().map(|p| p.cell.1).collect(),
+        ),
         str_col(
             "class",
             map.points.iter().map(|p| p.class.label.clone()).collect(),

@@ -1,7 +1,7 @@
 //! The `grid` section: the two swept axes ([`crate::axes`]), each an inclusive
 //! `{start, stop, step}` range or an explicit list.
 use super::context::Ctx;
-use crate::axes::{ETA_T, KAPPA2};
+use crate::axes::{round12, ETA_T, KAPPA2};
 use crate::error::SpecError;
 use serde_yaml::{Mapping, Value};
 
@@ -95,9 +95,4 @@ pub(super) fn parse_axis(
     Ok((0..count as usize)
         .map(|i| round12(start + i as f64 * step))
         .collect())
-}
-
-/// Rounds to 12 significant decimal places after the point.
-pub fn round12(x: f64) -> f64 {
-    (x * 1e12).round() / 1e12
 }

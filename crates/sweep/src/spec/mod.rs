@@ -12,18 +12,20 @@
 //! initial_conditions: [i, ii, iii, iv]              # default: the paper's four
 //! solver: {scheme: spectral, n: 192, dt: 0.02, tol: 1.0e-4, dt_max: 0.25, t_max: 2000,
 //!          steady_tol: 1.0e-6, steady_window: 0.1}
+//! refine: {levels: 4, min_step: {eta_t: 1.5e-4, kappa2: 3e-4}}   # optional (ranges only)
 //!                             # tol: adaptive stepping (0 = fixed step dt; spectral only)
 //!                             # ode: dt default 0.05, and h0 (default 0.1436)
 //! ```
 //!
 //! One file per section: [`context`] (locating keys, typed accessors, error paths),
-//! [`grid`], [`params`], [`initial`], [`solver`]. Range checks are the solver crate's own
+//! [`grid`], [`params`], [`initial`], [`solver`], [`refine`]. Range checks are the solver crate's own
 //! (`ModelParams::validate`, `SolverSettings::validate`, `limits::check_run`), the same as for
 //! `droplet simulate`.
 mod context;
 mod grid;
 mod initial;
 mod params;
+mod refine;
 mod solver;
 
 use crate::error::SpecError;
@@ -33,8 +35,10 @@ use serde::Serialize;
 use serde_yaml::Value;
 use std::path::{Path, PathBuf};
 
+pub use crate::axes::round12;
 pub use context::locate;
-pub use grid::{round12, MAX_AXIS_POINTS};
+pub use grid::MAX_AXIS_POINTS;
+pub use refine::MAX_LEVELS;
 
 /// A validated sweep spec.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -47,6 +51,8 @@ pub struct SweepSpec {
     pub kappa2: Vec<f64>,
     pub initial_conditions: Vec<InitialCondition>,
     pub solver: SolverSettings,
+    /// Adaptive refinement of the grid (`refine:`), if asked for.
+    pub refine: Option<crate::refine::Lattice>,
     /// The spec's text, stored in the output metadata.
     #[serde(skip)]
     pub source: String,
@@ -98,6 +104,7 @@ pub fn parse(text: &str, file: &str, stem: &str) -> Result<SweepSpec, SpecError>
             "grid",
             "initial_conditions",
             "solver",
+            "refine",
         ],
     )?;
 
@@ -138,6 +145,7 @@ pub fn parse(text: &str, file: &str, stem: &str) -> Result<SweepSpec, SpecError>
     let (eta_t, kappa2) = grid::parse(&ctx, top)?;
     let initial_conditions = initial::parse(&ctx, top)?;
     let solver = solver::parse(&ctx, top, model, &params)?;
+    let refine = refine::parse(&ctx, top, &eta_t, &kappa2)?;
     Ok(SweepSpec {
         name,
         output,
@@ -146,6 +154,7 @@ pub fn parse(text: &str, file: &str, stem: &str) -> Result<SweepSpec, SpecError>
         kappa2,
         initial_conditions,
         solver,
+        refine,
         source: text.to_string(),
     })
 }

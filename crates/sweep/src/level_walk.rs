@@ -1,0 +1,83 @@
+//! The point set of a refined sweep ([`crate::refine`]), level by level from the stored runs:
+//! the points of level `l + 1` follow from the classes of the points up to level `l`, so the
+//! sweep that runs the levels and `droplet status` that reads them plan the same points, and a
+//! resumed sweep plans exactly the points an uninterrupted one would.
+use crate::error::SweepError;
+use crate::phase::{PointClass, DIVERGED, MISSING, NOT_CLASSIFIED};
+use crate::phase_map::PhaseMap;
+use crate::plan::{plan_nodes, Plan};
+use crate::refine::{split, Lattice, Node, Verdict};
+use crate::spec::SweepSpec;
+use crate::store::Store;
+use std::collections::{BTreeMap, BTreeSet};
+
+/// A point is settled for refinement: one class, and every run ended steady.
+fn settled(c: &PointClass) -> bool {
+    !c.label.contains('/')
+        && ![NOT_CLASSIFIED, DIVERGED, MISSING].contains(&c.label.as_str())
+        && c.n_t_max == 0
+        && c.n_diverged == 0
+}
+
+/// Walks the levels of `spec`'s refinement on `lattice`. At each level `visit(level, plan,
+/// runs)` gets the plan of every point so far and the run indices of this level's points; it
+/// returns whether the walk goes on (those runs are now stored) or stops there. Returns the
+/// plan of the last level visited.
+pub fn walk(
+    spec: &SweepSpec,
+    lattice: &Lattice,
+    store: &Store,
+    mut visit: impl FnMut(u32, &Plan, &[usize]) -> Result<bool, SweepError>,
+) -> Result<Plan, SweepError> {
+    let mut nodes: Vec<(Node, u32)> = lattice.level0().into_iter().map(|n| (n, 0)).collect();
+    let mut known: BTreeSet<Node> = nodes.iter().map(|&(n, _)| n).collect();
+    let mut cells = lattice.cells0();
+    let mut level = 0;
+    loop {
+        let plan = plan_nodes(spec, lattice, &nodes);
+        let per_point = plan.ic_names.len().max(1);
+        let runs: Vec<usize> = (0..plan.len())
+            .filter(|&i| plan.levels[i / per_point] == level)
+            .collect();
+        if !visit(level, &plan, &runs)? || !lattice.splittable(level) || cells.is_empty() {
+            return Ok(plan);
+        }
+        let records = store.load_many(plan.tasks().map(|t| t.key));
+        let map = PhaseMap::new(&plan, &records);
+        let verdicts: BTreeMap<Node, Verdict> = nodes
+            .iter()
+            .zip(&map.points)
+            .map(|(&(n, _), e)| {
+                let verdict = Verdict {
+                    label: e.shown_label().to_string(),
+                    settled: e.complete() && settled(&e.class),
+                };
+                (n, verdict)
+            })
+            .collect();
+        let (added, children) = split(lattice, level, &cells, &verdicts, &known);
+        if children.is_empty() {
+            return Ok(plan);
+        }
+        known.extend(added.iter().copied());
+        nodes.extend(added.into_iter().map(|n| (n, level + 1)));
+        cells = children;
+        level += 1;
+    }
+}
+
+/// The plan of the sweep `spec` as far as its stored runs go: the spec's grid, or for a
+/// refined sweep every level whose points are known (up to the first unfinished level).
+pub fn stored_plan(spec: &SweepSpec, store: &Store) -> Result<Plan, SweepError> {
+    match &spec.refine {
+        None => Ok(crate::plan::plan(spec)),
+        Some(lattice) => walk(spec, lattice, store, |_, plan, runs| {
+            Ok(runs.iter().all(|&i| {
+                matches!(
+                    store.check(&plan.task(i).key),
+                    crate::store::Stored::Valid(_)
+                )
+            }))
+        }),
+    }
+}

@@ -1,0 +1,284 @@
+//! Adaptive refinement (`refine:` in a spec) end to end, on the reduced ODE model (cheap):
+//! the refined map reproduces the ODE's analytic boundaries to its finest step, a refined
+//! sweep killed and resumed gives the uninterrupted tables, and a uniform and a refined sweep
+//! share their runs in one directory.
+mod common;
+use common::{json, read, run, sweep_in_background, table_without_wall, write_spec};
+use droplet_sweep::boundary_table;
+use polars::prelude::*;
+use std::collections::HashMap;
+use std::path::Path;
+use std::time::{Duration, Instant};
+
+/// The ODE over the Fig. 2a window on a coarse grid, refined 4 levels (finest 0.0003125 x
+/// 0.000625).
+const ODE: &str = "\
+model: ode
+grid:
+  eta_t: {start: 0.070, stop: 0.100, step: 0.005}
+  kappa2: {start: 0.100, stop: 0.170, step: 0.01}
+initial_conditions: [i, ii, iii, iv]
+solver: {dt: 0.05, t_max: 3000}
+refine: {levels: 4}
+";
+
+/// [`ODE`] refined 2 levels only (the kill and sharing tests: fewer runs to write).
+const ODE_SHALLOW: &str = "\
+model: ode
+grid:
+  eta_t: {start: 0.070, stop: 0.100, step: 0.005}
+  kappa2: {start: 0.100, stop: 0.170, step: 0.01}
+initial_conditions: [i, ii, iii, iv]
+solver: {dt: 0.05, t_max: 3000}
+refine: {levels: 2}
+";
+
+/// The uniform level-0 grid of [`ODE`].
+const ODE_UNIFORM: &str = "\
+model: ode
+grid:
+  eta_t: {start: 0.070, stop: 0.100, step: 0.005}
+  kappa2: {start: 0.100, stop: 0.170, step: 0.01}
+initial_conditions: [i, ii, iii, iv]
+solver: {dt: 0.05, t_max: 3000}
+";
+
+struct Point {
+    eta_t: f64,
+    kappa2: f64,
+    level: u32,
+    class: String,
+}
+
+fn points(dir: &Path) -> Vec<Point> {
+    let df = read(&dir.join("points.parquet"));
+    let f = |c: &str| df.column(c).unwrap().f64().unwrap().clone();
+    let (e, k) = (f("eta_t"), f("kappa2"));
+    let level = df.column("level").unwrap().u32().unwrap().clone();
+    let class = df.column("class").unwrap().str().unwrap().clone();
+    (0..df.height())
+        .map(|i| Point {
+            eta_t: e.get(i).unwrap(),
+            kappa2: k.get(i).unwrap(),
+            level: level.get(i).unwrap(),
+            class: class.get(i).unwrap().to_string(),
+        })
+        .collect()
+}
+
+/// Distance from `p` to a polyline, in units of the finest cell `(de, dk)` on each axis.
+fn distance(p: (f64, f64), line: &[(f64, f64)], (de, dk): (f64, f64)) -> f64 {
+    let scaled = |q: (f64, f64)| (q.0 / de, q.1 / dk);
+    let p = scaled(p);
+    line.windows(2)
+        .map(|w| {
+            let (a, b) = (scaled(w[0]), scaled(w[1]));
+            let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+            let len2 = dx * dx + dy * dy;
+            let t = if len2 > 0.0 {
+                (((p.0 - a.0) * dx + (p.1 - a.1) * dy) / len2).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            (p.0 - a.0 - t * dx).hypot(p.1 - a.1 - t * dy)
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+#[test]
+fn ode_refinement_reproduces_the_analytic_boundaries_to_the_finest_step() {
+    let dir = tempfile::tempdir().unwrap();
+    let spec = write_spec(dir.path(), "ode.yaml", ODE);
+    let out = dir.path().join("ode");
+    let j = json(&run(&[
+        "sweep",
+        spec.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--json",
+    ]));
+    let pts = points(&out);
+    assert_eq!(pts.len() as u64, j["points"].as_u64().unwrap());
+    let finest = (0.005 / 16.0, 0.01 / 16.0);
+    let uniform_finest = (0.03 / finest.0 + 1.0) * (0.07 / finest.1 + 1.0);
+    // A small window with a coarse level 0 (the Fig. 2a spec saves far more).
+    assert!(
+        (pts.len() as f64) < uniform_finest / 4.0,
+        "{} points against {uniform_finest} on the finest uniform grid",
+        pts.len()
+    );
+    assert!(
+        pts.iter().any(|p| p.level == 4),
+        "the finest level is reached"
+    );
+    let curves: Vec<Vec<(f64, f64)>> = boundary_table::read(&out.join(boundary_table::FILE), "ode")
+        .unwrap()
+        .into_iter()
+        .map(|c| c.points)
+        .filter(|p| p.len() >= 2)
+        .collect();
+    assert!(!curves.is_empty());
+    let near_a_boundary =
+        |p: (f64, f64), within: f64| curves.iter().any(|c| distance(p, c, finest) <= within);
+    // 1. Every edge of the resting disk's region (IC next to another class) between
+    //    finest-level neighbours lies on an analytic boundary (f1, g0~, MD existence). (The
+    //    edge between MD and ID/MD is where one of the four initial conditions starts to
+    //    reach ID, a basin boundary with no formula.)
+    let at: HashMap<(i64, i64), &Point> = pts
+        .iter()
+        .map(|p| {
+            let key = (
+                ((p.eta_t - 0.07) / finest.0).round() as i64,
+                ((p.kappa2 - 0.1) / finest.1).round() as i64,
+            );
+            (key, p)
+        })
+        .collect();
+    let mut changes = 0;
+    for (&(i, j), p) in &at {
+        for (di, dj) in [(1, 0), (0, 1)] {
+            let Some(q) = at.get(&(i + di, j + dj)) else {
+                continue;
+            };
+            if p.class != q.class && (p.class == "IC" || q.class == "IC") {
+                changes += 1;
+                let mid = (0.5 * (p.eta_t + q.eta_t), 0.5 * (p.kappa2 + q.kappa2));
+                assert!(
+                    near_a_boundary(mid, 1.5),
+                    "{} at ({}, {}) next to {} at ({}, {}): no analytic boundary within 1.5 finest cells",
+                    p.class, p.eta_t, p.kappa2, q.class, q.eta_t, q.kappa2
+                );
+            }
+        }
+    }
+    assert!(changes > 10, "only {changes} class changes resolved");
+    // 2. Along every analytic boundary inside the window the map is refined to the finest
+    //    level: a finest-level point within two finest cells.
+    let finest_pts: Vec<(f64, f64)> = pts
+        .iter()
+        .filter(|p| p.level == 4)
+        .map(|p| (p.eta_t, p.kappa2))
+        .collect();
+    for c in &curves {
+        for w in c.windows(2) {
+            let m = (0.5 * (w[0].0 + w[1].0), 0.5 * (w[0].1 + w[1].1));
+            let inside = m.0 > 0.075 && m.0 < 0.095 && m.1 > 0.11 && m.1 < 0.16;
+            if !inside {
+                continue;
+            }
+            let ok = finest_pts
+                .iter()
+                .any(|&f| distance(f, &[m, m], finest) <= 2.0);
+            assert!(ok, "boundary near ({}, {}) not refined", m.0, m.1);
+        }
+    }
+}
+
+#[test]
+fn a_refined_sweep_killed_and_resumed_gives_the_uninterrupted_tables() {
+    let dir = tempfile::tempdir().unwrap();
+    let spec = write_spec(dir.path(), "ode.yaml", ODE_SHALLOW);
+    let reference = dir.path().join("ref");
+    let started = Instant::now();
+    json(&run(&[
+        "sweep",
+        spec.to_str().unwrap(),
+        "--out",
+        reference.to_str().unwrap(),
+        "--json",
+        "--no-plot",
+    ]));
+    let full_ms = started.elapsed().as_millis() as u64;
+    let resumed = dir.path().join("resumed");
+    let mut x: u64 = 20261127;
+    let (mut kills, mut tries) = (0, 0);
+    while kills < 6 && tries < 30 {
+        tries += 1;
+        x = x
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        let wait = 10 + (x >> 33) % full_ms.max(30);
+        let mut child = sweep_in_background(&spec, &resumed);
+        std::thread::sleep(Duration::from_millis(wait));
+        if child.try_wait().unwrap().is_none() {
+            child.kill().unwrap(); // SIGKILL
+            kills += 1;
+        }
+        child.wait().unwrap();
+        if resumed.join("runs.parquet").exists() {
+            std::fs::remove_dir_all(&resumed).unwrap();
+        }
+    }
+    assert!(kills >= 3, "only {kills} of {tries} tries were interrupted");
+    json(&run(&[
+        "sweep",
+        spec.to_str().unwrap(),
+        "--out",
+        resumed.to_str().unwrap(),
+        "--json",
+        "--no-plot",
+    ]));
+    for t in ["runs.parquet", "points.parquet"] {
+        let sort = |df: DataFrame| {
+            df.sort(["eta_t", "kappa2"], SortMultipleOptions::default())
+                .unwrap()
+        };
+        let a = table_without_wall(&reference.join(t));
+        let b = table_without_wall(&resumed.join(t));
+        assert!(a.equals_missing(&b), "{t} differs");
+        // Also equal as sets of rows (the order is the plan's, deterministic).
+        assert!(sort(a.clone()).equals_missing(&sort(b)));
+    }
+}
+
+#[test]
+fn a_uniform_and_a_refined_sweep_share_their_runs() {
+    let dir = tempfile::tempdir().unwrap();
+    let uniform = write_spec(dir.path(), "uniform.yaml", ODE_UNIFORM);
+    let refined = write_spec(dir.path(), "refined.yaml", ODE_SHALLOW);
+    let out = dir.path().join("shared");
+    let o = out.to_str().unwrap();
+    let u = json(&run(&[
+        "sweep",
+        uniform.to_str().unwrap(),
+        "--out",
+        o,
+        "--json",
+        "--no-plot",
+    ]));
+    let runs0 = u["runs"].as_u64().unwrap();
+    assert_eq!(runs0, 7 * 8 * 4);
+    let r = json(&run(&[
+        "sweep",
+        refined.to_str().unwrap(),
+        "--out",
+        o,
+        "--json",
+        "--no-plot",
+    ]));
+    assert_eq!(
+        r["reused"].as_u64().unwrap(),
+        runs0,
+        "level 0 is the uniform sweep's runs"
+    );
+    assert!(r["computed"].as_u64().unwrap() > 0);
+    // Run again: everything is stored.
+    let again = json(&run(&[
+        "sweep",
+        refined.to_str().unwrap(),
+        "--out",
+        o,
+        "--json",
+        "--no-plot",
+    ]));
+    assert_eq!(again["computed"].as_u64().unwrap(), 0);
+    // status reads the levels from the stored runs.
+    let st = json(&run(&["status", o, "--json"]));
+    let levels = st["levels"].as_array().unwrap();
+    assert!(levels.len() >= 2, "{st}");
+    assert!(
+        levels.iter().all(|l| l["runs_done"] == l["runs_total"]),
+        "{st}"
+    );
+    assert_eq!(st["complete"], true);
+}
