@@ -3,45 +3,27 @@
 //! sweep killed and resumed gives the uninterrupted tables, and a uniform and a refined sweep
 //! share their runs in one directory.
 mod common;
-use common::{json, read, run, sweep_in_background, table_without_wall, write_spec};
+use common::{json, kill_at_random_moments, read, run, table_without_wall, write_spec};
 use droplet_sweep::boundary_table;
 use polars::prelude::*;
 use std::collections::HashMap;
 use std::path::Path;
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
-/// The ODE over the Fig. 2a window on a coarse grid, refined 4 levels (finest 0.0003125 x
-/// 0.000625).
-const ODE: &str = "\
-model: ode
+/// The ODE over the Fig. 2a window on a coarse grid (7 x 8 points), refined `levels` levels
+/// (none: the uniform grid). Four levels reach 0.0003125 x 0.000625.
+fn ode(levels: Option<u32>) -> String {
+    let refine = levels.map_or(String::new(), |l| format!("refine: {{levels: {l}}}\n"));
+    format!(
+        "model: ode
 grid:
-  eta_t: {start: 0.070, stop: 0.100, step: 0.005}
-  kappa2: {start: 0.100, stop: 0.170, step: 0.01}
+  eta_t: {{start: 0.070, stop: 0.100, step: 0.005}}
+  kappa2: {{start: 0.100, stop: 0.170, step: 0.01}}
 initial_conditions: [i, ii, iii, iv]
-solver: {dt: 0.05, t_max: 3000}
-refine: {levels: 4}
-";
-
-/// [`ODE`] refined 2 levels only (the kill and sharing tests: fewer runs to write).
-const ODE_SHALLOW: &str = "\
-model: ode
-grid:
-  eta_t: {start: 0.070, stop: 0.100, step: 0.005}
-  kappa2: {start: 0.100, stop: 0.170, step: 0.01}
-initial_conditions: [i, ii, iii, iv]
-solver: {dt: 0.05, t_max: 3000}
-refine: {levels: 2}
-";
-
-/// The uniform level-0 grid of [`ODE`].
-const ODE_UNIFORM: &str = "\
-model: ode
-grid:
-  eta_t: {start: 0.070, stop: 0.100, step: 0.005}
-  kappa2: {start: 0.100, stop: 0.170, step: 0.01}
-initial_conditions: [i, ii, iii, iv]
-solver: {dt: 0.05, t_max: 3000}
-";
+solver: {{dt: 0.05, t_max: 3000}}
+{refine}"
+    )
+}
 
 struct Point {
     eta_t: f64,
@@ -88,7 +70,7 @@ fn distance(p: (f64, f64), line: &[(f64, f64)], (de, dk): (f64, f64)) -> f64 {
 #[test]
 fn ode_refinement_reproduces_the_analytic_boundaries_to_the_finest_step() {
     let dir = tempfile::tempdir().unwrap();
-    let spec = write_spec(dir.path(), "ode.yaml", ODE);
+    let spec = write_spec(dir.path(), "ode.yaml", &ode(Some(4)));
     let out = dir.path().join("ode");
     let j = json(&run(&[
         "sweep",
@@ -177,7 +159,7 @@ fn ode_refinement_reproduces_the_analytic_boundaries_to_the_finest_step() {
 #[test]
 fn a_refined_sweep_killed_and_resumed_gives_the_uninterrupted_tables() {
     let dir = tempfile::tempdir().unwrap();
-    let spec = write_spec(dir.path(), "ode.yaml", ODE_SHALLOW);
+    let spec = write_spec(dir.path(), "ode.yaml", &ode(Some(2)));
     let reference = dir.path().join("ref");
     let started = Instant::now();
     json(&run(&[
@@ -190,25 +172,7 @@ fn a_refined_sweep_killed_and_resumed_gives_the_uninterrupted_tables() {
     ]));
     let full_ms = started.elapsed().as_millis() as u64;
     let resumed = dir.path().join("resumed");
-    let mut x: u64 = 20261127;
-    let (mut kills, mut tries) = (0, 0);
-    while kills < 6 && tries < 30 {
-        tries += 1;
-        x = x
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        let wait = 10 + (x >> 33) % full_ms.max(30);
-        let mut child = sweep_in_background(&spec, &resumed);
-        std::thread::sleep(Duration::from_millis(wait));
-        if child.try_wait().unwrap().is_none() {
-            child.kill().unwrap(); // SIGKILL
-            kills += 1;
-        }
-        child.wait().unwrap();
-        if resumed.join("runs.parquet").exists() {
-            std::fs::remove_dir_all(&resumed).unwrap();
-        }
-    }
+    let (kills, tries) = kill_at_random_moments(&spec, &resumed, full_ms, 6, 30);
     assert!(kills >= 3, "only {kills} of {tries} tries were interrupted");
     json(&run(&[
         "sweep",
@@ -234,8 +198,8 @@ fn a_refined_sweep_killed_and_resumed_gives_the_uninterrupted_tables() {
 #[test]
 fn a_uniform_and_a_refined_sweep_share_their_runs() {
     let dir = tempfile::tempdir().unwrap();
-    let uniform = write_spec(dir.path(), "uniform.yaml", ODE_UNIFORM);
-    let refined = write_spec(dir.path(), "refined.yaml", ODE_SHALLOW);
+    let uniform = write_spec(dir.path(), "uniform.yaml", &ode(None));
+    let refined = write_spec(dir.path(), "refined.yaml", &ode(Some(2)));
     let out = dir.path().join("shared");
     let o = out.to_str().unwrap();
     let u = json(&run(&[

@@ -14,7 +14,7 @@
 //! (`inputs.md`, `kills.md`): the README's reliability section quotes them.
 mod common;
 
-use common::{droplet, json, run, sweep_in_background, table_without_wall, write_spec};
+use common::{droplet, json, kill_at_random_moments, run, table_without_wall, write_spec};
 use std::path::{Path, PathBuf};
 use std::process::{Output, Stdio};
 use std::time::{Duration, Instant};
@@ -674,26 +674,7 @@ fn sigkill_at_many_moments_then_resume_gives_identical_tables() {
     let full_ms = started.elapsed().as_millis() as u64;
     let resumed = dir.path().join("resumed");
     // Moments spread over the sweep's length by a fixed-seed generator (LCG).
-    let mut x: u64 = 20261127;
-    let (mut kills, mut tries) = (0, 0);
-    while kills < 16 && tries < 40 {
-        tries += 1;
-        x = x
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        let wait = 20 + (x >> 33) % full_ms.max(50);
-        let mut child = sweep_in_background(&spec, &resumed);
-        std::thread::sleep(Duration::from_millis(wait));
-        if child.try_wait().unwrap().is_none() {
-            child.kill().unwrap(); // SIGKILL
-            kills += 1;
-        }
-        child.wait().unwrap();
-        if child_done(&resumed) {
-            // Finished before the kill: start over so that every try can be interrupted.
-            std::fs::remove_dir_all(&resumed).unwrap();
-        }
-    }
+    let (kills, tries) = kill_at_random_moments(&spec, &resumed, full_ms, 16, 40);
     assert!(kills >= 8, "only {kills} of {tries} tries were interrupted");
     json(&sweep(&spec, &resumed, &[]));
     assert_eq!(run_files(&resumed).len(), 12);
@@ -704,10 +685,6 @@ fn sigkill_at_many_moments_then_resume_gives_identical_tables() {
             "{kills} SIGKILLs at fixed-seed random moments of a 12-run sweep ({tries} tries; a sweep that finished first was started over), each followed by a resume: the final tables equal an uninterrupted sweep's in every column but wall_s, with one record per run.\n"
         ),
     );
-}
-
-fn child_done(out: &Path) -> bool {
-    out.join("runs.parquet").exists()
 }
 
 #[test]

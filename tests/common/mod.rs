@@ -72,3 +72,37 @@ pub fn sweep_in_background(spec: &Path, out: &Path) -> Child {
         .spawn()
         .unwrap()
 }
+
+/// Starts `droplet sweep SPEC --out OUT` again and again, each time killing it with SIGKILL
+/// after a fixed-seed random wait below `full_ms` (an uninterrupted sweep's length), until
+/// `kills` sweeps were interrupted or `max_tries` were started; a sweep that finished first is
+/// started over from an empty directory. Returns `(kills, tries)`.
+#[allow(dead_code)]
+pub fn kill_at_random_moments(
+    spec: &Path,
+    out: &Path,
+    full_ms: u64,
+    kills: usize,
+    max_tries: usize,
+) -> (usize, usize) {
+    let mut x: u64 = 20261127;
+    let (mut killed, mut tries) = (0, 0);
+    while killed < kills && tries < max_tries {
+        tries += 1;
+        x = x
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        let wait = 20 + (x >> 33) % full_ms.max(50);
+        let mut child = sweep_in_background(spec, out);
+        std::thread::sleep(std::time::Duration::from_millis(wait));
+        if child.try_wait().unwrap().is_none() {
+            child.kill().unwrap(); // SIGKILL
+            killed += 1;
+        }
+        child.wait().unwrap();
+        if out.join("runs.parquet").exists() {
+            std::fs::remove_dir_all(out).unwrap();
+        }
+    }
+    (killed, tries)
+}

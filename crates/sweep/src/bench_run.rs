@@ -69,23 +69,21 @@ fn load_or_compute(dir: &Path, plan: &BenchPlan) -> Result<(References, bool), S
         let mut refs = refs;
         if refs.plan != *plan {
             refs.plan = plan.clone();
-            crate::atomic::write_atomic(
-                &path,
-                serde_json::to_string_pretty(&refs)
-                    .expect("json")
-                    .as_bytes(),
-            )?;
+            store_references(&path, &refs)?;
         }
         return Ok((refs, true));
     }
     let refs = references(plan)?;
-    crate::atomic::write_atomic(
-        &path,
-        serde_json::to_string_pretty(&refs)
-            .expect("json")
-            .as_bytes(),
-    )?;
+    store_references(&path, &refs)?;
     Ok((refs, false))
+}
+
+fn store_references(path: &Path, refs: &References) -> Result<(), SweepError> {
+    crate::atomic::write_atomic(
+        path,
+        serde_json::to_string_pretty(refs).expect("json").as_bytes(),
+    )
+    .map(drop)
 }
 
 /// Every row as a Markdown table (the Parquet table's main columns), grouped by case.

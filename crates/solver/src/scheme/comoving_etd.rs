@@ -24,8 +24,9 @@
 //! The predictor's shape is extrapolated from the last two states
 //! ([`ComovingEtd::predictor_shape`]) rather than transformed.
 //!
-//! Measured at N = 192 (`cargo bench -p droplet-solver --bench step`, fixed dt = 0.02, MD
-//! point, one machine, one session): 435 us per step before (two shapes per step, each two
+//! Measured at N = 192 (`cargo bench -p droplet-solver --bench step -- --quick`, fixed
+//! dt = 0.02, MD point, one machine, one session; the README's Speed table has the final
+//! before/after pair, 467 -> 291 us): 435 us per step before (two shapes per step, each two
 //! plain row-pruned transforms) -> 300 us (predictor extrapolated) -> 285 us (symmetric
 //! transform). Profile now: the two passes ~46 %, transforms ~27 %, sampling `Theta` ~13 %
 //! (half of it `exp` in the tanh band). Tried and dropped: AVX2 code generation
