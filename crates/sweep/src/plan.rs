@@ -75,11 +75,22 @@ impl Plan {
 }
 
 /// Number of runs a spec asks for (points x initial conditions), computed without planning
-/// them (saturating, so that an absurd spec cannot overflow).
+/// them (saturating, so that an absurd spec cannot overflow). With `refine:` the most it can
+/// ask for: every cell split down to the finest level.
 pub fn run_count(spec: &SweepSpec) -> u64 {
-    (spec.eta_t.len() as u64)
-        .saturating_mul(spec.kappa2.len() as u64)
-        .saturating_mul(spec.initial_conditions.len() as u64)
+    point_count(spec).saturating_mul(spec.initial_conditions.len() as u64)
+}
+
+/// Number of points of the spec's grid, or with `refine:` of its finest lattice.
+fn point_count(spec: &SweepSpec) -> u64 {
+    let (ne, nk) = (spec.eta_t.len() as u64, spec.kappa2.len() as u64);
+    match &spec.refine {
+        None => ne.saturating_mul(nk),
+        Some(l) => {
+            let fine = |n: u64| (n - 1).saturating_mul(1 << l.refine.levels) + 1;
+            fine(ne).saturating_mul(fine(nk))
+        }
+    }
 }
 
 /// Default of `--max-runs`: the most runs one sweep may plan (1e6 runs at N = 192 are about
@@ -92,7 +103,7 @@ pub fn check_size(spec: &SweepSpec, max_runs: u64) -> Result<(), crate::SweepErr
     if count > max_runs {
         return Err(crate::SweepError::TooLarge {
             runs: count,
-            points: (spec.eta_t.len() as u64).saturating_mul(spec.kappa2.len() as u64),
+            points: point_count(spec),
             limit: max_runs,
         });
     }
@@ -227,5 +238,19 @@ mod tests {
                 ..
             })
         ));
+    }
+
+    #[test]
+    fn a_refined_spec_is_sized_by_its_finest_lattice() {
+        let spec = crate::spec::parse(
+            "grid:\n  eta_t: {start: 0.08, stop: 0.09, step: 0.01}\n  kappa2: {start: 0.1, stop: 0.12, step: 0.01}\ninitial_conditions: [i, iv]\nrefine: {levels: 2}\n",
+            "t.yaml",
+            "t",
+        )
+        .unwrap();
+        // 2 x 3 points at level 0; every cell split twice: 5 x 9 points, 2 runs each.
+        assert_eq!(run_count(&spec), 90);
+        assert_eq!(plan(&spec).len(), 12);
+        assert!(check_size(&spec, 89).is_err());
     }
 }
