@@ -9,7 +9,7 @@ use crate::plan::{plan_nodes, Plan};
 use crate::refine::{split, Lattice, Node, Verdict};
 use crate::spec::SweepSpec;
 use crate::store::Store;
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::{BTreeMap, BTreeSet, HashMap};
 
 /// A point is settled for refinement: one class, and every run ended steady.
 fn settled(c: &PointClass) -> bool {
@@ -32,6 +32,8 @@ pub fn walk(
     let mut nodes: Vec<(Node, u32)> = lattice.level0().into_iter().map(|n| (n, 0)).collect();
     let mut known: BTreeSet<Node> = nodes.iter().map(|&(n, _)| n).collect();
     let mut cells = lattice.cells0();
+    // The runs of the levels walked so far (each level's are read once).
+    let mut records = HashMap::new();
     let mut level = 0;
     loop {
         let plan = plan_nodes(spec, lattice, &nodes);
@@ -42,7 +44,7 @@ pub fn walk(
         if !visit(level, &plan, &runs)? || !lattice.splittable(level) || cells.is_empty() {
             return Ok(plan);
         }
-        let records = store.load_many(plan.tasks().map(|t| t.key));
+        records.extend(store.load_many(runs.iter().map(|&i| plan.task(i).key)));
         let map = PhaseMap::new(&plan, &records);
         let verdicts: BTreeMap<Node, Verdict> = nodes
             .iter()
