@@ -3,7 +3,7 @@
 //! sweep killed and resumed gives the uninterrupted tables, and a uniform and a refined sweep
 //! share their runs in one directory.
 mod common;
-use common::{json, kill_at_random_moments, read, run, table_without_wall, write_spec};
+use common::{json, kill_at_random_moments, read, run, sweep, table_without_wall, write_spec};
 use droplet_sweep::boundary_table;
 use polars::prelude::*;
 use std::collections::HashMap;
@@ -162,26 +162,12 @@ fn a_refined_sweep_killed_and_resumed_gives_the_uninterrupted_tables() {
     let spec = write_spec(dir.path(), "ode.yaml", &ode(Some(2)));
     let reference = dir.path().join("ref");
     let started = Instant::now();
-    json(&run(&[
-        "sweep",
-        spec.to_str().unwrap(),
-        "--out",
-        reference.to_str().unwrap(),
-        "--json",
-        "--no-plot",
-    ]));
+    json(&sweep(&spec, &reference, &[]));
     let full_ms = started.elapsed().as_millis() as u64;
     let resumed = dir.path().join("resumed");
     let (kills, tries) = kill_at_random_moments(&spec, &resumed, full_ms, 6, 30);
     assert!(kills >= 3, "only {kills} of {tries} tries were interrupted");
-    json(&run(&[
-        "sweep",
-        spec.to_str().unwrap(),
-        "--out",
-        resumed.to_str().unwrap(),
-        "--json",
-        "--no-plot",
-    ]));
+    json(&sweep(&spec, &resumed, &[]));
     for t in ["runs.parquet", "points.parquet"] {
         let sort = |df: DataFrame| {
             df.sort(["eta_t", "kappa2"], SortMultipleOptions::default())
@@ -202,24 +188,10 @@ fn a_uniform_and_a_refined_sweep_share_their_runs() {
     let refined = write_spec(dir.path(), "refined.yaml", &ode(Some(2)));
     let out = dir.path().join("shared");
     let o = out.to_str().unwrap();
-    let u = json(&run(&[
-        "sweep",
-        uniform.to_str().unwrap(),
-        "--out",
-        o,
-        "--json",
-        "--no-plot",
-    ]));
+    let u = json(&sweep(&uniform, &out, &[]));
     let runs0 = u["runs"].as_u64().unwrap();
     assert_eq!(runs0, 7 * 8 * 4);
-    let r = json(&run(&[
-        "sweep",
-        refined.to_str().unwrap(),
-        "--out",
-        o,
-        "--json",
-        "--no-plot",
-    ]));
+    let r = json(&sweep(&refined, &out, &[]));
     assert_eq!(
         r["reused"].as_u64().unwrap(),
         runs0,
@@ -227,14 +199,7 @@ fn a_uniform_and_a_refined_sweep_share_their_runs() {
     );
     assert!(r["computed"].as_u64().unwrap() > 0);
     // Run again: everything is stored.
-    let again = json(&run(&[
-        "sweep",
-        refined.to_str().unwrap(),
-        "--out",
-        o,
-        "--json",
-        "--no-plot",
-    ]));
+    let again = json(&sweep(&refined, &out, &[]));
     assert_eq!(again["computed"].as_u64().unwrap(), 0);
     // status reads the levels from the stored runs.
     let st = json(&run(&["status", o, "--json"]));

@@ -14,9 +14,9 @@
 //! (`inputs.md`, `kills.md`): the README's reliability section quotes them.
 mod common;
 
-use common::{droplet, json, kill_at_random_moments, run, table_without_wall, write_spec};
+use common::{droplet, json, kill_at_random_moments, run, sweep, table_without_wall, write_spec};
 use std::path::{Path, PathBuf};
-use std::process::{Output, Stdio};
+use std::process::Stdio;
 use std::time::{Duration, Instant};
 
 /// Writes a report section when `DROPLET_RELIABILITY_DIR` is set.
@@ -39,19 +39,6 @@ solver:
   tol: 0
   t_max: 150
 ";
-
-fn sweep(spec: &Path, out: &Path, extra: &[&str]) -> Output {
-    let mut args = vec![
-        "sweep",
-        spec.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--json",
-        "--no-plot",
-    ];
-    args.extend_from_slice(extra);
-    run(&args)
-}
 
 fn tables_equal(a: &Path, b: &Path) {
     for t in ["runs.parquet", "points.parquet"] {

@@ -106,3 +106,18 @@ pub fn kill_at_random_moments(
     }
     (killed, tries)
 }
+
+/// `droplet sweep SPEC --out OUT --json --no-plot EXTRA...`, run to the end.
+#[allow(dead_code)]
+pub fn sweep(spec: &Path, out: &Path, extra: &[&str]) -> Output {
+    let mut args = vec![
+        "sweep",
+        spec.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--json",
+        "--no-plot",
+    ];
+    args.extend_from_slice(extra);
+    run(&args)
+}
