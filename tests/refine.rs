@@ -211,3 +211,62 @@ fn a_uniform_and_a_refined_sweep_share_their_runs() {
     );
     assert_eq!(st["complete"], true);
 }
+
+#[test]
+fn a_refined_sweep_sharded_level_by_level_merges_to_the_unsharded_tables() {
+    let dir = tempfile::tempdir().unwrap();
+    let spec = write_spec(dir.path(), "ode.yaml", &ode(Some(2)));
+    let single = dir.path().join("single");
+    json(&sweep(&spec, &single, &[]));
+    let sharded = dir.path().join("sharded");
+    let s = sharded.to_str().unwrap();
+    // A shard of a refined spec needs its level; a level needs the ones below it.
+    let no_level = sweep(&spec, &sharded, &["--shard", "0/2"]);
+    assert_eq!(no_level.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&no_level.stderr).contains("--level"));
+    let early = sweep(&spec, &sharded, &["--shard", "0/2", "--level", "1"]);
+    assert_eq!(early.status.code(), Some(1));
+    assert!(
+        String::from_utf8_lossy(&early.stderr).contains("level 0 has 224 of its runs missing"),
+        "{}",
+        String::from_utf8_lossy(&early.stderr)
+    );
+    let too_deep = sweep(&spec, &sharded, &["--shard", "0/2", "--level", "3"]);
+    assert_eq!(too_deep.status.code(), Some(2));
+    // Level by level, two shards each (as `droplet slurm` chains the arrays).
+    let mut runs_by_level = Vec::new();
+    for level in ["0", "1", "2"] {
+        let mut runs = 0;
+        for shard in ["0/2", "1/2"] {
+            let r = json(&sweep(
+                &spec,
+                &sharded,
+                &["--shard", shard, "--level", level],
+            ));
+            assert_eq!(r["level"].as_u64().unwrap().to_string(), level);
+            runs += r["runs"].as_u64().unwrap();
+        }
+        runs_by_level.push(runs);
+    }
+    assert_eq!(runs_by_level[0], 7 * 8 * 4);
+    assert!(
+        runs_by_level[1] > 0 && runs_by_level[2] > 0,
+        "{runs_by_level:?}"
+    );
+    // No tables until the merge, which gives the unsharded sweep's.
+    assert!(!sharded.join("points.parquet").exists());
+    json(&run(&["merge", s, "--json"]));
+    for t in ["runs.parquet", "points.parquet"] {
+        let a = table_without_wall(&single.join(t));
+        let b = table_without_wall(&sharded.join(t));
+        assert!(a.equals_missing(&b), "{t} differs");
+    }
+    let st = json(&run(&["status", s, "--json"]));
+    let per_level: Vec<u64> = st["levels"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|l| l["runs_total"].as_u64().unwrap())
+        .collect();
+    assert_eq!(per_level, runs_by_level);
+}

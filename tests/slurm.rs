@@ -95,8 +95,9 @@ fn run_files(dir: &Path) -> usize {
         .unwrap_or(0)
 }
 
-#[test]
-fn smoke_sweep_as_a_slurm_array_merges_to_the_single_process_tables() {
+/// Whether a cluster is there; without one, says why the test is skipped (and fails if
+/// `DROPLET_SLURM_TEST=1` requires it).
+fn cluster() -> bool {
     let required = std::env::var("DROPLET_SLURM_TEST").is_ok_and(|v| v == "1");
     if std::env::var_os("SLURM_CONF").is_none() {
         assert!(
@@ -106,6 +107,33 @@ fn smoke_sweep_as_a_slurm_array_merges_to_the_single_process_tables() {
         eprintln!(
             "SKIPPED slurm end-to-end test: no Slurm cluster (SLURM_CONF unset); run ci/slurm-up.sh and source its env file"
         );
+        return false;
+    }
+    true
+}
+
+/// `droplet slurm SPEC --shards N --out OUT --submit --json`: the submitted job ids.
+fn submit(spec: &str, shards: &str, out: &str) -> Vec<String> {
+    let out = ok(
+        droplet()
+            .args(["slurm", spec, "--shards", shards, "--out", out])
+            .args(["--time", "00:20:00", "--mem", "1G", "--submit", "--json"])
+            .output()
+            .unwrap(),
+        "droplet slurm --submit",
+    );
+    let j: serde_json::Value = serde_json::from_str(&out).unwrap();
+    j["jobs"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_str().unwrap().to_string())
+        .collect()
+}
+
+#[test]
+fn smoke_sweep_as_a_slurm_array_merges_to_the_single_process_tables() {
+    if !cluster() {
         return;
     }
     let spec = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("sweeps/smoke.yaml");
@@ -124,24 +152,8 @@ fn smoke_sweep_as_a_slurm_array_merges_to_the_single_process_tables() {
     // 1. `droplet slurm --submit`: an array of 3 shards, then the merge job (afterany).
     let arrayed = dir.path().join("arrayed");
     let a = arrayed.to_str().unwrap();
-    let out = ok(
-        droplet()
-            .args([
-                "slurm", spec, "--shards", "3", "--out", a, "--time", "00:20:00",
-            ])
-            .args(["--mem", "1G", "--submit", "--json"])
-            .output()
-            .unwrap(),
-        "droplet slurm --submit",
-    );
-    let j: serde_json::Value = serde_json::from_str(&out).unwrap();
-    let jobs: Vec<String> = j["jobs"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|x| x.as_str().unwrap().to_string())
-        .collect();
-    assert_eq!(jobs.len(), 2, "{j}");
+    let jobs = submit(spec, "3", a);
+    assert_eq!(jobs.len(), 2, "{jobs:?}");
     let fin = wait_for(&[&jobs[0], &jobs[1]], limit);
     assert!(fin.iter().all(|s| s == "COMPLETED"), "{fin:?}");
     assert_eq!(fin.len(), 4, "3 shards + merge: {fin:?}");
@@ -209,4 +221,45 @@ fn smoke_sweep_as_a_slurm_array_merges_to_the_single_process_tables() {
         "finished runs were recomputed: {report}"
     );
     assert_same_tables(&single, &killed);
+}
+
+#[test]
+fn refined_sweep_as_one_slurm_array_per_level_merges_to_the_single_process_tables() {
+    if !cluster() {
+        return;
+    }
+    // The ODE over the Fig. 2a window, refined 2 levels (cheap).
+    let dir = tempfile::tempdir().unwrap();
+    let spec = dir.path().join("refined.yaml");
+    std::fs::write(
+        &spec,
+        "name: refined\nmodel: ode\ngrid:\n  eta_t: {start: 0.070, stop: 0.100, step: 0.005}\n  kappa2: {start: 0.100, stop: 0.170, step: 0.01}\nsolver: {dt: 0.05, t_max: 3000}\nrefine: {levels: 2}\n",
+    )
+    .unwrap();
+    let spec = spec.to_str().unwrap();
+    let single = dir.path().join("single");
+    ok(
+        droplet()
+            .args(["sweep", spec, "--out", single.to_str().unwrap(), "--json"])
+            .output()
+            .unwrap(),
+        "single-process sweep",
+    );
+    let arrayed = dir.path().join("arrayed");
+    let jobs = submit(spec, "2", arrayed.to_str().unwrap());
+    assert_eq!(jobs.len(), 4, "levels 0, 1, 2 and the merge: {jobs:?}");
+    let refs: Vec<&str> = jobs.iter().map(String::as_str).collect();
+    let fin = wait_for(&refs, Duration::from_secs(600));
+    assert!(fin.iter().all(|s| s == "COMPLETED"), "{fin:?}");
+    assert_eq!(fin.len(), 3 * 2 + 1, "{fin:?}");
+    assert_same_tables(&single, &arrayed);
+    // Each level's shards ran that level.
+    for (level, job) in jobs[..3].iter().enumerate() {
+        let log =
+            std::fs::read_to_string(arrayed.join(format!("slurm/droplet-refined-{job}_1.out")))
+                .expect("a shard's log");
+        let report: serde_json::Value = serde_json::from_str(&log[log.find('{').unwrap()..])
+            .unwrap_or_else(|e| panic!("shard log is not one JSON object ({e}): {log}"));
+        assert_eq!(report["level"], level, "{report}");
+    }
 }

@@ -7,9 +7,11 @@ use std::process::Command;
 /// Write (and with --submit, submit) DIR/slurm/sweep.sbatch, an array of N shards each running
 /// `droplet sweep SPEC --shard $SLURM_ARRAY_TASK_ID/N`, and DIR/slurm/merge.sbatch, which runs
 /// `droplet merge DIR` after the array (afterany). DIR must be on a file system all nodes share.
+/// A spec with `refine:` runs one array per level (`sweep.sbatch L`), each after the one before
+/// (afterok), and the merge after the last.
 #[derive(clap::Args)]
 #[command(
-    after_help = "Example:\n  droplet slurm sweeps/fig2a.yaml --shards 32 --partition compute --time 08:00:00 --cpus 8 --submit\n  droplet status out/fig2a          # progress while it runs\n  resubmitting the array resumes: finished runs are never recomputed"
+    after_help = "Example:\n  droplet slurm sweeps/fig2a.yaml --shards 32 --partition compute --time 08:00:00 --cpus 8 --submit\n  droplet status out/fig2a          # progress while it runs\n  resubmitting the array resumes: finished runs are never recomputed\n\nA spec with refine: (e.g. sweeps/fig2a-adaptive.yaml) is submitted as one array per level,\neach after the one before (afterok; a failed level cancels the rest), then the merge; submit\nagain after a failure: finished levels are skipped in seconds"
 )]
 pub struct Args {
     /// The YAML spec.
@@ -74,6 +76,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
         time: a.time.clone(),
         mem: a.mem.clone(),
         max_runs: a.max_runs,
+        levels: sweep.refine.map(|l| l.refine.levels),
     })?;
     let (sweep_path, merge_path) = (scripts[0].clone(), scripts[1].clone());
     let mut jobs = Vec::new();
@@ -103,10 +106,32 @@ pub fn run(a: Args) -> Result<(), CliError> {
                 .unwrap_or("")
                 .to_string())
         };
-        let array = sbatch(&["--parsable", sweep_path.to_str().unwrap_or_default()])?;
-        let dep = format!("--dependency=afterany:{array}");
-        let merge = sbatch(&["--parsable", &dep, merge_path.to_str().unwrap_or_default()])?;
-        jobs = vec![array, merge];
+        let script = sweep_path.to_str().unwrap_or_default();
+        match sweep.refine {
+            None => jobs.push(sbatch(&["--parsable", script])?),
+            Some(l) => {
+                for level in 0..=l.refine.levels {
+                    let level = level.to_string();
+                    let job = match jobs.last() {
+                        None => sbatch(&["--parsable", script, &level])?,
+                        Some(prev) => sbatch(&[
+                            "--parsable",
+                            &format!("--dependency=afterok:{prev}"),
+                            "--kill-on-invalid-dep=yes",
+                            script,
+                            &level,
+                        ])?,
+                    };
+                    jobs.push(job);
+                }
+            }
+        }
+        let dep = format!("--dependency=afterany:{}", jobs[jobs.len() - 1]);
+        jobs.push(sbatch(&[
+            "--parsable",
+            &dep,
+            merge_path.to_str().unwrap_or_default(),
+        ])?);
     }
     if a.json {
         print_json(
@@ -118,14 +143,23 @@ pub fn run(a: Args) -> Result<(), CliError> {
             sweep_path.display(),
             merge_path.display()
         );
-        if jobs.is_empty() {
-            println!(
+        match (jobs.split_last(), sweep.refine) {
+            (None, None) => println!(
                 "submit: sbatch {} && sbatch --dependency=afterany:<array job id> {}",
                 sweep_path.display(),
                 merge_path.display()
-            );
-        } else {
-            println!("submitted array job {} and merge job {}", jobs[0], jobs[1]);
+            ),
+            (None, Some(l)) => println!(
+                "submit (or rerun with --submit): sbatch {s} 0, then for L = 1..={}: sbatch --dependency=afterok:<level L-1's job id> --kill-on-invalid-dep=yes {s} L, then sbatch --dependency=afterany:<level {}'s job id> {}",
+                l.refine.levels,
+                l.refine.levels,
+                merge_path.display(),
+                s = sweep_path.display()
+            ),
+            (Some((merge, arrays)), _) => println!(
+                "submitted array job(s) {} and merge job {merge}",
+                arrays.join(", ")
+            ),
         }
     }
     Ok(())

@@ -10,7 +10,7 @@ use std::path::PathBuf;
 /// OUT/runs.parquet, OUT/points.parquet and OUT/phase_map.png (+ .svg).
 #[derive(clap::Args)]
 #[command(
-    after_help = "Examples:\n  droplet sweep sweeps/smoke.yaml                 # CI smoke sweep, ~2 s on 2 cores\n  droplet sweep sweeps/fig2a.yaml --jobs 16       # the paper's Fig. 2(a): 21 min on 2 cores\n  droplet sweep sweeps/smoke.yaml --out /tmp/s    # same spec, another directory\n\nSpec keys: name, output, model (pde | ode), params {eta2, radius, sigma, box_len, mass},\ngrid {eta_t, kappa2} (each {start, stop, step} or a list), initial_conditions, solver {scheme,\nn, dt, tol, dt_max, t_max, steady_tol, steady_window, h0}. See sweeps/*.yaml and README.md.\n\nA stored run that cannot be used (truncated, not a record, or not matching its key) is moved to\nOUT/corrupt/ with a warning and recomputed. Exit codes: 0 done, 1 failure while working, 2 bad\ninput (spec, arguments, output directory, a sweep already running there)."
+    after_help = "Examples:\n  droplet sweep sweeps/smoke.yaml                 # CI smoke sweep, ~2 s on 2 cores\n  droplet sweep sweeps/fig2a.yaml                 # the paper's Fig. 2(a): about 4 min on 2 cores\n  droplet sweep sweeps/fig2a-adaptive.yaml        # refined where the class changes (README)\n  droplet sweep sweeps/smoke.yaml --out /tmp/s    # same spec, another directory\n\nSpec keys: name, output, model (pde | ode), params {eta2, radius, sigma, box_len, mass},\ngrid {eta_t, kappa2} (each {start, stop, step} or a list), initial_conditions, solver {scheme,\nn, dt, tol, dt_max, t_max, steady_tol, steady_window, steady, h0}, refine {levels, min_step,\nsplit_bistable}. See sweeps/*.yaml and README.md.\n\nSharded: each shard runs `--shard I/N` into the same OUT, then `droplet merge OUT`; a spec with\nrefine: is sharded level by level (`--shard I/N --level L`, L = 0, 1, ... in order).\n\nA stored run that cannot be used (truncated, not a record, or not matching its key) is moved to\nOUT/corrupt/ with a warning and recomputed. Exit codes: 0 done, 1 failure while working, 2 bad\ninput (spec, arguments, output directory, a sweep already running there)."
 )]
 pub struct Args {
     /// The YAML spec.
@@ -29,6 +29,11 @@ pub struct Args {
     /// Defaults from SLURM_ARRAY_TASK_ID / SLURM_ARRAY_TASK_COUNT when both are set.
     #[arg(long, value_name = "I/N")]
     shard: Option<String>,
+    /// With --shard, for a spec with `refine:`: run level L's slice (0 = the spec's grid). The
+    /// levels below L must be finished, since L's points follow from their classes; run the
+    /// levels in order (one Slurm array each: `droplet slurm` does that), then `droplet merge`.
+    #[arg(long, value_name = "L")]
+    level: Option<u32>,
     /// Refuse specs with more runs than this (points x initial conditions), checked before
     /// anything is written. Raise it deliberately for very large sweeps.
     #[arg(long, value_name = "RUNS", default_value_t = droplet_sweep::plan::DEFAULT_MAX_RUNS)]
@@ -54,6 +59,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
         jobs: a.jobs,
         progress: !a.json,
         shard,
+        level: a.level,
         plot: !a.no_plot,
         max_runs: Some(a.max_runs),
     };

@@ -44,5 +44,17 @@ pub use settings::{ModelKind, SolverSettings};
 pub use state::DropletState;
 pub use steady::{SteadySolver, SteadyState};
 
-/// Version of the solver's numerics; part of every run's cache key.
+/// Version of the solver's numerics (the PDE model's runs); part of every run's cache key.
 pub const SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-1");
+
+/// Version of the reduced ODE model's numerics (2: unstable states no longer end a run).
+pub const ODE_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-1+ode-2");
+
+/// The numerics version of a model's runs, part of their cache key: a change to one model's
+/// results invalidates its stored runs only.
+pub fn solver_version(model: ModelKind) -> &'static str {
+    match model {
+        ModelKind::Pde => SOLVER_VERSION,
+        ModelKind::Ode => ODE_SOLVER_VERSION,
+    }
+}

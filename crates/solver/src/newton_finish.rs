@@ -76,7 +76,7 @@ impl Finding {
             )
         } else if let Some(r) = rot.filter(|r| *r >= self.verdict.max_re) {
             format!(
-                "rotation mode {r:+.2e}: the direction of motion / long axis turns slowly (box effect); v and s are settled"
+                "rotation mode {r:+.2e}: the direction of motion / long axis turns slowly (box effect); {SETTLED}"
             )
         } else {
             format!(
@@ -85,6 +85,16 @@ impl Finding {
             )
         }
     }
+}
+
+/// The end of a diagnosis whose run has settled in speed and deformation (only its direction
+/// still turns, at the box's slow rotation rate): its class is that of its final state.
+pub const SETTLED: &str = "v and s are settled";
+
+/// Whether a `diagnosis` ([`Finding::describe`]) says the run's speed and deformation, and so
+/// its class, are settled.
+pub fn diagnosis_settles_class(diagnosis: &str) -> bool {
+    diagnosis.ends_with(SETTLED)
 }
 
 /// Largest difference in speed or deformation between a run and the root it is taken to be

@@ -115,4 +115,18 @@ impl RunOutcome {
             )
         })
     }
+
+    /// The class of the final state is settled: the run ended steady, or it stopped
+    /// unfinished with its speed and deformation settled (only turning slowly, see
+    /// [`crate::newton_finish::diagnosis_settles_class`]).
+    pub fn class_settled(&self) -> bool {
+        match self.status {
+            RunStatus::Steady => true,
+            RunStatus::TMax | RunStatus::StepLimit => self
+                .diagnosis
+                .as_deref()
+                .is_some_and(crate::newton_finish::diagnosis_settles_class),
+            RunStatus::Diverged => false,
+        }
+    }
 }

@@ -48,6 +48,14 @@ pub enum SweepError {
     Invalid(String),
     #[error("{} of {} runs are missing or unreadable in {} (e.g. {}); no tables written; re-run the sweep (or the shard) to recompute them", .0.runs_missing, .0.runs_total, .0.output.display(), .0.missing_examples.first().map(String::as_str).unwrap_or("-"))]
     Incomplete(Box<crate::merge_report::MergeReport>),
+    /// A shard of a refined sweep's level started before the levels below it were finished.
+    #[error("level {level} cannot start in {}: level {earlier} has {missing} of its runs missing or unreadable, and level {level}'s points follow from them; run level {earlier}'s shards first (--level {earlier})", .output.display())]
+    LevelNotReady {
+        level: u32,
+        earlier: u32,
+        missing: usize,
+        output: PathBuf,
+    },
 }
 
 impl SweepError {

@@ -10,7 +10,7 @@ use crate::spec::SweepSpec;
 use crate::store::{CorruptRun, RunRecord, Store, Stored};
 use crate::tables;
 use crate::tally::tally;
-use droplet_solver::{simulate, SOLVER_VERSION};
+use droplet_solver::simulate;
 use rayon::prelude::*;
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -27,6 +27,9 @@ pub struct SweepOptions {
     pub progress: bool,
     /// Run only this slice of the runs, and write no final tables (`droplet merge` does).
     pub shard: Option<Shard>,
+    /// With `shard`, for a spec with `refine:`: the level whose slice this process runs (the
+    /// levels below it must be finished; see [`run_refined`]).
+    pub level: Option<u32>,
     /// Draw the pictures with the tables (unsharded sweeps only).
     pub plot: bool,
     /// Refuse specs with more runs than this (`None`: [`crate::plan::DEFAULT_MAX_RUNS`]).
@@ -43,6 +46,8 @@ pub struct SweepSummary {
     pub runs: usize,
     /// `I/N` when sharded.
     pub shard: Option<String>,
+    /// The level a shard of a refined sweep ran.
+    pub level: Option<u32>,
     /// Runs computed by this invocation.
     pub computed: usize,
     /// Runs found in the store (resumed or shared with another sweep).
@@ -67,7 +72,7 @@ pub fn run_task(task: &Task) -> Result<RunRecord, SweepError> {
         params: task.params,
         ic: task.ic.clone(),
         settings: task.settings,
-        solver_version: SOLVER_VERSION.to_string(),
+        solver_version: droplet_solver::solver_version(task.settings.model).to_string(),
         outcome,
     })
 }
@@ -138,24 +143,49 @@ fn run_pending(
     })
 }
 
-/// Runs a refined sweep level by level ([`crate::level_walk`]).
+/// Runs a refined sweep level by level ([`crate::level_walk`]). Unsharded: every level.
+/// Sharded (`Some((shard, level))`): only the shard's slice of `level`, after checking that
+/// every level below it is finished (its points follow from them), so a Slurm array per level,
+/// each depending on the one before, runs the sweep; a level refinement never reaches has
+/// no runs. Returns the plan so far and, sharded, the runs of the slice.
 fn run_refined(
     spec: &SweepSpec,
     lattice: &Lattice,
     store: &Store,
     pool: &rayon::ThreadPool,
     progress: bool,
-) -> Result<(Plan, Ran), SweepError> {
+    shard: Option<(Shard, u32)>,
+) -> Result<(Plan, Vec<usize>, Ran), SweepError> {
     let mut total = Ran {
         computed: 0,
         reused: 0,
         corrupt: Vec::new(),
     };
+    let mut mine = Vec::new();
     let plan = crate::level_walk::walk(spec, lattice, store, |level, plan, runs| {
+        let runs = match shard {
+            None => runs.to_vec(),
+            Some((_, target)) if level < target => {
+                let missing = runs
+                    .iter()
+                    .filter(|&&i| !store.has(&plan.task(i).key))
+                    .count();
+                if missing > 0 {
+                    return Err(SweepError::LevelNotReady {
+                        level: target,
+                        earlier: level,
+                        missing,
+                        output: store.dir().to_path_buf(),
+                    });
+                }
+                return Ok(true);
+            }
+            Some((sh, _)) => indices_of(plan, runs, sh),
+        };
         let ran = run_pending(
             store,
             plan,
-            runs,
+            &runs,
             pool,
             progress,
             &format!("level {level} runs"),
@@ -163,9 +193,13 @@ fn run_refined(
         total.computed += ran.computed;
         total.reused += ran.reused;
         total.corrupt.extend(ran.corrupt);
-        Ok(true)
+        mine.extend(runs);
+        Ok(shard.is_none())
     })?;
-    Ok((plan, total))
+    if shard.is_none() {
+        mine = (0..plan.len()).collect();
+    }
+    Ok((plan, mine, total))
 }
 
 /// Runs every pending task of `spec` into `out` and writes the tables.
@@ -176,11 +210,32 @@ pub fn run_sweep(
 ) -> Result<SweepSummary, SweepError> {
     let started = Instant::now();
     crate::plan::check_size(spec, opts.max_runs.unwrap_or(crate::plan::DEFAULT_MAX_RUNS))?;
-    if spec.refine.is_some() && opts.shard.is_some() {
-        return Err(SweepError::Invalid(
-            "a spec with refine: runs unsharded for now (each level depends on the one before); run it without --shard".into(),
-        ));
-    }
+    let shard_level = match (&spec.refine, opts.shard, opts.level) {
+        (Some(l), _, Some(level)) if level > l.refine.levels => {
+            return Err(SweepError::Invalid(format!(
+                "invalid --level {level}: the spec's refine: has levels 0..={}",
+                l.refine.levels
+            )))
+        }
+        (Some(_), Some(sh), Some(level)) => Some((sh, level)),
+        (Some(l), Some(_), None) => {
+            return Err(SweepError::Invalid(format!(
+                "a spec with refine: is sharded one level at a time (each level's points follow from the one before): add --level L, L in 0..={} (`droplet slurm` submits one array per level)",
+                l.refine.levels
+            )))
+        }
+        (None, _, Some(_)) => {
+            return Err(SweepError::Invalid(
+                "--level is for specs with refine: (this one has a uniform grid)".into(),
+            ))
+        }
+        (_, None, Some(_)) => {
+            return Err(SweepError::Invalid(
+                "--level goes with --shard (an unsharded sweep runs every level)".into(),
+            ))
+        }
+        _ => None,
+    };
     let store = match opts.shard {
         None => Store::open_locked(out)?,
         Some(sh) => Store::open_shard(out, &sh.lock_name())?,
@@ -195,17 +250,13 @@ pub fn run_sweep(
         .build()
         .map_err(|e| SweepError::Invalid(format!("cannot start {jobs} worker threads: {e}")))?;
     let (plan, mine, ran) = match &spec.refine {
-        Some(lattice) => {
-            let (plan, ran) = run_refined(spec, lattice, &store, &pool, opts.progress)?;
-            let all = (0..plan.len()).collect();
-            (plan, all, ran)
-        }
+        Some(lattice) => run_refined(spec, lattice, &store, &pool, opts.progress, shard_level)?,
         None => {
             let plan = plan(spec);
             // This invocation's runs; runs are made on demand (memory per run: 8 bytes).
             let mine: Vec<usize> = match opts.shard {
                 None => (0..plan.len()).collect(),
-                Some(sh) => indices_of(&plan, sh),
+                Some(sh) => indices_of(&plan, &(0..plan.len()).collect::<Vec<_>>(), sh),
             };
             let ran = run_pending(&store, &plan, &mine, &pool, opts.progress, "runs")?;
             (plan, mine, ran)
@@ -246,6 +297,7 @@ pub fn run_sweep(
         points: plan.points.len(),
         runs: mine.len(),
         shard: opts.shard.map(|s| format!("{}/{}", s.index, s.count)),
+        level: shard_level.map(|(_, l)| l),
         computed: ran.computed,
         reused: ran.reused,
         corrupt: ran.corrupt,

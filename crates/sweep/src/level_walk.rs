@@ -11,11 +11,12 @@ use crate::spec::SweepSpec;
 use crate::store::Store;
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 
-/// A point is settled for refinement: one class, and every run ended steady.
-fn settled(c: &PointClass) -> bool {
-    !c.label.contains('/')
+/// A point is settled for refinement ([`Verdict::settled`]): one class or a bistable pair
+/// (one class only with `split_bistable`), every run's class settled, none diverged.
+fn settled(c: &PointClass, split_bistable: bool) -> bool {
+    (!split_bistable || !c.label.contains('/'))
         && ![NOT_CLASSIFIED, DIVERGED, MISSING].contains(&c.label.as_str())
-        && c.n_t_max == 0
+        && c.n_unsettled == 0
         && c.n_diverged == 0
 }
 
@@ -52,7 +53,7 @@ pub fn walk(
             .map(|(&(n, _), e)| {
                 let verdict = Verdict {
                     label: e.shown_label().to_string(),
-                    settled: e.complete() && settled(&e.class),
+                    settled: e.complete() && settled(&e.class, lattice.refine.split_bistable),
                 };
                 (n, verdict)
             })
@@ -74,12 +75,7 @@ pub fn stored_plan(spec: &SweepSpec, store: &Store) -> Result<Plan, SweepError> 
     match &spec.refine {
         None => Ok(crate::plan::plan(spec)),
         Some(lattice) => walk(spec, lattice, store, |_, plan, runs| {
-            Ok(runs.iter().all(|&i| {
-                matches!(
-                    store.check(&plan.task(i).key),
-                    crate::store::Stored::Valid(_)
-                )
-            }))
+            Ok(runs.iter().all(|&i| store.has(&plan.task(i).key)))
         }),
     }
 }

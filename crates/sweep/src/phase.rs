@@ -5,7 +5,8 @@
 //! - a run that hit `t_max` counts with the class of its final state (the paper's
 //!   "not classified" points come from such slowly converging runs), and is counted in
 //!   `n_t_max` so it can be told apart; so does a run that ended unconverged at the step cap
-//!   (`step_limit`, see `droplet_solver::limits`);
+//!   (`step_limit`, see `droplet_solver::limits`); of these, the runs whose speed and
+//!   deformation had not settled either (`RunOutcome::class_settled`) are `n_unsettled`;
 //! - a `diverged` run has no class and does not count; it is counted in `n_diverged`;
 //! - one distinct class -> that class; two -> a bistable pair written in the order
 //!   IC, ID, MD, MC (`IC/MD`, `ID/MD`, `IC/MC`, ...); three or more -> `not classified`;
@@ -28,18 +29,25 @@ pub struct PointClass {
     pub n_runs: usize,
     pub n_steady: usize,
     pub n_t_max: usize,
+    /// Unfinished runs whose class is not settled ([`RunOutcome::class_settled`]).
+    ///
+    /// [`RunOutcome::class_settled`]: droplet_solver::RunOutcome::class_settled
+    pub n_unsettled: usize,
     pub n_diverged: usize,
 }
 
 /// Classifies a point from its runs (any order).
 pub fn classify_point<'a>(runs: impl IntoIterator<Item = &'a RunRecord>) -> PointClass {
     let mut classes = BTreeSet::new();
-    let (mut n_runs, mut n_steady, mut n_t_max, mut n_diverged) = (0, 0, 0, 0);
+    let (mut n_runs, mut n_steady, mut n_t_max, mut n_unsettled, mut n_diverged) = (0, 0, 0, 0, 0);
     for r in runs {
         n_runs += 1;
         match r.outcome.status {
             droplet_solver::RunStatus::Steady => n_steady += 1,
-            droplet_solver::RunStatus::TMax | droplet_solver::RunStatus::StepLimit => n_t_max += 1,
+            droplet_solver::RunStatus::TMax | droplet_solver::RunStatus::StepLimit => {
+                n_t_max += 1;
+                n_unsettled += usize::from(!r.outcome.class_settled());
+            }
             droplet_solver::RunStatus::Diverged => n_diverged += 1,
         }
         if let Some(c) = r.outcome.class {
@@ -52,6 +60,7 @@ pub fn classify_point<'a>(runs: impl IntoIterator<Item = &'a RunRecord>) -> Poin
         n_runs,
         n_steady,
         n_t_max,
+        n_unsettled,
         n_diverged,
     }
 }
@@ -140,6 +149,16 @@ mod tests {
             ("ID", 1, 1, 1)
         );
         assert_eq!(p(vec![rec(Diverged, None); 4]), DIVERGED);
+        // An unfinished run is unsettled unless its diagnosis says v and s are settled.
+        let mut turning = rec(TMax, Some(MD));
+        turning.outcome.diagnosis = Some(format!(
+            "rotation mode -1e-4: turns slowly; {}",
+            droplet_solver::newton_finish::SETTLED
+        ));
+        let mut saddle = rec(TMax, Some(MD));
+        saddle.outcome.diagnosis = Some("near an unstable steady state".into());
+        let c = classify_point(&[turning, saddle, rec(TMax, Some(MD))]);
+        assert_eq!((c.n_t_max, c.n_unsettled), (3, 2));
         assert_eq!(p(vec![]), MISSING);
     }
 }

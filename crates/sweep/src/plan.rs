@@ -2,7 +2,7 @@
 //! everything that determines its result.
 use crate::refine::{Lattice, Node};
 use crate::spec::SweepSpec;
-use droplet_solver::{InitialCondition, ModelParams, SolverSettings, SOLVER_VERSION};
+use droplet_solver::{InitialCondition, ModelParams, SolverSettings};
 use serde::Serialize;
 use sha2::{Digest, Sha256};
 
@@ -125,7 +125,7 @@ pub fn run_key(params: &ModelParams, ic: &InitialCondition, settings: &SolverSet
         params,
         ic: [ic.vx, ic.vy, ic.a2, ic.b2],
         settings,
-        solver_version: SOLVER_VERSION,
+        solver_version: droplet_solver::solver_version(settings.model),
     };
     let json = serde_json::to_string(&material).expect("plain data serialises");
     let digest = Sha256::digest(json.as_bytes());

@@ -27,6 +27,9 @@ pub struct Refine {
     pub levels: u32,
     /// Smallest cell side on each axis `(eta_t, kappa2)`.
     pub min_step: (f64, f64),
+    /// Also split cells whose corners all share one bistable class (fills bistable bands
+    /// to the finest step; by default only their edges are refined).
+    pub split_bistable: bool,
 }
 
 /// The spec's uniform grid along one axis: `start + i step`, `i < count`.
@@ -50,7 +53,9 @@ pub struct Lattice {
 pub struct Verdict {
     /// The point class (`IC`, `IC/MD`, `not classified`, ...).
     pub label: String,
-    /// The point is settled: one class, every run steady.
+    /// The point's class can be trusted as a corner of a cell whose corners agree: every run
+    /// settled (steady, or unfinished with `v` and `s` settled), none diverged, at most two
+    /// classes (one, with `split_bistable`).
     pub settled: bool,
 }
 
@@ -216,6 +221,7 @@ mod tests {
             refine: Refine {
                 levels,
                 min_step: (0.0, 0.0),
+                split_bistable: false,
             },
         }
     }
@@ -302,6 +308,7 @@ mod tests {
             refine: Refine {
                 levels: 2,
                 min_step: (0.004, 0.0),
+                split_bistable: false,
             },
             ..l
         };

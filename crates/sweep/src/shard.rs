@@ -55,14 +55,18 @@ pub fn expected_cost(task: &Task) -> f64 {
     simulate(&task.params, &task.ic, &ode).map_or(1.0, |o| o.steps.max(1) as f64)
 }
 
-/// The shard (`0..count`) of every task, balanced by expected cost; deterministic.
-pub fn assign(plan: &Plan, count: usize) -> Vec<usize> {
-    let costs: Vec<f64> = plan.tasks().map(|t| expected_cost(&t)).collect();
-    let mut order: Vec<usize> = (0..plan.len()).collect();
+/// The shard (`0..count`) of each of the runs `among` (indices into [`Plan::task`]), in
+/// that order, balanced by expected cost; deterministic.
+pub fn assign(plan: &Plan, among: &[usize], count: usize) -> Vec<usize> {
+    let costs: Vec<f64> = among
+        .iter()
+        .map(|&i| expected_cost(&plan.task(i)))
+        .collect();
+    let mut order: Vec<usize> = (0..among.len()).collect();
     // Most expensive first; ties by task order, so the result never depends on timing.
     order.sort_by(|&a, &b| costs[b].total_cmp(&costs[a]).then(a.cmp(&b)));
     let mut load = vec![0.0f64; count];
-    let mut owner = vec![0; plan.len()];
+    let mut owner = vec![0; among.len()];
     for t in order {
         let s = (0..count)
             .min_by(|&a, &b| load[a].total_cmp(&load[b]).then(a.cmp(&b)))
@@ -73,13 +77,13 @@ pub fn assign(plan: &Plan, count: usize) -> Vec<usize> {
     owner
 }
 
-/// The indices (into [`Plan::task`]) of the runs of `shard`.
-pub fn indices_of(plan: &Plan, shard: Shard) -> Vec<usize> {
-    assign(plan, shard.count)
+/// The runs of `shard` among the runs `among` (indices into [`Plan::task`]).
+pub fn indices_of(plan: &Plan, among: &[usize], shard: Shard) -> Vec<usize> {
+    assign(plan, among, shard.count)
         .into_iter()
-        .enumerate()
-        .filter(|(_, s)| *s == shard.index)
-        .map(|(i, _)| i)
+        .zip(among)
+        .filter(|(s, _)| *s == shard.index)
+        .map(|(_, &i)| i)
         .collect()
 }
 
@@ -97,11 +101,12 @@ mod tests {
         )
         .unwrap();
         let plan = crate::plan::plan(&spec);
+        let all: Vec<usize> = (0..plan.len()).collect();
         let n = 3;
         let mut seen = std::collections::HashSet::new();
         let mut loads = vec![0.0; n];
         for (i, load) in loads.iter_mut().enumerate() {
-            for t in indices_of(&plan, Shard { index: i, count: n }) {
+            for t in indices_of(&plan, &all, Shard { index: i, count: n }) {
                 let t = plan.task(t);
                 assert!(seen.insert(t.key.clone()), "run in two shards");
                 *load += expected_cost(&t);
@@ -112,7 +117,14 @@ mod tests {
             .iter()
             .fold((f64::INFINITY, 0.0f64), |(a, b), &x| (a.min(x), b.max(x)));
         assert!(hi / lo < 1.05, "unbalanced: {loads:?}");
-        assert_eq!(assign(&plan, n), assign(&plan, n));
+        assert_eq!(assign(&plan, &all, n), assign(&plan, &all, n));
+        // A subset (a refined sweep's level) is partitioned among the shards too.
+        let odd: Vec<usize> = all.iter().copied().filter(|i| i % 2 == 1).collect();
+        let mut parts: Vec<usize> = (0..n)
+            .flat_map(|i| indices_of(&plan, &odd, Shard { index: i, count: n }))
+            .collect();
+        parts.sort_unstable();
+        assert_eq!(parts, odd);
         assert!(Shard::parse("3/3").is_err() && Shard::parse("x").is_err());
         assert_eq!(Shard::parse("1/4").unwrap(), Shard { index: 1, count: 4 });
     }

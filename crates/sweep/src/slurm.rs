@@ -1,6 +1,11 @@
 //! Slurm job scripts for a sharded sweep: `DIR/slurm/sweep.sbatch`, an array of shards each
 //! running `droplet sweep --shard $SLURM_ARRAY_TASK_ID/N` into the shared directory, and
 //! `DIR/slurm/merge.sbatch`, `droplet merge DIR` to run after the array (`afterany`).
+//!
+//! A spec with `refine:` is run one level at a time ([`crate::execute`]): `sweep.sbatch` then
+//! takes the level as its argument (`sbatch sweep.sbatch L`), one array per
+//! level, each submitted with `--dependency=afterok:<the previous level's array>` (a level's
+//! points follow from the classes of the levels below), and the merge after the last.
 use crate::error::SweepError;
 use std::path::PathBuf;
 
@@ -21,6 +26,8 @@ pub struct SlurmJob {
     pub time: String,
     pub mem: String,
     pub max_runs: u64,
+    /// `Some(levels)` for a spec with `refine:`: the script runs the level given as `$1`.
+    pub levels: Option<u32>,
 }
 
 /// Writes both scripts (atomically); returns `[sweep.sbatch, merge.sbatch]`.
@@ -40,8 +47,15 @@ pub fn write_scripts(job: &SlurmJob) -> Result<[PathBuf; 2], SweepError> {
             dir.display()
         )
     };
+    let (level_doc, level_arg) = match job.levels {
+        None => (String::new(), ""),
+        Some(levels) => (
+            format!("# A refined sweep: the level (0..={levels}) is the argument; run them in order, each array\n# after the one before: sbatch --dependency=afterok:<previous array> sweep.sbatch L\nLEVEL=\"${{1:?the refinement level 0..={levels}}}\"\n"),
+            " --level \"$LEVEL\"",
+        ),
+    };
     let sweep_script = format!(
-        "{}# Shard $SLURM_ARRAY_TASK_ID of {n}: finished runs are skipped, so resubmitting resumes.\n\"{}\" sweep \"{}\" --out \"{}\" --shard \"$SLURM_ARRAY_TASK_ID/{n}\" --jobs \"${{SLURM_CPUS_PER_TASK:-1}}\" --max-runs {max_runs} --json\n",
+        "{}# Shard $SLURM_ARRAY_TASK_ID of {n}: finished runs are skipped, so resubmitting resumes.\n{level_doc}\"{}\" sweep \"{}\" --out \"{}\" --shard \"$SLURM_ARRAY_TASK_ID/{n}\"{level_arg} --jobs \"${{SLURM_CPUS_PER_TASK:-1}}\" --max-runs {max_runs} --json\n",
         header(&format!("droplet-{}", job.name), &format!("#SBATCH --array=0-{}\n#SBATCH --cpus-per-task={}\n", job.shards - 1, job.cpus)),
         job.exe.display(),
         job.spec.display(),

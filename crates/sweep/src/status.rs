@@ -52,12 +52,7 @@ pub fn status(dir: &Path) -> Result<SweepStatus, SweepError> {
         Some(lattice) => crate::level_walk::walk(&spec, lattice, &store, |level, plan, runs| {
             let done = runs
                 .iter()
-                .filter(|&&i| {
-                    matches!(
-                        store.check(&plan.task(i).key),
-                        crate::store::Stored::Valid(_)
-                    )
-                })
+                .filter(|&&i| store.has(&plan.task(i).key))
                 .count();
             levels.push(LevelStatus {
                 level,

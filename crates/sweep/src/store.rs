@@ -6,7 +6,7 @@ use crate::axes::{ETA_T, KAPPA2};
 use crate::error::SweepError;
 use crate::merge_report::MergeReport;
 use crate::plan::Plan;
-use droplet_solver::{InitialCondition, ModelParams, RunOutcome, SolverSettings, SOLVER_VERSION};
+use droplet_solver::{InitialCondition, ModelParams, RunOutcome, SolverSettings};
 use fs2::FileExt;
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
@@ -177,7 +177,10 @@ impl Store {
             }
         };
         let content_key = crate::plan::run_key(&rec.params, &rec.ic, &rec.settings);
-        if rec.key != key || rec.solver_version != SOLVER_VERSION || content_key != key {
+        if rec.key != key
+            || rec.solver_version != droplet_solver::solver_version(rec.settings.model)
+            || content_key != key
+        {
             return Stored::Corrupt(format!(
                 "its content does not match its key (names key {}, solver {}, content hashes to {content_key})",
                 rec.key, rec.solver_version
@@ -301,7 +304,7 @@ mod tests {
             params,
             ic,
             settings,
-            solver_version: SOLVER_VERSION.into(),
+            solver_version: droplet_solver::SOLVER_VERSION.into(),
             outcome: RunOutcome {
                 status: droplet_solver::RunStatus::Steady,
                 class: Some(droplet_solver::StateClass::MD),

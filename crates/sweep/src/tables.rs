@@ -238,6 +238,7 @@ pub fn points_frame(map: &PhaseMap) -> Result<DataFrame, SweepError> {
         ),
         ("n_steady", |c| c.n_steady),
         ("n_t_max", |c| c.n_t_max),
+        ("n_unsettled", |c| c.n_unsettled),
         ("n_diverged", |c| c.n_diverged),
     ] {
         cols.push(Column::new(

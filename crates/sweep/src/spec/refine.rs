@@ -4,6 +4,7 @@
 //! refine:
 //!   levels: 4                               # levels beyond the grid (1..=MAX_LEVELS)
 //!   min_step: {eta_t: 1.5e-4, kappa2: 3e-4}  # optional: no cell side below these
+//!   split_bistable: false                   # optional: also fill bistable bands
 //! ```
 //!
 //! Both grid axes must be `{start, stop, step}` ranges: level 0 is that grid, and each level
@@ -27,7 +28,7 @@ pub(super) fn parse(
     let Some(v) = top.get("refine") else {
         return Ok(None);
     };
-    let m = ctx.mapping(v, &["refine"], &["levels", "min_step"])?;
+    let m = ctx.mapping(v, &["refine"], &["levels", "min_step", "split_bistable"])?;
     let levels = match m.get("levels") {
         None => return Err(ctx.err(&["refine", "levels"], "missing", "an integer 1..=10")),
         Some(x) => x
@@ -50,6 +51,12 @@ pub(super) fn parse(
             }
         }
     }
+    let split_bistable = match m.get("split_bistable") {
+        None => false,
+        Some(x) => x
+            .as_bool()
+            .ok_or_else(|| ctx.err(&["refine", "split_bistable"], show(x), "true or false"))?,
+    };
     let grid = top.get("grid").and_then(|g| g.as_mapping());
     let axis = |key: &'static str, values: &[f64]| -> Result<Axis, SpecError> {
         let step = grid
@@ -77,6 +84,10 @@ pub(super) fn parse(
     Ok(Some(Lattice {
         eta_t: axis(ETA_T, eta_t)?,
         kappa2: axis(KAPPA2, kappa2)?,
-        refine: Refine { levels, min_step },
+        refine: Refine {
+            levels,
+            min_step,
+            split_bistable,
+        },
     }))
 }
