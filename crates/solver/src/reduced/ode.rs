@@ -180,6 +180,33 @@ mod tests {
     }
 
     #[test]
+    fn an_unstable_resting_state_does_not_end_a_run() {
+        // Just past ID's onset of motion (eq. idmd): the analytic ID state grows, the stable
+        // one is stable, and the run from iv, which creeps near the ID state slowly enough for
+        // the steady test (it stopped there as ID, v ~ 1e-4, before the guard), ends MD.
+        let c = Coefficients::paper();
+        let id = |p: &ModelParams| [0.0, 0.0, ((c.g0t - p.kappa2) / c.h0).sqrt(), 0.0];
+        let past = ModelParams::at(0.086563, 0.114375);
+        assert!(max_growth(&c, &past, id(&past)) > 10.0 * UNSTABLE);
+        let before = ModelParams::at(0.1, 0.11);
+        assert!(max_growth(&c, &before, id(&before)) < 0.0);
+        let out = simulate(
+            &past,
+            &InitialCondition::parse("iv").unwrap(),
+            &SolverSettings::ode(),
+        )
+        .unwrap();
+        assert_eq!(
+            (out.status, out.class),
+            (RunStatus::Steady, Some(StateClass::MD)),
+            "v {} s {} t {}",
+            out.v,
+            out.s,
+            out.t_end
+        );
+    }
+
+    #[test]
     fn id_state_is_the_analytic_one() {
         // kappa2 < g0~, eta_t > the ID stability line: ID with s = sqrt((g0~ - kappa2) / h0).
         let c = Coefficients::paper();
