@@ -112,6 +112,19 @@ fn cluster() -> bool {
     true
 }
 
+/// The sweep `spec` in one process into `DIR/single` (the reference tables).
+fn single_process(spec: &str, dir: &Path) -> PathBuf {
+    let single = dir.join("single");
+    ok(
+        droplet()
+            .args(["sweep", spec, "--out", single.to_str().unwrap(), "--json"])
+            .output()
+            .unwrap(),
+        "single-process sweep",
+    );
+    single
+}
+
 /// `droplet slurm SPEC --shards N --out OUT --submit --json`: the submitted job ids.
 fn submit(spec: &str, shards: &str, out: &str) -> Vec<String> {
     let out = ok(
@@ -139,14 +152,7 @@ fn smoke_sweep_as_a_slurm_array_merges_to_the_single_process_tables() {
     let spec = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("sweeps/smoke.yaml");
     let spec = spec.to_str().unwrap();
     let dir = tempfile::tempdir().unwrap();
-    let single = dir.path().join("single");
-    ok(
-        droplet()
-            .args(["sweep", spec, "--out", single.to_str().unwrap(), "--json"])
-            .output()
-            .unwrap(),
-        "single-process sweep",
-    );
+    let single = single_process(spec, dir.path());
     let limit = Duration::from_secs(600);
 
     // 1. `droplet slurm --submit`: an array of 3 shards, then the merge job (afterany).
@@ -237,14 +243,7 @@ fn refined_sweep_as_one_slurm_array_per_level_merges_to_the_single_process_table
     )
     .unwrap();
     let spec = spec.to_str().unwrap();
-    let single = dir.path().join("single");
-    ok(
-        droplet()
-            .args(["sweep", spec, "--out", single.to_str().unwrap(), "--json"])
-            .output()
-            .unwrap(),
-        "single-process sweep",
-    );
+    let single = single_process(spec, dir.path());
     let arrayed = dir.path().join("arrayed");
     let jobs = submit(spec, "2", arrayed.to_str().unwrap());
     assert_eq!(jobs.len(), 4, "levels 0, 1, 2 and the merge: {jobs:?}");
