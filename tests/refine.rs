@@ -210,6 +210,9 @@ fn a_uniform_and_a_refined_sweep_share_their_runs() {
         "{st}"
     );
     assert_eq!(st["complete"], true);
+    // Every run was stored within the pace window; nothing remains, so no ETA.
+    assert_eq!(st["runs_recent"], st["runs_done"], "{st}");
+    assert!(st["eta_s"].is_null(), "{st}");
 }
 
 #[test]

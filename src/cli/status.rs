@@ -56,6 +56,14 @@ pub fn run(a: Args) -> Result<(), CliError> {
             };
             println!("remaining: about {eta:.0} CPU s at the mean cost of the finished runs{more}");
         }
+        if let Some(eta) = st.eta_s {
+            println!(
+                "ETA: about {:.0} min at the pace of the last {} min ({} runs stored)",
+                eta / 60.0,
+                droplet_sweep::status::PACE_WINDOW_S / 60,
+                st.runs_recent
+            );
+        }
         println!("run statuses: {}", fmt(&st.run_statuses));
         println!("run classes: {}", fmt(&st.run_classes));
         println!(

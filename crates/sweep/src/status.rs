@@ -31,7 +31,15 @@ pub struct SweepStatus {
     /// Remaining CPU seconds of the known runs at the mean cost of the finished ones (a
     /// refined sweep's later levels are not known yet).
     pub eta_cpu_s: Option<f64>,
+    /// Runs stored in the last [`PACE_WINDOW_S`] seconds (by any process: threads, shards).
+    pub runs_recent: usize,
+    /// Wall seconds until the known runs are done at that pace (`None` when none was stored
+    /// in the window, or nothing remains).
+    pub eta_s: Option<f64>,
 }
+
+/// The window over which `droplet status` measures a running sweep's pace.
+pub const PACE_WINDOW_S: u64 = 600;
 
 /// Progress of one refinement level.
 #[derive(Debug, Clone, Serialize)]
@@ -80,6 +88,13 @@ pub fn status(dir: &Path) -> Result<SweepStatus, SweepError> {
     let point_counts = PhaseMap::new(&plan, &records).class_counts();
     let eta_cpu_s = (!records.is_empty())
         .then(|| cpu_s / records.len() as f64 * (plan.len() - records.len()) as f64);
+    let runs_recent = store.stored_within(
+        plan.tasks().map(|t| t.key),
+        std::time::Duration::from_secs(PACE_WINDOW_S),
+    );
+    let remaining = plan.len() - records.len();
+    let eta_s = (runs_recent > 0 && remaining > 0)
+        .then(|| remaining as f64 * PACE_WINDOW_S as f64 / runs_recent as f64);
     Ok(SweepStatus {
         name: spec.name,
         output: dir.to_path_buf(),
@@ -94,5 +109,7 @@ pub fn status(dir: &Path) -> Result<SweepStatus, SweepError> {
         cpu_s,
         levels,
         eta_cpu_s,
+        runs_recent,
+        eta_s,
     })
 }

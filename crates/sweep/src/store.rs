@@ -264,6 +264,24 @@ impl Store {
         self.load_counting(keys).0
     }
 
+    /// How many of the runs `keys` were stored within the last `window` (by their files'
+    /// modification times): the pace of a sweep at work, whichever processes run it.
+    pub fn stored_within<K: AsRef<str>>(
+        &self,
+        keys: impl IntoIterator<Item = K>,
+        window: std::time::Duration,
+    ) -> usize {
+        keys.into_iter()
+            .filter(|k| {
+                fs::metadata(self.path_of(k.as_ref()))
+                    .and_then(|m| m.modified())
+                    .ok()
+                    .and_then(|t| t.elapsed().ok())
+                    .is_some_and(|age| age <= window)
+            })
+            .count()
+    }
+
     /// As [`Self::load_many`], also counting the keys whose file is corrupt.
     pub fn load_counting<K: AsRef<str>>(
         &self,
