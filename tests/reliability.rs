@@ -88,6 +88,24 @@ fn corrupt_stored_runs_are_moved_aside_and_recomputed_and_merge_refuses_gaps() {
     let st = json(&run(&["status", out.to_str().unwrap(), "--json"]));
     assert_eq!(st["runs_corrupt"], 4, "{st}");
     assert_eq!(st["runs_done"], 8, "{st}");
+    // The pace: every file is seconds old, so it is measured over the 60 s floor; with one
+    // stored 5 min ago, over those 5 min; one stored 20 min ago is outside the window.
+    let eta = |st: &serde_json::Value| st["eta_s"].as_f64().unwrap();
+    assert_eq!(st["runs_recent"], 12, "{st}");
+    assert_eq!(st["pace_s"], 60.0, "{st}");
+    assert!((eta(&st) - 4.0 * 60.0 / 12.0).abs() < 1e-9, "{st}");
+    let age = |f: &Path, s: u64| {
+        let file = std::fs::File::options().write(true).open(f).unwrap();
+        let t = std::time::SystemTime::now() - Duration::from_secs(s);
+        file.set_modified(t).unwrap();
+    };
+    age(&files[6], 300);
+    age(&files[7], 1200);
+    let st = json(&run(&["status", out.to_str().unwrap(), "--json"]));
+    assert_eq!(st["runs_recent"], 11, "{st}");
+    let pace = st["pace_s"].as_f64().unwrap();
+    assert!((300.0..310.0).contains(&pace), "{st}");
+    assert!((eta(&st) - 4.0 * pace / 11.0).abs() < 1e-9, "{st}");
 
     // The sweep moves them aside (never deletes), recomputes them, and the tables are whole.
     let o = sweep(&spec, &out, &[]);

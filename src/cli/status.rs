@@ -58,9 +58,9 @@ pub fn run(a: Args) -> Result<(), CliError> {
         }
         if let Some(eta) = st.eta_s {
             println!(
-                "ETA: about {:.0} min at the pace of the last {} min ({} runs stored)",
+                "ETA: about {:.0} min at the pace of the last {:.0} min ({} runs stored)",
                 eta / 60.0,
-                droplet_sweep::status::PACE_WINDOW_S / 60,
+                st.pace_s / 60.0,
                 st.runs_recent
             );
         }

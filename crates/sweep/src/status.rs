@@ -33,13 +33,20 @@ pub struct SweepStatus {
     pub eta_cpu_s: Option<f64>,
     /// Runs stored in the last [`PACE_WINDOW_S`] seconds (by any process: threads, shards).
     pub runs_recent: usize,
-    /// Wall seconds until the known runs are done at that pace (`None` when none was stored
-    /// in the window, or nothing remains).
+    /// Seconds over which the pace is measured: from the first of those runs to now, at
+    /// least [`PACE_FLOOR_S`] (0 when none was stored in the window).
+    pub pace_s: f64,
+    /// Wall seconds until the known runs are done at that pace, measured from the first of
+    /// those runs to now (`None` when none was stored in the window, or nothing remains).
     pub eta_s: Option<f64>,
 }
 
 /// The window over which `droplet status` measures a running sweep's pace.
 pub const PACE_WINDOW_S: u64 = 600;
+
+/// The shortest span over which a pace is measured: a sweep's first few runs of the window
+/// do not make a pace.
+pub const PACE_FLOOR_S: f64 = 60.0;
 
 /// Progress of one refinement level.
 #[derive(Debug, Clone, Serialize)]
@@ -88,13 +95,18 @@ pub fn status(dir: &Path) -> Result<SweepStatus, SweepError> {
     let point_counts = PhaseMap::new(&plan, &records).class_counts();
     let eta_cpu_s = (!records.is_empty())
         .then(|| cpu_s / records.len() as f64 * (plan.len() - records.len()) as f64);
-    let runs_recent = store.stored_within(
+    let recent = store.stored_within(
         plan.tasks().map(|t| t.key),
         std::time::Duration::from_secs(PACE_WINDOW_S),
     );
     let remaining = plan.len() - records.len();
-    let eta_s = (runs_recent > 0 && remaining > 0)
-        .then(|| remaining as f64 * PACE_WINDOW_S as f64 / runs_recent as f64);
+    // The pace over the time since the window's first stored run (a sweep resumed 3 min ago
+    // has stored its runs in 3 min, not 10), at least [`PACE_FLOOR_S`].
+    let pace_span_s = recent.oldest.as_secs_f64().max(PACE_FLOOR_S);
+    let eta_s = (recent.runs > 0 && remaining > 0)
+        .then(|| remaining as f64 * pace_span_s / recent.runs as f64);
+    let runs_recent = recent.runs;
+    let pace_s = if runs_recent > 0 { pace_span_s } else { 0.0 };
     Ok(SweepStatus {
         name: spec.name,
         output: dir.to_path_buf(),
@@ -110,6 +122,7 @@ pub fn status(dir: &Path) -> Result<SweepStatus, SweepError> {
         levels,
         eta_cpu_s,
         runs_recent,
+        pace_s,
         eta_s,
     })
 }

@@ -54,6 +54,14 @@ pub struct Store {
 /// Name of the directory-wide lock file.
 const LOCK: &str = ".lock";
 
+/// The runs stored within a recent window ([`Store::stored_within`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Recent {
+    pub runs: usize,
+    /// Age of the oldest of them (zero when there are none).
+    pub oldest: std::time::Duration,
+}
+
 impl Store {
     /// Opens `dir` for a whole sweep, creating it, and takes its lock exclusively: refused
     /// while another sweep or any shard works on it (the OS releases a lock when its process
@@ -265,21 +273,25 @@ impl Store {
     }
 
     /// How many of the runs `keys` were stored within the last `window` (by their files'
-    /// modification times): the pace of a sweep at work, whichever processes run it.
+    /// modification times), and the age of the oldest of them: the pace of a sweep at work,
+    /// whichever processes run it.
     pub fn stored_within<K: AsRef<str>>(
         &self,
         keys: impl IntoIterator<Item = K>,
         window: std::time::Duration,
-    ) -> usize {
-        keys.into_iter()
-            .filter(|k| {
-                fs::metadata(self.path_of(k.as_ref()))
-                    .and_then(|m| m.modified())
-                    .ok()
-                    .and_then(|t| t.elapsed().ok())
-                    .is_some_and(|age| age <= window)
-            })
-            .count()
+    ) -> Recent {
+        let mut recent = Recent::default();
+        for k in keys {
+            let age = fs::metadata(self.path_of(k.as_ref()))
+                .and_then(|m| m.modified())
+                .ok()
+                .and_then(|t| t.elapsed().ok());
+            if let Some(age) = age.filter(|age| *age <= window) {
+                recent.runs += 1;
+                recent.oldest = recent.oldest.max(age);
+            }
+        }
+        recent
     }
 
     /// As [`Self::load_many`], also counting the keys whose file is corrupt.
