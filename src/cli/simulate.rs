@@ -77,7 +77,11 @@ pub struct Args {
     /// Write the time series (t, x, y, vx, vy, a2, b2, v, s) to this Parquet file.
     #[arg(long)]
     series: Option<PathBuf>,
-    /// Sampling interval of the series / picture in time units.
+    /// Sampling interval of the series / picture in time units. Adaptive steps are shortened
+    /// to land on the sample times, so a recorded run's steps differ from an unrecorded one's:
+    /// its values agree within the step tolerance, except in runs still leaving a saddle at
+    /// --t-max, whose final values are sensitive to any integration error (README,
+    /// Classification).
     #[arg(long, default_value_t = 0.5)]
     every: f64,
     /// Draw the Fig. 1 panels (final field, outline, velocity; v(t), s(t)) to this PNG (+ .svg).
