@@ -385,6 +385,11 @@ fn catalogue() -> Vec<Case> {
             &["params.sigma", "grid cell"],
         ),
         spec_case(
+            "spec classify rule unknown",
+            ("solver:", "classify: {beside_unstable: drop}\nsolver:"),
+            &["classify.beside_unstable", "drop", "count or exclude"],
+        ),
+        spec_case(
             "spec sigma 10",
             ("solver:", "params: {sigma: 10}\nsolver:"),
             &["params.sigma"],

@@ -71,7 +71,7 @@ impl Finding {
         let rot = self.verdict.rotation;
         if self.verdict.unstable > 0 {
             format!(
-                "near an unstable steady state ({} growing mode(s), largest {:+.2e})",
+                "{BESIDE_UNSTABLE} ({} growing mode(s), largest {:+.2e})",
                 self.verdict.unstable, self.verdict.max_re
             )
         } else if let Some(r) = rot.filter(|r| *r >= self.verdict.max_re) {
@@ -95,6 +95,16 @@ pub const SETTLED: &str = "v and s are settled";
 /// its class, are settled.
 pub fn diagnosis_settles_class(diagnosis: &str) -> bool {
     diagnosis.ends_with(SETTLED)
+}
+
+/// The start of a diagnosis whose run stopped beside an unstable steady state (a saddle it
+/// had not left at `t_max`): its final class is where it had crept to, not where it would end.
+pub const BESIDE_UNSTABLE: &str = "near an unstable steady state";
+
+/// Whether a `diagnosis` ([`Finding::describe`]) says the run stopped beside an unstable
+/// steady state.
+pub fn diagnosis_beside_unstable(diagnosis: &str) -> bool {
+    diagnosis.starts_with(BESIDE_UNSTABLE)
 }
 
 /// Largest difference in speed or deformation between a run and the root it is taken to be

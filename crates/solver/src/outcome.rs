@@ -129,4 +129,15 @@ impl RunOutcome {
             RunStatus::Diverged => false,
         }
     }
+
+    /// The run stopped unfinished beside an unstable steady state (see
+    /// [`crate::newton_finish::diagnosis_beside_unstable`]): its class is where it had crept
+    /// to by `t_max`.
+    pub fn beside_unstable(&self) -> bool {
+        matches!(self.status, RunStatus::TMax | RunStatus::StepLimit)
+            && self
+                .diagnosis
+                .as_deref()
+                .is_some_and(crate::newton_finish::diagnosis_beside_unstable)
+    }
 }

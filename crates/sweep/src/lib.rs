@@ -6,6 +6,7 @@ pub mod axes;
 pub mod bench;
 pub mod bench_run;
 pub mod bench_table;
+pub mod beside_unstable;
 pub mod bifurcation_table;
 pub mod boundary_table;
 pub mod branch_lines;

@@ -7,10 +7,16 @@
 //!   `n_t_max` so it can be told apart; so does a run that ended unconverged at the step cap
 //!   (`step_limit`, see `droplet_solver::limits`); of these, the runs whose speed and
 //!   deformation had not settled either (`RunOutcome::class_settled`) are `n_unsettled`;
+//! - with [`BesideUnstable::Exclude`] (spec `classify: {beside_unstable: exclude}`), an
+//!   unfinished run that stopped beside an unstable steady state
+//!   (`RunOutcome::beside_unstable`) does not count with a class either: it is still on its
+//!   way, and its final class is only where it had crept to by `t_max`;
 //! - a `diverged` run has no class and does not count; it is counted in `n_diverged`;
 //! - one distinct class -> that class; two -> a bistable pair written in the order
 //!   IC, ID, MD, MC (`IC/MD`, `ID/MD`, `IC/MC`, ...); three or more -> `not classified`;
-//!   no classified run at all (every run diverged, or none finished) -> `diverged` / `missing`.
+//!   no classified run at all (every run diverged, or none finished) -> `diverged` / `missing`,
+//!   and `not classified` when runs were excluded and none is left.
+pub use crate::beside_unstable::BesideUnstable;
 use crate::store::RunRecord;
 use droplet_solver::StateClass;
 use std::collections::BTreeSet;
@@ -37,9 +43,13 @@ pub struct PointClass {
 }
 
 /// Classifies a point from its runs (any order).
-pub fn classify_point<'a>(runs: impl IntoIterator<Item = &'a RunRecord>) -> PointClass {
+pub fn classify_point<'a>(
+    runs: impl IntoIterator<Item = &'a RunRecord>,
+    beside_unstable: BesideUnstable,
+) -> PointClass {
     let mut classes = BTreeSet::new();
     let (mut n_runs, mut n_steady, mut n_t_max, mut n_unsettled, mut n_diverged) = (0, 0, 0, 0, 0);
+    let mut n_excluded = 0;
     for r in runs {
         n_runs += 1;
         match r.outcome.status {
@@ -50,11 +60,17 @@ pub fn classify_point<'a>(runs: impl IntoIterator<Item = &'a RunRecord>) -> Poin
             }
             droplet_solver::RunStatus::Diverged => n_diverged += 1,
         }
-        if let Some(c) = r.outcome.class {
+        if beside_unstable == BesideUnstable::Exclude && r.outcome.beside_unstable() {
+            n_excluded += 1;
+        } else if let Some(c) = r.outcome.class {
             classes.insert(c);
         }
     }
-    let label = label_of(&classes, n_runs, n_diverged);
+    let label = if classes.is_empty() && n_excluded > 0 {
+        NOT_CLASSIFIED.into()
+    } else {
+        label_of(&classes, n_runs, n_diverged)
+    };
     PointClass {
         label,
         n_runs,
@@ -111,7 +127,7 @@ mod tests {
     fn single_bistable_not_classified_and_divergence() {
         use RunStatus::*;
         use StateClass::*;
-        let p = |v: Vec<RunRecord>| classify_point(&v).label;
+        let p = |v: Vec<RunRecord>| classify_point(&v, BesideUnstable::Count).label;
         assert_eq!(p(vec![rec(Steady, Some(IC)); 4]), "IC");
         assert_eq!(
             p(vec![
@@ -143,7 +159,7 @@ mod tests {
             rec(Diverged, None),
             rec(TMax, Some(ID)),
         ];
-        let c = classify_point(&mixed);
+        let c = classify_point(&mixed, BesideUnstable::Count);
         assert_eq!(
             (c.label.as_str(), c.n_diverged, c.n_t_max, c.n_steady),
             ("ID", 1, 1, 1)
@@ -157,8 +173,54 @@ mod tests {
         ));
         let mut saddle = rec(TMax, Some(MD));
         saddle.outcome.diagnosis = Some("near an unstable steady state".into());
-        let c = classify_point(&[turning, saddle, rec(TMax, Some(MD))]);
+        let c = classify_point(
+            &[turning, saddle, rec(TMax, Some(MD))],
+            BesideUnstable::Count,
+        );
         assert_eq!((c.n_t_max, c.n_unsettled), (3, 2));
         assert_eq!(p(vec![]), MISSING);
+    }
+
+    #[test]
+    fn runs_beside_an_unstable_state_are_left_out_only_when_asked() {
+        use RunStatus::*;
+        use StateClass::*;
+        let beside = |class| {
+            let mut r = rec(TMax, Some(class));
+            r.outcome.diagnosis = Some(format!(
+                "{} (1 growing mode(s), largest +6.12e-4)",
+                droplet_solver::newton_finish::BESIDE_UNSTABLE
+            ));
+            r
+        };
+        let slow = |class| {
+            let mut r = rec(TMax, Some(class));
+            r.outcome.diagnosis = Some("slowest eigenvalue -6.11e-4: converging slowly".into());
+            r
+        };
+        let label = |runs: &[RunRecord], rule| classify_point(runs, rule).label;
+        // The ID/MD band's creepers: two steady MD, two ID runs stuck beside the unstable ID.
+        let band = [
+            rec(Steady, Some(MD)),
+            rec(Steady, Some(MD)),
+            beside(ID),
+            beside(ID),
+        ];
+        assert_eq!(label(&band, BesideUnstable::Count), "ID/MD");
+        assert_eq!(label(&band, BesideUnstable::Exclude), "MD");
+        let c = classify_point(&band, BesideUnstable::Exclude);
+        assert_eq!((c.n_runs, c.n_t_max, c.n_unsettled), (4, 2, 2));
+        // Other unfinished runs still count by their final state.
+        let converging = [rec(Steady, Some(IC)), slow(MC)];
+        assert_eq!(label(&converging, BesideUnstable::Exclude), "IC/MC");
+        // Nothing left: not classified (not missing: the runs exist).
+        assert_eq!(
+            label(&[beside(MC), beside(MC)], BesideUnstable::Exclude),
+            NOT_CLASSIFIED
+        );
+        // A steady run is never excluded, whatever its diagnosis.
+        let mut steady = rec(Steady, Some(IC));
+        steady.outcome.diagnosis = beside(IC).outcome.diagnosis;
+        assert_eq!(label(&[steady], BesideUnstable::Exclude), "IC");
     }
 }

@@ -70,7 +70,7 @@ impl PhaseMap {
                 kappa2: plan.points[i].1,
                 level: plan.levels[i],
                 cell: plan.cells[i],
-                class: classify_point(runs.iter().flatten().copied()),
+                class: classify_point(runs.iter().flatten().copied(), plan.beside_unstable),
                 per_ic: runs.iter().map(|r| r.map(run_end)).collect(),
             })
             .collect();

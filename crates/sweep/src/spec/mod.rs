@@ -13,14 +13,16 @@
 //! solver: {scheme: spectral, n: 192, dt: 0.02, tol: 1.0e-4, dt_max: 0.25, t_max: 2000,
 //!          steady_tol: 1.0e-6, steady_window: 0.1}
 //! refine: {levels: 4, min_step: {eta_t: 1.5e-4, kappa2: 3e-4}}   # optional (ranges only)
+//! classify: {beside_unstable: count}   # or exclude: leave runs stuck at saddles out of classes
 //!                             # tol: adaptive stepping (0 = fixed step dt; spectral only)
 //!                             # ode: dt default 0.05, and h0 (default 0.1436)
 //! ```
 //!
 //! One file per section: [`context`] (locating keys, typed accessors, error paths),
-//! [`grid`], [`params`], [`initial`], [`solver`], [`refine`]. Range checks are the solver crate's own
+//! [`grid`], [`params`], [`initial`], [`solver`], [`refine`], [`classify`]. Range checks are the solver crate's own
 //! (`ModelParams::validate`, `SolverSettings::validate`, `limits::check_run`), the same as for
 //! `droplet simulate`.
+mod classify;
 mod context;
 mod grid;
 mod initial;
@@ -53,6 +55,8 @@ pub struct SweepSpec {
     pub solver: SolverSettings,
     /// Adaptive refinement of the grid (`refine:`), if asked for.
     pub refine: Option<crate::refine::Lattice>,
+    /// How point classes count runs stopped beside an unstable state (`classify:`).
+    pub beside_unstable: crate::beside_unstable::BesideUnstable,
     /// The spec's text, stored in the output metadata.
     #[serde(skip)]
     pub source: String,
@@ -105,6 +109,7 @@ pub fn parse(text: &str, file: &str, stem: &str) -> Result<SweepSpec, SpecError>
             "initial_conditions",
             "solver",
             "refine",
+            "classify",
         ],
     )?;
 
@@ -146,6 +151,7 @@ pub fn parse(text: &str, file: &str, stem: &str) -> Result<SweepSpec, SpecError>
     let initial_conditions = initial::parse(&ctx, top)?;
     let solver = solver::parse(&ctx, top, model, &params)?;
     let refine = refine::parse(&ctx, top, &eta_t, &kappa2)?;
+    let beside_unstable = classify::parse(&ctx, top)?;
     Ok(SweepSpec {
         name,
         output,
@@ -155,6 +161,7 @@ pub fn parse(text: &str, file: &str, stem: &str) -> Result<SweepSpec, SpecError>
         initial_conditions,
         solver,
         refine,
+        beside_unstable,
         source: text.to_string(),
     })
 }
@@ -185,6 +192,31 @@ mod tests {
         let e = parse(&bad, "t.yaml", "t").unwrap_err();
         assert_eq!(e.path, "solver.nn");
         assert_eq!(e.line, Some(6));
+    }
+
+    #[test]
+    fn classify_section_chooses_how_runs_beside_unstable_states_count() {
+        use crate::beside_unstable::BesideUnstable;
+        let s = parse(GOOD, "t.yaml", "t").unwrap();
+        assert_eq!(s.beside_unstable, BesideUnstable::Count);
+        let s = parse(
+            &format!("{GOOD}classify: {{beside_unstable: exclude}}\n"),
+            "t.yaml",
+            "t",
+        )
+        .unwrap();
+        assert_eq!(s.beside_unstable, BesideUnstable::Exclude);
+        let e = parse(
+            &format!("{GOOD}classify:\n  beside_unstable: drop\n"),
+            "t.yaml",
+            "t",
+        )
+        .unwrap_err();
+        assert_eq!(e.path, "classify.beside_unstable");
+        assert_eq!(e.line, Some(9));
+        assert_eq!(e.allowed, "count or exclude");
+        let e = parse(&format!("{GOOD}classify: {{saddles: 1}}\n"), "t.yaml", "t").unwrap_err();
+        assert_eq!(e.path, "classify.saddles");
     }
 
     #[test]
