@@ -210,6 +210,9 @@ mod tests {
         assert_eq!(label(&band, BesideUnstable::Exclude), "MD");
         let c = classify_point(&band, BesideUnstable::Exclude);
         assert_eq!((c.n_runs, c.n_t_max, c.n_unsettled), (4, 2, 2));
+        // Such a run is always unsettled, so its point's cells are split under either rule
+        // and the rule never changes a refined sweep's points.
+        assert!(band[2].outcome.beside_unstable() && !band[2].outcome.class_settled());
         // Other unfinished runs still count by their final state.
         let converging = [rec(Steady, Some(IC)), slow(MC)];
         assert_eq!(label(&converging, BesideUnstable::Exclude), "IC/MC");
