@@ -66,11 +66,7 @@ pub fn classify_point<'a>(
             classes.insert(c);
         }
     }
-    let label = if classes.is_empty() && n_excluded > 0 {
-        NOT_CLASSIFIED.into()
-    } else {
-        label_of(&classes, n_runs, n_diverged)
-    };
+    let label = label_of(&classes, n_runs, n_diverged, n_excluded);
     PointClass {
         label,
         n_runs,
@@ -81,10 +77,16 @@ pub fn classify_point<'a>(
     }
 }
 
-fn label_of(classes: &BTreeSet<StateClass>, n_runs: usize, n_diverged: usize) -> String {
+fn label_of(
+    classes: &BTreeSet<StateClass>,
+    n_runs: usize,
+    n_diverged: usize,
+    n_excluded: usize,
+) -> String {
     let names: Vec<&str> = classes.iter().map(|c| c.as_str()).collect();
     match names.len() {
         0 if n_runs == 0 => MISSING.into(),
+        0 if n_excluded > 0 => NOT_CLASSIFIED.into(),
         0 if n_diverged > 0 => DIVERGED.into(),
         0 => MISSING.into(),
         1 | 2 => names.join("/"),

@@ -13,14 +13,14 @@
 //! solver: {scheme: spectral, n: 192, dt: 0.02, tol: 1.0e-4, dt_max: 0.25, t_max: 2000,
 //!          steady_tol: 1.0e-6, steady_window: 0.1}
 //! refine: {levels: 4, min_step: {eta_t: 1.5e-4, kappa2: 3e-4}}   # optional (ranges only)
-//! classify: {beside_unstable: count}   # or exclude: leave runs stuck at saddles out of classes
 //!                             # tol: adaptive stepping (0 = fixed step dt; spectral only)
 //!                             # ode: dt default 0.05, and h0 (default 0.1436)
+//! classify: {beside_unstable: count}   # or exclude: leave runs stuck at saddles out of classes
 //! ```
 //!
 //! One file per section: [`context`] (locating keys, typed accessors, error paths),
-//! [`grid`], [`params`], [`initial`], [`solver`], [`refine`], [`classify`]. Range checks are the solver crate's own
-//! (`ModelParams::validate`, `SolverSettings::validate`, `limits::check_run`), the same as for
+//! [`grid`], [`params`], [`initial`], [`solver`], [`refine`], [`classify`]. Range checks are the
+//! solver crate's own (`ModelParams::validate`, `SolverSettings::validate`, `limits::check_run`), the same as for
 //! `droplet simulate`.
 mod classify;
 mod context;
