@@ -197,25 +197,16 @@ mod tests {
     #[test]
     fn classify_section_chooses_how_runs_beside_unstable_states_count() {
         use crate::beside_unstable::BesideUnstable;
-        let s = parse(GOOD, "t.yaml", "t").unwrap();
-        assert_eq!(s.beside_unstable, BesideUnstable::Count);
-        let s = parse(
-            &format!("{GOOD}classify: {{beside_unstable: exclude}}\n"),
-            "t.yaml",
-            "t",
-        )
-        .unwrap();
+        // GOOD followed by `extra`.
+        let with = |extra: &str| parse(&format!("{GOOD}{extra}"), "t.yaml", "t");
+        assert_eq!(with("").unwrap().beside_unstable, BesideUnstable::Count);
+        let s = with("classify: {beside_unstable: exclude}\n").unwrap();
         assert_eq!(s.beside_unstable, BesideUnstable::Exclude);
-        let e = parse(
-            &format!("{GOOD}classify:\n  beside_unstable: drop\n"),
-            "t.yaml",
-            "t",
-        )
-        .unwrap_err();
+        let e = with("classify:\n  beside_unstable: drop\n").unwrap_err();
         assert_eq!(e.path, "classify.beside_unstable");
         assert_eq!(e.line, Some(9));
         assert_eq!(e.allowed, "count or exclude");
-        let e = parse(&format!("{GOOD}classify: {{saddles: 1}}\n"), "t.yaml", "t").unwrap_err();
+        let e = with("classify: {saddles: 1}\n").unwrap_err();
         assert_eq!(e.path, "classify.saddles");
     }
 
