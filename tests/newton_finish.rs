@@ -97,3 +97,88 @@ fn the_steady_key_is_read_checked_and_in_the_tables() {
         );
     }
 }
+
+/// The IC creeper of the refined map at (0.0875, 0.11875) from IC iv, N = 192: it sits beside
+/// the unstable resting state (drift growing at 3.4e-4) and reaches `t_max` there.
+fn creeper(extra: &[&str]) -> serde_json::Value {
+    let mut args = vec![
+        "simulate", "--eta-t", "0.0875", "--kappa2", "0.11875", "--ic", "iv", "--json",
+    ];
+    args.extend_from_slice(extra);
+    json(&run(&args))
+}
+
+#[test]
+fn a_run_beside_a_saddle_it_cannot_leave_stops_with_its_t_max_class() {
+    let waited = creeper(&[]);
+    assert_eq!(waited["status"], "t_max", "{waited}");
+    let stopped = creeper(&["--stop-beside-saddle"]);
+    assert_eq!(stopped["status"], "saddle", "{stopped}");
+    assert_eq!(stopped["class"], waited["class"], "{stopped}\n{waited}");
+    assert!(stopped["t_end"].as_f64().unwrap() < 1000.0, "{stopped}");
+    for out in [&waited, &stopped] {
+        let d = out["diagnosis"].as_str().unwrap();
+        assert!(d.starts_with("near an unstable steady state"), "{d}");
+    }
+    // Only with the Newton finish, whose growth rate it uses.
+    let o = run(&[
+        "simulate",
+        "--eta-t",
+        "0.0875",
+        "--kappa2",
+        "0.11875",
+        "--steady",
+        "test",
+        "--stop-beside-saddle",
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("stop_beside_saddle"), "{err}");
+}
+
+#[test]
+fn the_stop_beside_saddle_key_is_read_checked_and_in_the_tables() {
+    let dir = tempfile::tempdir().unwrap();
+    let spec = |value: &str, steady: &str| {
+        format!(
+            "name: k\ngrid:\n  eta_t: [0.0875]\n  kappa2: [0.11875]\ninitial_conditions: [iv]\nsolver: {{steady: {steady}, stop_beside_saddle: {value}}}\n"
+        )
+    };
+    for (value, steady, key) in [
+        ("sometimes", "newton", "solver.stop_beside_saddle"),
+        ("true", "test", "solver.stop_beside_saddle"),
+    ] {
+        let bad = write_spec(dir.path(), "bad.yaml", &spec(value, steady));
+        let o = run(&[
+            "sweep",
+            bad.to_str().unwrap(),
+            "--out",
+            dir.path().join("b").to_str().unwrap(),
+        ]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{err}");
+        assert!(err.contains(key) && err.contains("bad.yaml"), "{err}");
+    }
+    let good = write_spec(dir.path(), "good.yaml", &spec("true", "newton"));
+    let out = dir.path().join("g");
+    let o = run(&[
+        "sweep",
+        good.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let runs = common::read(&out.join("runs.parquet"));
+    let status = runs.column("status").unwrap().str().unwrap().get(0);
+    assert_eq!(status, Some("saddle"));
+    let flag = runs
+        .column("stop_beside_saddle")
+        .unwrap()
+        .bool()
+        .unwrap()
+        .get(0);
+    assert_eq!(flag, Some(true));
+    let points = common::read(&out.join("points.parquet"));
+    let n_unsettled = points.column("n_unsettled").unwrap().u32().unwrap().get(0);
+    assert_eq!(n_unsettled, Some(1));
+}

@@ -71,6 +71,11 @@ pub struct Args {
     /// state it stopped on is unstable.
     #[arg(long)]
     steady: Option<droplet_solver::newton_finish::SteadyMethod>,
+    /// With --steady newton: stop a run beside an unstable steady state as soon as its growth
+    /// rate shows it cannot leave before --t-max with another class (status saddle, the
+    /// diagnosis says how far it would get) instead of creeping there.
+    #[arg(long)]
+    stop_beside_saddle: bool,
     /// Hold the centre fixed (deformation-only run, Appendix E).
     #[arg(long)]
     pinned: bool,
@@ -158,6 +163,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
             (None, true) => droplet_solver::newton_finish::SteadyMethod::Test,
             (None, false) => base.steady,
         },
+        stop_beside_saddle: a.stop_beside_saddle,
         ..base
     };
     let params = ModelParams {

@@ -15,7 +15,9 @@
 //! speed and deformation differ from `z*`'s by at most 10 times what the linear decay at the
 //! slowest decisive rate predicts from its present change (`(change / window) / |lambda|`),
 //! and at most [`MAX_SETTLED`]; and its orientation is within [`ORIENTATION`] of `z*`'s, or
-//! closer to it than at the previous try (it turns at the slow rotation rate). The run then ends `steady` at `z*` (`ended_by`: `newton`, or
+//! closer to it than at the previous try (it turns at the slow rotation rate). Orientations
+//! are compared like with like: directions of motion when both move, long axes otherwise (a
+//! run slowing down onto a resting ID moves along its short axis). The run then ends `steady` at `z*` (`ended_by`: `newton`, or
 //! `test` if the paper's test fired first). A state the paper's test would accept but whose
 //! root is unstable (a slowly growing mode, e.g. the resting disk just past the onset of
 //! motion) does not end the run: it keeps stepping.
@@ -32,6 +34,17 @@
 //! ends there: speed and deformation settle long before the orientation, and that root's `v`
 //! and `s` are what the time stepper reaches after the turn (they differ between the two
 //! orientations by the box's anisotropy).
+//!
+//! Beside a saddle (setting `stop_beside_saddle`): when the root near the run has a growing
+//! mode, the run's distance `d` to it (max over `vx, vy, a2, b2`) grows at most like
+//! `d exp(lambda (t_max - t))`, `lambda` the largest real part of its eigenvalues (rotation
+//! included; decaying parts of `d` only shrink, so this bounds the growing part from above).
+//! If that bound stays below [`LEAVE`] the run would still be beside the saddle at `t_max`,
+//! where the paper's rule gives up on it; and if every speed and deformation within the bound
+//! of the saddle's has the class of the run's present state, it would end with that class.
+//! It then stops now with status `saddle`, its own state (not the root's) and a diagnosis
+//! that starts like a `t_max` run's there ([`BESIDE_UNSTABLE`]).
+use crate::classify::StateClass;
 use crate::dynamics::force_balance;
 use crate::error::SolverError;
 use crate::newton::{solve, NewtonOptions};
@@ -119,6 +132,10 @@ pub const ORIENTATION: f64 = std::f64::consts::PI / 16.0;
 /// to leave an orientation that is unstable in its rotation mode.
 pub const TURN: f64 = 1e-2;
 
+/// Largest distance from a saddle (max over `vx, vy, a2, b2`) that a run may reach by `t_max`
+/// and still be taken to be beside it then (with `stop_beside_saddle`): the class threshold.
+pub const LEAVE: f64 = crate::classify::CLASS_THRESHOLD;
+
 /// Leans (radians) below this are round-off of a mirror-symmetric run and count as none.
 pub const LEAN_FLOOR: f64 = 1e-9;
 
@@ -129,6 +146,22 @@ fn orientation(z: &[f64; 4]) -> f64 {
     } else {
         0.5 * z[3].atan2(z[2])
     }
+}
+
+/// The angle from the root `root`'s orientation to the run `z`'s, like compared with like:
+/// directions of motion when both move, else long axes (modulo pi; a run slowing down onto
+/// a resting deformed root moves along its short axis, not its long one), and 0 for a
+/// resting round root, which has no orientation. In (-pi/2, pi/2].
+fn angle_to(z: &[f64; 4], root: &[f64; 4]) -> f64 {
+    let moving = |z: &[f64; 4]| z[0].hypot(z[1]) > 1e-9;
+    if moving(z) && moving(root) {
+        return (z[1].atan2(z[0]) - root[1].atan2(root[0])).sin().asin();
+    }
+    if root[2].hypot(root[3]) <= 1e-9 {
+        return 0.0;
+    }
+    let d = 0.5 * (z[3].atan2(z[2]) - root[3].atan2(root[2]));
+    d - std::f64::consts::PI * (d / std::f64::consts::PI).round()
 }
 
 /// The state `z` turned by `angle`: the velocity by `angle`, the shape's mode 2 by twice it.
@@ -150,12 +183,28 @@ fn invariant_distance(a: &[f64; 4], b: &[f64; 4]) -> f64 {
     (va - vb).abs().max((sa - sb).abs())
 }
 
+/// Whether every state whose speed and deformation are within `reach` (max over the 4
+/// components, so `sqrt(2) reach` in `v` and `s`) of the root `root`'s has the class of `z`.
+/// Classes are quadrants of the `(v, s)` plane, so the corners of that box decide.
+fn one_class_within(z: &[f64; 4], root: &[f64; 4], reach: f64) -> bool {
+    let class = StateClass::of(z[0].hypot(z[1]), z[2].hypot(z[3]));
+    let (v, s) = (root[0].hypot(root[1]), root[2].hypot(root[3]));
+    let r = std::f64::consts::SQRT_2 * reach;
+    [(v - r).max(0.0), v + r].iter().all(|&v| {
+        [(s - r).max(0.0), s + r]
+            .iter()
+            .all(|&s| StateClass::of(v, s) == class)
+    })
+}
+
 /// The decision after one judged window.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Decision {
     Continue,
     /// End steady at this `(vx, vy, a2, b2)`.
     End(Ending, [f64; 4]),
+    /// Stop beside a saddle the run cannot leave before `t_max`, with this diagnosis.
+    Saddle(String),
 }
 
 /// The Newton finish of one run.
@@ -163,6 +212,7 @@ pub struct NewtonFinish {
     params: ModelParams,
     n: usize,
     t_max: f64,
+    stop_beside_saddle: bool,
     solver: Option<SteadySolver>,
     /// The root of the last try and the run's angle to it then.
     last_turn: Option<([f64; 4], f64)>,
@@ -182,6 +232,7 @@ impl NewtonFinish {
             params: *params,
             n,
             t_max: settings.t_max,
+            stop_beside_saddle: settings.stop_beside_saddle,
             last_turn: None,
             assessed: Vec::new(),
             solver: None,
@@ -261,8 +312,7 @@ impl NewtonFinish {
         if near.verdict.unstable > 0 {
             return Some((near, false));
         }
-        let lean = orientation(&z) - orientation(&near.z);
-        let lean = lean.sin().asin();
+        let lean = angle_to(&z, &near.z);
         // Below LEAN_FLOOR a lean is the round-off of a mirror-symmetric run: none.
         let lean = if lean.abs() < LEAN_FLOOR { 0.0 } else { lean };
         if lean.abs() * (rot * (self.t_max - t).max(0.0)).min(700.0).exp() < TURN {
@@ -328,7 +378,7 @@ impl NewtonFinish {
         let rate = f.verdict.max_re.abs().max(1e-12);
         let settled = invariant_distance(&z, &f.z)
             <= (10.0 * (change / self.window) / rate).min(MAX_SETTLED) + 1e-9;
-        let turn = (orientation(&z) - orientation(&f.z)).sin().asin().abs();
+        let turn = angle_to(&z, &f.z).abs();
         let turning_to = self.last_turn.is_some_and(|(root, before)| {
             root.iter().zip(&f.z).all(|(a, b)| (a - b).abs() < 1e-6) && turn < before
         });
@@ -342,8 +392,34 @@ impl NewtonFinish {
             };
             return Decision::End(ending, f.z);
         }
+        if let Some(diagnosis) = self.cannot_leave(t, &z, &f) {
+            return Decision::Saddle(diagnosis);
+        }
         self.back_off(t);
         Decision::Continue
+    }
+
+    /// With `stop_beside_saddle`, the diagnosis of a run at `z` (time `t`) beside the saddle
+    /// `f` that it cannot leave before `t_max`: its distance grown at the largest rate stays
+    /// below [`LEAVE`], and the class is the same everywhere within that distance.
+    fn cannot_leave(&self, t: f64, z: &[f64; 4], f: &Finding) -> Option<String> {
+        if !self.stop_beside_saddle || f.verdict.unstable == 0 || f.turned {
+            return None;
+        }
+        let distance = z
+            .iter()
+            .zip(&f.z)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
+        let rate = f.slowest().max(f.verdict.max_re);
+        let at_t_max = distance * (rate * (self.t_max - t).max(0.0)).min(700.0).exp();
+        (at_t_max < LEAVE && one_class_within(z, &f.z, at_t_max)).then(|| {
+            format!(
+                "{}; stopped at t = {t:.1}, {distance:.1e} from it: at most {at_t_max:.1e} by t_max = {}",
+                f.describe(),
+                self.t_max
+            )
+        })
     }
 
     fn back_off(&mut self, t: f64) {
@@ -354,6 +430,42 @@ impl NewtonFinish {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn orientations_compare_like_with_like() {
+        let deg = |a: f64| a.to_degrees();
+        // A run slowing down onto the diagonal ID moves along its short axis (+45 degrees)
+        // while its long axis is within 1.5 degrees of the root's (-45 degrees).
+        let run = [0.032, 0.0303, -0.0162, -0.3063];
+        let id = [0.0, 0.0, 0.0, -0.3065];
+        assert!(deg(angle_to(&run, &id)).abs() < 2.0);
+        // Long axes are equal modulo 180 degrees: 89 and -89 degrees are 2 apart, and the
+        // sign says which way round.
+        let axis = |deg: f64| {
+            let t = 2.0 * deg.to_radians();
+            [0.0, 0.0, 0.3 * t.cos(), 0.3 * t.sin()]
+        };
+        assert!((deg(angle_to(&axis(89.0), &axis(-89.0))) + 2.0).abs() < 1e-9);
+        assert!((deg(angle_to(&axis(-89.0), &axis(89.0))) - 2.0).abs() < 1e-9);
+        // Two moving states: their directions of motion; a round resting root: no orientation.
+        let md = [0.2, 0.0, 0.3, 0.0];
+        assert!((deg(angle_to(&[0.0, 0.2, 0.3, 0.0], &md)) - 90.0).abs() < 1e-9);
+        assert_eq!(angle_to(&run, &[0.0; 4]), 0.0);
+    }
+
+    #[test]
+    fn a_saddle_stop_needs_one_class_within_the_reach() {
+        // Beside the resting disk (v = s = 0): IC up to v, s < 0.01, i.e. reach < 0.01 / sqrt 2.
+        let disk = [0.0; 4];
+        let near = [1e-3, 0.0, 0.0, 0.0];
+        assert!(one_class_within(&near, &disk, 0.005));
+        assert!(!one_class_within(&near, &disk, 0.008));
+        // A moving deformed saddle far from both thresholds keeps MD for any reach below them.
+        let md = [0.1, 0.0, 0.2, 0.0];
+        assert!(one_class_within(&[0.1, 1e-3, 0.2, 0.0], &md, 0.01));
+        // A run already of another class than everything near the saddle: never.
+        assert!(!one_class_within(&[0.02, 0.0, 0.0, 0.0], &disk, 1e-4));
+    }
 
     #[test]
     fn the_root_near_a_moving_state_is_the_md_state_and_is_stable() {

@@ -18,6 +18,10 @@ pub enum RunStatus {
     /// The adaptive controller took [`crate::limits::adaptive_step_cap`] steps before `t_max`
     /// (steps far below `dt_max` throughout): ended instead of running for ever.
     StepLimit,
+    /// Stopped beside an unstable steady state (a saddle) that its largest growth rate shows
+    /// it cannot leave before `t_max` (setting `stop_beside_saddle`): the outcome a `t_max`
+    /// run beside it would have, without the wait.
+    Saddle,
 }
 
 impl RunStatus {
@@ -27,7 +31,13 @@ impl RunStatus {
             Self::TMax => "t_max",
             Self::Diverged => "diverged",
             Self::StepLimit => "step_limit",
+            Self::Saddle => "saddle",
         }
+    }
+
+    /// The run stopped without finishing: `t_max`, `step_limit` or `saddle`.
+    pub fn unfinished(&self) -> bool {
+        matches!(self, Self::TMax | Self::StepLimit | Self::Saddle)
     }
 }
 
@@ -86,7 +96,7 @@ pub struct RunOutcome {
     /// What ended a steady run (`None` otherwise, and in records from before it existed).
     #[serde(default)]
     pub ended_by: Option<crate::steady_method::Ending>,
-    /// For a run that did not finish (`t_max`, `step_limit`): what the steady equations say
+    /// For a run that did not finish (`t_max`, `step_limit`, `saddle`): what the steady equations say
     /// near its final state (see [`crate::steady_method::Finding::describe`]).
     #[serde(default)]
     pub diagnosis: Option<String>,
@@ -122,7 +132,7 @@ impl RunOutcome {
     pub fn class_settled(&self) -> bool {
         match self.status {
             RunStatus::Steady => true,
-            RunStatus::TMax | RunStatus::StepLimit => self
+            RunStatus::TMax | RunStatus::StepLimit | RunStatus::Saddle => self
                 .diagnosis
                 .as_deref()
                 .is_some_and(crate::newton_finish::diagnosis_settles_class),
@@ -134,7 +144,7 @@ impl RunOutcome {
     /// [`crate::newton_finish::diagnosis_beside_unstable`]): its class is where it had crept
     /// to by `t_max`.
     pub fn beside_unstable(&self) -> bool {
-        matches!(self.status, RunStatus::TMax | RunStatus::StepLimit)
+        self.status.unfinished()
             && self
                 .diagnosis
                 .as_deref()

@@ -98,6 +98,7 @@ impl Run {
             (cfg.steady == SteadyMethod::Newton).then(|| NewtonFinish::new(&self.params, &cfg));
         let mut ended_by = None;
         let mut polished: Option<[f64; 4]> = None;
+        let mut saddle_diagnosis = None;
         loop {
             if adaptive {
                 if t >= cfg.t_max - slack {
@@ -155,14 +156,22 @@ impl Run {
                 None => Decision::Continue,
                 Some(f) => f.consider(t, st.monitored(), change, fired),
             };
-            if let Decision::End(ending, z) = decision {
-                status = RunStatus::Steady;
-                t_steady = Some(t);
-                ended_by = Some(ending);
-                if finish.is_some() {
-                    polished = Some(z);
+            match decision {
+                Decision::Continue => {}
+                Decision::End(ending, z) => {
+                    status = RunStatus::Steady;
+                    t_steady = Some(t);
+                    ended_by = Some(ending);
+                    if finish.is_some() {
+                        polished = Some(z);
+                    }
+                    break;
                 }
-                break;
+                Decision::Saddle(diagnosis) => {
+                    status = RunStatus::Saddle;
+                    saddle_diagnosis = Some(diagnosis);
+                    break;
+                }
             }
         }
         let mut state = self.scheme.state();
@@ -174,8 +183,10 @@ impl Run {
         if let Some([vx, vy, a2, b2]) = polished {
             (state.vx, state.vy, state.a2, state.b2) = (vx, vy, a2, b2);
         }
-        let diagnosis = matches!(status, RunStatus::TMax | RunStatus::StepLimit)
-            .then(|| self.diagnose(finish.as_mut(), state.monitored()));
+        let diagnosis = saddle_diagnosis.or_else(|| {
+            matches!(status, RunStatus::TMax | RunStatus::StepLimit)
+                .then(|| self.diagnose(finish.as_mut(), state.monitored()))
+        });
         let (v, s) = (state.speed(), state.deformation());
         RunOutcome {
             status,

@@ -65,6 +65,12 @@ pub struct SolverSettings {
     /// with the test has the run key it had before.
     #[serde(default, skip_serializing_if = "SteadyMethod::is_test")]
     pub steady: SteadyMethod,
+    /// With the Newton finish: end a run beside an unstable steady state as soon as its
+    /// largest growth rate shows it cannot leave before `t_max` (status `saddle`, see
+    /// [`crate::newton_finish::LEAVE`]) instead of creeping there. Off in records written
+    /// before it existed; a run without it has the run key it had before.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub stop_beside_saddle: bool,
 }
 
 /// Default adaptive tolerance, chosen with `droplet bench` (results/bench): at N = 192 the
@@ -91,6 +97,7 @@ impl Default for SolverSettings {
             steady_window: 0.1,
             pinned: false,
             steady: SteadyMethod::default_for_runs(),
+            stop_beside_saddle: false,
         }
     }
 }
@@ -205,6 +212,13 @@ impl SolverSettings {
                 allowed:
                     "test: the Newton finish needs the spectral PDE scheme with a free droplet"
                         .into(),
+            });
+        }
+        if self.stop_beside_saddle && self.steady != SteadyMethod::Newton {
+            return Err(SolverError::InvalidChoice {
+                name: "stop_beside_saddle",
+                value: "true".into(),
+                allowed: "false: stopping beside a saddle needs steady = newton (its growth rate is the Newton finish's)".into(),
             });
         }
         self.check_steps()

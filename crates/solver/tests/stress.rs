@@ -24,7 +24,7 @@ fn check(out: &RunOutcome, t_max: f64) {
             );
             assert!(out.t_end <= t_max + 1e-9);
         }
-        RunStatus::Steady | RunStatus::TMax => {
+        RunStatus::Steady | RunStatus::TMax | RunStatus::Saddle => {
             assert!(
                 out.state.is_finite() && out.v.is_finite() && out.s < 1.0,
                 "{out:?}"

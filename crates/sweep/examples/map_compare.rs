@@ -61,7 +61,7 @@ fn main() {
             Some((it.next()?.to_string(), it.next()?.parse().ok()?))
         })
         .collect();
-    println!("| sweep | runs | steady | t_max / step_limit | diverged | sweep wall (s) | sum of run wall_s (s) | mean t_end |");
+    println!("| sweep | runs | steady | t_max / step_limit / saddle | diverged | sweep wall (s) | sum of run wall_s (s) | mean t_end |");
     println!("|---|---|---|---|---|---|---|---|");
     for s in [&a, &b] {
         let status = strings(&s.runs, "status");
@@ -77,7 +77,7 @@ fn main() {
             s.name,
             s.runs.height(),
             count("steady"),
-            count("t_max") + count("step_limit"),
+            count("t_max") + count("step_limit") + count("saddle"),
             count("diverged"),
             t_end.iter().sum::<f64>() / t_end.len().max(1) as f64
         );
@@ -116,7 +116,12 @@ fn main() {
         let ic = strings(&s.runs, "ic");
         let (e, k) = (floats(&s.runs, "eta_t"), floats(&s.runs, "kappa2"));
         let unfinished: Vec<usize> = (0..status.len())
-            .filter(|&i| matches!(status[i].as_deref(), Some("t_max") | Some("step_limit")))
+            .filter(|&i| {
+                matches!(
+                    status[i].as_deref(),
+                    Some("t_max") | Some("step_limit") | Some("saddle")
+                )
+            })
             .collect();
         println!(
             "\nRuns of `{}` that did not finish: {}\n",

@@ -5,7 +5,8 @@
 //! - a run that hit `t_max` counts with the class of its final state (the paper's
 //!   "not classified" points come from such slowly converging runs), and is counted in
 //!   `n_t_max` so it can be told apart; so does a run that ended unconverged at the step cap
-//!   (`step_limit`, see `droplet_solver::limits`); of these, the runs whose speed and
+//!   (`step_limit`, see `droplet_solver::limits`), and one stopped beside a saddle it could
+//!   not leave before `t_max` (`saddle`, solver setting `stop_beside_saddle`); of these, the runs whose speed and
 //!   deformation had not settled either (`RunOutcome::class_settled`) are `n_unsettled`;
 //! - with [`BesideUnstable::Exclude`] (spec `classify: {beside_unstable: exclude}`), an
 //!   unfinished run that stopped beside an unstable steady state
@@ -54,7 +55,9 @@ pub fn classify_point<'a>(
         n_runs += 1;
         match r.outcome.status {
             droplet_solver::RunStatus::Steady => n_steady += 1,
-            droplet_solver::RunStatus::TMax | droplet_solver::RunStatus::StepLimit => {
+            droplet_solver::RunStatus::TMax
+            | droplet_solver::RunStatus::StepLimit
+            | droplet_solver::RunStatus::Saddle => {
                 n_t_max += 1;
                 n_unsettled += usize::from(!r.outcome.class_settled());
             }

@@ -136,6 +136,12 @@ pub fn runs_frame(
                 .map(|(_, r)| r.settings.steady.as_str().to_string())
                 .collect(),
         ),
+        Column::new(
+            "stop_beside_saddle".into(),
+            rows.iter()
+                .map(|(_, r)| r.settings.stop_beside_saddle)
+                .collect::<Vec<bool>>(),
+        ),
         str_col(
             "status",
             rows.iter()

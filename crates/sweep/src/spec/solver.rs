@@ -8,9 +8,10 @@ use droplet_solver::{ModelKind, ModelParams, SchemeKind, SolverSettings};
 use serde_yaml::Mapping;
 
 /// The keys of the section.
-const KEYS: [&str; 10] = [
+const KEYS: [&str; 11] = [
     "scheme",
     "steady",
+    "stop_beside_saddle",
     "n",
     "dt",
     "tol",
@@ -59,7 +60,16 @@ pub(super) fn parse(
                 )
             })?;
         }
-        ctx.numbers(m, "solver", &KEYS[3..], |key, val| match key {
+        if let Some(x) = m.get("stop_beside_saddle") {
+            solver.stop_beside_saddle = x.as_bool().ok_or_else(|| {
+                ctx.err(
+                    &["solver", "stop_beside_saddle"],
+                    show(x),
+                    "true (stop a run beside a saddle it cannot leave before t_max) or false",
+                )
+            })?;
+        }
+        ctx.numbers(m, "solver", &KEYS[4..], |key, val| match key {
             "dt" => solver.dt = val,
             "tol" => solver.tol = val,
             "dt_max" => solver.dt_max = val,
