@@ -4,7 +4,8 @@
 # runs are those of sweeps/fig2a-adaptive.yaml (results/fig2a-adaptive/run.sh): this copies them
 # (hard links) and sweeps, which plans the same points and computes nothing. Without them the
 # sweep computes every run (about 3.2 h on 2 cores). Run from the repository root after
-# `cargo build --release`.
+# `cargo build --release`. The committed tables were made by the binary of commit c2fe2a83
+# (PDE numerics version 1): a later binary (version 2) recomputes the runs of version 1.
 set -euo pipefail
 from=${1:-out/fig2a-adaptive}
 out=out/fig2a-adaptive-strict

@@ -3,6 +3,8 @@
 
     python3 results/fig2a-adaptive/analyse.py [FOLDER]     (needs pandas and pyarrow)
 
+FOLDER defaults to this one; results/fig2a-adaptive-fast is the other map it reads.
+
 Prints the per-level cost table, where the run time goes, where each point class lies, the
 class edges along kappa2 = 0.13 and eta_t = 0.085, the MC runs by how they ended, and how the
 point classes would change if runs stopped beside an unstable steady state were left
@@ -17,15 +19,18 @@ folder = Path(sys.argv[1] if len(sys.argv) > 1 else Path(__file__).parent)
 points = pd.read_parquet(folder / "points.parquet")
 runs = pd.read_parquet(folder / "runs.parquet").merge(points[["point", "level"]], on="point")
 diagnosis = runs.diagnosis.fillna("")
-tmax = runs.status == "t_max"
+# Unfinished runs: t_max, step_limit, and those stopped beside a saddle they could not leave
+# (status saddle, solver.stop_beside_saddle).
+tmax = runs.status.isin(["t_max", "step_limit", "saddle"])
+saddle = runs.status == "saddle"
 creep = tmax & diagnosis.str.startswith("near an unstable")
 turn = tmax & diagnosis.str.endswith("v and s are settled")
 total = runs.wall_s.sum()
 
 print(f"{len(points)} points, {len(runs)} runs, {total:.0f} s of run time")
-print("\nlevel  points  runs  run_s  s_per_run  t_max  t_max_s  creep_s")
+print("\nlevel  points  runs  run_s  s_per_run  t_max  t_max_s  creep_s  (t_max: all unfinished runs)")
 for level, r in runs.groupby("level"):
-    t, c = r.status == "t_max", creep[r.index]
+    t, c = tmax[r.index], creep[r.index]
     print(
         f"{level:5d} {r.point.nunique():7d} {len(r):5d} {r.wall_s.sum():6.0f} "
         f"{r.wall_s.mean():10.2f} {t.sum():6d} {r.wall_s[t].sum():8.0f} {r.wall_s[c].sum():8.0f}"
@@ -34,6 +39,9 @@ for level, r in runs.groupby("level"):
 slow = (runs.status == "steady") & (runs.t_end > 800)
 print(f"\nt_max runs: {tmax.sum()} ({tmax.mean():.0%}), {runs.wall_s[tmax].sum() / total:.0%} of run time")
 print(f"beside an unstable steady state: {creep.sum()} runs, {runs.wall_s[creep].sum():.0f} s")
+if saddle.any():
+    print(f"  of which stopped early (status saddle): {saddle.sum()} runs, {runs.wall_s[saddle].sum():.0f} s,"
+          f" median t_end {runs.t_end[saddle].median():.0f}, classes {runs['class'][saddle].value_counts().to_dict()}")
 growth = diagnosis[creep].str.extract(r"largest ([-+]\d\.\d+e[-+]\d+)")[0].astype(float)
 print(f"  growth rates: median {growth.median():.1e}, 5-95 % {growth.quantile(0.05):.1e} .. {growth.quantile(0.95):.1e}")
 print(f"only turning (v and s settled): {turn.sum()} runs, {runs.wall_s[turn].sum():.0f} s,",
