@@ -374,6 +374,12 @@ fn catalogue() -> Vec<Case> {
         ),
         simc("unknown scheme", &["--scheme", "rk4"], &["rk4"], 5.0),
         simc(
+            "stop beside a saddle with the paper's test",
+            &["--steady", "test", "--stop-beside-saddle"],
+            &["stop_beside_saddle", "steady = newton"],
+            5.0,
+        ),
+        simc(
             "series into a missing directory",
             &["--series", "DIR/no/such/s.parquet"],
             &["does not exist"],
@@ -388,6 +394,19 @@ fn catalogue() -> Vec<Case> {
             "spec classify rule unknown",
             ("solver:", "classify: {beside_unstable: drop}\nsolver:"),
             &["classify.beside_unstable", "drop", "count or exclude"],
+        ),
+        spec_case(
+            "spec stop_beside_saddle not true or false",
+            ("solver:", "solver:\n  stop_beside_saddle: maybe"),
+            &["solver.stop_beside_saddle", "maybe", "true"],
+        ),
+        spec_case(
+            "spec stop_beside_saddle with the paper's test",
+            (
+                "solver:",
+                "solver:\n  steady: test\n  stop_beside_saddle: true",
+            ),
+            &["solver.stop_beside_saddle", "steady = newton"],
         ),
         spec_case(
             "spec sigma 10",
@@ -664,7 +683,7 @@ fn malformed_and_extreme_inputs_exit_with_their_code_name_the_problem_and_never_
     report(
         "inputs.md",
         &format!(
-            "{} malformed or extreme inputs, each refused with its exit code and a message naming the problem, no panic, none slower than {:.0} % of its time limit:\n\n| input | first line of the message | exit | time |\n|---|---|---|---|\n{}\n",
+            "{} malformed or extreme inputs, each refused with its exit code and a message naming the problem, no panic, none slower than {:.1} % of its time limit:\n\n| input | first line of the message | exit | time |\n|---|---|---|---|\n{}\n",
             cases.len(),
             100.0 * slowest,
             lines.join("\n")

@@ -218,7 +218,9 @@ impl SolverSettings {
             return Err(SolverError::InvalidChoice {
                 name: "stop_beside_saddle",
                 value: "true".into(),
-                allowed: "false: stopping beside a saddle needs steady = newton (its growth rate is the Newton finish's)".into(),
+                allowed:
+                    "only with steady = newton (the stop uses the Newton finish's growth rates)"
+                        .into(),
             });
         }
         self.check_steps()
