@@ -149,24 +149,14 @@ fn the_stop_beside_saddle_key_is_read_checked_and_in_the_tables() {
         ("true", "test", "solver.stop_beside_saddle"),
     ] {
         let bad = write_spec(dir.path(), "bad.yaml", &spec(value, steady));
-        let o = run(&[
-            "sweep",
-            bad.to_str().unwrap(),
-            "--out",
-            dir.path().join("b").to_str().unwrap(),
-        ]);
+        let o = common::sweep(&bad, &dir.path().join("b"), &[]);
         let err = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(2), "{err}");
         assert!(err.contains(key) && err.contains("bad.yaml"), "{err}");
     }
     let good = write_spec(dir.path(), "good.yaml", &spec("true", "newton"));
     let out = dir.path().join("g");
-    let o = run(&[
-        "sweep",
-        good.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let o = common::sweep(&good, &out, &[]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let runs = common::read(&out.join("runs.parquet"));
     let status = runs.column("status").unwrap().str().unwrap().get(0);
