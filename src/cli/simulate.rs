@@ -227,7 +227,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
                     stable: found.stable(),
                     slowest_eigenvalue: found.slowest(),
                     unstable: found.verdict.unstable,
-                    note: found.describe(),
+                    note: found.describe(&out.state.monitored()),
                 })
         })
         .flatten();

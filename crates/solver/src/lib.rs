@@ -47,7 +47,9 @@ pub use steady::{SteadySolver, SteadyState};
 /// Version of the solver's numerics (the PDE model's runs); part of every run's cache key.
 /// 2: the Newton finish compares a run's orientation with its root's like with like, so a run
 /// slowing down onto a resting ID ends there instead of creeping on (some to `t_max`).
-pub const SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-2");
+/// 3: an unfinished run's diagnosis calls its speed and deformation settled (it only turns)
+/// only if they are within the class threshold of its root's, with its class.
+pub const SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-3");
 
 /// Version of the reduced ODE model's numerics (2: unstable states no longer end a run).
 pub const ODE_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-1+ode-2");

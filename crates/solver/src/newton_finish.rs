@@ -80,8 +80,10 @@ impl Finding {
         self.slowest() < 0.0
     }
 
-    /// A sentence for the `diagnosis` column.
-    pub fn describe(&self) -> String {
+    /// A sentence for the `diagnosis` column of a run stopped at `z` (the state Newton started
+    /// from). Only the rotation mode slow and the run's speed and deformation within
+    /// [`SETTLED_WITHIN`] of the root's, with its class: [`SETTLED`] (the run only turns).
+    pub fn describe(&self, z: &[f64; 4]) -> String {
         let rot = self.verdict.rotation;
         if self.verdict.unstable > 0 {
             format!(
@@ -89,9 +91,17 @@ impl Finding {
                 self.verdict.unstable, self.verdict.max_re
             )
         } else if let Some(r) = rot.filter(|r| *r >= self.verdict.max_re) {
-            format!(
-                "rotation mode {r:+.2e}: the direction of motion / long axis turns slowly (box effect); {SETTLED}"
-            )
+            let d = invariant_distance(z, &self.z);
+            let class = |z: &[f64; 4]| StateClass::of(z[0].hypot(z[1]), z[2].hypot(z[3]));
+            if d <= SETTLED_WITHIN && class(z) == class(&self.z) {
+                format!(
+                    "rotation mode {r:+.2e}: the direction of motion / long axis turns slowly (box effect); {SETTLED}"
+                )
+            } else {
+                format!(
+                    "rotation mode {r:+.2e} slowest, but v and s are {d:.1e} from the root's: still on the way"
+                )
+            }
         } else {
             format!(
                 "slowest eigenvalue {:+.2e}: converging slowly",
@@ -100,6 +110,14 @@ impl Finding {
         }
     }
 }
+
+/// Largest difference in speed or deformation between a run and its root for the run to be
+/// settled (with the root's class) when only the rotation mode is slow: [`MAX_SETTLED`], the
+/// bound for a run approaching a root (a run turning between the box's mirror lines differs
+/// from the root on one by the box's anisotropy, up to 2e-2 in `v` for the fastest MD).
+/// Before numerics version 3 the run's distance was not checked, and a run still leaving
+/// the resting disk towards an MD root far away was called settled.
+pub const SETTLED_WITHIN: f64 = MAX_SETTLED;
 
 /// The end of a diagnosis whose run has settled in speed and deformation (only its direction
 /// still turns, at the box's slow rotation rate): its class is that of its final state.
@@ -337,6 +355,23 @@ impl NewtonFinish {
         }
     }
 
+    /// Why a run stopped at `z` did not finish (the `diagnosis` column): what Newton from
+    /// `z` finds ([`Finding::describe`]), or from `z` turned onto the box's nearest mirror
+    /// lines if Newton from `z` does not converge (a run caught mid-turn).
+    pub fn diagnose(&mut self, z: [f64; 4]) -> String {
+        match self.root_near(z) {
+            Ok(found) => found.describe(&z),
+            Err(SolverError::NewtonFailed { .. }) => match self.aligned_root(z) {
+                Some(found) => format!(
+                    "caught turning between the box's mirror lines; the steady state on one: {}",
+                    found.describe(&z)
+                ),
+                None => "no steady state near the final state (Newton did not converge)".into(),
+            },
+            Err(e) => format!("not diagnosed: {e}"),
+        }
+    }
+
     /// The root of a run caught mid-turn, between the box's mirror lines, where Newton from
     /// the run's own state need not converge: Newton from the state turned onto the nearest
     /// mirror line (motion or long axis at a multiple of 45 degrees), then onto the next one
@@ -421,7 +456,7 @@ impl NewtonFinish {
         (at_t_max < LEAVE && one_class_within(z, &f.z, at_t_max)).then(|| {
             format!(
                 "{}; stopped at t = {t:.1}, {distance:.1e} from it: at most {at_t_max:.1e} by t_max = {}",
-                f.describe(),
+                f.describe(z),
                 self.t_max
             )
         })
@@ -489,7 +524,14 @@ mod tests {
         let ic = f.root_near([1e-3, 0.0, 1e-3, 0.0]).unwrap();
         assert!(ic.z.iter().all(|x| x.abs() < 1e-10), "{ic:?}");
         assert!(!ic.stable() && ic.verdict.unstable > 0, "{ic:?}");
-        assert!(ic.describe().contains("unstable"), "{}", ic.describe());
+        let note = ic.describe(&[1e-3, 0.0, 1e-3, 0.0]);
+        assert!(note.contains("unstable"), "{note}");
+        // Only turning is settled only near the root, with its class: a run still leaving
+        // the resting disk towards the MD root is on its way.
+        let settled = found.describe(&[0.58, 0.05, -0.26, 0.02]);
+        assert!(diagnosis_settles_class(&settled), "{settled}");
+        let leaving = found.describe(&[0.17, 0.017, -0.0087, -0.0016]);
+        assert!(!diagnosis_settles_class(&leaving), "{leaving}");
     }
 
     #[test]

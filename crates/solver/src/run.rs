@@ -220,17 +220,7 @@ impl Run {
                 &mut own
             }
         };
-        match f.root_near(z) {
-            Ok(found) => found.describe(),
-            Err(SolverError::NewtonFailed { .. }) => match f.aligned_root(z) {
-                Some(found) => format!(
-                    "caught turning between the box's mirror lines; the steady state on one: {}",
-                    found.describe()
-                ),
-                None => "no steady state near the final state (Newton did not converge)".into(),
-            },
-            Err(e) => format!("not diagnosed: {e}"),
-        }
+        f.diagnose(z)
     }
 }
 
