@@ -5,7 +5,7 @@
 # (hard links) and sweeps, which plans the same points and computes nothing. Without them the
 # sweep computes every run (about 3.2 h on 2 cores). Run from the repository root after
 # `cargo build --release`. The committed tables were made by the binary of commit c2fe2a83
-# (PDE numerics version 1): a later binary (version 2) recomputes the runs of version 1.
+# (PDE numerics version 1): a later binary (version 2 or later) recomputes them.
 set -euo pipefail
 from=${1:-out/fig2a-adaptive}
 out=out/fig2a-adaptive-strict
