@@ -92,8 +92,7 @@ impl Finding {
             )
         } else if let Some(r) = rot.filter(|r| *r >= self.verdict.max_re) {
             let d = invariant_distance(z, &self.z);
-            let class = |z: &[f64; 4]| StateClass::of(z[0].hypot(z[1]), z[2].hypot(z[3]));
-            if d <= SETTLED_WITHIN && class(z) == class(&self.z) {
+            if d <= SETTLED_WITHIN && class_of(z) == class_of(&self.z) {
                 format!(
                     "rotation mode {r:+.2e}: the direction of motion / long axis turns slowly (box effect); {SETTLED}"
                 )
@@ -199,10 +198,20 @@ fn rotated(z: &[f64; 4], angle: f64) -> [f64; 4] {
     ]
 }
 
+/// Speed `v` and deformation `s` of `(vx, vy, a2, b2)`.
+fn speed_and_deformation(z: &[f64; 4]) -> (f64, f64) {
+    (z[0].hypot(z[1]), z[2].hypot(z[3]))
+}
+
+/// The class of `(vx, vy, a2, b2)`.
+fn class_of(z: &[f64; 4]) -> StateClass {
+    let (v, s) = speed_and_deformation(z);
+    StateClass::of(v, s)
+}
+
 /// Max of the differences in speed and in deformation (invariant under rotation).
 fn invariant_distance(a: &[f64; 4], b: &[f64; 4]) -> f64 {
-    let (va, vb) = (a[0].hypot(a[1]), b[0].hypot(b[1]));
-    let (sa, sb) = (a[2].hypot(a[3]), b[2].hypot(b[3]));
+    let ((va, sa), (vb, sb)) = (speed_and_deformation(a), speed_and_deformation(b));
     (va - vb).abs().max((sa - sb).abs())
 }
 
@@ -210,8 +219,8 @@ fn invariant_distance(a: &[f64; 4], b: &[f64; 4]) -> f64 {
 /// components, so `sqrt(2) reach` in `v` and `s`) of the root `root`'s has the class of `z`.
 /// Classes are quadrants of the `(v, s)` plane, so the corners of that box decide.
 fn one_class_within(z: &[f64; 4], root: &[f64; 4], reach: f64) -> bool {
-    let class = StateClass::of(z[0].hypot(z[1]), z[2].hypot(z[3]));
-    let (v, s) = (root[0].hypot(root[1]), root[2].hypot(root[3]));
+    let class = class_of(z);
+    let (v, s) = speed_and_deformation(root);
     let r = std::f64::consts::SQRT_2 * reach;
     [(v - r).max(0.0), v + r].iter().all(|&v| {
         [(s - r).max(0.0), s + r]
