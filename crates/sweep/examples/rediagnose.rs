@@ -29,7 +29,7 @@ fn main() {
     .map(f64s);
     let n = runs.column("n").expect("n").u32().expect("n").clone();
     let t_max = f64s("t_max");
-    let mut changes: BTreeMap<(String, String), usize> = BTreeMap::new();
+    let mut changes: BTreeMap<(&str, &str), usize> = BTreeMap::new();
     let mut examples = Vec::new();
     let flags = |d: &str| {
         if diagnosis_beside_unstable(d) {
@@ -41,6 +41,7 @@ fn main() {
         }
     };
     for i in 0..runs.height() {
+        // `saddle` runs keep the diagnosis written when they stopped (it includes the bound).
         if !matches!(status.get(i), Some("t_max" | "step_limit")) {
             continue;
         }
@@ -62,12 +63,10 @@ fn main() {
         let z = [g(&vx), g(&vy), g(&a2), g(&b2)];
         let mut finish = NewtonFinish::new(&params, &settings);
         let now = finish.diagnose(z);
-        let before = flags(diagnosis.get(i).unwrap_or(""));
-        let count = changes
-            .entry((before.into(), flags(&now).into()))
-            .or_default();
+        let (before, after) = (flags(diagnosis.get(i).unwrap_or("")), flags(&now));
+        let count = changes.entry((before, after)).or_default();
         *count += 1;
-        if before != flags(&now) && *count <= 3 {
+        if before != after && *count <= 3 {
             let ic = runs.column("ic").expect("ic").str().expect("ic").get(i);
             examples.push(format!(
                 "- ({}, {}) from {}: v {:.4}, s {:.4}: {before} -> {now}",
