@@ -172,3 +172,65 @@ fn the_stop_beside_saddle_key_is_read_checked_and_in_the_tables() {
     let n_unsettled = points.column("n_unsettled").unwrap().u32().unwrap().get(0);
     assert_eq!(n_unsettled, Some(1));
 }
+
+/// The departure from the resting disk at (0.07625, 0.14) from IC iii, N = 192 (the onset
+/// column of the refined map): with `--leap-departures` the linear stretch is leapt, and the
+/// run keeps its outcome.
+fn departure(extra: &[&str]) -> serde_json::Value {
+    let mut args = vec![
+        "simulate", "--eta-t", "0.07625", "--kappa2", "0.14", "--ic", "iii", "--json",
+    ];
+    args.extend_from_slice(extra);
+    json(&run(&args))
+}
+
+#[test]
+fn a_leapt_departure_keeps_its_outcome_in_fewer_steps() {
+    let stepped = departure(&[]);
+    let leapt = departure(&["--leap-departures"]);
+    assert_eq!(stepped["t_leapt"], 0.0, "{stepped}");
+    assert!(leapt["t_leapt"].as_f64().unwrap() > 1000.0, "{leapt}");
+    assert_eq!(leapt["class"], stepped["class"], "{leapt}\n{stepped}");
+    assert_eq!(leapt["class"], "MD", "{leapt}");
+    let steps = |o: &serde_json::Value| o["steps"].as_u64().unwrap();
+    assert!(steps(&leapt) < steps(&stepped) / 2, "{leapt}\n{stepped}");
+    assert_eq!(leapt["settings"]["leap_departures"], true, "{leapt}");
+}
+
+#[test]
+fn the_leap_departures_key_is_read_checked_and_in_the_tables() {
+    let dir = tempfile::tempdir().unwrap();
+    let spec = |value: &str, extra: &str| {
+        format!(
+            "name: k\ngrid:\n  eta_t: [0.07625]\n  kappa2: [0.14]\ninitial_conditions: [iii]\nsolver: {{n: 96, leap_departures: {value}{extra}}}\n"
+        )
+    };
+    for (value, extra) in [
+        ("often", ""),
+        ("true", ", steady: test"),
+        ("true", ", tol: 0"),
+    ] {
+        let bad = write_spec(dir.path(), "bad.yaml", &spec(value, extra));
+        let o = common::sweep(&bad, &dir.path().join("b"), &[]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{err}");
+        assert!(
+            err.contains("solver.leap_departures") && err.contains("bad.yaml"),
+            "{err}"
+        );
+    }
+    let good = write_spec(dir.path(), "good.yaml", &spec("true", ""));
+    let out = dir.path().join("g");
+    let o = common::sweep(&good, &out, &[]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let runs = common::read(&out.join("runs.parquet"));
+    let flag = runs
+        .column("leap_departures")
+        .unwrap()
+        .bool()
+        .unwrap()
+        .get(0);
+    assert_eq!(flag, Some(true));
+    let leapt = runs.column("t_leapt").unwrap().f64().unwrap().get(0);
+    assert!(leapt.is_some_and(|t| t > 500.0), "{leapt:?}");
+}

@@ -380,6 +380,18 @@ fn catalogue() -> Vec<Case> {
             5.0,
         ),
         simc(
+            "leap departures with the paper's test",
+            &["--steady", "test", "--leap-departures"],
+            &["leap_departures", "steady = newton"],
+            5.0,
+        ),
+        simc(
+            "leap departures with fixed steps",
+            &["--tol", "0", "--leap-departures"],
+            &["leap_departures", "adaptive"],
+            5.0,
+        ),
+        simc(
             "series into a missing directory",
             &["--series", "DIR/no/such/s.parquet"],
             &["does not exist"],
@@ -407,6 +419,11 @@ fn catalogue() -> Vec<Case> {
                 "solver:\n  steady: test\n  stop_beside_saddle: true",
             ),
             &["solver.stop_beside_saddle", "steady = newton"],
+        ),
+        spec_case(
+            "spec leap_departures not true or false",
+            ("solver:", "solver:\n  leap_departures: 1"),
+            &["solver.leap_departures", "1", "true"],
         ),
         spec_case(
             "spec sigma 10",

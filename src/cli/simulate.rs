@@ -76,6 +76,12 @@ pub struct Args {
     /// diagnosis says how far it would get) instead of creeping there.
     #[arg(long)]
     stop_beside_saddle: bool,
+    /// With --steady newton and adaptive steps: once two Newton tries see the run leaving an
+    /// unstable steady state along one growing mode, still linear, leap along the mode to a
+    /// distance 0.02 from it instead of stepping through the exponential (t_leapt says how
+    /// long; the final state is unaffected, t_end is a few per cent early).
+    #[arg(long)]
+    leap_departures: bool,
     /// Hold the centre fixed (deformation-only run, Appendix E).
     #[arg(long)]
     pinned: bool,
@@ -121,6 +127,8 @@ struct Report {
     y: f64,
     t_end: f64,
     t_steady: Option<f64>,
+    /// Time leapt along departures from unstable steady states (`--leap-departures`).
+    t_leapt: f64,
     steps: u64,
     rejected: u64,
     max_step_error: Option<f64>,
@@ -164,6 +172,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
             (None, false) => base.steady,
         },
         stop_beside_saddle: a.stop_beside_saddle,
+        leap_departures: a.leap_departures,
         ..base
     };
     let params = ModelParams {
@@ -244,6 +253,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
         y: out.state.y,
         t_end: out.t_end,
         t_steady: out.t_steady,
+        t_leapt: out.t_leapt,
         steps: out.steps,
         rejected: out.rejected,
         max_step_error: out.max_step_error,
@@ -274,6 +284,12 @@ pub fn run(a: Args) -> Result<(), CliError> {
         );
         if let Some(e) = &report.ended_by {
             println!("ended by {}", e.replace('_', " "));
+        }
+        if report.t_leapt > 0.0 {
+            println!(
+                "leapt {:.1} time units along a departure from an unstable steady state",
+                report.t_leapt
+            );
         }
         if let Some(d) = &report.diagnosis {
             println!("not finished: {d}");

@@ -5,6 +5,7 @@
 pub mod bessel;
 pub mod classify;
 pub mod continuation;
+pub mod departure_leap;
 pub mod dynamics;
 pub mod error;
 pub mod etd;

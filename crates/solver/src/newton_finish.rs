@@ -45,7 +45,12 @@
 //! of the saddle's has the class of the run's present state, it would end with that class.
 //! It then stops now with status `saddle`, its own state (not the root's) and a diagnosis
 //! that starts like a `t_max` run's there ([`BESIDE_UNSTABLE`]).
+//!
+//! Leaving a saddle (setting `leap_departures`): when two tries find the run leaving the same
+//! saddle along one growing mode, still in its linear stretch, the run leaps along the mode
+//! ([`crate::departure_leap`]) instead of stepping through the exponential.
 use crate::classify::StateClass;
+use crate::departure_leap::{leap, Leap, Sighting};
 use crate::dynamics::force_balance;
 use crate::error::SolverError;
 use crate::newton::{solve, NewtonOptions};
@@ -55,6 +60,7 @@ use crate::stability::Linearization;
 use crate::steady::SteadySolver;
 pub use crate::steady_method::{Ending, SteadyMethod};
 use crate::verdict::{assess, Verdict};
+use rustfft::num_complex::Complex64;
 
 /// Newton is first tried when the change per window is below this many steady tolerances.
 pub const TRIGGER_FACTOR: f64 = 100.0;
@@ -237,6 +243,8 @@ pub enum Decision {
     End(Ending, [f64; 4]),
     /// Stop beside a saddle the run cannot leave before `t_max`, with this diagnosis.
     Saddle(String),
+    /// Leap along the growing mode of a saddle the run is leaving.
+    Leap(Leap),
 }
 
 /// The Newton finish of one run.
@@ -245,6 +253,9 @@ pub struct NewtonFinish {
     n: usize,
     t_max: f64,
     stop_beside_saddle: bool,
+    leap_departures: bool,
+    /// The last try that found the run beside a saddle (for `leap_departures`).
+    sighting: Option<Sighting>,
     solver: Option<SteadySolver>,
     /// The root of the last try and the run's angle to it then.
     last_turn: Option<([f64; 4], f64)>,
@@ -265,6 +276,8 @@ impl NewtonFinish {
             n,
             t_max: settings.t_max,
             stop_beside_saddle: settings.stop_beside_saddle,
+            leap_departures: settings.leap_departures,
+            sighting: None,
             last_turn: None,
             assessed: Vec::new(),
             solver: None,
@@ -444,8 +457,39 @@ impl NewtonFinish {
         if let Some(diagnosis) = self.cannot_leave(t, &z, &f) {
             return Decision::Saddle(diagnosis);
         }
+        if let Some(l) = self.departure(t, z, &f) {
+            self.back_off(t + l.duration);
+            return Decision::Leap(l);
+        }
         self.back_off(t);
         Decision::Continue
+    }
+
+    /// With `leap_departures`, the leap of a run at `z` (time `t`) leaving the saddle `f`
+    /// along one growing mode, if the previous try saw it on that mode too.
+    fn departure(&mut self, t: f64, z: [f64; 4], f: &Finding) -> Option<Leap> {
+        if !self.leap_departures || f.verdict.unstable == 0 || f.turned {
+            self.sighting = None;
+            return None;
+        }
+        let now = Sighting { t, z, root: f.z };
+        let before = self.sighting.replace(now)?;
+        let l = leap(&before, &now, &f.verdict.eigenvalues, self.t_max)?;
+        self.sighting = None;
+        Some(l)
+    }
+
+    /// The co-moving field of the steady state `root` (normalised coefficients, `[kx][ky]`):
+    /// what a leap scales the run's field towards.
+    pub fn root_field(&mut self, root: [f64; 4]) -> Result<Vec<Complex64>, SolverError> {
+        if self.solver.is_none() {
+            self.solver = Some(SteadySolver::new(self.params, self.n)?);
+        }
+        let solver = self.solver.as_mut().expect("made above");
+        Ok(solver
+            .field_and_forces(root[0], root[1], root[2], root[3])
+            .0
+            .to_vec())
     }
 
     /// With `stop_beside_saddle`, the diagnosis of a run at `z` (time `t`) beside the saddle

@@ -100,6 +100,10 @@ pub struct RunOutcome {
     /// near its final state (see [`crate::steady_method::Finding::describe`]).
     #[serde(default)]
     pub diagnosis: Option<String>,
+    /// Time leapt along departures from unstable steady states (setting `leap_departures`,
+    /// [`crate::departure_leap`]): part of `t_end`, not stepped. 0 in records from before it.
+    #[serde(default)]
+    pub t_leapt: f64,
     /// Recorded time series (empty unless asked for).
     pub series: Vec<SeriesRow>,
 }

@@ -99,6 +99,7 @@ impl Run {
         let mut ended_by = None;
         let mut polished: Option<[f64; 4]> = None;
         let mut saddle_diagnosis = None;
+        let mut t_leapt = 0.0;
         loop {
             if adaptive {
                 if t >= cfg.t_max - slack {
@@ -172,6 +173,30 @@ impl Run {
                     saddle_diagnosis = Some(diagnosis);
                     break;
                 }
+                // Leaps only in adaptive runs (a fixed-step run's time is its step count).
+                Decision::Leap(leap) if adaptive => {
+                    let leapt = finish
+                        .as_mut()
+                        .and_then(|f| f.root_field(leap.root).ok())
+                        .is_some_and(|field| {
+                            let shift = leap.shift(st.vx, st.vy);
+                            self.scheme.leap(leap.root, &field, leap.factor(), shift)
+                        });
+                    if leapt {
+                        t += leap.duration;
+                        t_leapt += leap.duration;
+                        let st = self.scheme.state();
+                        steady_test = SteadyTest::new(&cfg, t, st.monitored());
+                        if let (Some(tr), Some(every)) = (next_record, self.record_every) {
+                            // The series skips the leapt times.
+                            series.push(SeriesRow::at(t, &st));
+                            if tr <= t {
+                                next_record = Some(tr + every * (((t - tr) / every).floor() + 1.0));
+                            }
+                        }
+                    }
+                }
+                Decision::Leap(_) => {}
             }
         }
         let mut state = self.scheme.state();
@@ -202,6 +227,7 @@ impl Run {
             wall_s: started.elapsed().as_secs_f64(),
             ended_by,
             diagnosis,
+            t_leapt,
             series,
         }
     }

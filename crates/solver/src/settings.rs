@@ -71,6 +71,11 @@ pub struct SolverSettings {
     /// before it existed; a run without it has the run key it had before.
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub stop_beside_saddle: bool,
+    /// With the Newton finish: leap along the linear stretch of a departure from an unstable
+    /// steady state instead of stepping through it ([`crate::departure_leap`]). Off in
+    /// records written before it existed; a run without it has the run key it had before.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub leap_departures: bool,
 }
 
 /// Default adaptive tolerance, chosen with `droplet bench` (results/bench): at N = 192 the
@@ -98,6 +103,7 @@ impl Default for SolverSettings {
             pinned: false,
             steady: SteadyMethod::default_for_runs(),
             stop_beside_saddle: false,
+            leap_departures: false,
         }
     }
 }
@@ -221,6 +227,14 @@ impl SolverSettings {
                 allowed:
                     "only with steady = newton (the stop uses the Newton finish's growth rates)"
                         .into(),
+            });
+        }
+        if self.leap_departures && (self.steady != SteadyMethod::Newton || !self.adaptive()) {
+            return Err(SolverError::InvalidChoice {
+                name: "leap_departures",
+                value: "true".into(),
+                allowed: "only with steady = newton and adaptive steps (tol > 0): the leap uses the Newton finish's roots and growth rates"
+                    .into(),
             });
         }
         self.check_steps()

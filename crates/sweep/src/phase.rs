@@ -123,6 +123,7 @@ mod tests {
                 wall_s: 0.0,
                 ended_by: None,
                 diagnosis: None,
+                t_leapt: 0.0,
                 series: vec![],
             },
         }

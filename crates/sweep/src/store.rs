@@ -349,6 +349,7 @@ mod tests {
                 wall_s: 0.1,
                 ended_by: None,
                 diagnosis: None,
+                t_leapt: 0.0,
                 series: vec![],
             },
         }

@@ -142,6 +142,12 @@ pub fn runs_frame(
                 .map(|(_, r)| r.settings.stop_beside_saddle)
                 .collect::<Vec<bool>>(),
         ),
+        Column::new(
+            "leap_departures".into(),
+            rows.iter()
+                .map(|(_, r)| r.settings.leap_departures)
+                .collect::<Vec<bool>>(),
+        ),
         str_col(
             "status",
             rows.iter()
@@ -167,6 +173,7 @@ pub fn runs_frame(
                 .map(|(_, r)| r.outcome.t_steady)
                 .collect::<Vec<Option<f64>>>(),
         ),
+        f64_col("t_leapt", f(&|r| r.outcome.t_leapt)),
         Column::new(
             "steps".into(),
             rows.iter()

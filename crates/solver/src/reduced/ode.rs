@@ -146,6 +146,7 @@ pub fn simulate(
         wall_s: started.elapsed().as_secs_f64(),
         ended_by: (status == RunStatus::Steady).then_some(crate::steady_method::Ending::Test),
         diagnosis: None,
+        t_leapt: 0.0,
         series: Vec::new(),
     })
 }

@@ -387,6 +387,33 @@ impl Scheme for ComovingEtd {
         }
     }
 
+    fn leap(
+        &mut self,
+        root: [f64; 4],
+        root_field: &[Complex64],
+        factor: f64,
+        shift: [f64; 2],
+    ) -> bool {
+        if root_field.len() != self.w_hat.len() || self.pinned || self.params.mass == 0.0 {
+            return false;
+        }
+        for (w, r) in self.w_hat.iter_mut().zip(root_field) {
+            *w = r + (*w - r) * factor;
+        }
+        let st = &mut self.state;
+        let z = [&mut st.vx, &mut st.vy, &mut st.a2, &mut st.b2];
+        for (x, r) in z.into_iter().zip(root) {
+            *x = r + (*x - r) * factor;
+        }
+        st.x += shift[0];
+        st.y += shift[1];
+        // The shape changed: its spectra and forces are recomputed, and the predictor's
+        // extrapolation starts afresh.
+        self.forces0 = None;
+        self.prev_valid = false;
+        true
+    }
+
     fn mass(&self) -> f64 {
         self.params.box_len * self.params.box_len * self.w_hat[0].re
     }

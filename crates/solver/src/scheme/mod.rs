@@ -83,4 +83,19 @@ pub trait Scheme: Send {
     fn mass(&self) -> f64;
     /// The concentration in the lab frame.
     fn field(&mut self) -> Field;
+    /// Moves the run along a linear mode of the fixed point `root = (vx, vy, a2, b2)` whose
+    /// co-moving field is `root_field` (normalised coefficients, `[kx][ky]`, as
+    /// [`crate::steady::SteadySolver::field_and_forces`] gives them): the displacement of
+    /// the field and of `(vx, vy, a2, b2)` from the fixed point is multiplied by `factor`
+    /// and the centre moves by `shift` ([`crate::departure_leap`]). Schemes without a
+    /// co-moving spectrum return false and change nothing.
+    fn leap(
+        &mut self,
+        _root: [f64; 4],
+        _root_field: &[rustfft::num_complex::Complex64],
+        _factor: f64,
+        _shift: [f64; 2],
+    ) -> bool {
+        false
+    }
 }

@@ -8,10 +8,11 @@ use droplet_solver::{ModelKind, ModelParams, SchemeKind, SolverSettings};
 use serde_yaml::Mapping;
 
 /// The keys of the section.
-const KEYS: [&str; 11] = [
+const KEYS: [&str; 12] = [
     "scheme",
     "steady",
     "stop_beside_saddle",
+    "leap_departures",
     "n",
     "dt",
     "tol",
@@ -69,7 +70,16 @@ pub(super) fn parse(
                 )
             })?;
         }
-        ctx.numbers(m, "solver", &KEYS[4..], |key, val| match key {
+        if let Some(x) = m.get("leap_departures") {
+            solver.leap_departures = x.as_bool().ok_or_else(|| {
+                ctx.err(
+                    &["solver", "leap_departures"],
+                    show(x),
+                    "true (leap along the linear stretch of a departure from a saddle) or false",
+                )
+            })?;
+        }
+        ctx.numbers(m, "solver", &KEYS[5..], |key, val| match key {
             "dt" => solver.dt = val,
             "tol" => solver.tol = val,
             "dt_max" => solver.dt_max = val,
