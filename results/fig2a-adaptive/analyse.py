@@ -48,6 +48,12 @@ print(f"only turning (v and s settled): {turn.sum()} runs, {runs.wall_s[turn].su
       runs["class"][turn].value_counts().to_dict())
 print(f"steady after t > 800: {slow.sum()} runs, {runs.wall_s[slow].sum():.0f} s,",
       runs["class"][slow].value_counts().to_dict())
+if "t_leapt" in runs:
+    leapt = runs.t_leapt > 0
+    print(f"leapt along a departure (solver.leap_departures): {leapt.sum()} runs, {runs.wall_s[leapt].sum():.0f} s,"
+          f" {runs.t_leapt.sum():.0f} time units leapt (median {runs.t_leapt[leapt].median():.0f} a run),"
+          f" eta_t {runs.eta_t[leapt].min():.7g}-{runs.eta_t[leapt].max():.7g},"
+          f" ICs {runs.ic[leapt].value_counts().to_dict()}")
 
 print("\npoint classes: count, eta_t range, kappa2 range")
 for name, q in points.groupby("class"):
