@@ -101,8 +101,13 @@ fn the_steady_key_is_read_checked_and_in_the_tables() {
 /// The IC creeper of the refined map at (0.0875, 0.11875) from IC iv, N = 192: it sits beside
 /// the unstable resting state (drift growing at 3.4e-4) and reaches `t_max` there.
 fn creeper(extra: &[&str]) -> serde_json::Value {
+    simulate_at("0.0875", "0.11875", "iv", extra)
+}
+
+/// `simulate --json` at `(eta_t, kappa2)` from `ic` with the defaults and `extra`.
+fn simulate_at(eta_t: &str, kappa2: &str, ic: &str, extra: &[&str]) -> serde_json::Value {
     let mut args = vec![
-        "simulate", "--eta-t", "0.0875", "--kappa2", "0.11875", "--ic", "iv", "--json",
+        "simulate", "--eta-t", eta_t, "--kappa2", kappa2, "--ic", ic, "--json",
     ];
     args.extend_from_slice(extra);
     json(&run(&args))
@@ -177,11 +182,7 @@ fn the_stop_beside_saddle_key_is_read_checked_and_in_the_tables() {
 /// column of the refined map): with `--leap-departures` the linear stretch is leapt, and the
 /// run keeps its outcome.
 fn departure(extra: &[&str]) -> serde_json::Value {
-    let mut args = vec![
-        "simulate", "--eta-t", "0.07625", "--kappa2", "0.14", "--ic", "iii", "--json",
-    ];
-    args.extend_from_slice(extra);
-    json(&run(&args))
+    simulate_at("0.07625", "0.14", "iii", extra)
 }
 
 #[test]

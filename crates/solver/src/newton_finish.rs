@@ -295,11 +295,10 @@ impl NewtonFinish {
             self.params.mass,
             "> 0 for the linearisation (an overdamped droplet is finished by the paper's test)",
         )?;
-        if self.solver.is_none() {
-            self.solver = Some(SteadySolver::new(self.params, self.n)?);
-        }
-        let solver = self.solver.as_mut().expect("made above");
         let p = self.params;
+        self.steady_solver()?;
+        // The field, not `self`: `self.assessed` is read below while the solver is in use.
+        let solver = self.solver.as_mut().expect("made above");
         let opts = NewtonOptions {
             tol: 1e-12,
             // Converging solves from a run near its root take 3 to 8 iterations; a failing
@@ -479,14 +478,19 @@ impl NewtonFinish {
         Some(l)
     }
 
-    /// The co-moving field of the steady state `root` (normalised coefficients, `[kx][ky]`):
-    /// what a leap scales the run's field towards.
-    pub fn root_field(&mut self, root: [f64; 4]) -> Result<Vec<Complex64>, SolverError> {
+    /// The run's steady solver, made at its first use.
+    fn steady_solver(&mut self) -> Result<&mut SteadySolver, SolverError> {
         if self.solver.is_none() {
             self.solver = Some(SteadySolver::new(self.params, self.n)?);
         }
-        let solver = self.solver.as_mut().expect("made above");
-        Ok(solver
+        Ok(self.solver.as_mut().expect("made above"))
+    }
+
+    /// The co-moving field of the steady state `root` (normalised coefficients, `[kx][ky]`):
+    /// what a leap scales the run's field towards.
+    pub fn root_field(&mut self, root: [f64; 4]) -> Result<Vec<Complex64>, SolverError> {
+        Ok(self
+            .steady_solver()?
             .field_and_forces(root[0], root[1], root[2], root[3])
             .0
             .to_vec())

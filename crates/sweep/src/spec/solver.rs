@@ -61,23 +61,30 @@ pub(super) fn parse(
                 )
             })?;
         }
-        if let Some(x) = m.get("stop_beside_saddle") {
-            solver.stop_beside_saddle = x.as_bool().ok_or_else(|| {
-                ctx.err(
-                    &["solver", "stop_beside_saddle"],
-                    show(x),
-                    "true (stop a run beside a saddle it cannot leave before t_max) or false",
-                )
-            })?;
+        let flag = |key: &str, meaning: &str| -> Result<Option<bool>, SpecError> {
+            m.get(key)
+                .map(|x| {
+                    x.as_bool().ok_or_else(|| {
+                        ctx.err(
+                            &["solver", key],
+                            show(x),
+                            format!("true ({meaning}) or false"),
+                        )
+                    })
+                })
+                .transpose()
+        };
+        if let Some(on) = flag(
+            "stop_beside_saddle",
+            "stop a run beside a saddle it cannot leave before t_max",
+        )? {
+            solver.stop_beside_saddle = on;
         }
-        if let Some(x) = m.get("leap_departures") {
-            solver.leap_departures = x.as_bool().ok_or_else(|| {
-                ctx.err(
-                    &["solver", "leap_departures"],
-                    show(x),
-                    "true (leap along the linear stretch of a departure from a saddle) or false",
-                )
-            })?;
+        if let Some(on) = flag(
+            "leap_departures",
+            "leap along the linear stretch of a departure from a saddle",
+        )? {
+            solver.leap_departures = on;
         }
         ctx.numbers(m, "solver", &KEYS[5..], |key, val| match key {
             "dt" => solver.dt = val,
