@@ -78,8 +78,8 @@ pub struct Args {
     stop_beside_saddle: bool,
     /// With --steady newton and adaptive steps: once two Newton tries see the run leaving an
     /// unstable steady state along one growing mode, still linear, leap along the mode to a
-    /// distance 0.02 from it instead of stepping through the exponential (t_leapt says how
-    /// long; the final state is unaffected, t_end is a few per cent early).
+    /// distance 0.05 from it instead of stepping through the exponential (t_leapt says how
+    /// long; the final state is unaffected, t_end moves with the later Newton tries).
     #[arg(long)]
     leap_departures: bool,
     /// Hold the centre fixed (deformation-only run, Appendix E).

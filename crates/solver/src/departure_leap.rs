@@ -26,6 +26,7 @@
 //! stepping (`dt_max = 0.05`, `tol = 1e-6`) in `v`, the default steps are 5.4 % off at that
 //! time (test `a_leap_lands_on_the_time_steppers_departure`). `RunOutcome::t_leapt` records
 //! the leapt time; `t_end` also moves with the Newton tries' schedule after the leap.
+use crate::state::max_distance;
 
 /// Largest displacement from the saddle (max over `vx, vy, a2, b2`) a leap reaches: in the
 /// departures from the resting disk near the onset of motion the growth rate is within 4 %
@@ -75,10 +76,6 @@ pub struct Sighting {
     pub root: [f64; 4],
 }
 
-fn max_norm(d: impl Iterator<Item = f64>) -> f64 {
-    d.fold(0.0, |m, x| m.max(x.abs()))
-}
-
 /// The leap from the run at `now` (the saddle `now.root`, whose eigenvalues are `eigenvalues`
 /// as `[re, im]`) given the try `before` on the same saddle, if the run is on one real growing
 /// mode of it between the two tries; at most to `t_max`.
@@ -88,25 +85,28 @@ pub fn leap(
     eigenvalues: &[[f64; 2]],
     t_max: f64,
 ) -> Option<Leap> {
-    let same_root = max_norm(before.root.iter().zip(&now.root).map(|(a, b)| a - b)) < 1e-9;
     let dt = now.t - before.t;
-    if !same_root || dt <= 0.0 {
+    if max_distance(&before.root, &now.root) >= 1e-9 || dt <= 0.0 {
         return None;
     }
-    let d1: Vec<f64> = before.z.iter().zip(&now.root).map(|(a, b)| a - b).collect();
-    let d2: Vec<f64> = now.z.iter().zip(&now.root).map(|(a, b)| a - b).collect();
-    let (n1, n2) = (max_norm(d1.iter().copied()), max_norm(d2.iter().copied()));
+    let (n1, n2) = (
+        max_distance(&before.z, &now.root),
+        max_distance(&now.z, &now.root),
+    );
     if !(n2 > n1 && n2 < LEAP_TO) {
         return None;
     }
-    let change = max_norm(d1.iter().zip(&d2).map(|(a, b)| b - a));
+    let change = max_distance(&now.z, &before.z);
     let rate = eigenvalues
         .iter()
         .filter(|[re, im]| *re > 0.0 && *im == 0.0)
         .map(|[re, _]| *re)
         .find(|re| {
+            // The run at `now` against its state at `before` grown by the mode.
             let g = (re * dt).exp();
-            max_norm(d1.iter().zip(&d2).map(|(a, b)| b - g * a)) <= LEAP_TOL * change
+            let grown: [f64; 4] =
+                std::array::from_fn(|i| now.root[i] + g * (before.z[i] - now.root[i]));
+            max_distance(&now.z, &grown) <= LEAP_TOL * change
         })?;
     let duration = ((LEAP_TO / n2).ln() / rate).min(t_max - now.t);
     (duration >= MIN_LEAP).then_some(Leap {

@@ -57,6 +57,7 @@ use crate::newton::{solve, NewtonOptions};
 use crate::params::ModelParams;
 use crate::settings::SolverSettings;
 use crate::stability::Linearization;
+use crate::state::max_distance;
 use crate::steady::SteadySolver;
 pub use crate::steady_method::{Ending, SteadyMethod};
 use crate::verdict::{assess, Verdict};
@@ -503,11 +504,7 @@ impl NewtonFinish {
         if !self.stop_beside_saddle || f.verdict.unstable == 0 || f.turned {
             return None;
         }
-        let distance = z
-            .iter()
-            .zip(&f.z)
-            .map(|(a, b)| (a - b).abs())
-            .fold(0.0, f64::max);
+        let distance = max_distance(z, &f.z);
         let rate = f.slowest().max(f.verdict.max_re);
         let at_t_max = distance * (rate * (self.t_max - t).max(0.0)).min(700.0).exp();
         (at_t_max < LEAVE && one_class_within(z, &f.z, at_t_max)).then(|| {

@@ -35,3 +35,12 @@ impl DropletState {
             .all(|c| c.is_finite())
     }
 }
+
+/// The distance of two monitored states `(vx, vy, a2, b2)`: the largest difference of a
+/// component (the paper's steady test's norm).
+pub fn max_distance(a: &[f64; 4], b: &[f64; 4]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
+}
