@@ -33,6 +33,14 @@ fn continue_follows_md_through_its_fold_to_the_onset_of_motion() {
     );
     let sn = at("SN", "MD minor-axis").expect("a fold");
     assert!(sn > p_ic + 0.001 && sn < 0.085, "{j}");
+    // Every located event says how precisely, and it is within the promised 1e-7 (the P by
+    // eigenvalue and the fold to about 1e-13 on this line).
+    for e in events {
+        let precision = e["precision"].as_f64().expect("a precision");
+        assert!((0.0..=1e-7).contains(&precision), "{e}");
+    }
+    let fold = events.iter().find(|e| e["kind"] == "SN").unwrap();
+    assert!(fold["precision"].as_f64().unwrap() < 1e-10, "{fold}");
     let branches = j["branches"].as_array().unwrap();
     let md = branches
         .iter()
@@ -46,6 +54,8 @@ fn continue_follows_md_through_its_fold_to_the_onset_of_motion() {
     assert!((0..stable.len()).any(|i| stable.get(i) == Some(false)));
     let ev = read(&dir.path().join("continuation_kappa2_0.13_events.parquet"));
     assert_eq!(ev.height(), events.len());
+    let precision = ev.column("precision").unwrap().f64().unwrap();
+    assert!((0..precision.len()).all(|i| precision.get(i).is_some_and(|p| p <= 1e-7)));
     assert!(dir.path().join("continuation_kappa2_0.13.png").exists());
     assert!(dir.path().join("continuation_kappa2_0.13.svg").exists());
 }

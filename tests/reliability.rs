@@ -203,6 +203,11 @@ fn case(what: &'static str, args: &[&str], code: i32, says: &'static [&'static s
     }
 }
 
+/// `c`, which must return within one second.
+fn fast(c: Case) -> Case {
+    Case { within: 1.0, ..c }
+}
+
 fn spec_case(what: &'static str, replace: (&str, &str), says: &'static [&'static str]) -> Case {
     let good = "name: m\ngrid:\n  eta_t: [0.08]\n  kappa2: [0.11]\nsolver:\n  n: 32\n  dt: 0.05\n  t_max: 10\n";
     assert!(good.contains(replace.0), "{what}");
@@ -634,6 +639,129 @@ fn catalogue() -> Vec<Case> {
             2,
             &["radius"],
         ),
+        // Parameter windows beyond the model's limits are refused before any work, naming the
+        // option (a line to 1e10 once gave a wrong onset of motion, 1e300 wrong states).
+        fast(case(
+            "continue to 1e10",
+            &[
+                "continue", "--kappa2", "0.13", "--from", "0.07", "--to", "1e10", "--n", "64",
+                "--branch", "ic", "--out", "DIR/c",
+            ],
+            2,
+            &["--to", "at most 10"],
+        )),
+        fast(case(
+            "continue at kappa2 1e300",
+            &[
+                "continue", "--kappa2", "1e300", "--from", "0.07", "--to", "0.1", "--n", "64",
+                "--out", "DIR/c",
+            ],
+            2,
+            &["--kappa2", "at most 10"],
+        )),
+        fast(case(
+            "continue from -inf",
+            &[
+                "continue", "--kappa2", "0.13", "--from", "-inf", "--to", "0.1", "--out", "DIR/c",
+            ],
+            2,
+            &["--from", "finite"],
+        )),
+        fast(case(
+            "ode line to 1e300",
+            &[
+                "ode", "bifurcation", "--kappa2", "0.13", "--from", "0.07", "--to", "1e300",
+                "--out", "DIR/ode",
+            ],
+            2,
+            &["--to", "at most 10"],
+        )),
+        fast(case(
+            "boundaries window to 1e300",
+            &["boundaries", "--eta-t", "0.07,1e300", "--n", "64", "--out", "DIR/b"],
+            2,
+            &["--eta-t", "at most 10"],
+        )),
+        fast(case(
+            "boundaries negative window",
+            &["boundaries", "--eta-t", "-0.1,0.1", "--out", "DIR/b"],
+            2,
+            &["--eta-t", "-0.1,0.1", "0 < LO < HI"],
+        )),
+        fast(case(
+            "stability seed of negative numbers",
+            &[
+                "stability", "--eta-t", "0.085", "--kappa2", "0.112", "--seed", "-0.5,-2",
+                "--n", "64",
+            ],
+            2,
+            &["--seed", "|SHAPE| < 1"],
+        )),
+        // Specs: duplicated keys on their own line, sizes refused at once.
+        spec_case(
+            "spec name twice",
+            ("t_max: 10", "t_max: 10\nname: x"),
+            &[":9: `name`", "each key once"],
+        ),
+        spec_case(
+            "spec grid axis twice",
+            ("kappa2: [0.11]", "kappa2: [0.11]\n  eta_t: [0.09]"),
+            &[":5: `grid.eta_t`", "each key once"],
+        ),
+        fast(Case {
+            what: "spec refine min_step above the grid step",
+            args: vec![
+                "sweep".into(),
+                "SPEC:name: m\ngrid:\n  eta_t: {start: 0.07, stop: 0.09, step: 0.01}\n  kappa2: {start: 0.1, stop: 0.12, step: 0.01}\nrefine: {levels: 1, min_step: {eta_t: 1.0e3, kappa2: 1.0e3}}\nsolver:\n  n: 32\n  dt: 0.05\n  t_max: 10\n".into(),
+                "--out".into(),
+                "DIR/out".into(),
+            ],
+            code: 2,
+            says: &["refine.min_step.eta_t", "half the grid's eta_t step"],
+            within: 1.0,
+        }),
+        fast(Case {
+            what: "spec list of 400000 values",
+            args: vec![
+                "sweep".into(),
+                format!(
+                    "SPEC:grid:\n  eta_t: [{}]\n  kappa2: [0.1]\n",
+                    (0..400_000).map(|i| (i + 1).to_string()).collect::<Vec<_>>().join(",")
+                ),
+                "--out".into(),
+                "DIR/out".into(),
+            ],
+            code: 2,
+            says: &["grid.eta_t", "a list of 400000 values", "at most 100000"],
+            within: 1.0,
+        }),
+        fast(Case {
+            what: "spec of 5 MB",
+            args: vec![
+                "sweep".into(),
+                format!("SPEC:name: m\n#{}\n", "x".repeat(5 << 20)),
+                "--out".into(),
+                "DIR/out".into(),
+            ],
+            code: 2,
+            says: &["(file)", "at most 4194304 bytes"],
+            within: 1.0,
+        }),
+        fast(Case {
+            what: "spec name of 1 MB",
+            args: vec![
+                "sweep".into(),
+                format!(
+                    "SPEC:name: {}\ngrid:\n  eta_t: [0.08]\n  kappa2: [0.11]\n",
+                    "n".repeat(1 << 20)
+                ),
+                "--out".into(),
+                "DIR/out".into(),
+            ],
+            code: 2,
+            says: &["`name`", "a name of 1048576 characters", "at most 100"],
+            within: 1.0,
+        }),
         case("unknown command", &["fly"], 2, &["fly"]),
         case("no command", &[], 2, &["Usage"]),
     ]
@@ -649,6 +777,8 @@ fn malformed_and_extreme_inputs_exit_with_their_code_name_the_problem_and_never_
     let cases = catalogue();
     let mut lines = Vec::new();
     let mut slowest = 0.0f64;
+    let mut slowest_s = 0.0f64;
+    let mut codes = std::collections::BTreeMap::new();
     for (i, c) in cases.iter().enumerate() {
         let args: Vec<String> = c
             .args
@@ -669,6 +799,8 @@ fn malformed_and_extreme_inputs_exit_with_their_code_name_the_problem_and_never_
         let o = droplet().args(&args).stdin(Stdio::null()).output().unwrap();
         let secs = started.elapsed().as_secs_f64();
         slowest = slowest.max(secs / c.within);
+        slowest_s = slowest_s.max(secs);
+        *codes.entry(c.code).or_insert(0usize) += 1;
         let err = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(c.code), "{}: {args:?}\n{err}", c.what);
         assert!(!err.contains("panicked"), "{}: panic\n{err}", c.what);
@@ -700,8 +832,14 @@ fn malformed_and_extreme_inputs_exit_with_their_code_name_the_problem_and_never_
     report(
         "inputs.md",
         &format!(
-            "{} malformed or extreme inputs, each refused with its exit code and a message naming the problem, no panic, none slower than {:.1} % of its time limit:\n\n| input | first line of the message | exit | time |\n|---|---|---|---|\n{}\n",
+            "{} malformed or extreme inputs, each refused with its exit code and a message naming the problem ({}), 0 panics, 0 wrong answers (every case exits non-zero with nothing written), slowest refusal {:.2} s, none slower than {:.1} % of its time limit:\n\n| input | first line of the message | exit | time |\n|---|---|---|---|\n{}\n",
             cases.len(),
+            codes
+                .iter()
+                .map(|(c, n)| format!("exit {c}: {n}"))
+                .collect::<Vec<_>>()
+                .join(", "),
+            slowest_s,
             100.0 * slowest,
             lines.join("\n")
         ),
@@ -892,4 +1030,178 @@ fn a_full_disk_is_named_and_leaves_no_partial_file() {
     if let Err(e) = result {
         std::panic::resume_unwind(e);
     }
+}
+
+/// Runs `droplet args` with its stdout already closed by the reader (`droplet ... | true`).
+fn into_closed_pipe(args: &[&str]) -> std::process::Output {
+    let mut child = droplet()
+        .args(args)
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    child.wait_with_output().unwrap()
+}
+
+#[test]
+fn a_closed_stdout_ends_every_command_quietly() {
+    let dir = tempfile::tempdir().unwrap();
+    let spec = write_spec(dir.path(), "tiny.yaml", TINY);
+    let out = dir.path().join("o");
+    let o = out.to_str().unwrap();
+    let spec_s = spec.to_str().unwrap();
+    let commands: Vec<Vec<&str>> = vec![
+        vec!["sweep", spec_s, "--out", o],
+        vec!["sweep", spec_s, "--out", o, "--json"],
+        vec!["status", o],
+        vec!["status", o, "--json"],
+        vec!["merge", o],
+        vec!["plot", o],
+        vec![
+            "simulate", "--eta-t", "0.085", "--kappa2", "0.12", "--n", "32", "--t-max", "5",
+        ],
+        vec![
+            "stability",
+            "--eta-t",
+            "0.085",
+            "--kappa2",
+            "0.112",
+            "--n",
+            "32",
+        ],
+        vec!["ode", "coefficients"],
+        vec!["ode", "coefficients", "--json"],
+        vec![
+            "continue", "--kappa2", "0.13", "--from", "0.07", "--to", "0.1", "--n", "32",
+            "--branch", "ic", "--out",
+        ],
+        vec!["--help"],
+        vec!["sweep", "--help"],
+        vec!["--version"],
+    ];
+    let cont = dir.path().join("c");
+    for mut args in commands {
+        if args.last() == Some(&"--out") {
+            args.push(cont.to_str().unwrap());
+        }
+        let r = into_closed_pipe(&args);
+        let err = String::from_utf8_lossy(&r.stderr);
+        assert!(!err.contains("panicked"), "{args:?}: panic\n{err}");
+        assert_eq!(r.status.code(), Some(0), "{args:?}:\n{err}");
+    }
+    // The work was done all the same.
+    assert!(out.join("runs.parquet").exists() && out.join("phase_map.png").exists());
+}
+
+#[test]
+fn plot_draws_one_consistent_snapshot_and_says_when_points_are_missing() {
+    let dir = tempfile::tempdir().unwrap();
+    let spec = write_spec(dir.path(), "tiny.yaml", TINY);
+    let out = dir.path().join("o");
+    let o = out.to_str().unwrap();
+    json(&sweep(&spec, &out, &[]));
+    // Complete: exit 0, nothing missing.
+    let p = json(&run(&["plot", o, "--json"]));
+    assert_eq!(
+        (p["points"].as_u64(), p["missing"].as_u64()),
+        (Some(6), Some(0)),
+        "{p}"
+    );
+    // While another process holds the directory (a sweep at work), plot refuses and writes
+    // nothing: its picture could land after the sweep's final one.
+    let png = out.join("phase_map.png");
+    let before = std::fs::metadata(&png).unwrap().modified().unwrap();
+    let mut holder = std::process::Command::new("flock")
+        // -o: the lock stays with flock itself, so killing it releases the lock.
+        .args([
+            "-x",
+            "-o",
+            out.join(".lock").to_str().unwrap(),
+            "-c",
+            "sleep 5",
+        ])
+        .spawn()
+        .unwrap();
+    std::thread::sleep(Duration::from_millis(500));
+    let r = run(&["plot", o]);
+    holder.kill().unwrap();
+    holder.wait().unwrap();
+    let err = String::from_utf8_lossy(&r.stderr);
+    assert_eq!(r.status.code(), Some(2), "{err}");
+    assert!(err.contains("in use by another droplet process"), "{err}");
+    assert_eq!(std::fs::metadata(&png).unwrap().modified().unwrap(), before);
+    // An unreadable run: the picture shows the point as missing, and plot says so (exit 1).
+    let files = run_files(&out);
+    std::fs::write(&files[0], b"{ not json").unwrap();
+    let r = run(&["plot", o]);
+    let err = String::from_utf8_lossy(&r.stderr);
+    assert_eq!(r.status.code(), Some(1), "{err}");
+    assert!(err.contains("1 of 6 points are drawn as missing"), "{err}");
+    assert!(err.contains("droplet status"), "{err}");
+}
+
+#[test]
+fn boundaries_with_a_curve_outside_the_window_and_stability_messages_are_plain() {
+    let dir = tempfile::tempdir().unwrap();
+    // The reduced model's ID-stability curve lies outside this window: an empty curve is a
+    // normal answer, not a panic.
+    let b = dir.path().join("b");
+    let r = run(&[
+        "boundaries",
+        "--eta-t",
+        "0.07,0.1",
+        "--kappa2",
+        "0.16,0.17",
+        "--n",
+        "64",
+        "--samples",
+        "5",
+        "--out",
+        b.to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&r.stderr);
+    let text = String::from_utf8_lossy(&r.stdout);
+    assert_eq!(r.status.code(), Some(0), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+    assert!(text.contains("none in this window"), "{text}");
+    let b2 = dir.path().join("b2");
+    let r = run(&[
+        "boundaries",
+        "--eta-t",
+        "0.0764,0.07641",
+        "--n",
+        "64",
+        "--samples",
+        "5",
+        "--json",
+        "--out",
+        b2.to_str().unwrap(),
+    ]);
+    let v = json(&r);
+    assert!(
+        v["curves"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|c| c["points"] == 0),
+        "{v}"
+    );
+    // A Newton solve for MD that lands on the resting disk says so, not "did not converge".
+    let r = run(&[
+        "stability",
+        "--eta-t",
+        "0.085",
+        "--kappa2",
+        "0.112",
+        "--seed",
+        "0.9999,0.9999",
+        "--n",
+        "64",
+    ]);
+    let err = String::from_utf8_lossy(&r.stderr);
+    assert_eq!(r.status.code(), Some(1), "{err}");
+    assert!(err.contains("to a resting droplet"), "{err}");
+    assert!(!err.contains("did not converge"), "{err}");
 }

@@ -53,7 +53,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
         print_json(&report);
         return Ok(());
     }
-    println!(
+    outln!(
         "{} runs in {:.0} s (reference {}: {:.0} s)",
         report.rows,
         report.wall_s,
@@ -61,10 +61,10 @@ pub fn run(a: Args) -> Result<(), CliError> {
         refs_wall
     );
     if let Some(rate) = report.summary.paper_fd_s_per_time {
-        println!("paper-fd: {rate:.2} s of wall time per simulated time unit");
+        outln!("paper-fd: {rate:.2} s of wall time per simulated time unit");
     }
     for d in report.summary.vs_paper_fd.iter().filter(|d| d.is_default) {
-        println!(
+        outln!(
             "default on {:<11} err v {:.1e}  err s {:.1e}  class {}  {:.2} s{}",
             d.case,
             d.err_v,
@@ -77,13 +77,13 @@ pub fn run(a: Args) -> Result<(), CliError> {
         );
     }
     for d in &report.summary.diverged {
-        println!("diverged: {d}");
+        outln!("diverged: {d}");
     }
     for d in &report.summary.class_mismatches {
-        println!("class differs from the reference: {d}");
+        outln!("class differs from the reference: {d}");
     }
     for f in &report.files {
-        println!("wrote {}", f.display());
+        outln!("wrote {}", f.display());
     }
     Ok(())
 }

@@ -23,10 +23,10 @@ use std::time::Instant;
 )]
 pub struct Args {
     /// eta_t window LO,HI (default: the sweep's in --out, else 0.07,0.10).
-    #[arg(long, value_name = "LO,HI")]
+    #[arg(long, value_name = "LO,HI", allow_hyphen_values = true)]
     eta_t: Option<String>,
     /// kappa2 window LO,HI (default: the sweep's in --out, else 0.10,0.17).
-    #[arg(long, value_name = "LO,HI")]
+    #[arg(long, value_name = "LO,HI", allow_hyphen_values = true)]
     kappa2: Option<String>,
     /// Grid points per side.
     #[arg(long, default_value_t = 192)]
@@ -51,7 +51,10 @@ fn range(text: &str, flag: &str) -> Result<(f64, f64), CliError> {
         .collect::<Result<_, _>>()
         .map_err(|_| bad())?;
     match parts[..] {
-        [lo, hi] if lo.is_finite() && hi.is_finite() && lo > 0.0 && lo < hi => Ok((lo, hi)),
+        [lo, hi] if lo.is_finite() && hi.is_finite() && lo > 0.0 && lo < hi => {
+            super::line::within_limit(&format!("--{flag} HI"), hi)?;
+            Ok((lo, hi))
+        }
         _ => Err(bad()),
     }
 }
@@ -74,6 +77,8 @@ pub fn run(a: Args) -> Result<(), CliError> {
         (None, Some(s)) if s.kappa2.len() > 1 => span(&s.kappa2),
         _ => (0.10, 0.17),
     };
+    super::line::within_limit("eta_t window HI (from the sweep in --out)", eta_t.1)?;
+    super::line::within_limit("kappa2 window HI (from the sweep in --out)", kappa2.1)?;
     super::check_grid(a.n)?;
     if !(2..=10_000).contains(&a.samples) {
         return Err(CliError::usage(format!(
@@ -152,7 +157,14 @@ pub fn run(a: Args) -> Result<(), CliError> {
     )?;
     files.push(path);
     if sweep.is_some() {
-        files.extend(droplet_sweep::pictures::plot(&a.out)?);
+        let drawn = droplet_sweep::pictures::plot(&a.out)?;
+        if drawn.missing > 0 {
+            eprintln!(
+                "warning: {}",
+                super::plot::missing_message(drawn.missing, drawn.points, &a.out)
+            );
+        }
+        files.extend(drawn.files);
     }
     if a.json {
         let curves: Vec<_> = all
@@ -171,22 +183,28 @@ pub fn run(a: Args) -> Result<(), CliError> {
         }));
     } else {
         for c in &all {
-            let (first, last) = (c.points[0], c.points[c.points.len() - 1]);
-            println!(
-                "{}: {:<40} {:>4} points, from ({:.7}, {:.7}) to ({:.7}, {:.7})",
-                c.model.to_uppercase(),
-                c.name,
-                c.points.len(),
-                first.0,
-                first.1,
-                last.0,
-                last.1
-            );
+            match (c.points.first(), c.points.last()) {
+                (Some(first), Some(last)) => outln!(
+                    "{}: {:<40} {:>4} points, from ({:.7}, {:.7}) to ({:.7}, {:.7})",
+                    c.model.to_uppercase(),
+                    c.name,
+                    c.points.len(),
+                    first.0,
+                    first.1,
+                    last.0,
+                    last.1
+                ),
+                _ => outln!(
+                    "{}: {:<40} none in this window",
+                    c.model.to_uppercase(),
+                    c.name
+                ),
+            }
         }
         for f in files {
-            println!("wrote {}", f.display());
+            outln!("wrote {}", f.display());
         }
-        println!("{seconds:.1} s");
+        outln!("{seconds:.1} s");
     }
     Ok(())
 }

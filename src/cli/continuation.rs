@@ -2,7 +2,7 @@
 //! with their stability and bifurcation points (the PDE's Fig. 3b).
 use super::{print_json, CliError};
 use droplet_solver::continuation::arclength::ArclengthOptions;
-use droplet_solver::continuation::{follow, Branch, Family, Line};
+use droplet_solver::continuation::{follow, Branch, Family, Line, EVENT_PRECISION};
 use droplet_solver::reduced::bifurcation::Axis;
 use droplet_solver::ModelParams;
 use std::path::PathBuf;
@@ -46,8 +46,8 @@ pub struct Args {
     #[arg(long, default_value = "out/continuation")]
     out: PathBuf,
     /// Print one JSON object (keys: line, n, seconds, branches [{branch, mirror, points,
-    /// stable_points, ends}], events [{kind, what, branch, eta_t, kappa2, v, s, eigenvalue}],
-    /// files).
+    /// stable_points, ends}], events [{kind, what, branch, eta_t, kappa2, v, s, eigenvalue,
+    /// precision}], files).
     #[arg(long)]
     json: bool,
 }
@@ -128,10 +128,12 @@ pub fn run(a: Args) -> Result<(), CliError> {
         }
     }
     let seconds = started.elapsed().as_secs_f64();
+    // Ten significant digits: a short, stable file name for any value within the limits.
+    let fixed_text = format!("{fixed:.9e}").parse::<f64>().unwrap_or(fixed);
     let stem = match mirror {
-        droplet_solver::steady::MirrorAxis::X => format!("continuation_{fixed_name}_{fixed}"),
+        droplet_solver::steady::MirrorAxis::X => format!("continuation_{fixed_name}_{fixed_text}"),
         droplet_solver::steady::MirrorAxis::Diagonal => {
-            format!("continuation_{fixed_name}_{fixed}_diagonal")
+            format!("continuation_{fixed_name}_{fixed_text}_diagonal")
         }
     };
     let desc = format!(
@@ -166,6 +168,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
                         "kind": e.kind, "what": e.what, "branch": b.family.as_str(),
                         "mirror": b.mirror, "eta_t": e.point.eta_t, "kappa2": e.point.kappa2,
                         "v": e.point.v, "s": e.point.s, "eigenvalue": e.eigenvalue,
+                        "precision": e.precision,
                     })
                 })
             })
@@ -186,7 +189,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
         }));
     } else {
         for b in &branches {
-            println!(
+            outln!(
                 "{:<14} {:>4} states ({} stable); ends: {} | {}",
                 b.family.as_str(),
                 b.points.len(),
@@ -195,7 +198,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
                 b.ends[1]
             );
             for e in &b.events {
-                println!(
+                outln!(
                     "  {:>2} at {varied} = {:.9}  v = {:.6}  s = {:.6}  ({})",
                     e.kind,
                     at(&e.point),
@@ -206,9 +209,36 @@ pub fn run(a: Args) -> Result<(), CliError> {
             }
         }
         for f in files {
-            println!("wrote {}", f.display());
+            outln!("wrote {}", f.display());
         }
-        println!("{seconds:.1} s");
+        outln!("{seconds:.1} s");
     }
-    Ok(())
+    let imprecise: Vec<String> = branches
+        .iter()
+        .flat_map(|b| b.events.iter().map(move |e| (b, e)))
+        .filter(|(_, e)| e.precision.is_nan() || e.precision > EVENT_PRECISION)
+        .map(|(b, e)| {
+            format!(
+                "{} {} at {varied} = {} only to {:e}",
+                b.family.as_str(),
+                e.kind,
+                at(&e.point),
+                e.precision
+            )
+        })
+        .collect();
+    if imprecise.is_empty() {
+        Ok(())
+    } else {
+        Err(CliError {
+            message: format!(
+                "{} bifurcation point(s) could not be located to {EVENT_PRECISION:e} in {varied} \
+                 ({}); the tables mark them in their `precision` column: follow a shorter line \
+                 around them (--from/--to) or lower --ds-max",
+                imprecise.len(),
+                imprecise.join("; ")
+            ),
+            code: 1,
+        })
+    }
 }

@@ -90,10 +90,10 @@ pub fn run(a: Args) -> Result<(), CliError> {
             "method": "exact steady evaluator", "points": fit.points, "files": files,
         }));
     } else {
-        println!("p0 = {:.5}  p2 = h0 = {:.5}  ({} of {} points in 0.001 < s < 0.3, N = {}, exact steady evaluator)", fit.p0, fit.p2, fit.used, fit.points.len(), a.n);
-        println!("paper: p0 = 0.1184, p2 = 0.1436");
+        outln!("p0 = {:.5}  p2 = h0 = {:.5}  ({} of {} points in 0.001 < s < 0.3, N = {}, exact steady evaluator)", fit.p0, fit.p2, fit.used, fit.points.len(), a.n);
+        outln!("paper: p0 = 0.1184, p2 = 0.1436");
         for f in files {
-            println!("wrote {}", f.display());
+            outln!("wrote {}", f.display());
         }
     }
     Ok(())

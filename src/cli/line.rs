@@ -1,22 +1,29 @@
 //! The parameter line shared by `droplet ode bifurcation` and `droplet continue`: one of
 //! eta_t / kappa2 fixed, the other varied from --from to --to.
 use super::CliError;
+use droplet_solver::continuation::PARAMETER_LIMIT;
+use droplet_solver::error::show_number;
 use droplet_solver::reduced::bifurcation::Axis;
 use droplet_solver::ModelParams;
 
 #[derive(clap::Args)]
 pub struct LineArgs {
     /// Fix eta_t and vary kappa2.
-    #[arg(long, conflicts_with = "kappa2", required_unless_present = "kappa2")]
+    #[arg(
+        long,
+        allow_hyphen_values = true,
+        conflicts_with = "kappa2",
+        required_unless_present = "kappa2"
+    )]
     pub eta_t: Option<f64>,
     /// Fix kappa2 and vary eta_t.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub kappa2: Option<f64>,
     /// Start of the varied parameter.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub from: f64,
     /// End of the varied parameter.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub to: f64,
 }
 
@@ -47,7 +54,10 @@ impl LineArgs {
                 self.from, self.to
             )));
         }
-        let (axis, _, fixed) = self.parameter();
+        let (axis, fixed_name, fixed) = self.parameter();
+        let varied = self.varied();
+        within_limit(&format!("--{}", fixed_name.replace('_', "-")), fixed)?;
+        within_limit(&format!("--to (the line's {varied})"), self.to)?;
         let at = |x: f64| match axis {
             Axis::EtaT => ModelParams {
                 eta_t: x,
@@ -64,5 +74,19 @@ impl LineArgs {
         let start = at(self.from);
         start.validate()?;
         Ok(start)
+    }
+}
+
+/// Refuses an `eta_t` or `kappa2` beyond [`PARAMETER_LIMIT`], naming the option.
+pub fn within_limit(option: &str, value: f64) -> Result<(), CliError> {
+    if value.is_finite() && value <= PARAMETER_LIMIT {
+        Ok(())
+    } else {
+        Err(CliError::usage(format!(
+            "invalid {option} {}: at most {PARAMETER_LIMIT} (far beyond the paper's window \
+             eta_t 0.07-0.10, kappa2 0.10-0.17; wider lines lose the precision of the \
+             bifurcation points)",
+            show_number(value)
+        )))
     }
 }

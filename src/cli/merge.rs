@@ -23,13 +23,13 @@ pub fn run(a: Args) -> Result<(), CliError> {
             if a.json {
                 print_json(&report);
             } else {
-                println!(
+                outln!(
                     "{}: all {} runs present",
                     a.out.display(),
                     report.runs_total
                 );
                 for f in &report.tables {
-                    println!("wrote {}", f.display());
+                    outln!("wrote {}", f.display());
                 }
             }
             Ok(())

@@ -1,4 +1,13 @@
 //! Command-line front end.
+
+/// `println!` for command output: a closed stdout (`droplet status DIR | head -1`) ends the
+/// output quietly, as in other command-line tools, and the command finishes its work.
+macro_rules! outln {
+    ($($arg:tt)*) => {
+        $crate::cli::write_out(format_args!($($arg)*))
+    };
+}
+
 mod bench;
 mod boundaries;
 mod continuation;
@@ -120,7 +129,21 @@ pub fn mirror_axis(text: &str) -> Result<droplet_solver::steady::MirrorAxis, Cli
 
 /// Prints one JSON object. A closed pipe (`droplet ... --json | head`) is not an error.
 pub fn print_json<T: serde::Serialize>(value: &T) {
+    match serde_json::to_string_pretty(value) {
+        Ok(text) => write_out(format_args!("{text}")),
+        Err(e) => eprintln!("error: the result could not be written as JSON ({e})"),
+    }
+}
+
+/// Writes one line of output (see `outln!`). A reader that went away (a closed pipe) is not
+/// an error; any other failure to write is reported once on stderr, never a panic.
+pub fn write_out(line: std::fmt::Arguments) {
     use std::io::Write;
-    let text = serde_json::to_string_pretty(value).expect("serialisable");
-    let _ = writeln!(std::io::stdout(), "{text}");
+    use std::sync::atomic::{AtomicBool, Ordering};
+    static REPORTED: AtomicBool = AtomicBool::new(false);
+    if let Err(e) = writeln!(std::io::stdout(), "{line}") {
+        if e.kind() != std::io::ErrorKind::BrokenPipe && !REPORTED.swap(true, Ordering::Relaxed) {
+            eprintln!("warning: output could not be written ({e})");
+        }
+    }
 }

@@ -73,13 +73,19 @@ pub fn run(a: Args) -> Result<(), CliError> {
             if json {
                 print_json(&c);
             } else {
-                println!(
+                outln!(
                     "R = {radius}: f1 = {:.6}  f1~ = {:.6}  f3 = {:.6}  f3~ = {:.6}",
-                    c.f1, c.f1t, c.f3, c.f3t
+                    c.f1,
+                    c.f1t,
+                    c.f3,
+                    c.f3t
                 );
-                println!(
+                outln!(
                     "        g0~ = {:.6}  g2 = {:.6}  g2~ = {:.6}  h0 = {}",
-                    c.g0t, c.g2, c.g2t, c.h0
+                    c.g0t,
+                    c.g2,
+                    c.g2t,
+                    c.h0
                 );
             }
             Ok(())
@@ -142,7 +148,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
                 );
             } else {
                 for e in &events {
-                    println!(
+                    outln!(
                         "{:>3} on {:<14} at {x_label} = {:.5}",
                         e.kind,
                         e.branch.as_str(),
@@ -150,7 +156,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
                     );
                 }
                 for f in files {
-                    println!("wrote {}", f.display());
+                    outln!("wrote {}", f.display());
                 }
             }
             Ok(())

@@ -3,7 +3,9 @@ use super::{print_json, CliError};
 use std::path::PathBuf;
 
 /// Draw OUT/phase_map.png and OUT/phase_map.svg (paper Fig. 2a colours) from a sweep's runs;
-/// points whose runs are not all finished are drawn as `missing`.
+/// points whose runs are not all finished (or are unreadable) are drawn as `missing`, and
+/// then the command says so and exits 1. Refused while a sweep works on OUT: its own
+/// pictures are drawn when it ends.
 #[derive(clap::Args)]
 pub struct Args {
     /// The sweep's output directory.
@@ -14,13 +16,30 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<(), CliError> {
-    let files = droplet_sweep::pictures::plot(&a.out)?;
+    let drawn = droplet_sweep::pictures::plot(&a.out)?;
     if a.json {
-        print_json(&serde_json::json!({ "files": files }));
+        print_json(&serde_json::json!({
+            "files": drawn.files, "points": drawn.points, "missing": drawn.missing,
+        }));
     } else {
-        for f in files {
-            println!("wrote {}", f.display());
+        for f in &drawn.files {
+            outln!("wrote {}", f.display());
         }
     }
-    Ok(())
+    match drawn.missing {
+        0 => Ok(()),
+        n => Err(CliError {
+            message: missing_message(n, drawn.points, &a.out),
+            code: 1,
+        }),
+    }
+}
+
+/// What a picture with missing points means, and what to do.
+pub fn missing_message(missing: usize, points: usize, dir: &std::path::Path) -> String {
+    format!(
+        "{missing} of {points} points are drawn as missing: a run is not finished or cannot be \
+         read (`droplet status {0}` counts them; `droplet sweep` on {0} recomputes them)",
+        dir.display()
+    )
 }

@@ -272,7 +272,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
     if a.json {
         print_json(&report);
     } else {
-        println!(
+        outln!(
             "status {}  class {}  v = {:.6}  s = {:.6}  t = {:.2}  ({} steps, {:.2} s wall)",
             report.status,
             report.class.as_deref().unwrap_or("-"),
@@ -283,16 +283,16 @@ pub fn run(a: Args) -> Result<(), CliError> {
             report.wall_s
         );
         if let Some(e) = &report.ended_by {
-            println!("ended by {}", e.replace('_', " "));
+            outln!("ended by {}", e.replace('_', " "));
         }
         if report.t_leapt > 0.0 {
-            println!(
+            outln!(
                 "leapt {:.1} time units along a departure from an unstable steady state",
                 report.t_leapt
             );
         }
         if let Some(d) = &report.diagnosis {
-            println!("not finished: {d}");
+            outln!("not finished: {d}");
         }
         if let Some(f) = report.final_state.as_ref().filter(|f| !f.stable) {
             eprintln!(
@@ -304,7 +304,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
             eprintln!("warning: {w}");
         }
         for p in a.series.iter().chain(&pictures) {
-            println!("wrote {}", p.display());
+            outln!("wrote {}", p.display());
         }
     }
     Ok(())

@@ -138,25 +138,25 @@ pub fn run(a: Args) -> Result<(), CliError> {
             &serde_json::json!({ "sweep_script": sweep_path, "merge_script": merge_path, "jobs": jobs, "output": out }),
         );
     } else {
-        println!(
+        outln!(
             "wrote {}\nwrote {}",
             sweep_path.display(),
             merge_path.display()
         );
         match (jobs.split_last(), sweep.refine) {
-            (None, None) => println!(
+            (None, None) => outln!(
                 "submit: sbatch {} && sbatch --dependency=afterany:<array job id> {}",
                 sweep_path.display(),
                 merge_path.display()
             ),
-            (None, Some(l)) => println!(
+            (None, Some(l)) => outln!(
                 "submit (or rerun with --submit): sbatch {s} 0, then for L = 1..={}: sbatch --dependency=afterok:<level L-1's job id> --kill-on-invalid-dep=yes {s} L, then sbatch --dependency=afterany:<level {}'s job id> {}",
                 l.refine.levels,
                 l.refine.levels,
                 merge_path.display(),
                 s = sweep_path.display()
             ),
-            (Some((merge, arrays)), _) => println!(
+            (Some((merge, arrays)), _) => outln!(
                 "submitted array job(s) {} and merge job {merge}",
                 arrays.join(", ")
             ),

@@ -33,7 +33,7 @@ pub struct Args {
     #[arg(long, default_value = "x")]
     axis: String,
     /// Newton's starting point: speed along the axis and shape amplitude, e.g. 0.6,-0.27.
-    #[arg(long, value_name = "V,SHAPE")]
+    #[arg(long, value_name = "V,SHAPE", allow_hyphen_values = true)]
     seed: Option<String>,
     /// Grid points per side.
     #[arg(long, default_value_t = 192)]
@@ -108,7 +108,8 @@ pub fn run(a: Args) -> Result<(), CliError> {
     params.validate()?;
     super::check_grid(a.n)?;
     let st = find(&params, a.n, a.state, axis, seed).map_err(|e| match e {
-        droplet_solver::SolverError::NewtonFailed { .. } => CliError {
+        droplet_solver::SolverError::NewtonFailed { .. }
+        | droplet_solver::SolverError::RestingRoot { .. } => CliError {
             message: format!("{e}; try another --seed or --axis"),
             code: 1,
         },
@@ -145,20 +146,20 @@ pub fn run(a: Args) -> Result<(), CliError> {
     if a.json {
         print_json(&report);
     } else {
-        println!(
+        outln!(
             "{:?} on {} at eta_t = {}, kappa2 = {} (N = {}): v = {:.6}  s = {:.6}  (vx {:.6}, vy {:.6}, a2 {:.6}, b2 {:.6}; residual {:.1e})",
             report.state, report.axis, report.eta_t, report.kappa2, report.n, report.v, report.s, vx, vy, a2, b2, report.residual
         );
         for l in &report.eigenvalues {
-            println!("  eigenvalue {:+.6} {:+.6}i", l.re, l.im);
+            outln!("  eigenvalue {:+.6} {:+.6}i", l.re, l.im);
         }
         if let Some(th) = &report.ic_thresholds {
-            println!(
+            outln!(
                 "resting disk: moves for eta_t < {:.9}; deforms (a2) for kappa2 < {:.9}, (b2, diagonal) for kappa2 < {:.9}",
                 th.eta_t, th.kappa2_a2, th.kappa2_b2
             );
         }
-        println!(
+        outln!(
             "{}",
             if report.stable {
                 "stable".to_string()
@@ -167,7 +168,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
             }
         );
         if let Some(r) = report.rotation {
-            println!(
+            outln!(
                 "rotation mode {r:+.6} (box effect: which orientation the box prefers; not counted)"
             );
         }

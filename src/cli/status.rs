@@ -17,7 +17,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
     if a.json {
         print_json(&st);
     } else {
-        println!(
+        outln!(
             "{}: {}/{} runs done ({}), {} points, {:.0} CPU s so far",
             st.name,
             st.runs_done,
@@ -37,15 +37,18 @@ pub fn run(a: Args) -> Result<(), CliError> {
                 .join(", ")
         };
         if st.runs_corrupt > 0 {
-            println!(
+            outln!(
                 "{} stored runs cannot be used (unreadable or not matching their key): the next `droplet sweep` on this directory moves them to corrupt/ and recomputes them",
                 st.runs_corrupt
             );
         }
         for l in &st.levels {
-            println!(
+            outln!(
                 "level {}: {} points, {}/{} runs done",
-                l.level, l.points, l.runs_done, l.runs_total
+                l.level,
+                l.points,
+                l.runs_done,
+                l.runs_total
             );
         }
         if let (Some(eta), false) = (st.eta_cpu_s, st.complete) {
@@ -54,19 +57,19 @@ pub fn run(a: Args) -> Result<(), CliError> {
             } else {
                 " (of the levels known so far; the next follow from them)"
             };
-            println!("remaining: about {eta:.0} CPU s at the mean cost of the finished runs{more}");
+            outln!("remaining: about {eta:.0} CPU s at the mean cost of the finished runs{more}");
         }
         if let Some(eta) = st.eta_s {
-            println!(
+            outln!(
                 "ETA: about {:.0} min at the pace of the last {:.0} min ({} runs stored)",
                 eta / 60.0,
                 st.pace_s / 60.0,
                 st.runs_recent
             );
         }
-        println!("run statuses: {}", fmt(&st.run_statuses));
-        println!("run classes: {}", fmt(&st.run_classes));
-        println!(
+        outln!("run statuses: {}", fmt(&st.run_statuses));
+        outln!("run classes: {}", fmt(&st.run_classes));
+        outln!(
             "point classes (complete points): {}",
             fmt(&st.point_classes)
         );

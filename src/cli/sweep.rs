@@ -75,7 +75,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
     if a.json {
         print_json(&summary);
     } else {
-        println!(
+        outln!(
             "{}: {} points, {} runs ({} computed, {} reused, {} corrupt recomputed) in {:.1} s on {} threads",
             summary.name,
             summary.points,
@@ -91,7 +91,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
             .iter()
             .map(|(k, v)| format!("{k}: {v}"))
             .collect();
-        println!("point classes: {}", classes.join(", "));
+        outln!("point classes: {}", classes.join(", "));
         if summary.dt_warnings > 0 {
             eprintln!(
                 "warning: {} fixed-step runs took steps too large to trust (column max_step_error > {:e} in runs.parquet); lower dt or use adaptive stepping (solver.tol)",
@@ -100,7 +100,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
             );
         }
         for p in &summary.tables {
-            println!("wrote {}", p.display());
+            outln!("wrote {}", p.display());
         }
     }
     Ok(())

@@ -30,6 +30,13 @@ pub enum SolverError {
     /// The Newton iteration of the exact steady-state solver did not converge.
     #[error("steady-state Newton solve did not converge (residual {residual:e} after {iterations} iterations)")]
     NewtonFailed { residual: f64, iterations: usize },
+    /// The Newton solve for a moving state converged, but to a droplet at rest.
+    #[error("the steady-state Newton solve converged (residual {residual:.1e} after {iterations} iterations) to a resting droplet (v = {v:.1e}), not to a moving one")]
+    RestingRoot {
+        residual: f64,
+        iterations: usize,
+        v: f64,
+    },
     /// Continuation found no state of the family anywhere on its line.
     #[error("no {family} state found on the line (Newton from the reduced model's states failed at 9 points); try another range or --axis")]
     NoBranch { family: &'static str },

@@ -113,9 +113,10 @@ pub fn find(
                         break;
                     }
                     Ok(st) => {
-                        last = Some(SolverError::NewtonFailed {
+                        last = Some(SolverError::RestingRoot {
                             residual: st.residual,
                             iterations: st.iterations,
+                            v: st.v.abs(),
                         })
                     }
                     Err(e) => last = Some(e),

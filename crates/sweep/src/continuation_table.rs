@@ -1,7 +1,8 @@
 //! Continuation branches as Parquet: `<stem>.parquet` (every state: family, mirror axis,
 //! parameters, `vx, vy, a2, b2, v, s`, class, the two leading eigenvalues with the rotation
 //! mode set aside, the rotation mode's eigenvalue, unstable count, stability) and
-//! `<stem>_events.parquet` (P / SN / H points with the crossing eigenvalue).
+//! `<stem>_events.parquet` (P / SN / H points with the crossing eigenvalue and the precision
+//! of their location in the varied parameter).
 use crate::axes::{ETA_T, KAPPA2};
 use crate::error::SweepError;
 use crate::tables::{metadata, write_parquet};
@@ -112,6 +113,7 @@ pub fn write(
                 .map(|e| e.eigenvalue.map_or(f64::NAN, |l| l[1]))
                 .collect(),
         ),
+        f64s("precision", events.iter().map(|e| e.precision).collect()),
     ];
     cols.extend(state_columns(&ev_rows));
     let mut ev = DataFrame::new(events.len(), cols)?;

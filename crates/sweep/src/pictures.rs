@@ -14,14 +14,29 @@ use droplet_solver::reduced::boundaries::boundaries;
 use droplet_solver::reduced::Coefficients;
 use std::path::{Path, PathBuf};
 
-/// Draws `phase_map.png` / `.svg` of the sweep in `dir` (points without all runs: `missing`).
-pub fn plot(dir: &Path) -> Result<Vec<PathBuf>, SweepError> {
-    let store = Store::open_read(dir)?;
+/// The pictures [`plot`] wrote, and how many of the map's points lack a run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Drawn {
+    pub files: Vec<PathBuf>,
+    pub points: usize,
+    /// Points drawn as `missing` (a run not finished, or stored but unreadable).
+    pub missing: usize,
+}
+
+/// Draws `phase_map.png` / `.svg` of the sweep in `dir` (points without all runs: `missing`),
+/// from one consistent snapshot: refused while a sweep or shard works on `dir`.
+pub fn plot(dir: &Path) -> Result<Drawn, SweepError> {
+    let store = Store::open_idle(dir)?;
     let spec = crate::spec::load_stored(dir)?;
     let plan = crate::level_walk::stored_plan(&spec, &store)?;
     let records = store.load_many(plan.tasks().map(|t| t.key));
     let map = PhaseMap::new(&plan, &records);
-    plot_records(dir, &spec, &plan, &records, &map)
+    let files = plot_records(dir, &spec, &plan, &records, &map)?;
+    Ok(Drawn {
+        files,
+        points: map.points.len(),
+        missing: map.points.iter().filter(|p| !p.complete()).count(),
+    })
 }
 
 /// As [`plot`], from records already loaded (a sweep or merge that just wrote the tables).

@@ -121,6 +121,18 @@ impl Store {
         Ok(self)
     }
 
+    /// Opens an existing sweep directory while nothing else works on it, its lock taken
+    /// exclusively: what is read is one consistent snapshot, and what is written (pictures)
+    /// cannot race a sweep's or a merge's own writes. Refused while a sweep or shard runs.
+    pub fn open_idle(dir: &Path) -> Result<Self, SweepError> {
+        let store = Self::open_read(dir)?;
+        let lock = store.lock_file(LOCK)?;
+        if lock.try_lock_exclusive().is_err() {
+            return Err(SweepError::Locked(dir.to_path_buf(), dir.join(LOCK)));
+        }
+        store.with_lock(lock)
+    }
+
     /// Opens `dir` read-only (no lock; may see a sweep in progress).
     pub fn open_read(dir: &Path) -> Result<Self, SweepError> {
         let runs = dir.join("runs");

@@ -60,7 +60,22 @@ pub struct BranchEvent {
     /// The crossing eigenvalue at the event (`[re, im]`; `im` is the frequency at a Hopf
     /// point), for `P` / `H` by eigenvalue.
     pub eigenvalue: Option<[f64; 2]>,
+    /// How far the event may lie from `point` in the varied parameter: the width of the last
+    /// bracket of the location (at least the parameter's rounding on the line), or the whole
+    /// step when the location failed. `0` for a meeting solved as a root. Events are
+    /// trusted at [`EVENT_PRECISION`] or better.
+    pub precision: f64,
 }
+
+/// The precision in the varied parameter that events are located to on a line within
+/// [`PARAMETER_LIMIT`]; an event located worse than this is reported as such.
+pub const EVENT_PRECISION: f64 = 1e-7;
+
+/// Largest `eta_t` or `kappa2` a continuation line or a boundary window may reach. Far beyond
+/// the paper's window (0.07-0.10 and 0.10-0.17), and small enough that the location of an
+/// event (to 1e-12 in arclength on a line scaled to `[0, 1]`) stays below 1e-10 in the
+/// parameter: on a line from 0.07 to 1e10 the onset of motion would be off by 2e-3.
+pub const PARAMETER_LIMIT: f64 = 10.0;
 
 /// A followed branch.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -108,18 +123,23 @@ impl Tracer<'_> {
         }
     }
 
-    /// The point between `a` (`g(a) = ga`) and `a`'s arclength `ds` (`g = gb`, opposite
-    /// sign) where `g` vanishes: the Illinois variant of regula falsi in arclength.
+    /// The point between `a` (`g(a) = ga`) and `b`, `a`'s arclength `ds` further (`g = gb`,
+    /// opposite sign), where `g` vanishes: the Illinois variant of regula falsi in arclength.
+    /// Returns it with its precision in the varied parameter (the last bracket's width);
+    /// when no point inside could be corrected, `b` itself with the whole step's width.
     fn locate(
         &mut self,
-        a: &CurvePoint,
+        (a, b): (&CurvePoint, &CurvePoint),
         ds: f64,
         (ga, gb): (f64, f64),
         g: &mut dyn FnMut(&mut Problem, &CurvePoint) -> f64,
-    ) -> Option<CurvePoint> {
+    ) -> (CurvePoint, f64) {
+        let q = |p: &CurvePoint| *p.y.last().expect("q");
         let (mut lo, mut hi, mut glo, mut ghi) = (0.0, ds, ga, gb);
+        let (mut q_lo, mut q_hi) = (q(a), q(b));
         let mut side = 0i32;
         let mut best: Option<CurvePoint> = None;
+        let mut exact = false;
         for _ in 0..60 {
             let s = if (ghi - glo).abs() > 0.0 {
                 (lo * ghi - hi * glo) / (ghi - glo)
@@ -128,22 +148,24 @@ impl Tracer<'_> {
             };
             let s = if s > lo && s < hi { s } else { 0.5 * (lo + hi) };
             let prob = &mut *self.prob;
-            let (p, _) = point_at(&mut |y: &[f64]| prob.residual(y), a, s, &self.opts)?;
+            let Some((p, _)) = point_at(&mut |y: &[f64]| prob.residual(y), a, s, &self.opts) else {
+                break;
+            };
             let gs = g(self.prob, &p);
+            let qs = q(&p);
             best = Some(p);
-            if gs == 0.0 || hi - lo < 1e-12 {
+            if gs == 0.0 {
+                exact = true;
                 break;
             }
             if gs.signum() == glo.signum() {
-                lo = s;
-                glo = gs;
+                (lo, glo, q_lo) = (s, gs, qs);
                 if side == -1 {
                     ghi *= 0.5;
                 }
                 side = -1;
             } else {
-                hi = s;
-                ghi = gs;
+                (hi, ghi, q_hi) = (s, gs, qs);
                 if side == 1 {
                     glo *= 0.5;
                 }
@@ -153,7 +175,13 @@ impl Tracer<'_> {
                 break;
             }
         }
-        best
+        let span = self.prob.span.abs();
+        let rounding = span * f64::EPSILON * 4.0;
+        match best {
+            Some(p) if exact => (p, rounding),
+            Some(p) => (p, ((q_hi - q_lo).abs() * span).max(rounding)),
+            None => (b.clone(), ((q(b) - q(a)).abs() * span).max(rounding)),
+        }
     }
 
     /// Follows the branch from `first` (tangent oriented) until it stops.
@@ -204,7 +232,9 @@ impl Tracer<'_> {
                 Some(Stop::Range(bound)) => {
                     let (g0, g1) = (q_last(&a) - bound, q_last(&b) - bound);
                     let mut g = |_: &mut Problem, p: &CurvePoint| q_last(p) - bound;
-                    if let Some(p) = self.locate(&a, step.ds, (g0, g1), &mut g) {
+                    let (p, _) = self.locate((&a, &b), step.ds, (g0, g1), &mut g);
+                    // Not when only the step beyond the end could be had.
+                    if (q_last(&p) - bound).abs() < 1e-9 {
                         let v = self.prob.verdict(&p.y);
                         out.push(self.point(&p.y, v));
                     }
@@ -226,6 +256,7 @@ impl Tracer<'_> {
                         what: format!("meets {other}"),
                         point: pt.clone(),
                         eigenvalue: None,
+                        precision: 0.0,
                     });
                     out.push(pt);
                     break format!("meets {other} (pitchfork)");
@@ -238,37 +269,37 @@ impl Tracer<'_> {
             let vb = self.prob.verdict(&b.y);
             if tq(&a) != 0.0 && tq(&b).signum() != tq(&a).signum() {
                 let mut g = |_: &mut Problem, p: &CurvePoint| tq(p);
-                if let Some(p) = self.locate(&a, step.ds, (tq(&a), tq(&b)), &mut g) {
-                    let verdict = self.prob.verdict(&p.y);
-                    let pt = self.point(&p.y, verdict);
-                    events.push(BranchEvent {
-                        kind: "SN",
-                        what: "fold".into(),
-                        point: pt,
-                        eigenvalue: None,
-                    });
-                }
+                let (p, precision) = self.locate((&a, &b), step.ds, (tq(&a), tq(&b)), &mut g);
+                let verdict = self.prob.verdict(&p.y);
+                let pt = self.point(&p.y, verdict);
+                events.push(BranchEvent {
+                    kind: "SN",
+                    what: "fold".into(),
+                    point: pt,
+                    eigenvalue: None,
+                    precision,
+                });
             } else if va.unstable != vb.unstable {
                 let idx = va.unstable.min(vb.unstable);
                 let re_at = |v: &Verdict| v.decisive().get(idx).map_or(-1.0, |l| l.re);
                 let (g0, g1) = (re_at(&va), re_at(&vb));
                 let mut g = |prob: &mut Problem, p: &CurvePoint| re_at(&prob.verdict(&p.y));
-                if let Some(p) = self.locate(&a, step.ds, (g0, g1), &mut g) {
-                    let verdict = self.prob.verdict(&p.y);
-                    let lambda = verdict.decisive().get(idx).copied();
-                    let complex = lambda.is_some_and(|l| l.im.abs() > 1e-7);
-                    let pt = self.point(&p.y, verdict);
-                    events.push(BranchEvent {
-                        kind: if complex { "H" } else { "P" },
-                        what: if complex {
-                            "complex pair crosses 0 (Hopf)".into()
-                        } else {
-                            "real eigenvalue crosses 0".into()
-                        },
-                        point: pt,
-                        eigenvalue: lambda.map(|l| [l.re, l.im]),
-                    });
-                }
+                let (p, precision) = self.locate((&a, &b), step.ds, (g0, g1), &mut g);
+                let verdict = self.prob.verdict(&p.y);
+                let lambda = verdict.decisive().get(idx).copied();
+                let complex = lambda.is_some_and(|l| l.im.abs() > 1e-7);
+                let pt = self.point(&p.y, verdict);
+                events.push(BranchEvent {
+                    kind: if complex { "H" } else { "P" },
+                    what: if complex {
+                        "complex pair crosses 0 (Hopf)".into()
+                    } else {
+                        "real eigenvalue crosses 0".into()
+                    },
+                    point: pt,
+                    eigenvalue: lambda.map(|l| [l.re, l.im]),
+                    precision,
+                });
             }
             out.push(self.point(&b.y, vb.clone()));
             a = b;

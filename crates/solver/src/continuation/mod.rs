@@ -10,5 +10,7 @@ pub mod branch;
 pub mod problem;
 
 pub use crate::verdict::Verdict;
-pub use branch::{follow, Branch, BranchEvent, BranchPoint, Line};
+pub use branch::{
+    follow, Branch, BranchEvent, BranchPoint, Line, EVENT_PRECISION, PARAMETER_LIMIT,
+};
 pub use problem::Family;

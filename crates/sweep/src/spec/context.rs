@@ -104,14 +104,26 @@ impl Ctx<'_> {
     }
 }
 
-/// Renders a YAML value compactly for messages.
+/// Longest rendering of a value in a message.
+const MAX_SHOWN: usize = 200;
+
+/// Renders a YAML value compactly for messages, cut to [`MAX_SHOWN`] characters (a long
+/// list or name is not copied whole into an error).
 pub(super) fn show(v: &Value) -> String {
-    match v {
+    let text = match v {
+        Value::String(s) if s.len() > MAX_SHOWN => format!("a string of {} characters", s.len()),
         Value::String(s) => format!("{s:?}"),
         Value::Null => "null (empty)".into(),
+        Value::Sequence(seq) if seq.len() > 20 => format!("a list of {} values", seq.len()),
         other => serde_yaml::to_string(other)
             .map(|s| s.trim().replace('\n', " "))
             .unwrap_or_else(|_| "?".into()),
+    };
+    if text.chars().count() > MAX_SHOWN {
+        let cut: String = text.chars().take(MAX_SHOWN).collect();
+        format!("{cut} ...")
+    } else {
+        text
     }
 }
 
@@ -150,6 +162,36 @@ pub fn locate(text: &str, path: &[&str]) -> Option<usize> {
         }
     }
     best
+}
+
+/// The line of the second `key:` of the block mapping whose first key is on line `start`
+/// (1-based; a parser reports a duplicate at the mapping's start): the lines at that
+/// mapping's indentation are its keys, and a shallower line ends it.
+pub fn second_key_line(text: &str, start: usize, key: &str) -> Option<usize> {
+    let lines: Vec<&str> = text.lines().collect();
+    let first = lines.get(start.checked_sub(1)?)?;
+    let indent = first.len() - first.trim_start().len();
+    let mut seen = 0;
+    for (i, line) in lines.iter().enumerate().skip(start - 1) {
+        let trimmed = line.trim_start();
+        if trimmed.is_empty() || trimmed.starts_with('#') {
+            continue;
+        }
+        let here = line.len() - trimmed.len();
+        if here < indent {
+            break;
+        }
+        let is_key = trimmed
+            .strip_prefix(key)
+            .is_some_and(|rest| rest.trim_start().starts_with(':'));
+        if here == indent && is_key {
+            seen += 1;
+            if seen == 2 {
+                return Some(i + 1);
+            }
+        }
+    }
+    None
 }
 
 /// The spec key of a field named in a [`droplet_solver::SolverError::InvalidParameter`].

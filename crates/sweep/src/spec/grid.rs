@@ -49,10 +49,20 @@ pub(super) fn parse_axis(
         if seq.is_empty() {
             return Err(ctx.err(&path, "[]", "a non-empty list"));
         }
+        if seq.len() > MAX_AXIS_POINTS {
+            return Err(ctx.err(
+                &path,
+                format!("a list of {} values", seq.len()),
+                format!("at most {MAX_AXIS_POINTS} values"),
+            ));
+        }
         let mut out = Vec::with_capacity(seq.len());
+        // Seen values by their bits (every value is finite, and -0.0 is read as 0.0): one
+        // look-up per value, so a long list is checked in linear time.
+        let mut seen = std::collections::HashSet::with_capacity(seq.len());
         for item in seq {
-            let x = ctx.number(item, &path, lower_ok, &format!("finite numbers {lower}"))?;
-            if out.contains(&x) {
+            let x = ctx.number(item, &path, lower_ok, &format!("finite numbers {lower}"))? + 0.0;
+            if !seen.insert(x.to_bits()) {
                 return Err(ctx.err(&path, x, "distinct values"));
             }
             out.push(x);

@@ -62,9 +62,34 @@ pub struct SweepSpec {
     pub source: String,
 }
 
+/// Largest spec file accepted (a list of [`MAX_AXIS_POINTS`] values on each axis fits).
+pub const MAX_SPEC_BYTES: usize = 4 << 20;
+
+/// Longest `name` (it is copied into every table's metadata and every picture's title).
+pub const MAX_NAME_CHARS: usize = 100;
+
+/// The error for a spec text over [`MAX_SPEC_BYTES`].
+fn too_large(file: &str, bytes: u64) -> SpecError {
+    SpecError {
+        file: file.to_string(),
+        path: "(file)".into(),
+        line: None,
+        value: format!("{bytes} bytes"),
+        allowed: format!(
+            "at most {MAX_SPEC_BYTES} bytes (4 MiB): ranges {{start, stop, step}} describe \
+             large grids"
+        ),
+    }
+}
+
 /// Reads and validates a spec file. A file that cannot be read (missing, a directory, not
 /// UTF-8) is a spec error too (exit code 2), naming the file and why.
 pub fn load(path: &Path) -> Result<SweepSpec, crate::SweepError> {
+    if let Ok(meta) = std::fs::metadata(path) {
+        if meta.is_file() && meta.len() > MAX_SPEC_BYTES as u64 {
+            return Err(too_large(&path.display().to_string(), meta.len()).into());
+        }
+    }
     let text = std::fs::read_to_string(path).map_err(|e| SpecError {
         file: path.display().to_string(),
         path: "(file)".into(),
@@ -89,13 +114,31 @@ pub fn load_stored(dir: &Path) -> Result<SweepSpec, crate::SweepError> {
 
 /// Parses and validates a spec's text; `file` names it in errors, `stem` is the default name.
 pub fn parse(text: &str, file: &str, stem: &str) -> Result<SweepSpec, SpecError> {
+    if text.len() > MAX_SPEC_BYTES {
+        return Err(too_large(file, text.len() as u64));
+    }
     let ctx = Ctx { file, text };
-    let doc: Value = serde_yaml::from_str(text).map_err(|e| SpecError {
-        file: file.to_string(),
-        path: "(document)".into(),
-        line: e.location().map(|l| l.line()),
-        value: "not valid YAML".into(),
-        allowed: e.to_string(),
+    let doc: Value = serde_yaml::from_str(text).map_err(|e| {
+        let line = e.location().map(|l| l.line());
+        match duplicate_key(&e.to_string()) {
+            Some(path) => {
+                let key = path.rsplit('.').next().unwrap_or(&path).to_string();
+                SpecError {
+                    file: file.to_string(),
+                    line: line.map(|l| context::second_key_line(text, l, &key).unwrap_or(l)),
+                    value: format!("a second `{key}`"),
+                    path,
+                    allowed: "each key once in its section".into(),
+                }
+            }
+            None => SpecError {
+                file: file.to_string(),
+                path: "(document)".into(),
+                line,
+                value: "not valid YAML".into(),
+                allowed: e.to_string(),
+            },
+        }
     })?;
     let top = ctx.mapping(
         &doc,
@@ -118,13 +161,19 @@ pub fn parse(text: &str, file: &str, stem: &str) -> Result<SweepSpec, SpecError>
         Some(v) => {
             let s = v.as_str().unwrap_or("");
             let ok = !s.is_empty()
+                && s.len() <= MAX_NAME_CHARS
                 && s.chars()
                     .all(|c| c.is_ascii_alphanumeric() || "_.-".contains(c));
             if !ok {
+                let shown = if s.len() > MAX_NAME_CHARS {
+                    format!("a name of {} characters", s.len())
+                } else {
+                    show(v)
+                };
                 return Err(ctx.err(
                     &["name"],
-                    show(v),
-                    "a non-empty name of letters, digits, _ . -",
+                    shown,
+                    format!("a non-empty name of at most {MAX_NAME_CHARS} letters, digits, _ . -"),
                 ));
             }
             s.to_string()
@@ -166,9 +215,59 @@ pub fn parse(text: &str, file: &str, stem: &str) -> Result<SweepSpec, SpecError>
     })
 }
 
+/// The key path of a YAML parser's "[section: ]duplicate entry with key \"K\"" error.
+fn duplicate_key(message: &str) -> Option<String> {
+    let (before, rest) = message.split_once("duplicate entry with key ")?;
+    let key = rest.split(" at line ").next()?.trim_matches('"');
+    let section = before.trim_end().trim_end_matches(':');
+    Some(if section.is_empty() {
+        key.to_string()
+    } else {
+        format!("{section}.{key}")
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_duplicated_key_is_named_on_its_second_line() {
+        let text = "name: a\ngrid:\n  eta_t: [0.08]\n  kappa2: [0.11]\nsolver:\n  n: 32\n  dt: 0.05\n  t_max: 10\nname: b\n";
+        let e = parse(text, "t.yaml", "t").unwrap_err();
+        assert_eq!((e.path.as_str(), e.line), ("name", Some(9)), "{e}");
+        let text = "name: a\ngrid:\n  eta_t: [0.08]\n  kappa2: [0.11]\n  eta_t: [0.09]\n";
+        let e = parse(text, "t.yaml", "t").unwrap_err();
+        assert_eq!((e.path.as_str(), e.line), ("grid.eta_t", Some(5)), "{e}");
+        assert!(e.to_string().contains("each key once"), "{e}");
+    }
+
+    #[test]
+    fn long_lists_and_names_are_refused_quickly_and_shown_short() {
+        let list: Vec<String> = (0..150_000)
+            .map(|i| format!("{:.7}", 0.1 + i as f64 * 1e-7))
+            .collect();
+        let text = format!("grid:\n  eta_t: [{}]\n  kappa2: [0.1]\n", list.join(", "));
+        let started = std::time::Instant::now();
+        let e = parse(&text, "t.yaml", "t").unwrap_err();
+        assert!(started.elapsed().as_secs_f64() < 2.0);
+        assert_eq!(e.path, "grid.eta_t");
+        assert!(e.to_string().contains("at most 100000 values"), "{e}");
+        assert!(e.to_string().len() < 400, "{e}");
+        let name = "n".repeat(MAX_NAME_CHARS + 1);
+        let e = parse(&format!("name: {name}\n{GOOD}"), "t.yaml", "t").unwrap_err();
+        assert_eq!(e.path, "name");
+        assert!(e.to_string().len() < 400, "{e}");
+        let e = parse(&" ".repeat(MAX_SPEC_BYTES + 1), "t.yaml", "t").unwrap_err();
+        assert_eq!(e.path, "(file)");
+        // Duplicates are still found, in linear time.
+        let e = parse(
+            &GOOD.replace("[0.11, 0.12]", "[0.11, 0.12, 0.11]"),
+            "t.yaml",
+            "t",
+        );
+        assert!(e.unwrap_err().to_string().contains("distinct"));
+    }
 
     const GOOD: &str = "name: t\ngrid:\n  eta_t: {start: 0.07, stop: 0.1, step: 0.01}\n  kappa2: [0.11, 0.12]\nsolver:\n  n: 64\n  dt: 0.02\n";
 

@@ -81,7 +81,7 @@ pub(super) fn parse(
             )),
         }
     };
-    Ok(Some(Lattice {
+    let lattice = Lattice {
         eta_t: axis(ETA_T, eta_t)?,
         kappa2: axis(KAPPA2, kappa2)?,
         refine: Refine {
@@ -89,5 +89,24 @@ pub(super) fn parse(
             min_step,
             split_bistable,
         },
-    }))
+    };
+    // Both sides of a cell are halved together: a min_step above half of either grid step
+    // would forbid every split, turning refinement off without a word.
+    for (key, grid_step, min) in [
+        (ETA_T, lattice.eta_t.step, min_step.0),
+        (KAPPA2, lattice.kappa2.step, min_step.1),
+    ] {
+        if min > 0.5 * grid_step * (1.0 + 1e-9) {
+            return Err(ctx.err(
+                &["refine", "min_step", key],
+                min,
+                format!(
+                    "at most half the grid's {key} step ({}), so that cells can be split at \
+                     all (a larger min_step would turn refinement off)",
+                    0.5 * grid_step
+                ),
+            ));
+        }
+    }
+    Ok(Some(lattice))
 }
