@@ -827,7 +827,9 @@ fn malformed_and_extreme_inputs_exit_with_their_code_name_the_problem_and_never_
         ));
     }
     // Nothing was left in the scratch directory by a refused command but its own inputs.
-    assert!(!d.join("out").exists());
+    for written in ["out", "b", "c", "ode", "h0"] {
+        assert!(!d.join(written).exists(), "{written} was created");
+    }
     assert!(cases.len() >= 50);
     report(
         "inputs.md",
