@@ -722,3 +722,28 @@ fn bench_quick_writes_its_table_summary_and_picture_and_rescores() {
         );
     }
 }
+
+#[test]
+fn top_level_help_lists_each_command_in_one_short_line() {
+    let o = run(&["--help"]);
+    assert!(o.status.success());
+    let text = String::from_utf8_lossy(&o.stdout);
+    let commands: Vec<&str> = text
+        .lines()
+        .skip_while(|l| !l.starts_with("Commands:"))
+        .skip(1)
+        .take_while(|l| !l.trim().is_empty())
+        .collect();
+    assert!(commands.len() >= 12, "{text}");
+    for line in commands {
+        assert!(line.len() <= 100, "too long for one line: {line}");
+        assert!(!line.ends_with('.'), "a summary, not a sentence: {line}");
+    }
+    // The detail lives in each command's own --help.
+    let o = run(&["plot", "--help"]);
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        text.contains("Refused while a sweep works on OUT"),
+        "{text}"
+    );
+}

@@ -3,6 +3,8 @@ use super::{print_json, CliError};
 use droplet_sweep::bench_run::{run_benchmark, BenchOptions};
 use std::path::PathBuf;
 
+/// Time representative runs against their references: speed and the error it costs.
+///
 /// Time representative runs (the Fig. 1 IC, ID and MD points, a point in the IC/MD bistable
 /// band, and the transient t <= 20 through the MD instability) with the paper's FD scheme,
 /// the spectral scheme at N = 96..256 and dt = 0.005..0.1, and the adaptive scheme at several

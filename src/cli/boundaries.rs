@@ -8,6 +8,8 @@ use droplet_sweep::plot::Curve;
 use std::path::PathBuf;
 use std::time::Instant;
 
+/// Compute the full model's exact phase boundaries in the (eta_t, kappa2) plane.
+///
 /// Compute the full model's phase boundaries (N x N spectral grid, field included) from its
 /// bifurcation points instead of from runs on a grid: the resting disk's onsets of motion and
 /// of deformation (exact thresholds), the resting deformed droplet's onset of motion (one

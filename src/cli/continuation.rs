@@ -8,6 +8,8 @@ use droplet_solver::ModelParams;
 use std::path::PathBuf;
 use std::time::Instant;
 
+/// Follow branches of steady states in one parameter, with stability and bifurcations.
+///
 /// Follow steady states of the full model (field included, N x N spectral grid) as roots of
 /// the co-moving force balance, by pseudo-arclength continuation in eta_t or kappa2 through
 /// folds, with the linear stability of every state (eigenvalues with Re > -1 of the 4 x 4

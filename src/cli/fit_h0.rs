@@ -6,6 +6,8 @@ use droplet_solver::ModelParams;
 use droplet_sweep::plot::{h0_picture, H0Picture};
 use std::path::PathBuf;
 
+/// Fit the reduced model's h0 to deformation-only PDE steady states (Appendix E).
+///
 /// Fit kappa2 = p0 - p2 s^2 to deformation-only PDE steady states (droplet held in place)
 /// over 0.001 < s < 0.3, as in Appendix E; p2 is the reduced model's h0. The steady states come
 /// from the exact steady evaluator (Newton on the co-moving steady field with v = 0), which

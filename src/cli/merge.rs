@@ -2,6 +2,8 @@
 use super::{print_json, CliError};
 use std::path::PathBuf;
 
+/// Build a sweep's tables and picture from its stored runs (e.g. after Slurm shards).
+///
 /// Build DIR/runs.parquet, DIR/points.parquet and the picture from every stored run (e.g. after
 /// the shards of a Slurm array job). With runs missing or unreadable it lists them, writes
 /// nothing and exits with code 1. Safe to repeat.

@@ -6,6 +6,8 @@ use droplet_solver::reduced::Coefficients;
 use droplet_solver::ModelParams;
 use std::path::PathBuf;
 
+/// The reduced ODE model (eqs. 58-59): coefficients and bifurcation diagrams.
+///
 /// The reduced ODE model (paper eqs. 58-59): coefficients and bifurcation diagrams. For ODE
 /// phase maps run a sweep spec with `model: ode` (see sweeps/ode.yaml).
 #[derive(clap::Args)]

@@ -2,6 +2,8 @@
 use super::{print_json, CliError};
 use std::path::PathBuf;
 
+/// Draw a sweep's phase-map picture (Fig. 2a) from its stored runs.
+///
 /// Draw OUT/phase_map.png and OUT/phase_map.svg (paper Fig. 2a colours) from a sweep's runs;
 /// points whose runs are not all finished (or are unreadable) are drawn as `missing`, and
 /// then the command says so and exits 1. Refused while a sweep works on OUT: its own

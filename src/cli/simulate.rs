@@ -5,6 +5,8 @@ use droplet_sweep::plot;
 use serde::Serialize;
 use std::path::PathBuf;
 
+/// Simulate one droplet from one initial condition until it settles.
+///
 /// Simulate one droplet from one initial condition until it is steady, reaches --t-max, or
 /// diverges; print status, class (IC/ID/MD/MC), final v, s and timings.
 #[derive(clap::Args)]

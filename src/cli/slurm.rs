@@ -4,6 +4,8 @@ use droplet_sweep::{spec, SweepError};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
+/// Write (and submit) Slurm array jobs that shard a sweep over a cluster.
+///
 /// Write (and with --submit, submit) DIR/slurm/sweep.sbatch, an array of N shards each running
 /// `droplet sweep SPEC --shard $SLURM_ARRAY_TASK_ID/N`, and DIR/slurm/merge.sbatch, which runs
 /// `droplet merge DIR` after the array (afterany). DIR must be on a file system all nodes share.

@@ -4,6 +4,8 @@ use droplet_solver::named_state::{find, ic_thresholds, IcThresholds, StateKind};
 use droplet_solver::ModelParams;
 use serde::Serialize;
 
+/// Compute one steady state directly, with its linear stability.
+///
 /// Compute a steady state of the full model directly (Newton on the co-moving force balance,
 /// started from the reduced model's state or from --seed) and its linear stability, field
 /// included: every eigenvalue with Re > -1 (the field's own modes decay at rate >= 1), from

@@ -4,6 +4,8 @@ use droplet_sweep::shard::Shard;
 use droplet_sweep::{run_sweep, spec, SweepOptions};
 use std::path::PathBuf;
 
+/// Run a sweep from a YAML spec: every point from every initial condition, resumable.
+///
 /// Run a sweep over (eta_t, kappa2) from a YAML spec: every point from every initial
 /// condition, in parallel. Finished runs are stored at once under OUT/runs/, so re-running the
 /// same command after an interruption continues where it stopped; then writes
