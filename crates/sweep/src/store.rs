@@ -67,12 +67,16 @@ impl Store {
     /// while another sweep or any shard works on it (the OS releases a lock when its process
     /// dies, even by SIGKILL).
     pub fn open_locked(dir: &Path) -> Result<Self, SweepError> {
-        let store = Self::create(dir)?;
-        let lock = store.lock_file(LOCK)?;
+        Self::create(dir)?.lock_exclusively()
+    }
+
+    /// This store with the directory lock taken exclusively (refused while held).
+    fn lock_exclusively(self) -> Result<Self, SweepError> {
+        let lock = self.lock_file(LOCK)?;
         if lock.try_lock_exclusive().is_err() {
-            return Err(SweepError::Locked(dir.to_path_buf(), dir.join(LOCK)));
+            return Err(SweepError::Locked(self.dir.clone(), self.dir.join(LOCK)));
         }
-        store.with_lock(lock)
+        self.with_lock(lock)
     }
 
     /// Opens `dir` for one shard: the directory lock shared (shards run side by side, a whole
@@ -125,12 +129,7 @@ impl Store {
     /// exclusively: what is read is one consistent snapshot, and what is written (pictures)
     /// cannot race a sweep's or a merge's own writes. Refused while a sweep or shard runs.
     pub fn open_idle(dir: &Path) -> Result<Self, SweepError> {
-        let store = Self::open_read(dir)?;
-        let lock = store.lock_file(LOCK)?;
-        if lock.try_lock_exclusive().is_err() {
-            return Err(SweepError::Locked(dir.to_path_buf(), dir.join(LOCK)));
-        }
-        store.with_lock(lock)
+        Self::open_read(dir)?.lock_exclusively()
     }
 
     /// Opens `dir` read-only (no lock; may see a sweep in progress).

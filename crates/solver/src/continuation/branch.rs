@@ -89,6 +89,11 @@ pub struct Branch {
     pub ends: [String; 2],
 }
 
+/// The scaled parameter `q` of a point (the last unknown; 0 and 1 at the line's ends).
+fn q_of(p: &CurvePoint) -> f64 {
+    *p.y.last().expect("q")
+}
+
 /// Where a branch stops although the step still converged.
 enum Stop {
     /// Left the line at `q = 0` or `1`.
@@ -134,9 +139,8 @@ impl Tracer<'_> {
         (ga, gb): (f64, f64),
         g: &mut dyn FnMut(&mut Problem, &CurvePoint) -> f64,
     ) -> (CurvePoint, f64) {
-        let q = |p: &CurvePoint| *p.y.last().expect("q");
         let (mut lo, mut hi, mut glo, mut ghi) = (0.0, ds, ga, gb);
-        let (mut q_lo, mut q_hi) = (q(a), q(b));
+        let (mut q_lo, mut q_hi) = (q_of(a), q_of(b));
         let mut side = 0i32;
         let mut best: Option<CurvePoint> = None;
         let mut exact = false;
@@ -152,7 +156,7 @@ impl Tracer<'_> {
                 break;
             };
             let gs = g(self.prob, &p);
-            let qs = q(&p);
+            let qs = q_of(&p);
             best = Some(p);
             if gs == 0.0 {
                 exact = true;
@@ -180,7 +184,7 @@ impl Tracer<'_> {
         match best {
             Some(p) if exact => (p, rounding),
             Some(p) => (p, ((q_hi - q_lo).abs() * span).max(rounding)),
-            None => (b.clone(), ((q(b) - q(a)).abs() * span).max(rounding)),
+            None => (b.clone(), ((q_of(b) - q_of(a)).abs() * span).max(rounding)),
         }
     }
 
@@ -196,7 +200,6 @@ impl Tracer<'_> {
         let mut out = vec![self.point(&first.y, first_verdict.clone())];
         let mut events = Vec::new();
         let (mut a, mut va) = (first, first_verdict);
-        let q_last = |p: &CurvePoint| *p.y.last().expect("q");
         let tq = |p: &CurvePoint| *p.tangent.last().expect("q");
         let along = |p: &CurvePoint| -> f64 {
             match family {
@@ -211,7 +214,7 @@ impl Tracer<'_> {
             }
             let prob = &mut *self.prob;
             let Some(step) = stepper.advance(&mut |y: &[f64]| prob.residual(y), &a) else {
-                let (e, k) = self.prob.control(q_last(&a));
+                let (e, k) = self.prob.control(q_of(&a));
                 break format!(
                     "no convergence beyond eta_t = {e:.7}, kappa2 = {k:.7} (step below {:e})",
                     self.opts.ds_min
@@ -219,8 +222,8 @@ impl Tracer<'_> {
             };
             let b = step.point;
             let (_, cb) = self.prob.speed_and_shape(&b.y);
-            let stop = if !(0.0..=1.0).contains(&q_last(&b)) {
-                Some(Stop::Range(if q_last(&b) < 0.0 { 0.0 } else { 1.0 }))
+            let stop = if !(0.0..=1.0).contains(&q_of(&b)) {
+                Some(Stop::Range(if q_of(&b) < 0.0 { 0.0 } else { 1.0 }))
             } else if family != Family::IC && along(&b).signum() != along(&a).signum() {
                 Some(Stop::Meets)
             } else if cb.abs() >= MAX_DEFORMATION {
@@ -230,11 +233,11 @@ impl Tracer<'_> {
             };
             match stop {
                 Some(Stop::Range(bound)) => {
-                    let (g0, g1) = (q_last(&a) - bound, q_last(&b) - bound);
-                    let mut g = |_: &mut Problem, p: &CurvePoint| q_last(p) - bound;
+                    let (g0, g1) = (q_of(&a) - bound, q_of(&b) - bound);
+                    let mut g = |_: &mut Problem, p: &CurvePoint| q_of(p) - bound;
                     let (p, _) = self.locate((&a, &b), step.ds, (g0, g1), &mut g);
                     // Not when only the step beyond the end could be had.
-                    if (q_last(&p) - bound).abs() < 1e-9 {
+                    if (q_of(&p) - bound).abs() < 1e-9 {
                         let v = self.prob.verdict(&p.y);
                         out.push(self.point(&p.y, v));
                     }

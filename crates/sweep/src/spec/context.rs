@@ -127,17 +127,29 @@ pub(super) fn show(v: &Value) -> String {
     }
 }
 
+/// The lines of block-style YAML that hold content: `(0-based number, indentation, text
+/// after the indentation)`, blank and comment lines left out.
+fn content_lines(text: &str) -> impl Iterator<Item = (usize, usize, &str)> + Clone {
+    text.lines().enumerate().filter_map(|(no, line)| {
+        let trimmed = line.trim_start();
+        let content = !trimmed.is_empty() && !trimmed.starts_with('#');
+        content.then(|| (no, line.len() - trimmed.len(), trimmed))
+    })
+}
+
+/// Whether `trimmed` (a line after its indentation) starts with the key `key:`.
+fn is_key(trimmed: &str, key: &str) -> bool {
+    trimmed
+        .strip_prefix(key)
+        .is_some_and(|rest| rest.trim_start().starts_with(':'))
+}
+
 /// 1-based line of the key at `path` in block-style YAML (the deepest key found).
 pub fn locate(text: &str, path: &[&str]) -> Option<usize> {
     let mut depth = 0;
     let mut indent_at_depth: Vec<usize> = Vec::new();
     let mut best = None;
-    for (no, line) in text.lines().enumerate() {
-        let trimmed = line.trim_start();
-        if trimmed.is_empty() || trimmed.starts_with('#') {
-            continue;
-        }
-        let indent = line.len() - trimmed.len();
+    for (no, indent, trimmed) in content_lines(text) {
         while let Some(&i) = indent_at_depth.last() {
             if indent <= i {
                 indent_at_depth.pop();
@@ -146,18 +158,12 @@ pub fn locate(text: &str, path: &[&str]) -> Option<usize> {
                 break;
             }
         }
-        if depth < path.len() {
-            let key = path[depth];
-            let matches = trimmed
-                .strip_prefix(key)
-                .is_some_and(|rest| rest.trim_start().starts_with(':'));
-            if matches {
-                best = Some(no + 1);
-                indent_at_depth.push(indent);
-                depth += 1;
-                if depth == path.len() {
-                    return best;
-                }
+        if depth < path.len() && is_key(trimmed, path[depth]) {
+            best = Some(no + 1);
+            indent_at_depth.push(indent);
+            depth += 1;
+            if depth == path.len() {
+                return best;
             }
         }
     }
@@ -168,30 +174,13 @@ pub fn locate(text: &str, path: &[&str]) -> Option<usize> {
 /// (1-based; a parser reports a duplicate at the mapping's start): the lines at that
 /// mapping's indentation are its keys, and a shallower line ends it.
 pub fn second_key_line(text: &str, start: usize, key: &str) -> Option<usize> {
-    let lines: Vec<&str> = text.lines().collect();
-    let first = lines.get(start.checked_sub(1)?)?;
-    let indent = first.len() - first.trim_start().len();
-    let mut seen = 0;
-    for (i, line) in lines.iter().enumerate().skip(start - 1) {
-        let trimmed = line.trim_start();
-        if trimmed.is_empty() || trimmed.starts_with('#') {
-            continue;
-        }
-        let here = line.len() - trimmed.len();
-        if here < indent {
-            break;
-        }
-        let is_key = trimmed
-            .strip_prefix(key)
-            .is_some_and(|rest| rest.trim_start().starts_with(':'));
-        if here == indent && is_key {
-            seen += 1;
-            if seen == 2 {
-                return Some(i + 1);
-            }
-        }
-    }
-    None
+    let lines = content_lines(text).skip_while(|&(no, _, _)| no + 1 < start);
+    let (_, indent, _) = lines.clone().next()?;
+    lines
+        .take_while(|&(_, here, _)| here >= indent)
+        .filter(|&(_, here, trimmed)| here == indent && is_key(trimmed, key))
+        .nth(1)
+        .map(|(no, _, _)| no + 1)
 }
 
 /// The spec key of a field named in a [`droplet_solver::SolverError::InvalidParameter`].

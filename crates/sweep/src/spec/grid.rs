@@ -1,6 +1,6 @@
 //! The `grid` section: the two swept axes ([`crate::axes`]), each an inclusive
 //! `{start, stop, step}` range or an explicit list.
-use super::context::Ctx;
+use super::context::{show, Ctx};
 use crate::axes::{round12, ETA_T, KAPPA2};
 use crate::error::SpecError;
 use serde_yaml::{Mapping, Value};
@@ -50,11 +50,7 @@ pub(super) fn parse_axis(
             return Err(ctx.err(&path, "[]", "a non-empty list"));
         }
         if seq.len() > MAX_AXIS_POINTS {
-            return Err(ctx.err(
-                &path,
-                format!("a list of {} values", seq.len()),
-                format!("at most {MAX_AXIS_POINTS} values"),
-            ));
+            return Err(ctx.err(&path, show(v), format!("at most {MAX_AXIS_POINTS} values")));
         }
         let mut out = Vec::with_capacity(seq.len());
         // Seen values by their bits (every value is finite, and -0.0 is read as 0.0): one
