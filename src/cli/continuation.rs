@@ -215,6 +215,16 @@ pub fn run(a: Args) -> Result<(), CliError> {
         }
         outln!("{seconds:.1} s");
     }
+    precise_events(&branches, varied, at)
+}
+
+/// Every event of `branches` located to [`EVENT_PRECISION`] in the varied parameter, else an
+/// error (exit 1) naming each one that is not (`at` reads a point's varied parameter).
+fn precise_events(
+    branches: &[Branch],
+    varied: &str,
+    at: impl Fn(&droplet_solver::continuation::BranchPoint) -> f64,
+) -> Result<(), CliError> {
     let imprecise: Vec<String> = branches
         .iter()
         .flat_map(|b| b.events.iter().map(move |e| (b, e)))
