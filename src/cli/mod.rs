@@ -8,6 +8,7 @@ macro_rules! outln {
     };
 }
 
+mod audit;
 mod bench;
 mod boundaries;
 mod continuation;
@@ -39,6 +40,7 @@ enum Command {
     Sweep(sweep::Args),
     Status(status::Args),
     Plot(plot::Args),
+    Audit(audit::Args),
     Ode(ode::Args),
     FitH0(fit_h0::Args),
     Merge(merge::Args),
@@ -57,6 +59,7 @@ pub fn main() -> i32 {
         Command::Sweep(a) => sweep::run(a),
         Command::Status(a) => status::run(a),
         Command::Plot(a) => plot::run(a),
+        Command::Audit(a) => audit::run(a),
         Command::Ode(a) => ode::run(a),
         Command::FitH0(a) => fit_h0::run(a),
         Command::Merge(a) => merge::run(a),

@@ -84,6 +84,11 @@ pub struct Args {
     /// long; the final state is unaffected, t_end moves with the later Newton tries).
     #[arg(long)]
     leap_departures: bool,
+    /// With --steady newton: do not end slow runs where their one-dimensional quasi-steady
+    /// flow lands (on by default: a slow run ends `steady_by_landing` on the stable root its
+    /// flow reaches, confirmed by Newton and the root's eigenvalues); plain time stepping.
+    #[arg(long)]
+    no_landing: bool,
     /// Hold the centre fixed (deformation-only run, Appendix E).
     #[arg(long)]
     pinned: bool,
@@ -138,6 +143,10 @@ struct Report {
     dt_warning: Option<String>,
     /// `steady_by_test` or `steady_by_newton` for a steady run.
     ended_by: Option<String>,
+    /// Why the run did not end on a stable steady state (null when it did).
+    unsettled: Option<String>,
+    /// The class of the stable state an unsettled run was heading to, when known.
+    heading: Option<String>,
     /// For a run that did not finish: what the steady equations say near its end.
     diagnosis: Option<String>,
     /// For a run that the paper's test alone ended: the stability of the steady state it
@@ -175,6 +184,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
         },
         stop_beside_saddle: a.stop_beside_saddle,
         leap_departures: a.leap_departures,
+        landing: !a.no_landing,
         ..base
     };
     let params = ModelParams {
@@ -261,6 +271,8 @@ pub fn run(a: Args) -> Result<(), CliError> {
         max_step_error: out.max_step_error,
         dt_warning: out.dt_warning(&settings),
         ended_by: out.ended_by.map(|e| e.as_str().into()),
+        unsettled: out.unsettled.map(|u| u.as_str().into()),
+        heading: out.heading.map(|c| c.as_str().into()),
         diagnosis: out.diagnosis.clone(),
         final_state,
         wall_s: out.wall_s,
@@ -291,6 +303,16 @@ pub fn run(a: Args) -> Result<(), CliError> {
             outln!(
                 "leapt {:.1} time units along a departure from an unstable steady state",
                 report.t_leapt
+            );
+        }
+        if let Some(u) = &report.unsettled {
+            outln!(
+                "unsettled ({}): no class{}",
+                u.replace('_', " "),
+                report
+                    .heading
+                    .as_ref()
+                    .map_or(String::new(), |h| format!("; heading to {h}"))
             );
         }
         if let Some(d) = &report.diagnosis {

@@ -14,6 +14,7 @@ pub mod forces;
 pub mod grid;
 pub mod h0_fit;
 pub mod initial;
+pub mod landing;
 pub mod limits;
 pub mod named_state;
 pub mod newton;
@@ -37,7 +38,7 @@ pub mod verdict;
 pub use classify::StateClass;
 pub use error::SolverError;
 pub use initial::InitialCondition;
-pub use outcome::{RunOutcome, RunStatus, SeriesRow, STEP_ERROR_LIMIT};
+pub use outcome::{RunOutcome, RunStatus, SeriesRow, Unsettled, STEP_ERROR_LIMIT};
 pub use params::ModelParams;
 pub use run::{simulate, Run};
 pub use scheme::{Scheme, SchemeKind};
@@ -50,10 +51,15 @@ pub use steady::{SteadySolver, SteadyState};
 /// slowing down onto a resting ID ends there instead of creeping on (some to `t_max`).
 /// 3: an unfinished run's diagnosis calls its speed and deformation settled (it only turns)
 /// only if they are within the class threshold of its root's, with its class.
-pub const SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-3");
+/// 4: only a run that ends on a stable root has a class (`unsettled`, `heading` for the
+/// rest); slow runs end where their one-dimensional quasi-steady flow lands
+/// ([`landing`]); the rotation mode is only looked for at states away from the disk
+/// (`verdict::ROTATION_MIN_NORM`) and among near-neutral eigenvalues.
+pub const SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-4");
 
-/// Version of the reduced ODE model's numerics (2: unstable states no longer end a run).
-pub const ODE_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-1+ode-2");
+/// Version of the reduced ODE model's numerics (2: unstable states no longer end a run;
+/// 3: a run that does not end steady has no class).
+pub const ODE_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-1+ode-3");
 
 /// The numerics version of a model's runs, part of their cache key: a change to one model's
 /// results invalidates its stored runs only.

@@ -27,11 +27,9 @@
 //! droplet in the square box turns, over thousands of time units, from the mirror line whose
 //! state is unstable in its rotation mode to the other one (axis <-> diagonal), if it leans
 //! away from the first at all. When the root near the run is unstable only in that mode, the
-//! lean `phi` of the run from it decides ([`NewtonFinish::stable_root`]): if
-//! `phi exp(lambda_rot (t_max - t)) < TURN` the run cannot turn before `t_max` (a
-//! mirror-symmetric run has `phi = 0`; leans below 1e-9 rad are its round-off) and ends at
-//! that root, as the paper's test would end it;
-//! otherwise the root of the state turned by 45 degrees is tried, and if it is stable the run
+//! lean `phi` of the run from it decides ([`NewtonFinish::stable_root`]): a
+//! mirror-symmetric run (`phi = 0`; leans below 1e-9 rad are its round-off) never turns and
+//! ends at that root; otherwise the root of the state turned by 45 degrees is tried, and if it is stable the run
 //! ends there: speed and deformation settle long before the orientation, and that root's `v`
 //! and `s` are what the time stepper reaches after the turn (they differ between the two
 //! orientations by the box's anisotropy).
@@ -53,7 +51,9 @@ use crate::classify::StateClass;
 use crate::departure_leap::{leap, Leap, Sighting};
 use crate::dynamics::force_balance;
 use crate::error::SolverError;
+use crate::landing::{landings, rotated};
 use crate::newton::{solve, NewtonOptions};
+use crate::outcome::Unsettled;
 use crate::params::ModelParams;
 use crate::settings::SolverSettings;
 use crate::stability::Linearization;
@@ -85,6 +85,29 @@ impl Finding {
     /// Every eigenvalue decays (the rotation mode included).
     pub fn stable(&self) -> bool {
         self.slowest() < 0.0
+    }
+
+    /// Why a run stopped at `z` (the state Newton started from) is not settled on this root.
+    pub fn reason(&self, z: &[f64; 4]) -> Unsettled {
+        if self.verdict.unstable > 0 {
+            Unsettled::BesideSaddle
+        } else if self
+            .verdict
+            .rotation
+            .is_some_and(|r| r >= self.verdict.max_re)
+            && invariant_distance(z, &self.z) <= SETTLED_WITHIN
+            && class_of(z) == class_of(&self.z)
+        {
+            Unsettled::Turning
+        } else {
+            Unsettled::Converging
+        }
+    }
+
+    /// The class of the root, if it is stable (rotation mode aside): where a run near it
+    /// is heading.
+    pub fn heading(&self) -> Option<StateClass> {
+        (self.verdict.unstable == 0).then(|| class_of(&self.z))
     }
 
     /// A sentence for the `diagnosis` column of a run stopped at `z` (the state Newton started
@@ -129,21 +152,8 @@ pub const SETTLED_WITHIN: f64 = MAX_SETTLED;
 /// still turns, at the box's slow rotation rate): its class is that of its final state.
 pub const SETTLED: &str = "v and s are settled";
 
-/// Whether a `diagnosis` ([`Finding::describe`]) says the run's speed and deformation, and so
-/// its class, are settled.
-pub fn diagnosis_settles_class(diagnosis: &str) -> bool {
-    diagnosis.ends_with(SETTLED)
-}
-
-/// The start of a diagnosis whose run stopped beside an unstable steady state (a saddle it
-/// had not left at `t_max`): its final class is where it had crept to, not where it would end.
+/// The start of a diagnosis whose run stopped beside an unstable steady state.
 pub const BESIDE_UNSTABLE: &str = "near an unstable steady state";
-
-/// Whether a `diagnosis` ([`Finding::describe`]) says the run stopped beside an unstable
-/// steady state.
-pub fn diagnosis_beside_unstable(diagnosis: &str) -> bool {
-    diagnosis.starts_with(BESIDE_UNSTABLE)
-}
 
 /// Largest difference in speed or deformation between a run and the root it is taken to be
 /// approaching.
@@ -157,9 +167,9 @@ pub const MAX_SETTLED: f64 = 0.05;
 /// "Finishing runs by Newton").
 pub const ORIENTATION: f64 = std::f64::consts::PI / 16.0;
 
-/// Smallest turn (radians) of the direction of motion before `t_max` for which a run is taken
-/// to leave an orientation that is unstable in its rotation mode.
-pub const TURN: f64 = 1e-2;
+/// The turns (degrees) from a state on a mirror line that is unstable in its rotation mode
+/// at which [`NewtonFinish::stable_root`] looks for the stable root the run turns to.
+pub const TURN_SEARCH: [f64; 7] = [1.0, 2.0, 4.0, 8.0, 16.0, 32.0, 45.0];
 
 /// Largest distance from a saddle (max over `vx, vy, a2, b2`) that a run may reach by `t_max`
 /// and still be taken to be beside it then (with `stop_beside_saddle`): the class threshold.
@@ -193,18 +203,6 @@ fn angle_to(z: &[f64; 4], root: &[f64; 4]) -> f64 {
     d - std::f64::consts::PI * (d / std::f64::consts::PI).round()
 }
 
-/// The state `z` turned by `angle`: the velocity by `angle`, the shape's mode 2 by twice it.
-fn rotated(z: &[f64; 4], angle: f64) -> [f64; 4] {
-    let (c, s) = (angle.cos(), angle.sin());
-    let (c2, s2) = ((2.0 * angle).cos(), (2.0 * angle).sin());
-    [
-        c * z[0] - s * z[1],
-        s * z[0] + c * z[1],
-        c2 * z[2] - s2 * z[3],
-        s2 * z[2] + c2 * z[3],
-    ]
-}
-
 /// Speed `v` and deformation `s` of `(vx, vy, a2, b2)`.
 fn speed_and_deformation(z: &[f64; 4]) -> (f64, f64) {
     (z[0].hypot(z[1]), z[2].hypot(z[3]))
@@ -236,6 +234,16 @@ fn one_class_within(z: &[f64; 4], root: &[f64; 4], reach: f64) -> bool {
     })
 }
 
+/// What a run that did not finish was doing when it stopped.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Diagnosis {
+    /// A sentence (the `diagnosis` column).
+    pub text: String,
+    pub reason: Unsettled,
+    /// The class of the stable root it was heading to, if one is known.
+    pub heading: Option<StateClass>,
+}
+
 /// The decision after one judged window.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Decision {
@@ -255,6 +263,7 @@ pub struct NewtonFinish {
     t_max: f64,
     stop_beside_saddle: bool,
     leap_departures: bool,
+    landing: bool,
     /// The last try that found the run beside a saddle (for `leap_departures`).
     sighting: Option<Sighting>,
     solver: Option<SteadySolver>,
@@ -278,6 +287,7 @@ impl NewtonFinish {
             t_max: settings.t_max,
             stop_beside_saddle: settings.stop_beside_saddle,
             leap_departures: settings.leap_departures,
+            landing: settings.landing,
             sighting: None,
             last_turn: None,
             assessed: Vec::new(),
@@ -337,60 +347,163 @@ impl NewtonFinish {
         })
     }
 
-    /// The root the run at `z` (time `t`) ends at, if Newton finds one, and whether it may
+    /// The root the run at `z` ends at, if Newton finds one, and whether it may
     /// end there: the root near `z`, if every eigenvalue decays. If that root is unstable only
     /// in its rotation mode (an orientation the box turns away from), the run turns away only
-    /// if it already leans: a lean `phi` grows like `phi exp(lambda_rot (t_max - t))`, and a
-    /// run that cannot turn by [`TURN`] before `t_max` (a mirror-symmetric run: `phi = 0`)
+    /// if it leans at all (a lean `phi` grows like `phi exp(lambda_rot t)`, however long that
+    /// takes: before numerics 4 a run that could not turn by 0.01 rad before `t_max` ended
+    /// on the unstable line, `v` off by the box's anisotropy from where longer stepping
+    /// lands); a mirror-symmetric run (`phi = 0`)
     /// ends at the root like the paper's test would. A run that can turn goes to the root of
     /// the state turned by 45 degrees (motion and long axis together, towards the side it
     /// leans to), where the box's other mirror line is, if that root is stable.
-    pub fn stable_root(&mut self, t: f64, z: [f64; 4]) -> Option<(Finding, bool)> {
+    pub fn stable_root(&mut self, z: [f64; 4]) -> Option<(Finding, bool)> {
         let near = match self.root_near(z) {
             Ok(near) => near,
             Err(_) => self.aligned_root(z)?,
         };
-        let Some(rot) = near.verdict.rotation.filter(|_| !near.stable()) else {
+        if near.verdict.rotation.is_none() || near.stable() {
             let ok = near.stable();
             return Some((near, ok));
-        };
+        }
         if near.verdict.unstable > 0 {
             return Some((near, false));
         }
         let lean = angle_to(&z, &near.z);
         // Below LEAN_FLOOR a lean is the round-off of a mirror-symmetric run: none.
         let lean = if lean.abs() < LEAN_FLOOR { 0.0 } else { lean };
-        if lean.abs() * (rot * (self.t_max - t).max(0.0)).min(700.0).exp() < TURN {
+        if lean == 0.0 {
+            // A mirror-symmetric run stays on its line for ever.
             return Some((near, true));
         }
         let side = if lean >= 0.0 { 1.0 } else { -1.0 };
-        let angle = side * std::f64::consts::FRAC_PI_4;
-        match self.root_near(rotated(&near.z, angle)) {
-            Ok(other) if other.stable() => Some((
-                Finding {
-                    turned: true,
-                    ..other
-                },
-                true,
-            )),
-            _ => Some((near, false)),
+        // The run turns away from `near` towards the side it leans to, and ends on the first
+        // stable root that way: where the unstable line's root lost its rotational stability
+        // in a pitchfork, a pair of roots a few degrees to either side; else the root on the
+        // box's next mirror line, 45 degrees away. Newton from the state turned by growing
+        // angles finds the nearest first.
+        let quarter = std::f64::consts::FRAC_PI_4;
+        for degrees in TURN_SEARCH {
+            let Ok(other) = self.root_near(rotated(&near.z, side * degrees.to_radians())) else {
+                continue;
+            };
+            let turn = side * angle_to(&other.z, &near.z);
+            if other.stable()
+                && class_of(&other.z) == class_of(&near.z)
+                && turn > 1e-6
+                && turn <= quarter + 1e-6
+            {
+                return Some((
+                    Finding {
+                        turned: true,
+                        ..other
+                    },
+                    true,
+                ));
+            }
+        }
+        Some((near, false))
+    }
+
+    /// Why a run stopped at `z` did not finish: what Newton from `z` finds
+    /// ([`Finding::describe`]), or from `z` turned onto the box's nearest mirror lines if
+    /// Newton from `z` does not converge (a run caught mid-turn); and where it was heading:
+    /// the stable root near it, or the one its slow flow lands on ([`crate::landing`]).
+    pub fn diagnose(&mut self, z: [f64; 4]) -> Diagnosis {
+        let (text, reason, mut heading) = match self.root_near(z) {
+            Ok(found) => (found.describe(&z), found.reason(&z), found.heading()),
+            Err(SolverError::NewtonFailed { .. }) => match self.aligned_root(z) {
+                Some(found) => (
+                    format!(
+                        "caught turning between the box's mirror lines; the steady state on one: {}",
+                        found.describe(&z)
+                    ),
+                    found.reason(&z),
+                    found.heading(),
+                ),
+                None => (
+                    "no steady state near the final state (Newton did not converge)".into(),
+                    Unsettled::NoRoot,
+                    None,
+                ),
+            },
+            Err(e) => (format!("not diagnosed: {e}"), Unsettled::NotDiagnosed, None),
+        };
+        if reason != Unsettled::Turning && reason != Unsettled::Converging {
+            if let Some(landed) = self.landing_root(z) {
+                heading = Some(class_of(&landed.z));
+            }
+        }
+        Diagnosis {
+            text,
+            reason,
+            heading,
         }
     }
 
-    /// Why a run stopped at `z` did not finish (the `diagnosis` column): what Newton from
-    /// `z` finds ([`Finding::describe`]), or from `z` turned onto the box's nearest mirror
-    /// lines if Newton from `z` does not converge (a run caught mid-turn).
-    pub fn diagnose(&mut self, z: [f64; 4]) -> String {
-        match self.root_near(z) {
-            Ok(found) => found.describe(&z),
-            Err(SolverError::NewtonFailed { .. }) => match self.aligned_root(z) {
-                Some(found) => format!(
-                    "caught turning between the box's mirror lines; the steady state on one: {}",
-                    found.describe(&z)
-                ),
-                None => "no steady state near the final state (Newton did not converge)".into(),
-            },
-            Err(e) => format!("not diagnosed: {e}"),
+    /// The stable root the run at `z` lands on along its slow flow
+    /// ([`crate::landing`]), confirmed by Newton on all four equations and by its
+    /// eigenvalues: the flow's root itself (speed and deformation equal to 1e-6), or, when
+    /// that one is unstable in its rotation mode and the run leans, the root on the box's
+    /// other mirror line that the run turns to (same class; speed and deformation differ
+    /// by the box's anisotropy, at most [`MAX_SETTLED`]).
+    /// Failing that, a run caught turning between two mirror lines ends where it turns to
+    /// ([`Self::turn_root`]).
+    pub fn landing_root(&mut self, z: [f64; 4]) -> Option<Finding> {
+        for landing in landings(self.steady_solver().ok()?, z) {
+            let Some((found, may_end)) = self.stable_root(landing.z) else {
+                continue;
+            };
+            let distance = invariant_distance(&found.z, &landing.z);
+            // The flow's own root, or one the run turns to from it.
+            let own = !found.turned && angle_to(&found.z, &landing.z).abs() <= ORIENTATION;
+            let same = class_of(&found.z) == class_of(&landing.z)
+                && distance <= if own { 1e-6 } else { MAX_SETTLED };
+            if may_end && same {
+                return Some(found);
+            }
+        }
+        self.turn_root(z)
+    }
+
+    /// The root a run turning between the box's two mirror lines next to it ends on. The
+    /// run's orientation is the slow coordinate (the near-neutral rotation mode); the
+    /// roots on the two lines are the zeros of its flow next to it (by the box's symmetry).
+    /// If one is stable and the other unstable in its rotation mode only, the run turns
+    /// away from the second towards the first and ends there, provided that both roots have
+    /// the run's class and the run's speed and deformation lie between theirs (within
+    /// [`crate::landing::FAMILY_TOL`]): it is on the circle of states joining them. Both
+    /// stable (two orientations, each with its basin) or both unstable: no decision.
+    pub fn turn_root(&mut self, z: [f64; 4]) -> Option<Finding> {
+        let quarter = std::f64::consts::FRAC_PI_4;
+        let phi = orientation(&z);
+        let nearest = (phi / quarter).round() * quarter;
+        let other = nearest + if phi >= nearest { quarter } else { -quarter };
+        let class = class_of(&z);
+        let mut roots = Vec::with_capacity(2);
+        for target in [nearest, other] {
+            let found = self.root_near(rotated(&z, target - phi)).ok()?;
+            let on_line = (orientation(&found.z) - target).sin().abs() < 1e-6;
+            if !on_line || class_of(&found.z) != class || found.verdict.unstable > 0 {
+                return None;
+            }
+            roots.push(found);
+        }
+        let (b, a) = (roots.pop()?, roots.pop()?);
+        let (run, ra, rb) = (
+            speed_and_deformation(&z),
+            speed_and_deformation(&a.z),
+            speed_and_deformation(&b.z),
+        );
+        let tol = crate::landing::FAMILY_TOL;
+        let between = |x: f64, p: f64, q: f64| x >= p.min(q) - tol && x <= p.max(q) + tol;
+        if !(between(run.0, ra.0, rb.0) && between(run.1, ra.1, rb.1)) {
+            return None;
+        }
+        match (a.stable(), b.stable()) {
+            (true, false) => Some(a),
+            (false, true) => Some(b),
+            _ => None,
         }
     }
 
@@ -422,15 +535,16 @@ impl NewtonFinish {
         if t < self.next_try || !(test_fired || change < self.trigger) {
             return Decision::Continue;
         }
-        let found = self.stable_root(t, z);
+        let found = self.stable_root(z);
         let Some((f, may_end)) = found else {
-            // No root near: the paper's test is all there is.
-            return if test_fired {
-                Decision::End(Ending::Test, z)
-            } else {
-                self.back_off(t);
-                Decision::Continue
-            };
+            // No root near (a run passing the ghost of a saddle-node, or caught mid-turn):
+            // where its slow flow lands, else on by time stepping. The paper's test alone
+            // never ends a run on a state that is not a stable root (numerics 4).
+            if let Some(end) = self.land_now(z) {
+                return end;
+            }
+            self.back_off(t);
+            return Decision::Continue;
         };
         // The run's speed and deformation relax at the decisive rates: their distance to the
         // root's, against what the linear decay at the slowest decisive rate predicts from
@@ -454,6 +568,9 @@ impl NewtonFinish {
             };
             return Decision::End(ending, f.z);
         }
+        if let Some(end) = self.land_now(z) {
+            return end;
+        }
         if let Some(diagnosis) = self.cannot_leave(t, &z, &f) {
             return Decision::Saddle(diagnosis);
         }
@@ -463,6 +580,16 @@ impl NewtonFinish {
         }
         self.back_off(t);
         Decision::Continue
+    }
+
+    /// With `landing`, the end of the run at `z` on the stable root its slow flow
+    /// lands on ([`Self::landing_root`]).
+    fn land_now(&mut self, z: [f64; 4]) -> Option<Decision> {
+        if !self.landing {
+            return None;
+        }
+        let found = self.landing_root(z)?;
+        Some(Decision::End(Ending::Landing, found.z))
     }
 
     /// With `leap_departures`, the leap of a run at `z` (time `t`) leaving the saddle `f`
@@ -583,9 +710,18 @@ mod tests {
         // Only turning is settled only near the root, with its class: a run still leaving
         // the resting disk towards the MD root is on its way.
         let settled = found.describe(&[0.58, 0.05, -0.26, 0.02]);
-        assert!(diagnosis_settles_class(&settled), "{settled}");
+        assert!(settled.ends_with(SETTLED), "{settled}");
+        let run = [0.58, 0.05, -0.26, 0.02];
+        assert_eq!(found.reason(&run), Unsettled::Turning);
+        assert_eq!(found.heading(), Some(StateClass::MD));
+        assert_eq!(ic.reason(&[1e-3, 0.0, 1e-3, 0.0]), Unsettled::BesideSaddle);
+        assert_eq!(ic.heading(), None);
         let leaving = found.describe(&[0.17, 0.017, -0.0087, -0.0016]);
-        assert!(!diagnosis_settles_class(&leaving), "{leaving}");
+        assert!(!leaving.ends_with(SETTLED), "{leaving}");
+        assert_eq!(
+            found.reason(&[0.17, 0.017, -0.0087, -0.0016]),
+            Unsettled::Converging
+        );
     }
 
     #[test]

@@ -41,6 +41,39 @@ impl RunStatus {
     }
 }
 
+/// Why a run did not end on a stable steady state (the `unsettled` column; `None` for a
+/// steady run). Such a run has no class: where it stopped is its status, `t_end` and state.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Unsettled {
+    /// Beside an unstable steady state (a saddle) that it had not left.
+    BesideSaddle,
+    /// A stable steady state is near, and the run had not reached it.
+    Converging,
+    /// Speed and deformation are those of a stable steady state, only the direction of
+    /// motion / long axis still turns (the box's slow rotation mode).
+    Turning,
+    /// Newton finds no steady state near the final state.
+    NoRoot,
+    /// Not diagnosed (the paper's scheme, pinned runs, the paper's steady test alone).
+    NotDiagnosed,
+    /// Left the model: a non-finite value, or `s >= 1`.
+    Diverged,
+}
+
+impl Unsettled {
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            Self::BesideSaddle => "beside_saddle",
+            Self::Converging => "converging",
+            Self::Turning => "turning",
+            Self::NoRoot => "no_root",
+            Self::NotDiagnosed => "not_diagnosed",
+            Self::Diverged => "diverged",
+        }
+    }
+}
+
 /// One row of a time series.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct SeriesRow {
@@ -75,7 +108,8 @@ impl SeriesRow {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct RunOutcome {
     pub status: RunStatus,
-    /// Class of the final state (also for `t_max` runs; `None` when diverged).
+    /// Class of the stable steady state the run ended on: `Some` only for a `steady` run
+    /// (numerics 4; before, `t_max` runs carried the class of where they stopped).
     pub class: Option<StateClass>,
     pub state: DropletState,
     pub v: f64,
@@ -104,6 +138,13 @@ pub struct RunOutcome {
     /// [`crate::departure_leap`]): part of `t_end`, not stepped. 0 in records from before it.
     #[serde(default)]
     pub t_leapt: f64,
+    /// Why the run did not end on a stable steady state (`None` for a steady run).
+    #[serde(default)]
+    pub unsettled: Option<Unsettled>,
+    /// For an unsettled run: the class of the stable steady state it was heading to, when
+    /// Newton or the run's slow flow ([`crate::landing`]) names one.
+    #[serde(default)]
+    pub heading: Option<StateClass>,
     /// Recorded time series (empty unless asked for).
     pub series: Vec<SeriesRow>,
 }
@@ -130,28 +171,9 @@ impl RunOutcome {
         })
     }
 
-    /// The class of the final state is settled: the run ended steady, or it stopped
-    /// unfinished with its speed and deformation settled (only turning slowly, see
-    /// [`crate::newton_finish::diagnosis_settles_class`]).
-    pub fn class_settled(&self) -> bool {
-        match self.status {
-            RunStatus::Steady => true,
-            RunStatus::TMax | RunStatus::StepLimit | RunStatus::Saddle => self
-                .diagnosis
-                .as_deref()
-                .is_some_and(crate::newton_finish::diagnosis_settles_class),
-            RunStatus::Diverged => false,
-        }
-    }
-
-    /// The run stopped unfinished beside an unstable steady state (see
-    /// [`crate::newton_finish::diagnosis_beside_unstable`]): its class is where it had crept
-    /// to by `t_max`.
-    pub fn beside_unstable(&self) -> bool {
-        self.status.unfinished()
-            && self
-                .diagnosis
-                .as_deref()
-                .is_some_and(crate::newton_finish::diagnosis_beside_unstable)
+    /// The run ended on a stable steady state (for `steady: newton` runs; with the paper's
+    /// test alone, on a state the test accepted) and has a class.
+    pub fn settled(&self) -> bool {
+        self.status == RunStatus::Steady
     }
 }

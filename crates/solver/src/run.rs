@@ -4,8 +4,8 @@
 use crate::classify::StateClass;
 use crate::error::SolverError;
 use crate::initial::InitialCondition;
-use crate::newton_finish::{Decision, Ending, NewtonFinish, SteadyMethod};
-use crate::outcome::{RunOutcome, RunStatus, SeriesRow};
+use crate::newton_finish::{Decision, Diagnosis, Ending, NewtonFinish, SteadyMethod};
+use crate::outcome::{RunOutcome, RunStatus, SeriesRow, Unsettled};
 use crate::params::ModelParams;
 use crate::scheme::{ComovingEtd, PaperFd, Scheme, SchemeKind};
 use crate::settings::{ModelKind, SolverSettings};
@@ -208,14 +208,31 @@ impl Run {
         if let Some([vx, vy, a2, b2]) = polished {
             (state.vx, state.vy, state.a2, state.b2) = (vx, vy, a2, b2);
         }
-        let diagnosis = saddle_diagnosis.or_else(|| {
-            matches!(status, RunStatus::TMax | RunStatus::StepLimit)
-                .then(|| self.diagnose(finish.as_mut(), state.monitored()))
-        });
+        let found = match status {
+            RunStatus::Steady => None,
+            RunStatus::Diverged => Some(Diagnosis {
+                text: "left the model (a non-finite value, or s >= 1)".into(),
+                reason: Unsettled::Diverged,
+                heading: None,
+            }),
+            RunStatus::Saddle => Some(Diagnosis {
+                text: saddle_diagnosis.unwrap_or_default(),
+                reason: Unsettled::BesideSaddle,
+                heading: None,
+            }),
+            RunStatus::TMax | RunStatus::StepLimit => {
+                Some(self.diagnose(finish.as_mut(), state.monitored()))
+            }
+        };
         let (v, s) = (state.speed(), state.deformation());
+        let diagnosis = found
+            .as_ref()
+            .filter(|d| d.reason != Unsettled::Diverged)
+            .map(|d| d.text.clone());
         RunOutcome {
             status,
-            class: (status != RunStatus::Diverged).then(|| StateClass::of(v, s)),
+            // Only a run that ended on a stable steady state has a class (numerics 4).
+            class: (status == RunStatus::Steady).then(|| StateClass::of(v, s)),
             state,
             v,
             s,
@@ -228,15 +245,20 @@ impl Run {
             ended_by,
             diagnosis,
             t_leapt,
+            unsettled: found.as_ref().map(|d| d.reason),
+            heading: found.and_then(|d| d.heading),
             series,
         }
     }
 
-    /// Why a run did not finish: what a Newton try from its final state `z` finds (spectral
-    /// runs only; one try, about 0.1 s at N = 192).
-    fn diagnose(&self, finish: Option<&mut NewtonFinish>, z: [f64; 4]) -> String {
+    /// Why a run did not finish: what a Newton try from its final state `z` finds (spectral runs only; one try, about 0.1 s at N = 192).
+    fn diagnose(&self, finish: Option<&mut NewtonFinish>, z: [f64; 4]) -> Diagnosis {
         if self.settings.scheme != SchemeKind::Spectral || self.settings.pinned {
-            return "not diagnosed (the steady equations are the spectral scheme's)".into();
+            return Diagnosis {
+                text: "not diagnosed (the steady equations are the spectral scheme's)".into(),
+                reason: Unsettled::NotDiagnosed,
+                heading: None,
+            };
         }
         let mut own;
         let f = match finish {

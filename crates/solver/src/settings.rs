@@ -76,6 +76,16 @@ pub struct SolverSettings {
     /// records written before it existed; a run without it has the run key it had before.
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub leap_departures: bool,
+    /// With the Newton finish: end a slow run on the stable root its one-dimensional
+    /// quasi-steady flow lands on ([`crate::landing`]), once that root is certain, instead of
+    /// creeping there (`ended_by`: `steady_by_landing`). On by default (numerics 4); off
+    /// reproduces plain time stepping.
+    #[serde(default = "on")]
+    pub landing: bool,
+}
+
+fn on() -> bool {
+    true
 }
 
 /// Default adaptive tolerance, chosen with `droplet bench` (results/bench): at N = 192 the
@@ -104,6 +114,7 @@ impl Default for SolverSettings {
             steady: SteadyMethod::default_for_runs(),
             stop_beside_saddle: false,
             leap_departures: false,
+            landing: true,
         }
     }
 }

@@ -52,6 +52,9 @@ pub enum Ending {
     Test,
     /// Newton found a stable root that the run was approaching.
     Newton,
+    /// The run's one-dimensional quasi-steady flow lands on a stable root
+    /// ([`crate::landing`]), which Newton and the root's eigenvalues confirmed.
+    Landing,
 }
 
 impl Ending {
@@ -59,6 +62,7 @@ impl Ending {
         match self {
             Self::Test => "steady_by_test",
             Self::Newton => "steady_by_newton",
+            Self::Landing => "steady_by_landing",
         }
     }
 }

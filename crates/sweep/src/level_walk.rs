@@ -3,7 +3,7 @@
 //! sweep that runs the levels and `droplet status` that reads them plan the same points, and a
 //! resumed sweep plans exactly the points an uninterrupted one would.
 use crate::error::SweepError;
-use crate::phase::{PointClass, DIVERGED, MISSING, NOT_CLASSIFIED};
+use crate::phase::{PointClass, DIVERGED, MISSING, NOT_CLASSIFIED, UNSETTLED};
 use crate::phase_map::PhaseMap;
 use crate::plan::{plan_nodes, Plan};
 use crate::refine::{split, Lattice, Node, Verdict};
@@ -15,7 +15,7 @@ use std::collections::{BTreeMap, BTreeSet, HashMap};
 /// (one class only with `split_bistable`), every run's class settled, none diverged.
 fn settled(c: &PointClass, split_bistable: bool) -> bool {
     (!split_bistable || !c.label.contains('/'))
-        && ![NOT_CLASSIFIED, DIVERGED, MISSING].contains(&c.label.as_str())
+        && ![NOT_CLASSIFIED, DIVERGED, MISSING, UNSETTLED].contains(&c.label.as_str())
         && c.n_unsettled == 0
         && c.n_diverged == 0
 }

@@ -2,11 +2,11 @@
 //! with resume, parallel execution, point classification, Parquet tables and pictures.
 //! Data flows one way: spec -> plan -> runs (store) -> tables -> pictures.
 pub mod atomic;
+pub mod audit;
 pub mod axes;
 pub mod bench;
 pub mod bench_run;
 pub mod bench_table;
-pub mod beside_unstable;
 pub mod bifurcation_table;
 pub mod boundary_table;
 pub mod branch_lines;

@@ -18,8 +18,8 @@ pub struct MapEntry {
     /// Cell size `(d_eta_t, d_kappa2)` of its level.
     pub cell: (f64, f64),
     pub class: PointClass,
-    /// How the run from each initial condition ended (spec order): its class, or
-    /// `diverged`; `None` while the run is not stored.
+    /// How the run from each initial condition ended (spec order): its class, `diverged` or
+    /// `unsettled`; `None` while the run is not stored.
     pub per_ic: Vec<Option<String>>,
 }
 
@@ -46,11 +46,13 @@ pub struct PhaseMap {
     pub ic_names: Vec<String>,
 }
 
-/// How one run ended, as the points table shows it.
+/// How one run ended, as the points table shows it: the class of the stable state it ended
+/// on, `diverged`, or `unsettled`.
 fn run_end(r: &RunRecord) -> String {
     match (r.outcome.status, r.outcome.class) {
-        (RunStatus::Diverged, _) | (_, None) => RunStatus::Diverged.as_str().to_string(),
-        (_, Some(c)) => c.as_str().to_string(),
+        (RunStatus::Steady, Some(c)) => c.as_str().to_string(),
+        (RunStatus::Diverged, _) => RunStatus::Diverged.as_str().to_string(),
+        _ => crate::phase::UNSETTLED.to_string(),
     }
 }
 
@@ -70,7 +72,7 @@ impl PhaseMap {
                 kappa2: plan.points[i].1,
                 level: plan.levels[i],
                 cell: plan.cells[i],
-                class: classify_point(runs.iter().flatten().copied(), plan.beside_unstable),
+                class: classify_point(runs.iter().flatten().copied()),
                 per_ic: runs.iter().map(|r| r.map(run_end)).collect(),
             })
             .collect();

@@ -32,9 +32,6 @@ pub struct Plan {
     /// an axis given as a list of one value).
     pub cells: Vec<(f64, f64)>,
     pub ic_names: Vec<String>,
-    /// How the points' classes count runs stopped beside an unstable state (the spec's
-    /// `classify:`).
-    pub beside_unstable: crate::beside_unstable::BesideUnstable,
     ics: Vec<InitialCondition>,
     params: ModelParams,
     settings: SolverSettings,
@@ -194,7 +191,6 @@ fn point_set(
             .iter()
             .map(|i| i.name.clone())
             .collect(),
-        beside_unstable: spec.beside_unstable,
         ics: spec.initial_conditions.clone(),
         params: spec.params,
         settings: spec.solver,

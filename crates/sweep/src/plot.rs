@@ -4,7 +4,7 @@
 use crate::axes::{ETA_T, KAPPA2};
 use crate::branch_lines::BranchLine;
 use crate::error::SweepError;
-use crate::phase::{DIVERGED, MISSING, NOT_CLASSIFIED};
+use crate::phase::{DIVERGED, MISSING, NOT_CLASSIFIED, UNSETTLED};
 pub(crate) use crate::render::perr;
 use crate::render::{render, Figure};
 use droplet_solver::scheme::Field;
@@ -29,6 +29,7 @@ pub fn class_colour(label: &str) -> RGBColor {
         "MD/MC" => RGBColor(130, 60, 180),
         "ID/MC" => RGBColor(120, 130, 40),
         DIVERGED => RGBColor(0, 0, 0),
+        UNSETTLED => RGBColor(200, 200, 200),
         "MD minor-axis" => RGBColor(0, 0, 139),
         "MD major-axis" => RGBColor(140, 80, 20),
         _ => RGBColor(255, 255, 255),
@@ -36,7 +37,7 @@ pub fn class_colour(label: &str) -> RGBColor {
 }
 
 /// Legend order: the paper's classes first.
-const ORDER: [&str; 13] = [
+const ORDER: [&str; 14] = [
     "IC",
     "ID",
     "MD",
@@ -49,6 +50,7 @@ const ORDER: [&str; 13] = [
     "MD/MC",
     "ID/MC",
     DIVERGED,
+    UNSETTLED,
     MISSING,
 ];
 

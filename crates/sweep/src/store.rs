@@ -361,6 +361,8 @@ mod tests {
                 ended_by: None,
                 diagnosis: None,
                 t_leapt: 0.0,
+                unsettled: None,
+                heading: None,
                 series: vec![],
             },
         }

@@ -160,6 +160,18 @@ pub fn runs_frame(
                 .map(|(_, r)| r.outcome.class.map(|c| c.as_str().to_string()))
                 .collect::<Vec<Option<String>>>(),
         ),
+        Column::new(
+            "unsettled".into(),
+            rows.iter()
+                .map(|(_, r)| r.outcome.unsettled.map(|u| u.as_str().to_string()))
+                .collect::<Vec<Option<String>>>(),
+        ),
+        Column::new(
+            "heading".into(),
+            rows.iter()
+                .map(|(_, r)| r.outcome.heading.map(|c| c.as_str().to_string()))
+                .collect::<Vec<Option<String>>>(),
+        ),
         f64_col("v", f(&|r| r.outcome.v)),
         f64_col("s", f(&|r| r.outcome.s)),
         f64_col("vx", f(&|r| r.outcome.state.vx)),
@@ -233,6 +245,13 @@ pub fn points_frame(map: &PhaseMap) -> Result<DataFrame, SweepError> {
         str_col(
             "class",
             map.points.iter().map(|p| p.class.label.clone()).collect(),
+        ),
+        Column::new(
+            "settled".into(),
+            map.points
+                .iter()
+                .map(|p| p.class.settled())
+                .collect::<Vec<bool>>(),
         ),
     ];
     for (i, name) in map.ic_names.iter().enumerate() {

@@ -134,7 +134,7 @@ pub fn simulate(
     let (v, s) = (state.speed(), state.deformation());
     Ok(RunOutcome {
         status,
-        class: (status != RunStatus::Diverged).then(|| StateClass::of(v, s)),
+        class: (status == RunStatus::Steady).then(|| StateClass::of(v, s)),
         state,
         v,
         s,
@@ -147,6 +147,12 @@ pub fn simulate(
         ended_by: (status == RunStatus::Steady).then_some(crate::steady_method::Ending::Test),
         diagnosis: None,
         t_leapt: 0.0,
+        unsettled: match status {
+            RunStatus::Steady => None,
+            RunStatus::Diverged => Some(crate::outcome::Unsettled::Diverged),
+            _ => Some(crate::outcome::Unsettled::NotDiagnosed),
+        },
+        heading: None,
         series: Vec::new(),
     })
 }

@@ -1,33 +1,20 @@
-//! The `classify` section: how point classes count unfinished runs ([`crate::phase`]).
-//!
-//! ```yaml
-//! classify:
-//!   beside_unstable: count    # count (default, the paper's rule) or exclude
-//! ```
-//!
-//! `exclude` leaves out of a point's class the runs that stopped at `t_max` beside an unstable
-//! steady state (their Newton diagnosis): the point is classified from its other runs.
+//! The `classify` section, removed in numerics 4: it chose whether runs that stopped beside an
+//! unstable steady state counted with the class of where they stopped. Since then no run
+//! that did not end on a stable steady state counts with a class ([`crate::phase`]), so
+//! there is no rule left to choose, and a spec that still has the section is refused with
+//! that reason rather than silently read.
 use super::context::{show, Ctx};
-use crate::beside_unstable::BesideUnstable;
 use crate::error::SpecError;
 use serde_yaml::Mapping;
 
-/// The `classify` section's rule (the default when the section is absent).
-pub(super) fn parse(ctx: &Ctx, top: &Mapping) -> Result<BesideUnstable, SpecError> {
-    let Some(v) = top.get("classify") else {
-        return Ok(BesideUnstable::default());
-    };
-    let m = ctx.mapping(v, &["classify"], &["beside_unstable"])?;
-    match m.get("beside_unstable") {
-        None => Ok(BesideUnstable::default()),
-        Some(x) => match x.as_str() {
-            Some("count") => Ok(BesideUnstable::Count),
-            Some("exclude") => Ok(BesideUnstable::Exclude),
-            _ => Err(ctx.err(
-                &["classify", "beside_unstable"],
-                show(x),
-                "count or exclude",
-            )),
-        },
+/// Refuses a `classify` section.
+pub(super) fn parse(ctx: &Ctx, top: &Mapping) -> Result<(), SpecError> {
+    match top.get("classify") {
+        None => Ok(()),
+        Some(v) => Err(ctx.err(
+            &["classify"],
+            show(v),
+            "no classify section: it was removed (numerics 4), since a run that did not end on a stable steady state never counts with a class; delete it",
+        )),
     }
 }

@@ -15,7 +15,6 @@
 //! refine: {levels: 4, min_step: {eta_t: 1.5e-4, kappa2: 3e-4}}   # optional (ranges only)
 //!                             # tol: adaptive stepping (0 = fixed step dt; spectral only)
 //!                             # ode: dt default 0.05, and h0 (default 0.1436)
-//! classify: {beside_unstable: count}   # or exclude: leave runs stuck at saddles out of classes
 //! ```
 //!
 //! One file per section: [`context`] (locating keys, typed accessors, error paths),
@@ -56,7 +55,6 @@ pub struct SweepSpec {
     /// Adaptive refinement of the grid (`refine:`), if asked for.
     pub refine: Option<crate::refine::Lattice>,
     /// How point classes count runs stopped beside an unstable state (`classify:`).
-    pub beside_unstable: crate::beside_unstable::BesideUnstable,
     /// The spec's text, stored in the output metadata.
     #[serde(skip)]
     pub source: String,
@@ -200,7 +198,7 @@ pub fn parse(text: &str, file: &str, stem: &str) -> Result<SweepSpec, SpecError>
     let initial_conditions = initial::parse(&ctx, top)?;
     let solver = solver::parse(&ctx, top, model, &params)?;
     let refine = refine::parse(&ctx, top, &eta_t, &kappa2)?;
-    let beside_unstable = classify::parse(&ctx, top)?;
+    classify::parse(&ctx, top)?;
     Ok(SweepSpec {
         name,
         output,
@@ -210,7 +208,6 @@ pub fn parse(text: &str, file: &str, stem: &str) -> Result<SweepSpec, SpecError>
         initial_conditions,
         solver,
         refine,
-        beside_unstable,
         source: text.to_string(),
     })
 }
@@ -294,19 +291,13 @@ mod tests {
     }
 
     #[test]
-    fn classify_section_chooses_how_runs_beside_unstable_states_count() {
-        use crate::beside_unstable::BesideUnstable;
-        // GOOD followed by `extra`.
+    fn the_removed_classify_section_is_refused() {
         let with = |extra: &str| parse(&format!("{GOOD}{extra}"), "t.yaml", "t");
-        assert_eq!(with("").unwrap().beside_unstable, BesideUnstable::Count);
-        let s = with("classify: {beside_unstable: exclude}\n").unwrap();
-        assert_eq!(s.beside_unstable, BesideUnstable::Exclude);
-        let e = with("classify:\n  beside_unstable: drop\n").unwrap_err();
-        assert_eq!(e.path, "classify.beside_unstable");
-        assert_eq!(e.line, Some(9));
-        assert_eq!(e.allowed, "count or exclude");
-        let e = with("classify: {saddles: 1}\n").unwrap_err();
-        assert_eq!(e.path, "classify.saddles");
+        assert!(with("").is_ok());
+        let e = with("classify: {beside_unstable: exclude}\n").unwrap_err();
+        assert_eq!(e.path, "classify");
+        assert_eq!(e.line, Some(8));
+        assert!(e.allowed.contains("removed"), "{}", e.allowed);
     }
 
     #[test]

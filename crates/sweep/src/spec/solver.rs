@@ -8,11 +8,12 @@ use droplet_solver::{ModelKind, ModelParams, SchemeKind, SolverSettings};
 use serde_yaml::Mapping;
 
 /// The keys of the section.
-const KEYS: [&str; 12] = [
+const KEYS: [&str; 13] = [
     "scheme",
     "steady",
     "stop_beside_saddle",
     "leap_departures",
+    "landing",
     "n",
     "dt",
     "tol",
@@ -86,7 +87,13 @@ pub(super) fn parse(
         )? {
             solver.leap_departures = on;
         }
-        ctx.numbers(m, "solver", &KEYS[5..], |key, val| match key {
+        if let Some(on) = flag(
+            "landing",
+            "end a slow run where its one-dimensional quasi-steady flow lands; the default",
+        )? {
+            solver.landing = on;
+        }
+        ctx.numbers(m, "solver", &KEYS[6..], |key, val| match key {
             "dt" => solver.dt = val,
             "tol" => solver.tol = val,
             "dt_max" => solver.dt_max = val,
