@@ -9,18 +9,21 @@ use std::path::PathBuf;
 /// grows), and Newton on the four steady equations starts from every other run's final state
 /// (it contradicts when no root is found, when the root has another class, or when it has a
 /// growing eigenvalue besides the near-neutral rotation mode). Runs that did not end on a
-/// stable state are listed as unsettled. Exits 1 when anything contradicts, listing each
-/// contradiction with the run that caused it; 0 when the map is clean. About 0.1 s per point
-/// at N = 192, on all cores. Refused while a sweep works on DIR.
+/// stable state are listed as unsettled, and a label the points table has but its runs do not
+/// give as a label mismatch. Exits 1 when anything contradicts, listing each contradiction
+/// with the run that caused it; 0 when the map is clean. Reads DIR/runs.parquet and
+/// DIR/points.parquet (a finished sweep, or a committed map in results/); about 0.1 s per
+/// point at N = 192, on all cores.
 #[derive(clap::Args)]
 pub struct Args {
-    /// The sweep's output directory.
+    /// A finished sweep's output directory (or any directory with its runs.parquet and
+    /// points.parquet).
     dir: PathBuf,
     /// List at most this many contradictions in the text output (all of them with --json).
     #[arg(long, default_value_t = 20)]
     show: usize,
     /// Print one JSON object: points, runs, points_clean, states_checked, by_kind,
-    /// contradictions (eta_t, kappa2, label, ic, class, kind, detail, key).
+    /// list (eta_t, kappa2, label, ic, class, kind, detail, key).
     #[arg(long)]
     json: bool,
 }

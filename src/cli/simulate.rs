@@ -89,6 +89,10 @@ pub struct Args {
     /// flow reaches, confirmed by Newton and the root's eigenvalues); plain time stepping.
     #[arg(long)]
     no_landing: bool,
+    /// With --steady newton: give up at --t-max, as the paper (by default a run not yet on a
+    /// stable state runs on to 4 t_max before it is reported unsettled).
+    #[arg(long)]
+    no_run_on: bool,
     /// Hold the centre fixed (deformation-only run, Appendix E).
     #[arg(long)]
     pinned: bool,
@@ -185,6 +189,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
         stop_beside_saddle: a.stop_beside_saddle,
         leap_departures: a.leap_departures,
         landing: !a.no_landing,
+        run_on: !a.no_run_on,
         ..base
     };
     let params = ModelParams {
@@ -199,7 +204,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
     let ic = InitialCondition::parse(&a.ic)?;
     let record = a.series.is_some() || a.picture.is_some();
     if record {
-        droplet_solver::limits::check_series(a.t_max, a.every)?;
+        droplet_solver::limits::check_series(settings.give_up_at(), a.every)?;
     } else if !(a.every > 0.0 && a.every.is_finite()) {
         return Err(CliError::usage(format!(
             "invalid --every {}: a finite number > 0",

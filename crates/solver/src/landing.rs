@@ -97,7 +97,12 @@ pub fn rotated(z: &[f64; 4], angle: f64) -> [f64; 4] {
 /// the lines may be on the family of either (the box's anisotropy makes them differ).
 fn lines_near(orientation: f64) -> [(MirrorAxis, f64, f64); 2] {
     let nearest = (orientation / FRAC_PI_4).round();
-    let other = nearest + if orientation >= nearest * FRAC_PI_4 { 1.0 } else { -1.0 };
+    let other = nearest
+        + if orientation >= nearest * FRAC_PI_4 {
+            1.0
+        } else {
+            -1.0
+        };
     [nearest, other].map(|n| {
         let (axis, base) = if (n as i64).rem_euclid(2) == 0 {
             (MirrorAxis::X, 0.0)
@@ -397,8 +402,14 @@ mod tests {
         let run = rotated(&[0.05, 0.0, -0.0005, 0.0], turn);
         let l = land(&mut s, run).unwrap();
         let (v, sd) = (l.z[0].hypot(l.z[1]), l.z[2].hypot(l.z[3]));
-        assert!((v - 0.2926).abs() < 5e-4 && l.coordinate == Coordinate::Speed, "{l:?}");
-        assert!((l.z[1].atan2(l.z[0]) - turn).abs() < 1e-9 && sd > 0.01, "{l:?}");
+        assert!(
+            (v - 0.2926).abs() < 5e-4 && l.coordinate == Coordinate::Speed,
+            "{l:?}"
+        );
+        assert!(
+            (l.z[1].atan2(l.z[0]) - turn).abs() < 1e-9 && sd > 0.01,
+            "{l:?}"
+        );
         // Just above it, a run decays to rest however fast it moves.
         let mut s = solver(0.0765, 0.16);
         let l = land(&mut s, [0.3, 0.0, -0.0153, 0.0]).unwrap();
@@ -406,7 +417,10 @@ mod tests {
         // Inside the IC/MD band the unstable MD root is the separatrix (~0.27).
         let mut s = solver(0.078, 0.13);
         let mut flow = SlowFlow::new(&mut s, MirrorAxis::X);
-        let (c2, c33) = (flow.shape_at(0.2, 0.0).unwrap(), flow.shape_at(0.33, 0.0).unwrap());
+        let (c2, c33) = (
+            flow.shape_at(0.2, 0.0).unwrap(),
+            flow.shape_at(0.33, 0.0).unwrap(),
+        );
         let low = land(&mut s, [0.2, 0.0, c2 + 1e-3, 0.0]).unwrap();
         assert_eq!(low.to, 0.0, "{low:?}");
         let high = land(&mut s, [0.33, 0.0, c33, 0.0]).unwrap();
@@ -422,7 +436,10 @@ mod tests {
         let mut s = solver(0.085, 0.112);
         let l = land(&mut s, [0.0, 0.0, 0.0, 0.02]).unwrap();
         assert_eq!(l.coordinate, Coordinate::Shape);
-        assert!(l.to > 0.05 && l.z[2].abs() < 1e-12 && l.z[3] > 0.05, "{l:?}");
+        assert!(
+            l.to > 0.05 && l.z[2].abs() < 1e-12 && l.z[3] > 0.05,
+            "{l:?}"
+        );
         // Above the onset the disk is stable: a deformed resting run relaxes to it.
         let mut s = solver(0.085, 0.13);
         let l = land(&mut s, [0.0, 0.0, 0.03, 0.0]).unwrap();

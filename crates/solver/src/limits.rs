@@ -24,11 +24,12 @@ pub const MIN_RADIUS_CELLS: f64 = 4.0;
 pub const MIN_SIGMA_CELLS: f64 = 0.1;
 
 /// Accepted adaptive steps after which a run ends with status `step_limit`: 100 times the
-/// fewest steps that could reach `t_max` (`t_max / dt_max`), at least 1e6, at most
-/// [`MAX_STEPS`]. At the defaults (t_max = 2000, dt_max = 0.25) that is 1e6; a normal run
+/// fewest steps that could reach where the run is given up (`t_max`, or 4 `t_max` with
+/// `run_on`, [`SolverSettings::give_up_at`]), at least 1e6, at most
+/// [`MAX_STEPS`]. At the defaults (t_max = 2000, dt_max = 0.25) that is 3.2e6; a normal run
 /// takes 1e3 to 1e4.
 pub fn adaptive_step_cap(settings: &SolverSettings) -> u64 {
-    (100.0 * settings.t_max / settings.dt_max).clamp(1e6, MAX_STEPS) as u64
+    (100.0 * settings.give_up_at() / settings.dt_max).clamp(1e6, MAX_STEPS) as u64
 }
 
 /// The largest stable step of the paper's forward-Euler scheme on a grid of spacing `dx`.

@@ -77,7 +77,9 @@ impl Run {
         let started = Instant::now();
         let cfg = self.settings;
         let adaptive = cfg.adaptive();
-        let max_steps = (cfg.t_max / cfg.dt).round() as u64;
+        // A run that has not ended on a stable state by t_max runs on (setting `run_on`).
+        let give_up = cfg.give_up_at();
+        let max_steps = (give_up / cfg.dt).round() as u64;
         let step_cap = crate::limits::adaptive_step_cap(&cfg);
         // Times within `slack` of a target count as reaching it (round-off of sums of steps).
         let slack = 1e-9 * cfg.dt;
@@ -102,14 +104,14 @@ impl Run {
         let mut t_leapt = 0.0;
         loop {
             if adaptive {
-                if t >= cfg.t_max - slack {
+                if t >= give_up - slack {
                     break;
                 }
                 if steps >= step_cap {
                     status = RunStatus::StepLimit;
                     break;
                 }
-                let mut h_try = h.min(cfg.t_max - t);
+                let mut h_try = h.min(give_up - t);
                 if let Some(tr) = next_record {
                     h_try = h_try.min(tr - t);
                 }

@@ -82,7 +82,15 @@ pub struct SolverSettings {
     /// reproduces plain time stepping.
     #[serde(default = "on")]
     pub landing: bool,
+    /// With the Newton finish: a run that has not ended on a stable state by `t_max` runs on,
+    /// up to [`RUN_ON`] times `t_max`, before it is given up as unsettled (its `t_end` says
+    /// how long it ran). On by default (numerics 4); off gives up at `t_max`, as the paper.
+    #[serde(default = "on")]
+    pub run_on: bool,
 }
+
+/// How far past `t_max` a run not yet on a stable state runs on (setting `run_on`).
+pub const RUN_ON: f64 = 4.0;
 
 fn on() -> bool {
     true
@@ -115,6 +123,7 @@ impl Default for SolverSettings {
             stop_beside_saddle: false,
             leap_departures: false,
             landing: true,
+            run_on: true,
         }
     }
 }
@@ -143,6 +152,16 @@ impl SolverSettings {
         }
     }
 
+    /// The time at which a run not yet steady is given up: `t_max`, or [`RUN_ON`] times it
+    /// with `run_on` and the Newton finish.
+    pub fn give_up_at(&self) -> f64 {
+        if self.run_on && self.steady == SteadyMethod::Newton {
+            RUN_ON * self.t_max
+        } else {
+            self.t_max
+        }
+    }
+
     /// Adaptive step control is on.
     pub fn adaptive(&self) -> bool {
         self.tol > 0.0
@@ -151,24 +170,24 @@ impl SolverSettings {
     /// Step counts: `t_max / dt` (fixed steps) or `t_max / dt_max` (the fewest adaptive
     /// steps) at most [`MAX_STEPS`] (also for the ODE model).
     pub fn check_steps(&self) -> Result<(), SolverError> {
-        let fixed_steps = self.t_max / self.dt;
+        let fixed_steps = self.give_up_at() / self.dt;
         require(
             self.adaptive() || fixed_steps <= MAX_STEPS,
             "dt",
             self.dt,
             format!(
-                "a step giving at most {MAX_STEPS:e} steps to t_max = {} (this one gives {fixed_steps:.3e}); raise dt or lower t_max",
-                self.t_max
+                "a step giving at most {MAX_STEPS:e} steps to t = {} (t_max, run on to {RUN_ON} t_max unless run_on is off; this one gives {fixed_steps:.3e}); raise dt or lower t_max",
+                self.give_up_at()
             ),
         )?;
-        let fewest = self.t_max / self.dt_max;
+        let fewest = self.give_up_at() / self.dt_max;
         require(
             !self.adaptive() || fewest <= MAX_STEPS,
             "dt_max",
             self.dt_max,
             format!(
-                "a largest step giving at most {MAX_STEPS:e} steps to t_max = {} (this one needs at least {fewest:.3e}); raise dt_max or lower t_max",
-                self.t_max
+                "a largest step giving at most {MAX_STEPS:e} steps to t = {} (t_max, run on to {RUN_ON} t_max unless run_on is off; this one needs at least {fewest:.3e}); raise dt_max or lower t_max",
+                self.give_up_at()
             ),
         )
     }

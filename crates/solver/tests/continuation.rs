@@ -2,7 +2,7 @@
 //! and its response to small perturbations, the one-parameter fold against the
 //! two-parameter fold curve, and the branches' meeting points against the exact thresholds.
 use droplet_solver::continuation::arclength::ArclengthOptions;
-use droplet_solver::continuation::boundaries::{id_onset, md_fold_curve, Window};
+use droplet_solver::continuation::boundaries::{id_onset, mc_line, md_fold_curve, Window};
 use droplet_solver::continuation::{follow, Branch, BranchPoint, Family, Line};
 use droplet_solver::named_state::ic_thresholds;
 use droplet_solver::reduced::bifurcation::Axis;
@@ -163,6 +163,46 @@ fn the_fold_curve_passes_through_the_one_parameter_folds() {
             sn.point.eta_t
         );
     }
+}
+
+#[test]
+fn the_mc_onset_line_is_where_the_moving_branch_has_s_at_the_threshold() {
+    // Independent path: the arclength continuation of the moving branch along eta_t at
+    // kappa2 = 0.16, and where its s crosses 0.01 between two of its points (linear
+    // interpolation; the points are ~1e-4 apart there).
+    let n = 128;
+    let th = ic_thresholds(&ModelParams::at(0.085, 0.16), n).unwrap();
+    let w = Window {
+        base: ModelParams::at(0.07, 0.16),
+        n,
+        eta_t: (0.07, 0.1),
+        kappa2: (0.15, 0.17),
+        id_samples: 3,
+    };
+    let line = mc_line(&w, th.eta_t).unwrap();
+    assert_eq!(line.len(), 3, "{line:?}");
+    let (eta_mc, k) = line[1];
+    assert!((k - 0.16).abs() < 1e-12);
+    // MC lies between the threshold curve and the onset of motion.
+    assert!(
+        eta_mc < th.eta_t && eta_mc > th.eta_t - 1e-3,
+        "{eta_mc} {}",
+        th.eta_t
+    );
+    let b = branch(Family::MdMinor, 0.16, 0.0755, th.eta_t - 1e-6, n);
+    let crossing = b
+        .points
+        .windows(2)
+        .find(|w| (w[0].s - 0.01) * (w[1].s - 0.01) <= 0.0)
+        .map(|w| {
+            let t = (0.01 - w[0].s) / (w[1].s - w[0].s);
+            w[0].eta_t + t * (w[1].eta_t - w[0].eta_t)
+        })
+        .expect("the branch's s crosses 0.01");
+    assert!(
+        (crossing - eta_mc).abs() < 2e-6,
+        "line {eta_mc}, branch {crossing}"
+    );
 }
 
 #[test]

@@ -13,17 +13,23 @@
 //! - a run that did not end on a stable state (`unsettled`) is listed too: its point's label
 //!   is not proven.
 //!
-//! Roots met twice at one point (runs from several initial conditions on one state) are
-//! checked once. Points run in parallel, one steady solver per worker.
+//! - the points table's label must be the one its runs give ([`crate::phase`]'s rule), so a
+//!   label edited by hand, or written by an older rule (a class from a run that had not
+//!   settled), is caught too.
+//!
+//! It reads the tables a sweep leaves (`runs.parquet`, `points.parquet`), so committed maps
+//! are audited as they are. Roots met twice at one point (runs from several initial
+//! conditions on one state) are checked once. Points run in parallel, one steady solver
+//! per worker.
 use crate::error::SweepError;
-use crate::phase::classify_point;
-use crate::store::{RunRecord, Store};
 use droplet_solver::newton::{solve, NewtonOptions};
 use droplet_solver::stability::Linearization;
 use droplet_solver::verdict::{assess, Verdict};
-use droplet_solver::{ModelKind, ModelParams, RunStatus, SchemeKind, StateClass, SteadySolver};
+use droplet_solver::{ModelParams, RunStatus, StateClass, SteadySolver};
+use polars::prelude::*;
 use rayon::prelude::*;
 use serde::Serialize;
+use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 
 /// What is wrong with one run's part in its point's label.
@@ -40,6 +46,8 @@ pub enum Kind {
     OtherClass,
     /// The root has a growing eigenvalue (the rotation mode aside).
     UnstableRoot,
+    /// The points table's label is not the one its runs give.
+    LabelMismatch,
 }
 
 impl Kind {
@@ -50,6 +58,7 @@ impl Kind {
             Self::NoRoot => "no_root",
             Self::OtherClass => "other_class",
             Self::UnstableRoot => "unstable_root",
+            Self::LabelMismatch => "label_mismatch",
         }
     }
 }
@@ -123,40 +132,64 @@ fn root_near(solver: &mut SteadySolver, z: [f64; 4]) -> Option<([f64; 4], Verdic
 
 /// The growing eigenvalues of a verdict, as text.
 fn growth(v: &Verdict) -> String {
-    format!(
-        "{} growing mode(s), largest {:+.3e}",
-        v.unstable, v.max_re
-    )
+    format!("{} growing mode(s), largest {:+.3e}", v.unstable, v.max_re)
 }
 
-/// Audits the runs of one point (all stored; spec order of initial conditions).
+/// One run as the runs table has it.
+#[derive(Debug, Clone)]
+struct Row {
+    params: ModelParams,
+    n: usize,
+    ic: String,
+    status: String,
+    class: Option<StateClass>,
+    z: [f64; 4],
+    t_end: f64,
+    unsettled: Option<String>,
+    heading: Option<String>,
+    key: String,
+}
+
+/// Audits the runs of one point (spec order of initial conditions) under `label`.
 fn audit_point(
     solver: &mut SteadySolver,
-    runs: &[&RunRecord],
+    runs: &[&Row],
     label: &str,
     states: &mut usize,
 ) -> Vec<Contradiction> {
     let mut out = Vec::new();
     let mut disk: Option<Verdict> = None;
     let mut roots: Vec<([f64; 4], Option<([f64; 4], Verdict)>)> = Vec::new();
+    let expected = expected_label(runs);
+    if let Some(r) = runs.first().filter(|_| expected != label) {
+        out.push(Contradiction {
+            eta_t: r.params.eta_t,
+            kappa2: r.params.kappa2,
+            label: label.to_string(),
+            ic: "-".into(),
+            class: None,
+            kind: Kind::LabelMismatch,
+            detail: format!("the points table says {label}, its runs give {expected}"),
+            key: "-".into(),
+        });
+    }
     for r in runs {
-        let (eta_t, kappa2) = (r.params.eta_t, r.params.kappa2);
-        let o = &r.outcome;
         let mut add = |kind: Kind, detail: String| {
             out.push(Contradiction {
-                eta_t,
-                kappa2,
+                eta_t: r.params.eta_t,
+                kappa2: r.params.kappa2,
                 label: label.to_string(),
-                ic: r.ic.name.clone(),
-                class: o.class.map(|c| c.as_str().to_string()),
+                ic: r.ic.clone(),
+                class: r.class.map(|c| c.as_str().to_string()),
                 kind,
                 detail,
                 key: r.key.clone(),
             })
         };
-        match (o.status, o.class) {
-            (RunStatus::Diverged, _) => {}
-            (RunStatus::Steady, Some(StateClass::IC)) => {
+        let steady = r.status == RunStatus::Steady.as_str();
+        match (r.status.as_str(), r.class) {
+            ("diverged", _) => {}
+            (_, Some(StateClass::IC)) if steady => {
                 let v = disk.get_or_insert_with(|| {
                     *states += 1;
                     assess(&Linearization::at(solver, [0.0; 4]), [0.0; 4])
@@ -168,8 +201,8 @@ fn audit_point(
                     );
                 }
             }
-            (RunStatus::Steady, Some(class)) => {
-                let z = o.state.monitored();
+            (_, Some(class)) if steady => {
+                let z = r.z;
                 let known = roots
                     .iter()
                     .find(|(start, _)| droplet_solver::state::max_distance(start, &z) < 1e-9);
@@ -207,10 +240,13 @@ fn audit_point(
                 Kind::Unsettled,
                 format!(
                     "{} at t = {:.1}: {}{}",
-                    o.status.as_str(),
-                    o.t_end,
-                    o.unsettled.map_or("not ended on a stable state", |u| u.as_str()),
-                    o.heading
+                    r.status,
+                    r.t_end,
+                    r.unsettled
+                        .as_deref()
+                        .unwrap_or("did not end on a stable state"),
+                    r.heading
+                        .as_ref()
                         .map_or(String::new(), |h| format!(", heading to {h}"))
                 ),
             ),
@@ -219,57 +255,158 @@ fn audit_point(
     out
 }
 
-/// Audits the sweep in `dir` (its stored spec and runs; refused while a sweep works there).
-pub fn audit(dir: &Path) -> Result<Audit, SweepError> {
-    let store = Store::open_idle(dir)?;
-    let spec = crate::spec::load_stored(dir)?;
-    if spec.solver.model != ModelKind::Pde || spec.solver.scheme != SchemeKind::Spectral {
-        return Err(SweepError::Invalid(format!(
-            "{}: audit checks maps of the PDE model with the spectral scheme (its steady \
-             equations and eigenvalues); this sweep has model {} and scheme {}",
-            dir.display(),
-            spec.solver.model.as_str(),
-            spec.solver.scheme.as_str()
-        )));
+/// The label a point's runs give ([`crate::phase`]: the classes of the runs that ended
+/// steady).
+fn expected_label(runs: &[&Row]) -> String {
+    let classes: BTreeSet<StateClass> = runs
+        .iter()
+        .filter(|r| r.status == RunStatus::Steady.as_str())
+        .filter_map(|r| r.class)
+        .collect();
+    let unsettled = runs
+        .iter()
+        .any(|r| !["steady", "diverged"].contains(&r.status.as_str()));
+    let names: Vec<&str> = classes.iter().map(|c| c.as_str()).collect();
+    match names.len() {
+        0 if unsettled => crate::phase::UNSETTLED.into(),
+        0 => crate::phase::DIVERGED.into(),
+        1 | 2 => names.join("/"),
+        _ => crate::phase::NOT_CLASSIFIED.into(),
     }
-    let plan = crate::level_walk::stored_plan(&spec, &store)?;
-    let records = store.load_many(plan.tasks().map(|t| t.key));
-    let mut by_point: Vec<Vec<&RunRecord>> = vec![Vec::new(); plan.points.len()];
-    let mut missing = 0;
-    for t in plan.tasks() {
-        match records.get(&t.key) {
-            Some(r) => by_point[t.point].push(r),
-            None => missing += 1,
+}
+
+fn read(path: &Path) -> Result<DataFrame, SweepError> {
+    let file = std::fs::File::open(path).map_err(|e| {
+        SweepError::Invalid(format!(
+            "{}: {e}; audit reads the tables a finished sweep writes (runs.parquet, \
+             points.parquet): finish the sweep, or `droplet merge` its shards, first",
+            path.display()
+        ))
+    })?;
+    Ok(ParquetReader::new(file).finish()?)
+}
+
+fn floats(df: &DataFrame, name: &str) -> Result<Vec<f64>, SweepError> {
+    let c = df.column(name)?.f64()?.clone();
+    Ok((0..c.len()).map(|i| c.get(i).unwrap_or(f64::NAN)).collect())
+}
+
+fn strings(df: &DataFrame, name: &str) -> Result<Vec<Option<String>>, SweepError> {
+    let c = df.column(name)?.str()?.clone();
+    Ok((0..c.len()).map(|i| c.get(i).map(str::to_string)).collect())
+}
+
+/// A string column that older tables lack (all `None` then).
+fn optional_strings(df: &DataFrame, name: &str) -> Result<Vec<Option<String>>, SweepError> {
+    match df.column(name) {
+        Ok(_) => strings(df, name),
+        Err(_) => Ok(vec![None; df.height()]),
+    }
+}
+
+fn u32s(df: &DataFrame, name: &str) -> Result<Vec<u32>, SweepError> {
+    let c = df.column(name)?.u32()?.clone();
+    Ok((0..c.len()).map(|i| c.get(i).unwrap_or(0)).collect())
+}
+
+/// The runs of `runs.parquet`, by point index.
+fn read_runs(df: &DataFrame) -> Result<BTreeMap<u32, Vec<Row>>, SweepError> {
+    let mut col = BTreeMap::new();
+    for name in [
+        "eta_t", "kappa2", "eta2", "radius", "sigma", "box_len", "mass", "vx", "vy", "a2", "b2",
+        "t_end",
+    ] {
+        col.insert(name, floats(df, name)?);
+    }
+    let f = |name: &str, i: usize| col[name][i];
+    let mut text = BTreeMap::new();
+    for name in ["ic", "status", "class", "key", "model", "scheme"] {
+        text.insert(name, strings(df, name)?);
+    }
+    let t = |name: &str, i: usize| text[name][i].clone();
+    let (point, n) = (u32s(df, "point")?, u32s(df, "n")?);
+    let (unsettled, heading) = (
+        optional_strings(df, "unsettled")?,
+        optional_strings(df, "heading")?,
+    );
+    let mut by_point: BTreeMap<u32, Vec<Row>> = BTreeMap::new();
+    for i in 0..df.height() {
+        let (model, scheme) = (t("model", i), t("scheme", i));
+        if model.as_deref() != Some("pde") || scheme.as_deref() != Some("spectral") {
+            return Err(SweepError::Invalid(format!(
+                "audit checks maps of the PDE model with the spectral scheme (its steady \
+                 equations and eigenvalues); this one has model {} and scheme {}",
+                model.unwrap_or_default(),
+                scheme.unwrap_or_default()
+            )));
         }
+        by_point.entry(point[i]).or_default().push(Row {
+            params: ModelParams {
+                eta_t: f("eta_t", i),
+                kappa2: f("kappa2", i),
+                eta2: f("eta2", i),
+                radius: f("radius", i),
+                sigma: f("sigma", i),
+                box_len: f("box_len", i),
+                mass: f("mass", i),
+            },
+            n: n[i] as usize,
+            ic: t("ic", i).unwrap_or_default(),
+            status: t("status", i).unwrap_or_default(),
+            class: t("class", i).as_deref().and_then(StateClass::parse),
+            z: [f("vx", i), f("vy", i), f("a2", i), f("b2", i)],
+            t_end: f("t_end", i),
+            unsettled: unsettled[i].clone(),
+            heading: heading[i].clone(),
+            key: t("key", i).unwrap_or_default(),
+        });
     }
-    if missing > 0 {
+    Ok(by_point)
+}
+
+/// Audits the map in `dir` (its `runs.parquet` and `points.parquet`).
+pub fn audit(dir: &Path) -> Result<Audit, SweepError> {
+    let runs = read_runs(&read(&dir.join("runs.parquet"))?)?;
+    let points = read(&dir.join("points.parquet"))?;
+    let (index, labels) = (u32s(&points, "point")?, strings(&points, "class")?);
+    let labelled: BTreeMap<u32, String> = index
+        .into_iter()
+        .zip(labels)
+        .map(|(i, l)| (i, l.unwrap_or_default()))
+        .collect();
+    if let Some(p) = runs.keys().find(|p| !labelled.contains_key(p)) {
         return Err(SweepError::Invalid(format!(
-            "{}: {missing} runs are not stored (the sweep is unfinished); finish it with \
-             `droplet sweep` before auditing (`droplet status {}` counts them)",
-            dir.display(),
+            "{}: runs.parquet has runs of point {p}, which points.parquet does not list; \
+             the two tables are not from one sweep",
             dir.display()
         )));
     }
-    let n = spec.solver.n;
-    // Fails here, not in a worker, if the solver cannot be made.
-    SteadySolver::new(spec.params, n)?;
-    let results: Vec<(Vec<Contradiction>, usize)> = by_point
+    let groups: Vec<(&String, Vec<&Row>)> = runs
+        .iter()
+        .map(|(p, rows)| (&labelled[p], rows.iter().collect()))
+        .collect();
+    if let Some(first) = groups.first().and_then(|(_, r)| r.first()) {
+        // Fails here, not in a worker, if the solver cannot be made.
+        SteadySolver::new(first.params, first.n)?;
+    }
+    let results: Vec<(Vec<Contradiction>, usize)> = groups
         .par_iter()
         .map_init(
             || None::<SteadySolver>,
-            |slot, runs| {
-                let Some(first) = runs.first() else {
+            |slot, (label, rows)| {
+                let Some(first) = rows.first() else {
                     return (Vec::new(), 0);
                 };
-                let p = first.params;
+                let (p, n) = (first.params, first.n);
                 // One solver per worker, moved between points by (eta_t, kappa2); a new one
-                // when another parameter differs (a sweep over it).
+                // when another parameter or the grid differs.
                 let reusable = slot.as_ref().is_some_and(|s| {
-                    ModelParams {
-                        eta_t: p.eta_t,
-                        kappa2: p.kappa2,
-                        ..*s.params()
-                    } == p
+                    s.grid().n == n
+                        && ModelParams {
+                            eta_t: p.eta_t,
+                            kappa2: p.kappa2,
+                            ..*s.params()
+                        } == p
                 });
                 if !reusable {
                     *slot = SteadySolver::new(p, n).ok();
@@ -278,19 +415,16 @@ pub fn audit(dir: &Path) -> Result<Audit, SweepError> {
                     return (Vec::new(), 0);
                 };
                 solver.set_control(p.eta_t, p.kappa2);
-                let label = classify_point(runs.iter().copied()).label;
                 let mut states = 0;
-                let c = audit_point(solver, runs, &label, &mut states);
+                let c = audit_point(solver, rows, label, &mut states);
                 (c, states)
             },
         )
         .collect();
-    let points = plan.points.len();
-    let points_clean = results.iter().filter(|(c, _)| c.is_empty()).count();
     Ok(Audit {
-        points,
-        runs: plan.len(),
-        points_clean,
+        points: labelled.len(),
+        runs: runs.values().map(Vec::len).sum(),
+        points_clean: labelled.len() - results.iter().filter(|(c, _)| !c.is_empty()).count(),
         states_checked: results.iter().map(|(_, s)| s).sum(),
         contradictions: results.into_iter().flat_map(|(c, _)| c).collect(),
     })

@@ -170,7 +170,13 @@ mod tests {
         ];
         let c = classify_point(&mixed);
         assert_eq!(
-            (c.label.as_str(), c.n_diverged, c.n_t_max, c.n_steady, c.n_unsettled),
+            (
+                c.label.as_str(),
+                c.n_diverged,
+                c.n_t_max,
+                c.n_steady,
+                c.n_unsettled
+            ),
             ("ID", 1, 2, 1, 2)
         );
         assert!(!c.settled());

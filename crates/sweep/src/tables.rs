@@ -148,6 +148,18 @@ pub fn runs_frame(
                 .map(|(_, r)| r.settings.leap_departures)
                 .collect::<Vec<bool>>(),
         ),
+        Column::new(
+            "landing".into(),
+            rows.iter()
+                .map(|(_, r)| r.settings.landing)
+                .collect::<Vec<bool>>(),
+        ),
+        Column::new(
+            "run_on".into(),
+            rows.iter()
+                .map(|(_, r)| r.settings.run_on)
+                .collect::<Vec<bool>>(),
+        ),
         str_col(
             "status",
             rows.iter()

@@ -14,6 +14,12 @@
 //!   `R(v, c; eta_t, kappa2) = 0, det dR/d(v, c) = 0`, started from a fold located on a
 //!   one-parameter branch. It ends where it leaves the window or where `v -> 0` (the fold
 //!   reaches the onset of motion: there the pitchfork changes from sub- to supercritical).
+//! - **MC onset** (where the moving branch's deformation crosses the class threshold, so its
+//!   states change from MD to MC): on the x axis the moving state with `a2 = -0.01` (a moving
+//!   droplet is elongated across its motion) solves the two steady equations for `(v,
+//!   eta_t)` at each `kappa2`: one Newton solve per sample, continued from the last. Whether
+//!   MC is also stable there is the verdict's business; this line only says where a label
+//!   must change between MD and MC.
 use crate::continuation::arclength::{start, ArclengthOptions, CurvePoint, Stepper};
 use crate::continuation::branch::{follow, Line};
 use crate::continuation::problem::Family;
@@ -86,6 +92,45 @@ fn id_line(w: &Window, mirror: MirrorAxis, hi: f64) -> Result<Vec<(f64, f64)>, S
             seed = c;
             pts.push((eta, k));
         }
+    }
+    Ok(pts)
+}
+
+/// The MC onset line on the x axis: `(eta_t, kappa2)` where the moving branch has
+/// `a2 = -CLASS_THRESHOLD`, from the top of the window down while Newton on `(v, eta_t)`
+/// converges inside it.
+pub fn mc_line(w: &Window, onset_eta_t: f64) -> Result<Vec<(f64, f64)>, SolverError> {
+    let mut solver = SteadySolver::new(w.base, w.n)?;
+    let c = -crate::classify::CLASS_THRESHOLD;
+    let opts = crate::newton::NewtonOptions {
+        tol: 1e-12,
+        max_iter: 30,
+        fd_step: 1e-7,
+        max_step: vec![0.05, 0.002],
+    };
+    // a2 ~ -0.18 v^2 on the moving branch near the onset of motion (design notes Sect. 7).
+    let mut guess = [(-c / 0.18f64).sqrt(), onset_eta_t];
+    let (k0, k1) = w.kappa2;
+    let m = w.id_samples.max(2);
+    let mut pts = Vec::new();
+    for i in 0..m {
+        let k = k1 - (k1 - k0) * i as f64 / (m - 1) as f64;
+        let Ok(sol) = crate::newton::solve(
+            |x| {
+                solver.set_control(x[1], k);
+                solver.residual_on(MirrorAxis::X, x[0], c).to_vec()
+            },
+            &guess,
+            &opts,
+        ) else {
+            break;
+        };
+        let (v, eta) = (sol.x[0], sol.x[1]);
+        if v <= 0.0 || !(w.eta_t.0..=w.eta_t.1).contains(&eta) {
+            break;
+        }
+        guess = [v, eta];
+        pts.push((eta, k));
     }
     Ok(pts)
 }
@@ -270,6 +315,10 @@ pub fn boundaries(w: &Window) -> Result<Vec<Boundary>, SolverError> {
     out.push(Boundary {
         name: "MD saddle-node (x axis)",
         points: md_fold_curve(w, MirrorAxis::X, &starts)?,
+    });
+    out.push(Boundary {
+        name: "MC onset, s = 0.01 (x axis)",
+        points: mc_line(w, th.eta_t)?,
     });
     out.retain(|b| !b.points.is_empty());
     Ok(out)

@@ -8,12 +8,13 @@ use droplet_solver::{ModelKind, ModelParams, SchemeKind, SolverSettings};
 use serde_yaml::Mapping;
 
 /// The keys of the section.
-const KEYS: [&str; 13] = [
+const KEYS: [&str; 14] = [
     "scheme",
     "steady",
     "stop_beside_saddle",
     "leap_departures",
     "landing",
+    "run_on",
     "n",
     "dt",
     "tol",
@@ -93,7 +94,13 @@ pub(super) fn parse(
         )? {
             solver.landing = on;
         }
-        ctx.numbers(m, "solver", &KEYS[6..], |key, val| match key {
+        if let Some(on) = flag(
+            "run_on",
+            "run a run not yet on a stable state on to 4 t_max; the default",
+        )? {
+            solver.run_on = on;
+        }
+        ctx.numbers(m, "solver", &KEYS[7..], |key, val| match key {
             "dt" => solver.dt = val,
             "tol" => solver.tol = val,
             "dt_max" => solver.dt_max = val,
