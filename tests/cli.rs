@@ -51,7 +51,16 @@ fn smoke_sweep_produces_typed_tables_and_a_picture() {
         .collect();
     assert!(classes.len() >= 2, "{classes:?}");
     for c in &classes {
-        let ok = ["IC", "ID", "MD", "MC", "not classified", "diverged"].contains(&c.as_str())
+        let ok = [
+            "IC",
+            "ID",
+            "MD",
+            "MC",
+            "not classified",
+            "diverged",
+            "unsettled",
+        ]
+        .contains(&c.as_str())
             || c.split('/').all(|p| ["IC", "ID", "MD", "MC"].contains(&p));
         assert!(ok, "unexpected class {c}");
     }
@@ -84,10 +93,14 @@ fn smoke_sweep_produces_typed_tables_and_a_picture() {
     for f in ["phase_map.png", "phase_map.svg"] {
         assert!(std::fs::metadata(out.join(f)).unwrap().len() > 1000);
     }
-    // status agrees.
+    // status agrees; every run settled, and the audit finds every label a stable state.
     let st = json(&run(&["status", out.to_str().unwrap(), "--json"]));
     assert_eq!(st["runs_done"], 64);
     assert_eq!(st["complete"], true);
+    assert_eq!(st["points_unsettled"], 0, "{st}");
+    let audit = json(&run(&["audit", out.to_str().unwrap(), "--json"]));
+    assert_eq!(audit["contradictions"], 0, "{audit}");
+    assert_eq!(audit["points_clean"], 16, "{audit}");
 }
 
 #[test]

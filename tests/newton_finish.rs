@@ -114,12 +114,26 @@ fn simulate_at(eta_t: &str, kappa2: &str, ic: &str, extra: &[&str]) -> serde_jso
 }
 
 #[test]
-fn a_run_beside_a_saddle_it_cannot_leave_stops_with_its_t_max_class() {
-    let waited = creeper(&[]);
+fn a_run_beside_a_saddle_lands_on_its_attractor_or_stays_unsettled() {
+    // With the defaults the slow flow lands it on the deformed resting state (the disk is
+    // unstable to the diagonal deformation between the two deformation onsets).
+    let landed = creeper(&[]);
+    assert_eq!(landed["status"], "steady", "{landed}");
+    assert_eq!(landed["class"], "ID", "{landed}");
+    assert_eq!(landed["ended_by"], "steady_by_landing", "{landed}");
+    assert!(landed["unsettled"].is_null(), "{landed}");
+    // Plain time stepping, given up at t_max as the paper does, creeps beside the saddle to
+    // t_max: no class, the reason typed, and where it was heading (the slow flow's root).
+    // (Run on, it reaches the landing's ID at t = 7098: s = 0.014085 both ways.)
+    let waited = creeper(&["--no-landing", "--no-run-on"]);
     assert_eq!(waited["status"], "t_max", "{waited}");
-    let stopped = creeper(&["--stop-beside-saddle"]);
+    assert!(waited["class"].is_null(), "{waited}");
+    assert_eq!(waited["unsettled"], "beside_saddle", "{waited}");
+    assert_eq!(waited["heading"], "ID", "{waited}");
+    let stopped = creeper(&["--no-landing", "--no-run-on", "--stop-beside-saddle"]);
     assert_eq!(stopped["status"], "saddle", "{stopped}");
-    assert_eq!(stopped["class"], waited["class"], "{stopped}\n{waited}");
+    assert!(stopped["class"].is_null(), "{stopped}");
+    assert_eq!(stopped["unsettled"], "beside_saddle", "{stopped}");
     assert!(stopped["t_end"].as_f64().unwrap() < 1000.0, "{stopped}");
     for out in [&waited, &stopped] {
         let d = out["diagnosis"].as_str().unwrap();
@@ -146,7 +160,7 @@ fn the_stop_beside_saddle_key_is_read_checked_and_in_the_tables() {
     let dir = tempfile::tempdir().unwrap();
     let spec = |value: &str, steady: &str| {
         format!(
-            "name: k\ngrid:\n  eta_t: [0.0875]\n  kappa2: [0.11875]\ninitial_conditions: [iv]\nsolver: {{steady: {steady}, stop_beside_saddle: {value}}}\n"
+            "name: k\ngrid:\n  eta_t: [0.0875]\n  kappa2: [0.11875]\ninitial_conditions: [iv]\nsolver: {{steady: {steady}, landing: false, stop_beside_saddle: {value}}}\n"
         )
     };
     for (value, steady, key) in [
@@ -187,8 +201,9 @@ fn departure(extra: &[&str]) -> serde_json::Value {
 
 #[test]
 fn a_leapt_departure_keeps_its_outcome_in_fewer_steps() {
-    let stepped = departure(&[]);
-    let leapt = departure(&["--leap-departures"]);
+    // Plain time stepping (the slow flow's landing, the default, ends both runs at once).
+    let stepped = departure(&["--no-landing"]);
+    let leapt = departure(&["--no-landing", "--leap-departures"]);
     assert_eq!(stepped["t_leapt"], 0.0, "{stepped}");
     assert!(leapt["t_leapt"].as_f64().unwrap() > 1000.0, "{leapt}");
     assert_eq!(leapt["class"], stepped["class"], "{leapt}\n{stepped}");
@@ -203,7 +218,7 @@ fn the_leap_departures_key_is_read_checked_and_in_the_tables() {
     let dir = tempfile::tempdir().unwrap();
     let spec = |value: &str, extra: &str| {
         format!(
-            "name: k\ngrid:\n  eta_t: [0.07625]\n  kappa2: [0.14]\ninitial_conditions: [iii]\nsolver: {{n: 96, leap_departures: {value}{extra}}}\n"
+            "name: k\ngrid:\n  eta_t: [0.07625]\n  kappa2: [0.14]\ninitial_conditions: [iii]\nsolver: {{n: 96, landing: false, leap_departures: {value}{extra}}}\n"
         )
     };
     for (value, extra) in [

@@ -408,9 +408,9 @@ fn catalogue() -> Vec<Case> {
             &["params.sigma", "grid cell"],
         ),
         spec_case(
-            "spec classify rule unknown",
-            ("solver:", "classify: {beside_unstable: drop}\nsolver:"),
-            &["classify.beside_unstable", "drop", "count or exclude"],
+            "spec with the removed classify section",
+            ("solver:", "classify: {beside_unstable: exclude}\nsolver:"),
+            &["classify", "removed", "stable steady state"],
         ),
         spec_case(
             "spec stop_beside_saddle not true or false",

@@ -73,6 +73,10 @@ pub fn run(a: Args) -> Result<(), CliError> {
             "point classes (complete points): {}",
             fmt(&st.point_classes)
         );
+        outln!(
+            "unsettled points (a run not on a stable state; label not proven): {}",
+            st.points_unsettled
+        );
     }
     Ok(())
 }

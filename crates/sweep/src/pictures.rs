@@ -107,7 +107,10 @@ pub fn plot_records(
 }
 
 /// For a 1-D sweep (one axis with one value, Fig. 2b): `bifurcation_lines.png` / `.svg`,
-/// `v` and `s` of every run against the swept parameter, coloured by class (bold: steady).
+/// `v` and `s` of every run that ended on a stable state against the swept parameter,
+/// coloured by class, over the full model's branches along the line (PDE spectral sweeps:
+/// [`pde_branches`], solid where stable, dashed where unstable) — the way a physicist
+/// draws Fig. 2b, every run's end on a solid branch.
 fn lines(
     dir: &Path,
     spec: &SweepSpec,
@@ -119,7 +122,7 @@ fn lines(
         (1, n) if n > 1 => (false, format!("{ETA_T} = {}", spec.eta_t[0])),
         _ => return Ok(Vec::new()),
     };
-    let markers: Vec<Marker> = plan
+    let mut markers: Vec<Marker> = plan
         .tasks()
         .filter_map(|t| records.get(&t.key).map(|r| (t, r)))
         .filter(|(_, r)| r.outcome.class.is_some())
@@ -141,8 +144,11 @@ fn lines(
     if markers.is_empty() {
         return Ok(Vec::new());
     }
+    let axis = if along_eta { Axis::EtaT } else { Axis::Kappa2 };
+    let (lines, events, vlines) = branch_drawing(&pde_branches(spec, axis), axis);
+    markers.extend(events.into_iter().map(|e| Marker { bold: false, ..e }));
     let title = format!(
-        "{}: {} runs, {fixed} (ICs {})",
+        "{}: {} runs (ICs {}) on the branches, {fixed}",
         spec.name,
         spec.solver.model.as_str().to_uppercase(),
         plan.ic_names.join(", ")
@@ -153,9 +159,49 @@ fn lines(
         &title,
         if along_eta { ETA_T } else { KAPPA2 },
         &markers,
-        &[],
-        &[],
+        &lines,
+        &vlines,
     )
+}
+
+/// The full model's branches (IC, ID, MD moving along either axis; on the x axis) along a
+/// 1-D sweep's line, by continuation at the sweep's grid: empty for the ODE model and the
+/// paper's scheme (their steady states are other equations), and without the families
+/// that have no state on the line.
+fn pde_branches(spec: &SweepSpec, axis: Axis) -> Vec<droplet_solver::continuation::Branch> {
+    use droplet_solver::continuation::{follow, Family, Line};
+    if spec.solver.model != droplet_solver::ModelKind::Pde
+        || spec.solver.scheme != droplet_solver::SchemeKind::Spectral
+    {
+        return Vec::new();
+    }
+    let values = match axis {
+        Axis::EtaT => &spec.eta_t,
+        Axis::Kappa2 => &spec.kappa2,
+    };
+    let (from, to) = values
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+            (a.min(x), b.max(x))
+        });
+    let base = droplet_solver::ModelParams {
+        eta_t: spec.eta_t[0],
+        kappa2: spec.kappa2[0],
+        ..spec.params
+    };
+    let line = Line {
+        base,
+        n: spec.solver.n,
+        parameter: axis,
+        from,
+        to,
+        max_points: 400,
+        opts: Default::default(),
+    };
+    [Family::IC, Family::ID, Family::MdMinor, Family::MdMajor]
+        .iter()
+        .filter_map(|f| follow(&line, *f, droplet_solver::steady::MirrorAxis::X).ok())
+        .collect()
 }
 
 /// The reduced model's bifurcation diagram along a line (Fig. 3b style) as `<stem>.png` and
@@ -254,6 +300,24 @@ pub fn continuation(
     axis: Axis,
     title: &str,
 ) -> Result<Vec<PathBuf>, SweepError> {
+    let (lines, markers, vlines) = branch_drawing(branches, axis);
+    let x_label = match axis {
+        Axis::EtaT => ETA_T,
+        Axis::Kappa2 => KAPPA2,
+    };
+    vs_parameter(dir, stem, title, x_label, &markers, &lines, &vlines)
+}
+
+/// The lines (solid stable, dashed unstable), event markers and labelled event positions of
+/// the full model's branches along a line.
+fn branch_drawing(
+    branches: &[droplet_solver::continuation::Branch],
+    axis: Axis,
+) -> (
+    Vec<crate::branch_lines::BranchLine>,
+    Vec<Marker>,
+    Vec<(f64, String)>,
+) {
     use crate::branch_lines::BranchLine;
     let x_of = |p: &droplet_solver::continuation::BranchPoint| match axis {
         Axis::EtaT => p.eta_t,
@@ -310,9 +374,5 @@ pub fn continuation(
             }
         }
     }
-    let x_label = match axis {
-        Axis::EtaT => ETA_T,
-        Axis::Kappa2 => KAPPA2,
-    };
-    vs_parameter(dir, stem, title, x_label, &markers, &lines, &vlines)
+    (lines, markers, vlines)
 }

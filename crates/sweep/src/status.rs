@@ -24,6 +24,9 @@ pub struct SweepStatus {
     pub run_classes: BTreeMap<String, usize>,
     /// Point labels over the points whose runs are all done.
     pub point_classes: BTreeMap<String, usize>,
+    /// Points whose runs are all done, one of them unsettled (not on a stable state): their
+    /// labels are not proven ([`crate::phase::PointClass::settled`]).
+    pub points_unsettled: usize,
     pub cpu_s: f64,
     /// A refined sweep's levels so far (empty for a uniform one): the levels whose points
     /// are known, the last one possibly unfinished (later levels follow from it).
@@ -92,7 +95,13 @@ pub fn status(dir: &Path) -> Result<SweepStatus, SweepError> {
     // A fold from +0.0 (an empty f64 sum is -0.0, printed "-0").
     let cpu_s = records.values().fold(0.0, |acc, r| acc + r.outcome.wall_s);
     // Point labels only over points whose runs are all done.
-    let point_counts = PhaseMap::new(&plan, &records).class_counts();
+    let map = PhaseMap::new(&plan, &records);
+    let point_counts = map.class_counts();
+    let points_unsettled = map
+        .points
+        .iter()
+        .filter(|p| p.complete() && !p.class.settled())
+        .count();
     let eta_cpu_s = (!records.is_empty())
         .then(|| cpu_s / records.len() as f64 * (plan.len() - records.len()) as f64);
     let recent = store.stored_within(
@@ -118,6 +127,7 @@ pub fn status(dir: &Path) -> Result<SweepStatus, SweepError> {
         run_statuses,
         run_classes,
         point_classes: point_counts,
+        points_unsettled,
         cpu_s,
         levels,
         eta_cpu_s,

@@ -1,0 +1,186 @@
+//! Issue 24 end to end: every label an attractor. Slow runs end on the stable state their
+//! slow flow reaches (checked against long time stepping in results/landing), a run that
+//! does not settle has no class, and `droplet audit` proves every label of a map (and
+//! catches a false one).
+mod common;
+
+use common::{json, read, run, write_spec};
+use polars::prelude::*;
+use std::path::Path;
+
+/// `simulate --json` at N = 192 with the defaults and `extra`.
+fn simulate(eta_t: &str, kappa2: &str, ic: &str, extra: &[&str]) -> serde_json::Value {
+    let mut args = vec![
+        "simulate", "--eta-t", eta_t, "--kappa2", kappa2, "--ic", ic, "--json",
+    ];
+    args.extend_from_slice(extra);
+    json(&run(&args))
+}
+
+#[test]
+fn just_below_the_onset_of_motion_every_initial_condition_ends_md() {
+    // (0.0763, 0.16): the disk's drift grows at +1.44e-3, the moving branch's s > 0.01. Plain
+    // time stepping from IC iii is still at v = 0.09 at t = 2000 (labelled MC before numerics
+    // 4) and reaches the diagonal MD at v = 0.298959 at t = 3258 (results/landing).
+    for ic in ["i", "ii", "iii", "iv"] {
+        let out = simulate("0.0763", "0.16", ic, &[]);
+        assert_eq!(out["status"], "steady", "{ic}: {out}");
+        assert_eq!(out["class"], "MD", "{ic}: {out}");
+        let v = out["v"].as_f64().unwrap();
+        assert!((v - 0.298959).abs() < 1e-4, "{ic}: {out}");
+        assert!(out["t_end"].as_f64().unwrap() < 500.0, "{ic}: {out}");
+    }
+    // The paper's give-up at t_max without the landing: no class, and where it was going.
+    let slow = simulate("0.0763", "0.16", "iii", &["--no-landing", "--no-run-on"]);
+    assert_eq!(slow["status"], "t_max", "{slow}");
+    assert!(slow["class"].is_null(), "{slow}");
+    assert_eq!(slow["unsettled"], "beside_saddle", "{slow}");
+    assert_eq!(slow["heading"], "MD", "{slow}");
+}
+
+#[test]
+fn just_above_the_onset_of_motion_every_initial_condition_ends_at_rest() {
+    // (0.0765, 0.16): no moving state at all (the drift pitchfork is supercritical here);
+    // runs decay to the resting disk at a rate of about 1e-4.
+    for ic in ["i", "ii", "iii", "iv"] {
+        let out = simulate("0.0765", "0.16", ic, &[]);
+        assert_eq!(out["status"], "steady", "{ic}: {out}");
+        assert_eq!(out["class"], "IC", "{ic}: {out}");
+        assert!(out["v"].as_f64().unwrap() < 1e-9, "{ic}: {out}");
+    }
+}
+
+/// A two-point sweep at N = 96: an MD point and an IC point far from every boundary.
+const TWO_POINTS: &str = "name: two
+grid:
+  eta_t: [0.07, 0.1]
+  kappa2: [0.16]
+initial_conditions: [i, iii]
+solver:
+  n: 96
+";
+
+/// Rewrites one string column of a Parquet table: `f(row, old) -> new`.
+fn edit(path: &Path, column: &str, f: impl Fn(usize, Option<&str>) -> Option<String>) {
+    let mut df = read(path);
+    let old = df.column(column).unwrap().str().unwrap().clone();
+    let new: Vec<Option<String>> = (0..df.height()).map(|i| f(i, old.get(i))).collect();
+    df.with_column(Column::new(column.into(), new)).unwrap();
+    let file = std::fs::File::create(path).unwrap();
+    ParquetWriter::new(file).finish(&mut df).unwrap();
+}
+
+fn audit(dir: &Path) -> (Option<i32>, serde_json::Value) {
+    let o = run(&["audit", dir.to_str().unwrap(), "--json"]);
+    (
+        o.status.code(),
+        serde_json::from_slice(&o.stdout).expect("one JSON object"),
+    )
+}
+
+#[test]
+fn audit_passes_a_settled_map_and_fails_a_false_label() {
+    let dir = tempfile::tempdir().unwrap();
+    let spec = write_spec(dir.path(), "two.yaml", TWO_POINTS);
+    let out = dir.path().join("two");
+    let o = run(&[
+        "sweep",
+        spec.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let (code, clean) = audit(&out);
+    assert_eq!(code, Some(0), "{clean}");
+    assert_eq!(clean["points_clean"], 2, "{clean}");
+    let points = read(&out.join("points.parquet"));
+    let labels = points.column("class").unwrap().str().unwrap().clone();
+    assert_eq!(labels.get(0), Some("MD"));
+    assert_eq!(labels.get(1), Some("IC"));
+
+    // A false IC at eta_t = 0.07, where the resting disk's drift grows: the runs table and
+    // the points table both edited, so only the stability check can tell.
+    let forged = dir.path().join("forged");
+    std::fs::create_dir(&forged).unwrap();
+    for f in ["runs.parquet", "points.parquet"] {
+        std::fs::copy(out.join(f), forged.join(f)).unwrap();
+    }
+    edit(&forged.join("runs.parquet"), "class", |i, c| {
+        if i == 0 {
+            Some("IC".into())
+        } else {
+            c.map(String::from)
+        }
+    });
+    edit(&forged.join("points.parquet"), "class", |i, c| {
+        if i == 0 {
+            Some("IC/MD".into())
+        } else {
+            c.map(String::from)
+        }
+    });
+    let (code, report) = audit(&forged);
+    assert_eq!(code, Some(1), "{report}");
+    assert_eq!(report["by_kind"]["unstable_disk"], 1, "{report}");
+    assert_eq!(report["contradictions"], 1, "{report}");
+    assert_eq!(report["list"][0]["eta_t"], 0.07, "{report}");
+
+    // A label edited alone no longer matches its runs; an MD run called MC is checked
+    // against its root's deformation.
+    for f in ["runs.parquet", "points.parquet"] {
+        std::fs::copy(out.join(f), forged.join(f)).unwrap();
+    }
+    edit(&forged.join("points.parquet"), "class", |i, c| {
+        if i == 1 {
+            Some("IC/MD".into())
+        } else {
+            c.map(String::from)
+        }
+    });
+    edit(&forged.join("runs.parquet"), "class", |i, c| {
+        if i == 1 {
+            Some("MC".into())
+        } else {
+            c.map(String::from)
+        }
+    });
+    let (code, report) = audit(&forged);
+    assert_eq!(code, Some(1), "{report}");
+    assert_eq!(report["by_kind"]["other_class"], 1, "{report}");
+    // Point 0's label MD no longer matches its runs (MD and MC), point 1's IC/MD neither.
+    assert_eq!(report["by_kind"]["label_mismatch"], 2, "{report}");
+}
+
+#[test]
+fn every_committed_map_passes_the_audit() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("results");
+    let mut audited = Vec::new();
+    for entry in std::fs::read_dir(&root).unwrap() {
+        let dir = entry.unwrap().path();
+        if !dir.join("runs.parquet").exists() {
+            continue;
+        }
+        let runs = read(&dir.join("runs.parquet"));
+        let model = runs
+            .column("model")
+            .unwrap()
+            .str()
+            .unwrap()
+            .get(0)
+            .map(String::from);
+        if model.as_deref() != Some("pde") {
+            // The reduced model's maps: its own stable states, not the PDE's.
+            continue;
+        }
+        let (code, report) = audit(&dir);
+        assert_eq!(
+            code,
+            Some(0),
+            "{}: {}",
+            dir.display(),
+            serde_json::to_string_pretty(&report["by_kind"]).unwrap()
+        );
+        audited.push(dir);
+    }
+    assert!(audited.len() >= 3, "{audited:?}");
+}
