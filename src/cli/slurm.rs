@@ -13,7 +13,7 @@ use std::process::Command;
 /// (afterok), and the merge after the last.
 #[derive(clap::Args)]
 #[command(
-    after_help = "Example:\n  droplet slurm sweeps/fig2a.yaml --shards 32 --partition compute --time 08:00:00 --cpus 8 --submit\n  droplet status out/fig2a          # progress while it runs\n  resubmitting the array resumes: finished runs are never recomputed\n\nA spec with refine: (e.g. sweeps/fig2a-adaptive.yaml) is submitted as one array per level,\neach after the one before (afterok; a failed level cancels the rest), then the merge; submit\nagain after a failure: finished levels are skipped in seconds"
+    after_help = "Example:\n  droplet slurm sweeps/fig2a.yaml --shards 32 --partition compute --time 08:00:00 --cpus 8 --submit\n  droplet status out/fig2a          # progress while it runs\n  resubmitting the array resumes: finished runs are never recomputed\n\nA spec with refine: (e.g. sweeps/fig2a-map.yaml) is submitted as one array per level,\neach after the one before (afterok; a failed level cancels the rest), then the merge; submit\nagain after a failure: finished levels are skipped in seconds"
 )]
 pub struct Args {
     /// The YAML spec.

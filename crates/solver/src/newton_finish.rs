@@ -163,7 +163,7 @@ pub const MAX_SETTLED: f64 = 0.05;
 /// be turning towards it.
 /// Known limitation: a run within this angle whose lean is growing (just past the basin
 /// boundary between two stable orientations, e.g. at (0.1, 0.1) from IC iv) is also taken,
-/// and ends on the wrong mirror line: same class, `s` off by the box's anisotropy (README,
+/// and ends on the wrong mirror line: same class, `s` off by the box's anisotropy (docs/numerics.md,
 /// "Finishing runs by Newton").
 pub const ORIENTATION: f64 = std::f64::consts::PI / 16.0;
 

@@ -109,7 +109,7 @@ fn class_of(z: &[f64; 4]) -> StateClass {
 
 /// The verdict of the steady state near `z` at `params`: the root and its eigenvalues, or
 /// `None` when Newton does not converge from `z`.
-fn root_near(solver: &mut SteadySolver, z: [f64; 4]) -> Option<([f64; 4], Verdict)> {
+fn root_near(solver: &mut SteadySolver, z: [f64; 4]) -> Checked {
     let p = *solver.params();
     let opts = NewtonOptions {
         tol: 1e-11,
@@ -135,6 +135,9 @@ fn growth(v: &Verdict) -> String {
     format!("{} growing mode(s), largest {:+.3e}", v.unstable, v.max_re)
 }
 
+/// A root found from a run's final state, and its verdict (`None`: Newton did not converge).
+type Checked = Option<([f64; 4], Verdict)>;
+
 /// One run as the runs table has it.
 #[derive(Debug, Clone)]
 struct Row {
@@ -159,7 +162,7 @@ fn audit_point(
 ) -> Vec<Contradiction> {
     let mut out = Vec::new();
     let mut disk: Option<Verdict> = None;
-    let mut roots: Vec<([f64; 4], Option<([f64; 4], Verdict)>)> = Vec::new();
+    let mut roots: Vec<([f64; 4], Checked)> = Vec::new();
     let expected = expected_label(runs);
     if let Some(r) = runs.first().filter(|_| expected != label) {
         out.push(Contradiction {
