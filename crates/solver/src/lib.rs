@@ -55,7 +55,10 @@ pub use steady::{SteadySolver, SteadyState};
 /// rest); slow runs end where their one-dimensional quasi-steady flow lands
 /// ([`landing`]); the rotation mode is only looked for at states away from the disk
 /// (`verdict::ROTATION_MIN_NORM`) and among near-neutral eigenvalues.
-pub const SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-4");
+/// 5: no landing on a root unstable in its rotation mode (the run's turn decides between
+/// competing orientations); a turn may end on a root of another class within the box's
+/// anisotropy (MD on one mirror line, MC on the other).
+pub const SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-5");
 
 /// Version of the reduced ODE model's numerics (2: unstable states no longer end a run;
 /// 3: a run that does not end steady has no class).

@@ -29,10 +29,18 @@
 //! away from the first at all. When the root near the run is unstable only in that mode, the
 //! lean `phi` of the run from it decides ([`NewtonFinish::stable_root`]): a
 //! mirror-symmetric run (`phi = 0`; leans below 1e-9 rad are its round-off) never turns and
-//! ends at that root; otherwise the root of the state turned by 45 degrees is tried, and if it is stable the run
-//! ends there: speed and deformation settle long before the orientation, and that root's `v`
-//! and `s` are what the time stepper reaches after the turn (they differ between the two
-//! orientations by the box's anisotropy).
+//! ends at that root; otherwise the first stable root on the side it leans to is looked for
+//! by Newton from the state turned by [`TURN_SEARCH`] degrees (a pitchfork pair a degree or
+//! so off the line, else the root on the next mirror line), and the run ends there: speed and
+//! deformation settle long before the orientation, and that root's `v` and `s` are what the
+//! time stepper reaches after the turn.
+//!
+//! Slow runs (setting `landing`, on by default): when Newton near the run does not end it,
+//! the run's one-dimensional slow flow ([`crate::landing`]) says which root it lands on;
+//! [`NewtonFinish::landing_root`] confirms that root by Newton on all four equations and its
+//! eigenvalues, and the run ends there (`ended_by`: `landing`). A run caught turning between
+//! two mirror lines ends on the stable one of their roots when the other is unstable only in
+//! its rotation mode ([`NewtonFinish::turn_root`]).
 //!
 //! Beside a saddle (setting `stop_beside_saddle`): when the root near the run has a growing
 //! mode, the run's distance `d` to it (max over `vx, vy, a2, b2`) grows at most like
@@ -387,9 +395,12 @@ impl NewtonFinish {
             let Ok(other) = self.root_near(rotated(&near.z, side * degrees.to_radians())) else {
                 continue;
             };
+            // A root the run turns to differs from `near` by the box's anisotropy only (its
+            // class may differ where `s` is near the threshold: MD on one line, MC on the
+            // other); one further away (a resting state, say) is not where a turn ends.
             let turn = side * angle_to(&other.z, &near.z);
             if other.stable()
-                && class_of(&other.z) == class_of(&near.z)
+                && invariant_distance(&other.z, &near.z) <= MAX_SETTLED
                 && turn > 1e-6
                 && turn <= quarter + 1e-6
             {
@@ -443,10 +454,9 @@ impl NewtonFinish {
 
     /// The stable root the run at `z` lands on along its slow flow
     /// ([`crate::landing`]), confirmed by Newton on all four equations and by its
-    /// eigenvalues: the flow's root itself (speed and deformation equal to 1e-6), or, when
-    /// that one is unstable in its rotation mode and the run leans, the root on the box's
-    /// other mirror line that the run turns to (same class; speed and deformation differ
-    /// by the box's anisotropy, at most [`MAX_SETTLED`]).
+    /// eigenvalues: the flow's root itself (speed and deformation equal to 1e-6; a flow's root
+    /// on another mirror line than the run's, when the run was caught between them, to
+    /// [`MAX_SETTLED`]). A flow's root unstable in its rotation mode is not landed on.
     /// Failing that, a run caught turning between two mirror lines ends where it turns to
     /// ([`Self::turn_root`]).
     pub fn landing_root(&mut self, z: [f64; 4]) -> Option<Finding> {
@@ -454,9 +464,16 @@ impl NewtonFinish {
             let Some((found, may_end)) = self.stable_root(landing.z) else {
                 continue;
             };
+            if found.turned {
+                // The flow's root is unstable in its rotation mode: where the run ends depends
+                // on how it turns while it speeds up or slows down (two stable orientations
+                // can compete), which the one-dimensional flow does not follow. Time stepping
+                // goes on; the Newton finish takes the run once it is near its root.
+                continue;
+            }
             let distance = invariant_distance(&found.z, &landing.z);
             // The flow's own root, or one the run turns to from it.
-            let own = !found.turned && angle_to(&found.z, &landing.z).abs() <= ORIENTATION;
+            let own = angle_to(&found.z, &landing.z).abs() <= ORIENTATION;
             let same = class_of(&found.z) == class_of(&landing.z)
                 && distance <= if own { 1e-6 } else { MAX_SETTLED };
             if may_end && same {

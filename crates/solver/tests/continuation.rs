@@ -176,14 +176,25 @@ fn the_mc_onset_line_is_where_the_moving_branch_has_s_at_the_threshold() {
         base: ModelParams::at(0.07, 0.16),
         n,
         eta_t: (0.07, 0.1),
-        kappa2: (0.15, 0.17),
+        kappa2: (0.16, 0.17),
         id_samples: 3,
     };
     let line = mc_line(&w, th.eta_t).unwrap();
     assert_eq!(line.len(), 3, "{line:?}");
-    let (eta_mc, k) = line[1];
+    let (eta_mc, k) = line[2];
     assert!((k - 0.16).abs() < 1e-12);
-    // MC lies between the threshold curve and the onset of motion.
+    // MC lies between the threshold curve and the onset of motion. Below kappa2 ~ 0.154 the
+    // onset is subcritical and the s = 0.01 state unstable: the line stops there.
+    let low = Window {
+        kappa2: (0.13, 0.17),
+        id_samples: 5,
+        ..w.clone()
+    };
+    let stable_part = mc_line(&low, th.eta_t).unwrap();
+    assert!(
+        stable_part.len() == 2 && stable_part[1].1 == 0.16,
+        "{stable_part:?}"
+    );
     assert!(
         eta_mc < th.eta_t && eta_mc > th.eta_t - 1e-3,
         "{eta_mc} {}",

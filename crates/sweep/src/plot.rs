@@ -269,6 +269,7 @@ where
         RGBColor(0, 110, 110),
         RGBColor(200, 90, 0),
         RGBColor(0, 150, 60),
+        RGBColor(255, 140, 0),
     ];
     // The reduced model's curves in lighter colours of their own.
     let light = [

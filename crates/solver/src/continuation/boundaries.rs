@@ -98,7 +98,9 @@ fn id_line(w: &Window, mirror: MirrorAxis, hi: f64) -> Result<Vec<(f64, f64)>, S
 
 /// The MC onset line on the x axis: `(eta_t, kappa2)` where the moving branch has
 /// `a2 = -CLASS_THRESHOLD`, from the top of the window down while Newton on `(v, eta_t)`
-/// converges inside it.
+/// converges inside it and the moving state there is stable (the rotation mode aside): below
+/// the point where the onset of motion turns subcritical the `s = 0.01` state lies on the
+/// unstable part of the branch, and no label can change there.
 pub fn mc_line(w: &Window, onset_eta_t: f64) -> Result<Vec<(f64, f64)>, SolverError> {
     let mut solver = SteadySolver::new(w.base, w.n)?;
     let c = -crate::classify::CLASS_THRESHOLD;
@@ -130,6 +132,11 @@ pub fn mc_line(w: &Window, onset_eta_t: f64) -> Result<Vec<(f64, f64)>, SolverEr
             break;
         }
         guess = [v, eta];
+        solver.set_control(eta, k);
+        let z = [v, 0.0, c, 0.0];
+        if !crate::verdict::assess(&Linearization::at(&mut solver, z), z).stable() {
+            break;
+        }
         pts.push((eta, k));
     }
     Ok(pts)
