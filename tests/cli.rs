@@ -367,6 +367,8 @@ fn simulate_json_series_and_picture() {
         "48",
         "--t-max",
         "20",
+        // Given up at t_max (not run on to 4 t_max), so that the run ends exactly there.
+        "--no-run-on",
         "--json",
         "--series",
         series.to_str().unwrap(),

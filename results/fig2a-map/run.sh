@@ -17,3 +17,9 @@ end=$(date +%s)
 } > $here/elapsed.txt
 $bin status "$out" --json > $here/status.json
 for f in points.parquet runs.parquet phase_map.png phase_map.svg; do cp "$out/$f" $here/; done
+# The exact boundaries drawn onto the map (boundaries.parquet, redrawn picture), the audit of
+# every label, and the per-level summary (crates/sweep/examples/map_summary.rs).
+$bin boundaries --out "$out" --json > /dev/null
+for f in phase_map.png phase_map.svg boundaries.parquet; do cp "$out/$f" $here/; done
+$bin audit $here --json > $here/audit.json || true
+cargo run --release -q -p droplet-sweep --example map_summary -- $here > $here/summary.md

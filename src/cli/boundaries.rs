@@ -21,7 +21,7 @@ use std::time::Instant;
 #[derive(clap::Args)]
 #[command(
     allow_negative_numbers = true,
-    after_help = "Examples:\n  droplet boundaries --out results/boundaries                  # the Fig. 2a window\n  droplet boundaries --out results/fig2a                       # onto a sweep's phase map\n  droplet boundaries --eta-t 0.07,0.1 --kappa2 0.1,0.17 --n 128 --json"
+    after_help = "Examples:\n  droplet boundaries --out results/boundaries                  # the Fig. 2a window\n  droplet boundaries --out out/fig2a                           # onto a sweep's phase map\n  droplet boundaries --eta-t 0.07,0.1 --kappa2 0.1,0.17 --n 128 --json"
 )]
 pub struct Args {
     /// eta_t window LO,HI (default: the sweep's in --out, else 0.07,0.10).

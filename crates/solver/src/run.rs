@@ -96,8 +96,10 @@ impl Run {
         let mut max_step_error: Option<f64> = None;
         let mut status = RunStatus::TMax;
         let mut t_steady = None;
-        let mut finish =
-            (cfg.steady == SteadyMethod::Newton).then(|| NewtonFinish::new(&self.params, &cfg));
+        // The Newton finish needs the linearisation, which needs inertia: an overdamped
+        // droplet (m = 0) is finished by the paper's test.
+        let mut finish = (cfg.steady == SteadyMethod::Newton && self.params.mass > 0.0)
+            .then(|| NewtonFinish::new(&self.params, &cfg));
         let mut ended_by = None;
         let mut polished: Option<[f64; 4]> = None;
         let mut saddle_diagnosis = None;

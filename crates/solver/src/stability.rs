@@ -472,6 +472,9 @@ mod tests {
             tol: 0.0,
             t_max,
             steady_tol: 1e-30,
+            // Plain time stepping to exactly t_max.
+            landing: false,
+            run_on: false,
             ..SolverSettings::default()
         };
         let mut rates = Vec::new();

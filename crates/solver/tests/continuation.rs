@@ -37,7 +37,9 @@ fn at(b: &Branch, eta_t: f64) -> &BranchPoint {
 
 #[test]
 fn stable_states_are_the_time_steppers_steady_states() {
-    let n = 96;
+    // N = 128: at N = 96 the grid's anisotropy makes the x-axis ID's rotation mode +0.117,
+    // no longer near-neutral, so that state is unstable there (it turns to the diagonal).
+    let n = 128;
     // (family, eta_t, kappa2, initial condition on the mirror axis)
     let cases = [
         (Family::MdMinor, 0.085, 0.112, "i'"),
@@ -255,6 +257,9 @@ fn the_resting_disks_drift_eigenvalue_is_the_time_steppers_decay_rate() {
         tol: 0.0,
         t_max,
         steady_tol: 1e-30,
+        // Plain time stepping to exactly t_max.
+        landing: false,
+        run_on: false,
         ..SolverSettings::default()
     };
     let ic = InitialCondition::parse("custom:0.001,0,0,0").unwrap();

@@ -49,6 +49,8 @@ fn main() {
             .insert(c["kind"].as_str().unwrap().to_string());
     }
     let (mut same, mut changes) = (0, BTreeMap::<(String, String, String), usize>::new());
+    // Points whose old label was proven and still changed: listed by coordinates.
+    let mut proven = Vec::new();
     for (p, was) in &old {
         let Some(now) = new.get(p) else { continue };
         if was == now {
@@ -58,6 +60,13 @@ fn main() {
         let why = kinds.get(p).map_or("none".to_string(), |k| {
             k.iter().cloned().collect::<Vec<_>>().join(" + ")
         });
+        if why == "none" {
+            proven.push(format!(
+                "({}, {}) {was} -> {now}",
+                p.0 as f64 * 1e-9,
+                p.1 as f64 * 1e-9
+            ));
+        }
         *changes.entry((was.clone(), now.clone(), why)).or_default() += 1;
     }
     let changed: usize = changes.values().sum();
@@ -71,5 +80,11 @@ fn main() {
     rows.sort_by(|a, b| b.1.cmp(&a.1).then(a.0.cmp(&b.0)));
     for ((was, now, why), n) in rows {
         println!("| {was} | {now} | {why} | {n} |");
+    }
+    if !proven.is_empty() {
+        println!(
+            "\nChanged although the old label was proven: {}",
+            proven.join("; ")
+        );
     }
 }
