@@ -36,7 +36,6 @@
 //! of motion, and where the ID and MD onsets meet) the family is two-dimensional and the
 //! scalar flow does not decide; the landing root's stability check then usually refuses it,
 //! and the run goes on by time stepping.
-use crate::classify::CLASS_THRESHOLD;
 use crate::steady::{MirrorAxis, SteadySolver};
 use std::f64::consts::{FRAC_1_SQRT_2, FRAC_PI_4};
 
@@ -354,12 +353,6 @@ fn land_resting_on(
         to,
         samples: flow.samples,
     })
-}
-
-/// Whether a landing changes the run's class: a walk that crosses a class threshold is one
-/// the time stepper would take thousands of time units for.
-pub fn crosses_threshold(l: &Landing) -> bool {
-    (l.from > CLASS_THRESHOLD) != (l.to > CLASS_THRESHOLD)
 }
 
 #[cfg(test)]
