@@ -21,13 +21,15 @@
 //! are audited as they are. Roots met twice at one point (runs from several initial
 //! conditions on one state) are checked once. Points run in parallel, one steady solver
 //! per worker.
+mod rows;
+
 use crate::error::SweepError;
 use droplet_solver::newton::{solve, NewtonOptions};
 use droplet_solver::stability::Linearization;
 use droplet_solver::verdict::{assess, Verdict};
 use droplet_solver::{ModelParams, RunStatus, StateClass, SteadySolver};
-use polars::prelude::*;
 use rayon::prelude::*;
+use rows::{read, read_runs, strings, u32s, Row};
 use serde::Serialize;
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
@@ -137,21 +139,6 @@ fn growth(v: &Verdict) -> String {
 
 /// A root found from a run's final state, and its verdict (`None`: Newton did not converge).
 type Checked = Option<([f64; 4], Verdict)>;
-
-/// One run as the runs table has it.
-#[derive(Debug, Clone)]
-struct Row {
-    params: ModelParams,
-    n: usize,
-    ic: String,
-    status: String,
-    class: Option<StateClass>,
-    z: [f64; 4],
-    t_end: f64,
-    unsettled: Option<String>,
-    heading: Option<String>,
-    key: String,
-}
 
 /// Audits the runs of one point (spec order of initial conditions) under `label`.
 fn audit_point(
@@ -276,95 +263,6 @@ fn expected_label(runs: &[&Row]) -> String {
         1 | 2 => names.join("/"),
         _ => crate::phase::NOT_CLASSIFIED.into(),
     }
-}
-
-fn read(path: &Path) -> Result<DataFrame, SweepError> {
-    let file = std::fs::File::open(path).map_err(|e| {
-        SweepError::Invalid(format!(
-            "{}: {e}; audit reads the tables a finished sweep writes (runs.parquet, \
-             points.parquet): finish the sweep, or `droplet merge` its shards, first",
-            path.display()
-        ))
-    })?;
-    Ok(ParquetReader::new(file).finish()?)
-}
-
-fn floats(df: &DataFrame, name: &str) -> Result<Vec<f64>, SweepError> {
-    let c = df.column(name)?.f64()?.clone();
-    Ok((0..c.len()).map(|i| c.get(i).unwrap_or(f64::NAN)).collect())
-}
-
-fn strings(df: &DataFrame, name: &str) -> Result<Vec<Option<String>>, SweepError> {
-    let c = df.column(name)?.str()?.clone();
-    Ok((0..c.len()).map(|i| c.get(i).map(str::to_string)).collect())
-}
-
-/// A string column that older tables lack (all `None` then).
-fn optional_strings(df: &DataFrame, name: &str) -> Result<Vec<Option<String>>, SweepError> {
-    match df.column(name) {
-        Ok(_) => strings(df, name),
-        Err(_) => Ok(vec![None; df.height()]),
-    }
-}
-
-fn u32s(df: &DataFrame, name: &str) -> Result<Vec<u32>, SweepError> {
-    let c = df.column(name)?.u32()?.clone();
-    Ok((0..c.len()).map(|i| c.get(i).unwrap_or(0)).collect())
-}
-
-/// The runs of `runs.parquet`, by point index.
-fn read_runs(df: &DataFrame) -> Result<BTreeMap<u32, Vec<Row>>, SweepError> {
-    let mut col = BTreeMap::new();
-    for name in [
-        "eta_t", "kappa2", "eta2", "radius", "sigma", "box_len", "mass", "vx", "vy", "a2", "b2",
-        "t_end",
-    ] {
-        col.insert(name, floats(df, name)?);
-    }
-    let f = |name: &str, i: usize| col[name][i];
-    let mut text = BTreeMap::new();
-    for name in ["ic", "status", "class", "key", "model", "scheme"] {
-        text.insert(name, strings(df, name)?);
-    }
-    let t = |name: &str, i: usize| text[name][i].clone();
-    let (point, n) = (u32s(df, "point")?, u32s(df, "n")?);
-    let (unsettled, heading) = (
-        optional_strings(df, "unsettled")?,
-        optional_strings(df, "heading")?,
-    );
-    let mut by_point: BTreeMap<u32, Vec<Row>> = BTreeMap::new();
-    for i in 0..df.height() {
-        let (model, scheme) = (t("model", i), t("scheme", i));
-        if model.as_deref() != Some("pde") || scheme.as_deref() != Some("spectral") {
-            return Err(SweepError::Invalid(format!(
-                "audit checks maps of the PDE model with the spectral scheme (its steady \
-                 equations and eigenvalues); this one has model {} and scheme {}",
-                model.unwrap_or_default(),
-                scheme.unwrap_or_default()
-            )));
-        }
-        by_point.entry(point[i]).or_default().push(Row {
-            params: ModelParams {
-                eta_t: f("eta_t", i),
-                kappa2: f("kappa2", i),
-                eta2: f("eta2", i),
-                radius: f("radius", i),
-                sigma: f("sigma", i),
-                box_len: f("box_len", i),
-                mass: f("mass", i),
-            },
-            n: n[i] as usize,
-            ic: t("ic", i).unwrap_or_default(),
-            status: t("status", i).unwrap_or_default(),
-            class: t("class", i).as_deref().and_then(StateClass::parse),
-            z: [f("vx", i), f("vy", i), f("a2", i), f("b2", i)],
-            t_end: f("t_end", i),
-            unsettled: unsettled[i].clone(),
-            heading: heading[i].clone(),
-            key: t("key", i).unwrap_or_default(),
-        });
-    }
-    Ok(by_point)
 }
 
 /// Audits the map in `dir` (its `runs.parquet` and `points.parquet`).
