@@ -75,7 +75,9 @@ pub fn classify_point<'a>(runs: impl IntoIterator<Item = &'a RunRecord>) -> Poin
     }
 }
 
-fn label_of(
+/// The label of a point from the classes of its steady runs and its run counts (the rules
+/// above; also what `droplet audit` expects of a points table).
+pub(crate) fn label_of(
     classes: &BTreeSet<StateClass>,
     n_runs: usize,
     n_diverged: usize,

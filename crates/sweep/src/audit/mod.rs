@@ -253,16 +253,10 @@ fn expected_label(runs: &[&Row]) -> String {
         .filter(|r| r.status == RunStatus::Steady.as_str())
         .filter_map(|r| r.class)
         .collect();
-    let unsettled = runs
-        .iter()
-        .any(|r| !["steady", "diverged"].contains(&r.status.as_str()));
-    let names: Vec<&str> = classes.iter().map(|c| c.as_str()).collect();
-    match names.len() {
-        0 if unsettled => crate::phase::UNSETTLED.into(),
-        0 => crate::phase::DIVERGED.into(),
-        1 | 2 => names.join("/"),
-        _ => crate::phase::NOT_CLASSIFIED.into(),
-    }
+    let count = |status: &str| runs.iter().filter(|r| r.status == status).count();
+    let diverged = count(RunStatus::Diverged.as_str());
+    let unsettled = runs.len() - count(RunStatus::Steady.as_str()) - diverged;
+    crate::phase::label_of(&classes, runs.len(), diverged, unsettled)
 }
 
 /// Audits the map in `dir` (its `runs.parquet` and `points.parquet`).
