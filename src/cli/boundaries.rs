@@ -1,8 +1,8 @@
 //! `droplet boundaries`: the full model's phase boundaries in the (eta_t, kappa2) plane.
 use super::{print_json, CliError};
 use droplet_solver::continuation::boundaries::{boundaries, Window};
-use droplet_solver::reduced::Coefficients;
-use droplet_solver::ModelParams;
+use droplet_solver::model::params::ModelParams;
+use droplet_solver::reduced::coefficients::Coefficients;
 use droplet_sweep::boundary_table::{self, NamedCurve};
 use droplet_sweep::plot::Curve;
 use std::path::PathBuf;
@@ -118,7 +118,9 @@ pub fn run(a: Args) -> Result<(), CliError> {
     let seconds = started.elapsed().as_secs_f64();
     let h0 = sweep
         .as_ref()
-        .map_or(droplet_solver::settings::H0_PAPER, |s| s.solver.h0);
+        .map_or(droplet_solver::contract::settings::H0_PAPER, |s| {
+            s.solver.h0
+        });
     let ode = droplet_solver::reduced::boundaries::boundaries(
         &Coefficients::new(base.radius, h0),
         eta_t,

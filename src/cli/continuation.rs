@@ -2,9 +2,11 @@
 //! with their stability and bifurcation points (the PDE's Fig. 3b).
 use super::{print_json, CliError};
 use droplet_solver::continuation::arclength::ArclengthOptions;
-use droplet_solver::continuation::{follow, Branch, Family, Line, EVENT_PRECISION};
+use droplet_solver::continuation::{
+    branch::follow, branch::Branch, branch::Line, branch::EVENT_PRECISION, problem::Family,
+};
+use droplet_solver::model::params::ModelParams;
 use droplet_solver::reduced::bifurcation::Axis;
-use droplet_solver::ModelParams;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -117,7 +119,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
                 );
                 branches.push(b);
             }
-            Err(droplet_solver::SolverError::NoBranch { .. }) if families.len() > 1 => {
+            Err(droplet_solver::error::SolverError::NoBranch { .. }) if families.len() > 1 => {
                 eprintln!("none on this line");
             }
             Err(e) => {
@@ -133,8 +135,10 @@ pub fn run(a: Args) -> Result<(), CliError> {
     // Ten significant digits: a short, stable file name for any value within the limits.
     let fixed_text = format!("{fixed:.9e}").parse::<f64>().unwrap_or(fixed);
     let stem = match mirror {
-        droplet_solver::steady::MirrorAxis::X => format!("continuation_{fixed_name}_{fixed_text}"),
-        droplet_solver::steady::MirrorAxis::Diagonal => {
+        droplet_solver::roots::steady_solver::MirrorAxis::X => {
+            format!("continuation_{fixed_name}_{fixed_text}")
+        }
+        droplet_solver::roots::steady_solver::MirrorAxis::Diagonal => {
             format!("continuation_{fixed_name}_{fixed_text}_diagonal")
         }
     };
@@ -154,7 +158,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
         ),
     )?;
     files.extend([p1, p2]);
-    let at = |p: &droplet_solver::continuation::BranchPoint| {
+    let at = |p: &droplet_solver::continuation::branch::BranchPoint| {
         if parameter == Axis::EtaT {
             p.eta_t
         } else {
@@ -223,7 +227,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
 fn precise_events(
     branches: &[Branch],
     varied: &str,
-    at: impl Fn(&droplet_solver::continuation::BranchPoint) -> f64,
+    at: impl Fn(&droplet_solver::continuation::branch::BranchPoint) -> f64,
 ) -> Result<(), CliError> {
     let imprecise: Vec<String> = branches
         .iter()

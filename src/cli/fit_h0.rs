@@ -1,8 +1,8 @@
 //! `droplet fit-h0`: the Appendix E fit of the cubic coefficient h0.
 use super::{print_json, CliError};
-use droplet_solver::h0_fit::fit_h0;
-use droplet_solver::reduced::Coefficients;
-use droplet_solver::ModelParams;
+use droplet_solver::model::params::ModelParams;
+use droplet_solver::reduced::coefficients::Coefficients;
+use droplet_solver::roots::h0_fit::fit_h0;
 use droplet_sweep::plot::{h0_picture, H0Picture};
 use std::path::PathBuf;
 

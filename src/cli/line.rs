@@ -1,10 +1,10 @@
 //! The parameter line shared by `droplet ode bifurcation` and `droplet continue`: one of
 //! eta_t / kappa2 fixed, the other varied from --from to --to.
 use super::CliError;
-use droplet_solver::continuation::PARAMETER_LIMIT;
+use droplet_solver::continuation::branch::PARAMETER_LIMIT;
 use droplet_solver::error::show_number;
+use droplet_solver::model::params::ModelParams;
 use droplet_solver::reduced::bifurcation::Axis;
-use droplet_solver::ModelParams;
 
 #[derive(clap::Args)]
 pub struct LineArgs {

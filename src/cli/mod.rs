@@ -102,8 +102,8 @@ impl From<droplet_sweep::SweepError> for CliError {
     }
 }
 
-impl From<droplet_solver::SolverError> for CliError {
-    fn from(e: droplet_solver::SolverError) -> Self {
+impl From<droplet_solver::error::SolverError> for CliError {
+    fn from(e: droplet_solver::error::SolverError) -> Self {
         Self::usage(e.to_string())
     }
 }
@@ -120,10 +120,12 @@ pub fn check_grid(n: usize) -> Result<(), CliError> {
 }
 
 /// Parses `--axis`: the mirror line a state lies on.
-pub fn mirror_axis(text: &str) -> Result<droplet_solver::steady::MirrorAxis, CliError> {
+pub fn mirror_axis(
+    text: &str,
+) -> Result<droplet_solver::roots::steady_solver::MirrorAxis, CliError> {
     match text {
-        "x" => Ok(droplet_solver::steady::MirrorAxis::X),
-        "diagonal" => Ok(droplet_solver::steady::MirrorAxis::Diagonal),
+        "x" => Ok(droplet_solver::roots::steady_solver::MirrorAxis::X),
+        "diagonal" => Ok(droplet_solver::roots::steady_solver::MirrorAxis::Diagonal),
         other => Err(CliError::usage(format!(
             "invalid --axis `{other}`: x or diagonal"
         ))),

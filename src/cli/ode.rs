@@ -1,9 +1,9 @@
 //! `droplet ode`: the reduced model's coefficients and bifurcation diagrams (Fig. 3b).
 use super::{print_json, CliError};
 use clap::Subcommand;
+use droplet_solver::model::params::ModelParams;
 use droplet_solver::reduced::bifurcation::diagram;
-use droplet_solver::reduced::Coefficients;
-use droplet_solver::ModelParams;
+use droplet_solver::reduced::coefficients::Coefficients;
 use std::path::PathBuf;
 
 /// The reduced ODE model (eqs. 58-59): coefficients and bifurcation diagrams.
@@ -25,7 +25,7 @@ enum OdeCommand {
         #[arg(long, default_value_t = 1.0)]
         radius: f64,
         /// Cubic coefficient h0 (reported alongside).
-        #[arg(long, default_value_t = droplet_solver::reduced::coefficients::H0_PAPER)]
+        #[arg(long, default_value_t = droplet_solver::contract::settings::H0_PAPER)]
         h0: f64,
         /// Print one JSON object (keys f1, f1t, f3, f3t, g0t, g2, g2t, h0, radius).
         #[arg(long)]
@@ -45,7 +45,7 @@ enum OdeCommand {
         steps: usize,
         #[arg(long, default_value_t = 1.0)]
         radius: f64,
-        #[arg(long, default_value_t = droplet_solver::reduced::coefficients::H0_PAPER)]
+        #[arg(long, default_value_t = droplet_solver::contract::settings::H0_PAPER)]
         h0: f64,
         #[arg(long, default_value_t = 0.1)]
         mass: f64,

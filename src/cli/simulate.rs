@@ -1,6 +1,9 @@
 //! `droplet simulate`: one run, its class, and optionally its time series and Fig. 1 picture.
 use super::{print_json, CliError};
-use droplet_solver::{InitialCondition, ModelParams, Run, SchemeKind, SolverSettings};
+use droplet_solver::{
+    contract::settings::SolverSettings, model::initial::InitialCondition,
+    model::params::ModelParams, runs::driver::Run, stepping::SchemeKind,
+};
 use droplet_sweep::plot;
 use serde::Serialize;
 use std::path::PathBuf;
@@ -72,7 +75,7 @@ pub struct Args {
     /// paper-fd). With test, a steady run is checked afterwards and a warning printed if the
     /// state it stopped on is unstable.
     #[arg(long)]
-    steady: Option<droplet_solver::newton_finish::SteadyMethod>,
+    steady: Option<droplet_solver::contract::ending::SteadyMethod>,
     /// With --steady newton: stop a run beside an unstable steady state as soon as its growth
     /// rate shows it cannot leave before --t-max with another class (status saddle, the
     /// diagnosis says how far it would get) instead of creeping there.
@@ -183,7 +186,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
         pinned: a.pinned,
         steady: match (a.steady, a.pinned) {
             (Some(m), _) => m,
-            (None, true) => droplet_solver::newton_finish::SteadyMethod::Test,
+            (None, true) => droplet_solver::contract::ending::SteadyMethod::Test,
             (None, false) => base.steady,
         },
         stop_beside_saddle: a.stop_beside_saddle,
@@ -204,7 +207,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
     let ic = InitialCondition::parse(&a.ic)?;
     let record = a.series.is_some() || a.picture.is_some();
     if record {
-        droplet_solver::limits::check_series(settings.give_up_at(), a.every)?;
+        droplet_solver::contract::limits::check_series(settings.give_up_at(), a.every)?;
     } else if !(a.every > 0.0 && a.every.is_finite()) {
         return Err(CliError::usage(format!(
             "invalid --every {}: a finite number > 0",
@@ -241,12 +244,12 @@ pub fn run(a: Args) -> Result<(), CliError> {
         );
         pictures = plot::run_picture(path, &title, &params, &field, &out.state, &out.series)?;
     }
-    let final_state = (out.ended_by == Some(droplet_solver::newton_finish::Ending::Test)
-        && settings.steady == droplet_solver::newton_finish::SteadyMethod::Test
+    let final_state = (out.ended_by == Some(droplet_solver::contract::ending::Ending::Test)
+        && settings.steady == droplet_solver::contract::ending::SteadyMethod::Test
         && settings.scheme == SchemeKind::Spectral
         && !settings.pinned)
         .then(|| {
-            let mut f = droplet_solver::newton_finish::NewtonFinish::new(&params, &settings);
+            let mut f = droplet_solver::runs::finish::NewtonFinish::new(&params, &settings);
             f.root_near(out.state.monitored())
                 .ok()
                 .map(|found| FinalState {

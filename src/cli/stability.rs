@@ -1,7 +1,7 @@
 //! `droplet stability`: one named steady state as a root, and its leading eigenvalues.
 use super::{print_json, CliError};
-use droplet_solver::named_state::{find, ic_thresholds, IcThresholds, StateKind};
-use droplet_solver::ModelParams;
+use droplet_solver::model::params::ModelParams;
+use droplet_solver::roots::named_state::{find, ic_thresholds, IcThresholds, StateKind};
 use serde::Serialize;
 
 /// Compute one steady state directly, with its linear stability.
@@ -110,8 +110,8 @@ pub fn run(a: Args) -> Result<(), CliError> {
     params.validate()?;
     super::check_grid(a.n)?;
     let st = find(&params, a.n, a.state, axis, seed).map_err(|e| match e {
-        droplet_solver::SolverError::NewtonFailed { .. }
-        | droplet_solver::SolverError::RestingRoot { .. } => CliError {
+        droplet_solver::error::SolverError::NewtonFailed { .. }
+        | droplet_solver::error::SolverError::RestingRoot { .. } => CliError {
             message: format!("{e}; try another --seed or --axis"),
             code: 1,
         },

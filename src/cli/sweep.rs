@@ -98,7 +98,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
             eprintln!(
                 "warning: {} fixed-step runs took steps too large to trust (column max_step_error > {:e} in runs.parquet); lower dt or use adaptive stepping (solver.tol)",
                 summary.dt_warnings,
-                droplet_solver::STEP_ERROR_LIMIT
+                droplet_solver::contract::outcome::STEP_ERROR_LIMIT
             );
         }
         for p in &summary.tables {

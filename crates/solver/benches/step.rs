@@ -2,8 +2,8 @@
 //! the paper's finite-difference scheme at its own resolution (N = 280, dt = 1e-4).
 //! Run: `cargo bench --bench step` (add `-- --quick` for a fast pass).
 use criterion::{criterion_group, criterion_main, Criterion};
-use droplet_solver::scheme::{ComovingEtd, PaperFd, Scheme};
-use droplet_solver::{InitialCondition, ModelParams};
+use droplet_solver::stepping::{comoving_etd::ComovingEtd, paper_fd::PaperFd, Scheme};
+use droplet_solver::{model::initial::InitialCondition, model::params::ModelParams};
 
 fn warm<S: Scheme>(mut s: S, h: f64, steps: usize) -> S {
     // Past the start-up, at a moving and deformed state (MD point of Fig. 1).

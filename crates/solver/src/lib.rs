@@ -1,50 +1,45 @@
 //! The droplet model of Kitahata, Koyano, Kobayashi & Nagayama, "Energetics-based model for a
-//! diffusiophoretic motion of a deformable droplet": a co-moving pseudo-spectral integrator
-//! (default), the paper's finite-difference scheme (baseline), the exact steady state, the
-//! stop rules and the classification of Sect. 3.
-pub mod bessel;
-pub mod classify;
+//! diffusiophoretic motion of a deformable droplet", its runs, its steady states and their
+//! continuation.
+//!
+//! # Map of the crate
+//!
+//! Each folder holds one concern and uses only the folders listed before it (checked by
+//! `tests/module_graph.rs`):
+//!
+//! | folder | what it holds |
+//! |---|---|
+//! | [`numerics`] | Bessel functions, the row-pruned 2-D FFT, Newton's method for small systems |
+//! | [`model`] | parameters, state, initial conditions, grid, indicator, forces, equations of motion, the classes IC / ID / MD / MC |
+//! | [`stepping`] | the time integrators: co-moving ETD2RK (default, adaptive), the paper's finite differences |
+//! | [`contract`] | what a run is asked (settings, limits, stop rules, how it may end) and what it answers (outcome) |
+//! | [`reduced`] | the reduced ODE model of the paper's Sect. 4-5 and appendices |
+//! | [`roots`] | steady states as roots: steady solver, linearisation, stability verdict, named states, `h0` fit |
+//! | [`runs`] | one run: the driver, the Newton finish and diagnosis, the leap, the landing |
+//! | [`continuation`] | branches of roots in a parameter, their bifurcations and the exact phase boundaries |
+//!
+//! [`error`] holds the crate's one error type.
+//!
+//! # The path of one run
+//!
+//! [`contract::settings::SolverSettings`] and [`model::params::ModelParams`] are checked
+//! ([`contract::limits`]), [`runs::driver::Run::new`] builds the scheme of
+//! [`stepping`] from an [`model::initial::InitialCondition`], [`runs::driver::Run::execute`]
+//! steps it while the stop rules of [`contract::stop_rule`] and the Newton finish of
+//! [`runs::finish`] watch it; a run that settles is checked by [`roots::verdict`] and classed by
+//! [`model::classify`]; one that does not is diagnosed (unsettled, with the state it heads
+//! to). The answer is a [`contract::outcome::RunOutcome`].
 pub mod continuation;
-pub mod departure_leap;
-pub mod dynamics;
+pub mod contract;
 pub mod error;
-pub mod etd;
-pub mod fft2;
-pub mod forces;
-pub mod grid;
-pub mod h0_fit;
-pub mod initial;
-pub mod landing;
-pub mod limits;
-pub mod named_state;
-pub mod newton;
-pub mod newton_finish;
-pub mod outcome;
-pub mod params;
+pub mod model;
+pub mod numerics;
 pub mod reduced;
-pub mod run;
-pub mod scheme;
-pub mod settings;
-pub mod shape;
-pub mod shape_transform;
-pub mod stability;
-pub mod state;
-pub mod steady;
-pub mod steady_method;
-pub mod step_control;
-pub mod stop_rule;
-pub mod verdict;
+pub mod roots;
+pub mod runs;
+pub mod stepping;
 
-pub use classify::StateClass;
-pub use error::SolverError;
-pub use initial::InitialCondition;
-pub use outcome::{RunOutcome, RunStatus, SeriesRow, Unsettled, STEP_ERROR_LIMIT};
-pub use params::ModelParams;
-pub use run::{simulate, Run};
-pub use scheme::{Scheme, SchemeKind};
-pub use settings::{ModelKind, SolverSettings};
-pub use state::DropletState;
-pub use steady::{SteadySolver, SteadyState};
+use contract::settings::ModelKind;
 
 /// Version of the solver's numerics (the PDE model's runs); part of every run's cache key.
 /// 2: the Newton finish compares a run's orientation with its root's like with like, so a run
@@ -53,8 +48,8 @@ pub use steady::{SteadySolver, SteadyState};
 /// only if they are within the class threshold of its root's, with its class.
 /// 4: only a run that ends on a stable root has a class (`unsettled`, `heading` for the
 /// rest); slow runs end where their one-dimensional quasi-steady flow lands
-/// ([`landing`]); the rotation mode is only looked for at states away from the disk
-/// (`verdict::ROTATION_MIN_NORM`) and among near-neutral eigenvalues.
+/// ([`runs::landing`]); the rotation mode is only looked for at states away from the disk
+/// (`roots::verdict::ROTATION_MIN_NORM`) and among near-neutral eigenvalues.
 /// 5: no landing on a root unstable in its rotation mode (the run's turn decides between
 /// competing orientations); a turn may end on a root of another class within the box's
 /// anisotropy (MD on one mirror line, MC on the other).

@@ -1,8 +1,12 @@
 //! Adaptive ETD2RK stepping: same fixed points as fixed steps, error bounded by the tolerance,
 //! errors falling with the tolerance, steps growing during relaxation, recording times hit,
 //! and large fixed steps flagged.
-use droplet_solver::steady::MirrorAxis;
-use droplet_solver::*;
+use droplet_solver::roots::steady_solver::MirrorAxis;
+use droplet_solver::{
+    contract::outcome::RunStatus, contract::settings::SolverSettings, model::classify::StateClass,
+    model::initial::InitialCondition, model::params::ModelParams,
+    roots::steady_solver::SteadySolver, runs::driver::simulate, runs::driver::Run,
+};
 
 /// Time stepping to the paper's test (what these tests are about; the Newton finish would end
 /// the runs before their step sizes tell anything).
@@ -11,7 +15,7 @@ fn settings(n: usize, tol: f64) -> SolverSettings {
         n,
         tol,
         t_max: 3000.0,
-        steady: newton_finish::SteadyMethod::Test,
+        steady: droplet_solver::contract::ending::SteadyMethod::Test,
         ..SolverSettings::default()
     }
 }

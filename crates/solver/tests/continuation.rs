@@ -3,12 +3,17 @@
 //! two-parameter fold curve, and the branches' meeting points against the exact thresholds.
 use droplet_solver::continuation::arclength::ArclengthOptions;
 use droplet_solver::continuation::boundaries::{id_onset, mc_line, md_fold_curve, Window};
-use droplet_solver::continuation::{follow, Branch, BranchPoint, Family, Line};
-use droplet_solver::named_state::ic_thresholds;
+use droplet_solver::continuation::{
+    branch::follow, branch::Branch, branch::BranchPoint, branch::Line, problem::Family,
+};
 use droplet_solver::reduced::bifurcation::Axis;
-use droplet_solver::scheme::{ComovingEtd, Scheme};
-use droplet_solver::steady::{MirrorAxis, SteadySolver};
-use droplet_solver::{simulate, DropletState, InitialCondition, ModelParams, SolverSettings};
+use droplet_solver::roots::named_state::ic_thresholds;
+use droplet_solver::roots::steady_solver::{MirrorAxis, SteadySolver};
+use droplet_solver::stepping::{comoving_etd::ComovingEtd, Scheme};
+use droplet_solver::{
+    contract::settings::SolverSettings, model::initial::InitialCondition,
+    model::params::ModelParams, model::state::DropletState, runs::driver::simulate,
+};
 
 /// `family` along eta_t at fixed `kappa2` on the x axis.
 fn branch(family: Family, kappa2: f64, from: f64, to: f64, n: usize) -> Branch {
@@ -56,12 +61,16 @@ fn stable_states_are_the_time_steppers_steady_states() {
             n,
             steady_tol: 1e-10,
             t_max: 5000.0,
-            steady: droplet_solver::newton_finish::SteadyMethod::Test,
+            steady: droplet_solver::contract::ending::SteadyMethod::Test,
             ..SolverSettings::default()
         };
         let ic = InitialCondition::parse(ic).unwrap();
         let out = simulate(&ModelParams::at(eta_t, kappa2), &ic, &settings).unwrap();
-        assert_eq!(out.status, droplet_solver::RunStatus::Steady, "{out:?}");
+        assert_eq!(
+            out.status,
+            droplet_solver::contract::outcome::RunStatus::Steady,
+            "{out:?}"
+        );
         assert!(
             (out.v - p.v).abs() <= 1e-6 && (out.s - p.s).abs() <= 1e-6,
             "{family:?} at ({eta_t}, {kappa2}): time stepping v = {}, s = {}; continuation v = {}, s = {}",

@@ -1,8 +1,12 @@
 //! The Newton finish against time stepping alone: the same steady states, reached in far
 //! fewer time units.
-use droplet_solver::newton_finish::SteadyMethod;
-use droplet_solver::steady_method::Ending;
-use droplet_solver::*;
+use droplet_solver::contract::ending::Ending;
+use droplet_solver::contract::ending::SteadyMethod;
+use droplet_solver::{
+    contract::outcome::RunStatus, contract::outcome::SeriesRow, contract::settings::SolverSettings,
+    model::initial::InitialCondition, model::params::ModelParams, runs::driver::simulate,
+    runs::driver::Run,
+};
 
 #[test]
 fn newton_finish_ends_at_the_time_steppers_steady_state() {

@@ -1,8 +1,12 @@
 //! Physics checks of the solver: analytic solutions, conservation, symmetry, convergence,
 //! exact fixed points, and agreement of time integration with the Newton steady state.
-use droplet_solver::bessel::ik;
-use droplet_solver::scheme::{ComovingEtd, PaperFd, Scheme};
-use droplet_solver::*;
+use droplet_solver::numerics::bessel::ik;
+use droplet_solver::stepping::{comoving_etd::ComovingEtd, paper_fd::PaperFd, Scheme};
+use droplet_solver::{
+    contract::outcome::RunStatus, contract::settings::SolverSettings,
+    model::initial::InitialCondition, model::params::ModelParams, model::state::DropletState,
+    roots::steady_solver::SteadySolver, runs::driver::simulate,
+};
 
 fn state_of(ic: &str) -> DropletState {
     InitialCondition::parse(ic).unwrap().state()

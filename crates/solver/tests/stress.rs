@@ -1,7 +1,11 @@
 //! Stress test over random parameters in and beyond the paper's window: no panic, every run
 //! ends with a status, outputs are finite unless the run diverged, and a diverged run stops
 //! where it diverged. The seed is fixed so that the suite is deterministic.
-use droplet_solver::*;
+use droplet_solver::{
+    contract::outcome::RunOutcome, contract::outcome::RunStatus,
+    contract::settings::SolverSettings, model::initial::InitialCondition,
+    model::params::ModelParams, runs::driver::simulate,
+};
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngSeed};
 
@@ -49,7 +53,7 @@ proptest! {
         kappa2 in 0.0f64..0.3,
         mass in prop_oneof![Just(0.0), 0.001f64..1.0],
         sigma in 0.025f64..0.12,
-        // The droplet resolved: R >= 4 dx, sigma >= dx / 10 (droplet_solver::limits).
+        // The droplet resolved: R >= 4 dx, sigma >= dx / 10 (droplet_solver::contract::limits).
         half_n in 16usize..32,
         dt in 0.001f64..0.4,
         ic in prop_oneof![Just("i"), Just("ii"), Just("iii"), Just("iv"), Just("i'"), Just("ii'")],

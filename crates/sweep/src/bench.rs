@@ -7,16 +7,18 @@
 //! in the IC/MD bistable band of Fig. 2(b) (class agreement is what counts there), and the
 //! transient `t <= 20` through the MD instability (the time series is compared).
 //! References: steady MD / ID states by Newton on the exact co-moving steady equations
-//! ([`droplet_solver::SteadySolver`]) at `n_newton`, seeded from a fine time integration that
+//! ([`droplet_solver::roots::steady_solver::SteadySolver`]) at `n_newton`, seeded from a fine time integration that
 //! also gives the reference class; IC states are exactly `v = s = 0`; the transient by the
 //! spectral scheme at `n_ref` with a small fixed step.
 use crate::error::SweepError;
 use crate::progress::progress_bar;
-use droplet_solver::steady::MirrorAxis;
-use droplet_solver::steady_method::SteadyMethod;
+use droplet_solver::contract::ending::SteadyMethod;
+use droplet_solver::roots::steady_solver::MirrorAxis;
 use droplet_solver::{
-    simulate, InitialCondition, ModelParams, RunOutcome, RunStatus, SchemeKind, SolverSettings,
-    StateClass, SteadySolver,
+    contract::outcome::RunOutcome, contract::outcome::RunStatus,
+    contract::settings::SolverSettings, model::classify::StateClass,
+    model::initial::InitialCondition, model::params::ModelParams,
+    roots::steady_solver::SteadySolver, runs::driver::simulate, stepping::SchemeKind,
 };
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -160,7 +162,7 @@ impl BenchPlan {
             }
         }
         // Adaptive steps finished by Newton (the default for sweeps), at the default step cap.
-        let dt_max = droplet_solver::settings::DEFAULT_DT_MAX;
+        let dt_max = droplet_solver::contract::settings::DEFAULT_DT_MAX;
         for &n in adaptive_ns {
             for &tol in tols {
                 methods.push(Method {
@@ -305,7 +307,7 @@ fn run_case(c: &Case, settings: &SolverSettings, every: f64) -> Result<RunOutcom
         Some(t) => {
             s.t_max = t;
             s.steady_tol = f64::MIN_POSITIVE; // never steady: the whole window
-            Ok(droplet_solver::Run::new(&p, &ic, &s)?
+            Ok(droplet_solver::runs::driver::Run::new(&p, &ic, &s)?
                 .record_every(Some(every))
                 .execute())
         }

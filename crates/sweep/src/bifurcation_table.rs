@@ -6,7 +6,7 @@ use crate::axes::{ETA_T, KAPPA2};
 use crate::error::SweepError;
 use crate::tables::{metadata, write_parquet};
 use droplet_solver::reduced::bifurcation::{Axis, Event, SteadyPoint};
-use droplet_solver::reduced::Coefficients;
+use droplet_solver::reduced::coefficients::Coefficients;
 use polars::prelude::*;
 use std::path::{Path, PathBuf};
 

@@ -6,7 +6,7 @@
 use crate::axes::{ETA_T, KAPPA2};
 use crate::error::SweepError;
 use crate::tables::{metadata, write_parquet};
-use droplet_solver::continuation::{Branch, BranchPoint};
+use droplet_solver::continuation::{branch::Branch, branch::BranchPoint};
 use polars::prelude::*;
 use std::path::{Path, PathBuf};
 

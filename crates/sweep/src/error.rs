@@ -39,7 +39,7 @@ pub enum SweepError {
     #[error("the spec asks for {runs} runs ({points} points x initial conditions), more than the limit of {limit}; coarsen the grid, or raise the limit deliberately with --max-runs {runs}")]
     TooLarge { runs: u64, points: u64, limit: u64 },
     #[error(transparent)]
-    Solver(#[from] droplet_solver::SolverError),
+    Solver(#[from] droplet_solver::error::SolverError),
     #[error("parquet: {0}")]
     Parquet(#[from] polars::error::PolarsError),
     #[error("plot: {0}")]

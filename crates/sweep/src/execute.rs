@@ -10,7 +10,7 @@ use crate::spec::SweepSpec;
 use crate::store::{CorruptRun, RunRecord, Store, Stored};
 use crate::tables;
 use crate::tally::tally;
-use droplet_solver::simulate;
+use droplet_solver::runs::driver::simulate;
 use rayon::prelude::*;
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -117,7 +117,10 @@ fn run_pending(
                 let record = run_task(&plan.task(i))?;
                 store.save(&record)?;
                 let label = match record.outcome.class {
-                    Some(c) if record.outcome.status == droplet_solver::RunStatus::Steady => {
+                    Some(c)
+                        if record.outcome.status
+                            == droplet_solver::contract::outcome::RunStatus::Steady =>
+                    {
                         c.as_str().to_string()
                     }
                     _ => record.outcome.status.as_str().to_string(),

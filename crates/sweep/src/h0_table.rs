@@ -3,7 +3,7 @@
 use crate::axes::KAPPA2;
 use crate::error::SweepError;
 use crate::tables::{metadata, write_parquet};
-use droplet_solver::h0_fit::H0Fit;
+use droplet_solver::roots::h0_fit::H0Fit;
 use polars::prelude::*;
 use std::path::{Path, PathBuf};
 

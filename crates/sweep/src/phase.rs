@@ -14,7 +14,7 @@
 //!   no class at all: `unsettled` when a run is unsettled, `diverged` when every run
 //!   diverged, `missing` when there are no runs.
 use crate::store::RunRecord;
-use droplet_solver::{RunStatus, StateClass};
+use droplet_solver::{contract::outcome::RunStatus, model::classify::StateClass};
 use std::collections::BTreeSet;
 
 /// Label of a point whose runs gave three or more classes.
@@ -97,7 +97,10 @@ pub(crate) fn label_of(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use droplet_solver::{InitialCondition, ModelParams, RunOutcome, SolverSettings};
+    use droplet_solver::{
+        contract::outcome::RunOutcome, contract::settings::SolverSettings,
+        model::initial::InitialCondition, model::params::ModelParams,
+    };
 
     fn rec(status: RunStatus, class: Option<StateClass>) -> RunRecord {
         RunRecord {

@@ -5,7 +5,7 @@ use crate::phase::{classify_point, PointClass, MISSING};
 use crate::plan::Plan;
 use crate::store::RunRecord;
 use crate::tally::tally;
-use droplet_solver::RunStatus;
+use droplet_solver::contract::outcome::RunStatus;
 use std::collections::{BTreeMap, HashMap};
 
 /// One point of the map.

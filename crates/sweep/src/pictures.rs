@@ -11,7 +11,7 @@ use crate::spec::SweepSpec;
 use crate::store::Store;
 use droplet_solver::reduced::bifurcation::{Axis, Branch, Event, SteadyPoint};
 use droplet_solver::reduced::boundaries::boundaries;
-use droplet_solver::reduced::Coefficients;
+use droplet_solver::reduced::coefficients::Coefficients;
 use std::path::{Path, PathBuf};
 
 /// The pictures [`plot`] wrote, and how many of the map's points lack a run.
@@ -137,7 +137,7 @@ fn lines(
                     .class
                     .map(|c| c.as_str().to_string())
                     .unwrap_or_default(),
-                bold: r.outcome.status == droplet_solver::RunStatus::Steady,
+                bold: r.outcome.status == droplet_solver::contract::outcome::RunStatus::Steady,
             }
         })
         .collect();
@@ -168,10 +168,10 @@ fn lines(
 /// 1-D sweep's line, by continuation at the sweep's grid: empty for the ODE model and the
 /// paper's scheme (their steady states are other equations), and without the families
 /// that have no state on the line.
-fn pde_branches(spec: &SweepSpec, axis: Axis) -> Vec<droplet_solver::continuation::Branch> {
-    use droplet_solver::continuation::{follow, Family, Line};
-    if spec.solver.model != droplet_solver::ModelKind::Pde
-        || spec.solver.scheme != droplet_solver::SchemeKind::Spectral
+fn pde_branches(spec: &SweepSpec, axis: Axis) -> Vec<droplet_solver::continuation::branch::Branch> {
+    use droplet_solver::continuation::{branch::follow, branch::Line, problem::Family};
+    if spec.solver.model != droplet_solver::contract::settings::ModelKind::Pde
+        || spec.solver.scheme != droplet_solver::stepping::SchemeKind::Spectral
     {
         return Vec::new();
     }
@@ -184,7 +184,7 @@ fn pde_branches(spec: &SweepSpec, axis: Axis) -> Vec<droplet_solver::continuatio
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
             (a.min(x), b.max(x))
         });
-    let base = droplet_solver::ModelParams {
+    let base = droplet_solver::model::params::ModelParams {
         eta_t: spec.eta_t[0],
         kappa2: spec.kappa2[0],
         ..spec.params
@@ -200,7 +200,14 @@ fn pde_branches(spec: &SweepSpec, axis: Axis) -> Vec<droplet_solver::continuatio
     };
     [Family::IC, Family::ID, Family::MdMinor, Family::MdMajor]
         .iter()
-        .filter_map(|f| follow(&line, *f, droplet_solver::steady::MirrorAxis::X).ok())
+        .filter_map(|f| {
+            follow(
+                &line,
+                *f,
+                droplet_solver::roots::steady_solver::MirrorAxis::X,
+            )
+            .ok()
+        })
         .collect()
 }
 
@@ -296,7 +303,7 @@ pub fn ode_bifurcation(
 pub fn continuation(
     dir: &Path,
     stem: &str,
-    branches: &[droplet_solver::continuation::Branch],
+    branches: &[droplet_solver::continuation::branch::Branch],
     axis: Axis,
     title: &str,
 ) -> Result<Vec<PathBuf>, SweepError> {
@@ -311,7 +318,7 @@ pub fn continuation(
 /// The lines (solid stable, dashed unstable), event markers and labelled event positions of
 /// the full model's branches along a line.
 fn branch_drawing(
-    branches: &[droplet_solver::continuation::Branch],
+    branches: &[droplet_solver::continuation::branch::Branch],
     axis: Axis,
 ) -> (
     Vec<crate::branch_lines::BranchLine>,
@@ -319,7 +326,7 @@ fn branch_drawing(
     Vec<(f64, String)>,
 ) {
     use crate::branch_lines::BranchLine;
-    let x_of = |p: &droplet_solver::continuation::BranchPoint| match axis {
+    let x_of = |p: &droplet_solver::continuation::branch::BranchPoint| match axis {
         Axis::EtaT => p.eta_t,
         Axis::Kappa2 => p.kappa2,
     };

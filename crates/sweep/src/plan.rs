@@ -2,7 +2,10 @@
 //! everything that determines its result.
 use crate::refine::{Lattice, Node};
 use crate::spec::SweepSpec;
-use droplet_solver::{InitialCondition, ModelParams, SolverSettings};
+use droplet_solver::{
+    contract::settings::SolverSettings, model::initial::InitialCondition,
+    model::params::ModelParams,
+};
 use serde::Serialize;
 use sha2::{Digest, Sha256};
 

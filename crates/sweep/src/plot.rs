@@ -7,8 +7,10 @@ use crate::error::SweepError;
 use crate::phase::{DIVERGED, MISSING, NOT_CLASSIFIED, UNSETTLED};
 pub(crate) use crate::render::perr;
 use crate::render::{render, Figure};
-use droplet_solver::scheme::Field;
-use droplet_solver::{DropletState, ModelParams, SeriesRow};
+use droplet_solver::stepping::Field;
+use droplet_solver::{
+    contract::outcome::SeriesRow, model::params::ModelParams, model::state::DropletState,
+};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::colors::colormaps::ViridisRGB;

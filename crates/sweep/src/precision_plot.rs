@@ -3,7 +3,7 @@
 use crate::bench::BenchRow;
 use crate::error::SweepError;
 use crate::render::{perr, render, Figure};
-use droplet_solver::RunStatus;
+use droplet_solver::contract::outcome::RunStatus;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};

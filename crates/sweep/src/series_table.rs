@@ -2,7 +2,10 @@
 //! run's parameters, settings and initial condition in the metadata.
 use crate::error::SweepError;
 use crate::tables::{f64_col, metadata, write_parquet};
-use droplet_solver::{InitialCondition, ModelParams, SeriesRow, SolverSettings};
+use droplet_solver::{
+    contract::outcome::SeriesRow, contract::settings::SolverSettings,
+    model::initial::InitialCondition, model::params::ModelParams,
+};
 use polars::prelude::*;
 use std::path::Path;
 

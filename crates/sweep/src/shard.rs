@@ -4,7 +4,7 @@
 //! (microseconds per run): runs near transitions relax slowly in both models. Slices are
 //! assigned greedily, most expensive first, to the currently cheapest shard (LPT).
 use crate::plan::{Plan, Task};
-use droplet_solver::{simulate, SolverSettings};
+use droplet_solver::{contract::settings::SolverSettings, runs::driver::simulate};
 
 /// Which slice of a sweep this process runs: `index` in `0..count`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -6,7 +6,10 @@ use crate::axes::{ETA_T, KAPPA2};
 use crate::error::SweepError;
 use crate::merge_report::MergeReport;
 use crate::plan::Plan;
-use droplet_solver::{InitialCondition, ModelParams, RunOutcome, SolverSettings};
+use droplet_solver::{
+    contract::outcome::RunOutcome, contract::settings::SolverSettings,
+    model::initial::InitialCondition, model::params::ModelParams,
+};
 use fs2::FileExt;
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
@@ -347,8 +350,8 @@ mod tests {
             settings,
             solver_version: droplet_solver::SOLVER_VERSION.into(),
             outcome: RunOutcome {
-                status: droplet_solver::RunStatus::Steady,
-                class: Some(droplet_solver::StateClass::MD),
+                status: droplet_solver::contract::outcome::RunStatus::Steady,
+                class: Some(droplet_solver::model::classify::StateClass::MD),
                 state: Default::default(),
                 v: 0.5,
                 s: 0.2,

@@ -5,7 +5,7 @@
 //! parameter turns back. The step length adapts to the corrector's effort and to the turning
 //! of the tangent. Unknowns are expected to be scaled to order one (the caller maps its
 //! parameter onto `[0, 1]`).
-use crate::newton::{fd_jacobian, lu_solve};
+use crate::numerics::newton::{fd_jacobian, lu_solve};
 
 /// Step control and corrector settings.
 #[derive(Debug, Clone, PartialEq)]

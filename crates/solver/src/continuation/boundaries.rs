@@ -3,7 +3,7 @@
 //!
 //! - **IC onset of motion / of deformation** (pitchforks of the resting disk): at the disk the
 //!   linearisation decouples and neither threshold depends on the other parameter, so each is
-//!   one number ([`crate::named_state::ic_thresholds`]): a vertical and a horizontal line.
+//!   one number ([`crate::roots::named_state::ic_thresholds`]): a vertical and a horizontal line.
 //! - **ID onset of motion** (pitchfork of the resting deformed droplet into MD): the ID state
 //!   does not depend on `eta_t` (it does not move), and at a mirror-symmetric ID the drift
 //!   block of the `lambda = 0` Jacobian is `-eta_t I + K(kappa2)` (decoupled from the shape
@@ -24,13 +24,13 @@ use crate::continuation::arclength::{start, ArclengthOptions, CurvePoint, Steppe
 use crate::continuation::branch::{follow, Line};
 use crate::continuation::problem::Family;
 use crate::error::SolverError;
-use crate::named_state::ic_thresholds;
-use crate::newton::fd_jacobian;
-use crate::params::ModelParams;
+use crate::model::params::ModelParams;
+use crate::numerics::newton::fd_jacobian;
 use crate::reduced::bifurcation::Axis as Parameter;
 use crate::reduced::boundaries::Boundary;
-use crate::stability::Linearization;
-use crate::steady::{MirrorAxis, SteadySolver};
+use crate::roots::linearisation::Linearization;
+use crate::roots::named_state::ic_thresholds;
+use crate::roots::steady_solver::{MirrorAxis, SteadySolver};
 
 /// The window and resolution of [`boundaries`].
 #[derive(Debug, Clone)]
@@ -103,8 +103,8 @@ fn id_line(w: &Window, mirror: MirrorAxis, hi: f64) -> Result<Vec<(f64, f64)>, S
 /// unstable part of the branch, and no label can change there.
 pub fn mc_line(w: &Window, onset_eta_t: f64) -> Result<Vec<(f64, f64)>, SolverError> {
     let mut solver = SteadySolver::new(w.base, w.n)?;
-    let c = -crate::classify::CLASS_THRESHOLD;
-    let opts = crate::newton::NewtonOptions {
+    let c = -crate::model::classify::CLASS_THRESHOLD;
+    let opts = crate::numerics::newton::NewtonOptions {
         tol: 1e-12,
         max_iter: 30,
         fd_step: 1e-7,
@@ -117,7 +117,7 @@ pub fn mc_line(w: &Window, onset_eta_t: f64) -> Result<Vec<(f64, f64)>, SolverEr
     let mut pts = Vec::new();
     for i in 0..m {
         let k = k1 - (k1 - k0) * i as f64 / (m - 1) as f64;
-        let Ok(sol) = crate::newton::solve(
+        let Ok(sol) = crate::numerics::newton::solve(
             |x| {
                 solver.set_control(x[1], k);
                 solver.residual_on(MirrorAxis::X, x[0], c).to_vec()
@@ -134,7 +134,7 @@ pub fn mc_line(w: &Window, onset_eta_t: f64) -> Result<Vec<(f64, f64)>, SolverEr
         guess = [v, eta];
         solver.set_control(eta, k);
         let z = [v, 0.0, c, 0.0];
-        if !crate::verdict::assess(&Linearization::at(&mut solver, z), z).stable() {
+        if !crate::roots::verdict::assess(&Linearization::at(&mut solver, z), z).stable() {
             break;
         }
         pts.push((eta, k));

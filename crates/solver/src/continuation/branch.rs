@@ -11,14 +11,14 @@
 //! - `P`: a real eigenvalue crosses zero (the rotation mode excluded), or the branch ends on
 //!   IC / ID (`v = 0`, or `c = 0` for ID);
 //! - `H`: a complex pair crosses zero (an oscillating state would bifurcate: new physics).
-use crate::classify::StateClass;
 use crate::continuation::arclength::{point_at, start, ArclengthOptions, CurvePoint, Stepper};
 use crate::continuation::problem::{Family, Problem};
 use crate::error::SolverError;
-use crate::params::ModelParams;
+use crate::model::classify::StateClass;
+use crate::model::params::ModelParams;
 use crate::reduced::bifurcation::Axis as Parameter;
-use crate::steady::MirrorAxis;
-use crate::verdict::Verdict;
+use crate::roots::steady_solver::MirrorAxis;
+use crate::roots::verdict::Verdict;
 use serde::Serialize;
 
 /// A line of parameter values and how to follow a branch along it.

@@ -1,16 +1,13 @@
 //! Steady and travelling states of the full model as roots, followed in a parameter with
 //! their stability (paper Fig. 3b, for the PDE): pseudo-arclength continuation
 //! ([`arclength`]) of the co-moving force balance of one family ([`problem`]), the stability
-//! verdict of every state with the near-neutral rotation mode set aside ([`crate::verdict`]), the
+//! verdict of every state with the near-neutral rotation mode set aside ([`crate::roots::verdict`]), the
 //! bifurcation points along a branch ([`branch`]), and their continuation in both parameters,
 //! the PDE's own phase boundaries ([`boundaries`]).
+//!
+//! May use: `numerics`, `model`, `contract`, `reduced`, `roots`. Used by: the sweep crate and
+//! the CLI (`droplet continue`, `droplet boundaries`).
 pub mod arclength;
 pub mod boundaries;
 pub mod branch;
 pub mod problem;
-
-pub use crate::verdict::Verdict;
-pub use branch::{
-    follow, Branch, BranchEvent, BranchPoint, Line, EVENT_PRECISION, PARAMETER_LIMIT,
-};
-pub use problem::Family;

@@ -8,11 +8,11 @@
 //! - MD moving along its minor axis (`c < 0`) or its major axis (`c > 0`): `(v, c)`, speed
 //!   along the axis (two equations).
 use crate::error::SolverError;
-use crate::params::ModelParams;
+use crate::model::params::ModelParams;
 use crate::reduced::bifurcation::Axis as Parameter;
-use crate::stability::Linearization;
-use crate::steady::{MirrorAxis, SteadySolver};
-use crate::verdict::{assess, Verdict};
+use crate::roots::linearisation::Linearization;
+use crate::roots::steady_solver::{MirrorAxis, SteadySolver};
+use crate::roots::verdict::{assess, Verdict};
 use serde::Serialize;
 
 /// A family of steady states.
@@ -180,7 +180,7 @@ impl Problem {
     /// where the arclength corrector is not (the two branches cross there).
     pub fn meeting(&mut self, near: &[f64]) -> Option<Vec<f64>> {
         const H: f64 = 1e-5;
-        let opts = crate::newton::NewtonOptions {
+        let opts = crate::numerics::newton::NewtonOptions {
             tol: 1e-13,
             max_iter: 30,
             fd_step: 1e-7,
@@ -189,7 +189,7 @@ impl Problem {
         match self.family {
             Family::IC => None,
             Family::ID => {
-                let sol = crate::newton::solve(
+                let sol = crate::numerics::newton::solve(
                     |x| {
                         let r = |p: &mut Self, c: f64| p.residual(&[c, x[0]])[0];
                         vec![(r(self, H) - r(self, -H)) / (2.0 * H)]
@@ -201,7 +201,7 @@ impl Problem {
                 Some(vec![0.0, sol.x[0]])
             }
             Family::MdMinor | Family::MdMajor => {
-                let sol = crate::newton::solve(
+                let sol = crate::numerics::newton::solve(
                     |x| {
                         let plus = self.residual(&[H, x[0], x[1]]);
                         let minus = self.residual(&[-H, x[0], x[1]]);
@@ -230,11 +230,14 @@ impl Problem {
     pub fn root_at(&mut self, value: f64) -> Option<Vec<f64>> {
         self.set(self.q_of(value));
         let p = *self.solver.params();
-        let coef = crate::reduced::Coefficients::new(p.radius, crate::settings::H0_PAPER);
+        let coef = crate::reduced::coefficients::Coefficients::new(
+            p.radius,
+            crate::contract::settings::H0_PAPER,
+        );
         match self.family {
             Family::IC => Some(self.y_of(0.0, 0.0, value)),
             Family::ID => {
-                let seed = crate::named_state::id_seed(&coef, &p);
+                let seed = crate::roots::named_state::id_seed(&coef, &p);
                 let st = self.solver.newton_on(self.mirror, 0.0, seed, 1e-12).ok()?;
                 (st.a2.abs() > 1e-4 && st.a2.abs() < 0.9).then(|| self.y_of(0.0, st.a2, value))
             }
@@ -244,7 +247,7 @@ impl Problem {
                 } else {
                     1.0
                 };
-                let mut seeds = crate::named_state::md_seeds(&coef, &p, sign);
+                let mut seeds = crate::roots::named_state::md_seeds(&coef, &p, sign);
                 seeds.extend([0.6, 0.3, 0.9].map(|v| (v, sign * 0.27 * v / 0.6)));
                 seeds.into_iter().find_map(|(v0, c0)| {
                     let st = self.solver.newton_on(self.mirror, v0, c0, 1e-12).ok()?;

@@ -8,9 +8,9 @@
 //! found by bracketing and bisection in `0 < s < 1`. Every state lies on the mirror axis
 //! (`vy = b2 = 0`, motion along x), where the Jacobian splits into the (vx, a2) and (vy, b2)
 //! blocks; the latter holds the neutral rotation mode of ID and MD states, which is excluded.
-use crate::params::ModelParams;
+use crate::model::params::ModelParams;
+use crate::reduced::coefficients::Coefficients;
 use crate::reduced::ode::rhs;
-use crate::reduced::Coefficients;
 use serde::Serialize;
 
 /// Which family a steady state belongs to.
@@ -119,7 +119,7 @@ pub fn max_real_eigenvalue(
     rotation_mode: bool,
 ) -> f64 {
     let mut f = |y: &[f64]| rhs(c, p, [y[0], y[1], y[2], y[3]]).to_vec();
-    let jac = crate::newton::fd_jacobian(&mut f, &[v, 0.0, a2, 0.0], 1e-7);
+    let jac = crate::numerics::newton::fd_jacobian(&mut f, &[v, 0.0, a2, 0.0], 1e-7);
     let a = [[jac[0][0], jac[0][2]], [jac[2][0], jac[2][2]]];
     let b = [[jac[1][1], jac[1][3]], [jac[3][1], jac[3][3]]];
     block_max_re(a, false).max(block_max_re(b, rotation_mode))

@@ -5,7 +5,7 @@
 //! gives the MD boundary in closed parametric form in `s`:
 //! `eta_t = f1 + (2 f3 h0 s^3 + f1~ g2~ s^2) / g2`,
 //! `kappa2 = g0~ + (g2~ (eta_t - f1) + g2 f1~ - 3 f3 h0 s^2 - 2 f1~ g2~ s) / f3`.
-use crate::reduced::Coefficients;
+use crate::reduced::coefficients::Coefficients;
 use serde::Serialize;
 
 /// One boundary curve in the `(eta_t, kappa2)` plane.

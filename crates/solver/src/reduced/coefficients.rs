@@ -1,5 +1,6 @@
 //! Coefficients of the reduced model (paper eqs. F1 - tildeG2a, Sect. 5), with `A = pi R^2`.
-use crate::bessel::ik;
+use crate::contract::settings::H0_PAPER;
+use crate::numerics::bessel::ik;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
@@ -28,7 +29,6 @@ pub struct Coefficients {
 }
 
 /// The paper's fitted `h0` (Appendix E).
-pub use crate::settings::H0_PAPER;
 
 impl Coefficients {
     /// Coefficients for radius `R > 0` (NaN otherwise) and the given `h0`.

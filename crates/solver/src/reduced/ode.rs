@@ -8,15 +8,15 @@
 //! test accepts ends the run only if it is linearly stable (the Jacobian of eqs. 58-59 has no
 //! eigenvalue above [`UNSTABLE`]). Without it, a run creeping away from an unstable resting
 //! state (e.g. the deformed disk past its onset of motion, eq. idmd) stopped there as `ID`.
-use crate::classify::StateClass;
+use crate::contract::outcome::{RunOutcome, RunStatus};
+use crate::contract::settings::SolverSettings;
+use crate::contract::stop_rule::{diverged, SteadyTest};
 use crate::error::{require, SolverError};
-use crate::initial::InitialCondition;
-use crate::outcome::{RunOutcome, RunStatus};
-use crate::params::ModelParams;
-use crate::reduced::Coefficients;
-use crate::settings::SolverSettings;
-use crate::state::DropletState;
-use crate::stop_rule::{diverged, SteadyTest};
+use crate::model::classify::StateClass;
+use crate::model::initial::InitialCondition;
+use crate::model::params::ModelParams;
+use crate::model::state::DropletState;
+use crate::reduced::coefficients::Coefficients;
 use std::time::Instant;
 
 /// Right-hand side `d(vx, vy, a2, b2)/dt` of eqs. (58)-(59).
@@ -144,13 +144,13 @@ pub fn simulate(
         rejected: 0,
         max_step_error: None,
         wall_s: started.elapsed().as_secs_f64(),
-        ended_by: (status == RunStatus::Steady).then_some(crate::steady_method::Ending::Test),
+        ended_by: (status == RunStatus::Steady).then_some(crate::contract::ending::Ending::Test),
         diagnosis: None,
         t_leapt: 0.0,
         unsettled: match status {
             RunStatus::Steady => None,
-            RunStatus::Diverged => Some(crate::outcome::Unsettled::Diverged),
-            _ => Some(crate::outcome::Unsettled::NotDiagnosed),
+            RunStatus::Diverged => Some(crate::contract::outcome::Unsettled::Diverged),
+            _ => Some(crate::contract::outcome::Unsettled::NotDiagnosed),
         },
         heading: None,
         series: Vec::new(),
@@ -166,7 +166,7 @@ mod tests {
         // Through the public entry point: an ODE run takes microseconds per step, and its
         // class at a deep MD point is MD.
         let p = ModelParams::at(0.07, 0.1);
-        let out = crate::run::simulate(
+        let out = crate::runs::driver::simulate(
             &p,
             &InitialCondition::parse("i").unwrap(),
             &SolverSettings::ode(),
@@ -178,7 +178,7 @@ mod tests {
             "ODE run took {} s: not the ODE model?",
             out.wall_s
         );
-        assert!(crate::run::Run::new(
+        assert!(crate::runs::driver::Run::new(
             &p,
             &InitialCondition::parse("i").unwrap(),
             &SolverSettings::ode()

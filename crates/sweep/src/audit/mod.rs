@@ -24,10 +24,13 @@
 mod rows;
 
 use crate::error::SweepError;
-use droplet_solver::newton::{solve, NewtonOptions};
-use droplet_solver::stability::Linearization;
-use droplet_solver::verdict::{assess, Verdict};
-use droplet_solver::{ModelParams, RunStatus, StateClass, SteadySolver};
+use droplet_solver::numerics::newton::{solve, NewtonOptions};
+use droplet_solver::roots::linearisation::Linearization;
+use droplet_solver::roots::verdict::{assess, Verdict};
+use droplet_solver::{
+    contract::outcome::RunStatus, model::classify::StateClass, model::params::ModelParams,
+    roots::steady_solver::SteadySolver,
+};
 use rayon::prelude::*;
 use rows::{read, read_runs, strings, u32s, Row};
 use serde::Serialize;
@@ -122,7 +125,8 @@ fn root_near(solver: &mut SteadySolver, z: [f64; 4]) -> Checked {
     let sol = solve(
         |x| {
             let f = solver.forces(x[0], x[1], x[2], x[3]);
-            droplet_solver::dynamics::force_balance(&p, [x[0], x[1], x[2], x[3]], &f).to_vec()
+            droplet_solver::model::dynamics::force_balance(&p, [x[0], x[1], x[2], x[3]], &f)
+                .to_vec()
         },
         &z,
         &opts,
@@ -193,9 +197,9 @@ fn audit_point(
             }
             (_, Some(class)) if steady => {
                 let z = r.z;
-                let known = roots
-                    .iter()
-                    .find(|(start, _)| droplet_solver::state::max_distance(start, &z) < 1e-9);
+                let known = roots.iter().find(|(start, _)| {
+                    droplet_solver::model::state::max_distance(start, &z) < 1e-9
+                });
                 let found = match known {
                     Some((_, f)) => f.clone(),
                     None => {

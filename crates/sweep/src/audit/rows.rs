@@ -1,7 +1,7 @@
 //! The runs of a map as `droplet audit` reads them from `runs.parquet` (and the points table's
 //! columns it needs): typed rows, grouped by point, with the model and scheme checked.
 use crate::error::SweepError;
-use droplet_solver::{ModelParams, StateClass};
+use droplet_solver::{model::classify::StateClass, model::params::ModelParams};
 use polars::prelude::*;
 use std::collections::BTreeMap;
 use std::path::Path;

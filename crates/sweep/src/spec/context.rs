@@ -4,7 +4,7 @@
 use crate::axes::AXES;
 use crate::error::SpecError;
 use droplet_solver::error::show_number;
-use droplet_solver::SolverError;
+use droplet_solver::error::SolverError;
 use serde_yaml::Value;
 
 /// Where a spec came from, for error messages.
@@ -183,7 +183,7 @@ pub fn second_key_line(text: &str, start: usize, key: &str) -> Option<usize> {
         .map(|(no, _, _)| no + 1)
 }
 
-/// The spec key of a field named in a [`droplet_solver::SolverError::InvalidParameter`].
+/// The spec key of a field named in a [`droplet_solver::error::SolverError::InvalidParameter`].
 fn key_of(name: &str) -> [&str; 2] {
     match name {
         "eta2" | "radius" | "sigma" | "box_len" | "mass" => ["params", name],

@@ -2,14 +2,14 @@
 //! (default: the paper's four, i-iv).
 use super::context::{show, Ctx};
 use crate::error::SpecError;
-use droplet_solver::{InitialCondition, SolverError};
+use droplet_solver::{error::SolverError, model::initial::InitialCondition};
 use serde_yaml::Mapping;
 
 /// The `initial_conditions` section.
 pub(super) fn parse(ctx: &Ctx, top: &Mapping) -> Result<Vec<InitialCondition>, SpecError> {
     let path = ["initial_conditions"];
     let Some(v) = top.get("initial_conditions") else {
-        return Ok(droplet_solver::initial::PAPER_FOUR
+        return Ok(droplet_solver::model::initial::PAPER_FOUR
             .iter()
             .map(|n| InitialCondition::parse(n).expect("named"))
             .collect());

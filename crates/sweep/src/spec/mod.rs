@@ -31,7 +31,10 @@ mod solver;
 
 use crate::error::SpecError;
 use context::{show, Ctx};
-use droplet_solver::{InitialCondition, ModelKind, ModelParams, SolverSettings};
+use droplet_solver::{
+    contract::settings::ModelKind, contract::settings::SolverSettings,
+    model::initial::InitialCondition, model::params::ModelParams,
+};
 use serde::Serialize;
 use serde_yaml::Value;
 use std::path::{Path, PathBuf};

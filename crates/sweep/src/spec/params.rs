@@ -2,7 +2,7 @@
 //! `ModelParams::validate` (the solver's one source of truth) after the types are read.
 use super::context::Ctx;
 use crate::error::SpecError;
-use droplet_solver::ModelParams;
+use droplet_solver::model::params::ModelParams;
 use serde_yaml::Mapping;
 
 /// The `params` section.

@@ -1,10 +1,13 @@
 //! The `solver` section: the types are read here (a scheme name, an integer `n`, finite
 //! numbers); every range and consistency check is `SolverSettings::validate` and
-//! `droplet_solver::limits::check_run`, the same checks `droplet simulate` makes, with the
+//! `droplet_solver::contract::limits::check_run`, the same checks `droplet simulate` makes, with the
 //! offending field mapped back to its key.
 use super::context::{show, Ctx};
 use crate::error::SpecError;
-use droplet_solver::{ModelKind, ModelParams, SchemeKind, SolverSettings};
+use droplet_solver::{
+    contract::settings::ModelKind, contract::settings::SolverSettings, model::params::ModelParams,
+    stepping::SchemeKind,
+};
 use serde_yaml::Mapping;
 
 /// The keys of the section.
@@ -114,7 +117,7 @@ pub(super) fn parse(
     ctx.checked(
         solver
             .validate()
-            .and_then(|()| droplet_solver::limits::check_run(params, &solver)),
+            .and_then(|()| droplet_solver::contract::limits::check_run(params, &solver)),
     )?;
     Ok(solver)
 }

@@ -1,0 +1,150 @@
+//! What one run may ask for, checked before it starts, so that no request can hang or return
+//! a meaningless number:
+//! - a step count: `t_max / dt` (fixed steps) or `t_max / dt_max` (the fewest adaptive steps)
+//!   at most [`MAX_STEPS`]; adaptive runs also stop at [`adaptive_step_cap`] accepted steps with
+//!   status `step_limit` (a controller stuck at tiny steps would otherwise run for ever);
+//! - a recorded series of at most [`MAX_SERIES_ROWS`] rows;
+//! - a droplet resolved by the grid: radius at least [`MIN_RADIUS_CELLS`] cells and interface
+//!   width `sigma` at least [`MIN_SIGMA_CELLS`] of a cell (a thinner `Theta` is a staircase
+//!   whose forces are grid noise: such runs come out "steady IC" whatever the parameters);
+//! - for the paper's explicit scheme, a step below forward Euler's stability limit for
+//!   `u_t = Lap u - u` on the 5-point stencil, `dt (8 / dx^2 + 1) <= 2` (above it every run
+//!   diverges, whatever the physics).
+use crate::contract::settings::MAX_STEPS;
+use crate::contract::settings::{ModelKind, SolverSettings};
+use crate::error::{require, SolverError};
+use crate::model::params::ModelParams;
+use crate::stepping::SchemeKind;
+
+/// Most rows of a recorded time series (about 72 MB in memory).
+pub const MAX_SERIES_ROWS: f64 = 1e6;
+/// Least droplet radius in grid cells.
+pub const MIN_RADIUS_CELLS: f64 = 4.0;
+/// Least interface width `sigma` in grid cells (the smoke sweeps' N = 32..64 give 0.14..0.27).
+pub const MIN_SIGMA_CELLS: f64 = 0.1;
+
+/// Accepted adaptive steps after which a run ends with status `step_limit`: 100 times the
+/// fewest steps that could reach where the run is given up (`t_max`, or 4 `t_max` with
+/// `run_on`, [`SolverSettings::give_up_at`]), at least 1e6, at most
+/// [`MAX_STEPS`]. At the defaults (t_max = 2000, dt_max = 0.25) that is 3.2e6; a normal run
+/// takes 1e3 to 1e4.
+pub fn adaptive_step_cap(settings: &SolverSettings) -> u64 {
+    (100.0 * settings.give_up_at() / settings.dt_max).clamp(1e6, MAX_STEPS) as u64
+}
+
+/// The largest stable step of the paper's forward-Euler scheme on a grid of spacing `dx`.
+pub fn paper_fd_max_dt(dx: f64) -> f64 {
+    2.0 / (8.0 / (dx * dx) + 1.0)
+}
+
+/// Checks a recording interval against `t_max`.
+pub fn check_series(t_max: f64, every: f64) -> Result<(), SolverError> {
+    let rows = t_max / every;
+    require(
+        every > 0.0 && rows <= MAX_SERIES_ROWS,
+        "every",
+        every,
+        format!(
+            "a finite interval > 0 giving at most {MAX_SERIES_ROWS:e} series rows up to t_max = {t_max} (this one gives {rows:.3e})"
+        ),
+    )
+}
+
+/// Checks that `settings` can resolve and integrate the droplet of `params` (PDE runs; the
+/// ODE model has no grid).
+pub fn check_run(params: &ModelParams, settings: &SolverSettings) -> Result<(), SolverError> {
+    settings.check_steps()?;
+    if settings.model != ModelKind::Pde {
+        return Ok(());
+    }
+    let dx = params.box_len / settings.n as f64;
+    require(
+        params.radius >= MIN_RADIUS_CELLS * dx,
+        "radius",
+        params.radius,
+        format!(
+            "at least {MIN_RADIUS_CELLS} grid cells (dx = L/N = {dx:.4}, so >= {:.4}): the droplet must span several cells; raise n",
+            MIN_RADIUS_CELLS * dx
+        ),
+    )?;
+    require(
+        params.sigma >= MIN_SIGMA_CELLS * dx,
+        "sigma",
+        params.sigma,
+        format!(
+            "at least {MIN_SIGMA_CELLS} of a grid cell (dx = L/N = {dx:.4}, so >= {:.5}): a thinner interface is not resolved; raise n",
+            MIN_SIGMA_CELLS * dx
+        ),
+    )?;
+    if settings.scheme == SchemeKind::PaperFd {
+        let limit = paper_fd_max_dt(dx);
+        require(
+            settings.dt <= limit,
+            "dt",
+            settings.dt,
+            format!(
+                "at most {limit:.4e} for paper-fd at N = {} (forward Euler's stability limit dt (8/dx^2 + 1) <= 2, dx = {dx:.4}); above it every run diverges",
+                settings.n
+            ),
+        )?;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn name_of(e: SolverError) -> &'static str {
+        match e {
+            SolverError::InvalidParameter { name, .. } => name,
+            other => panic!("unexpected {other:?}"),
+        }
+    }
+
+    #[test]
+    fn the_paper_settings_pass_and_each_limit_names_its_field() {
+        let p = ModelParams::default();
+        assert!(check_run(&p, &SolverSettings::default()).is_ok());
+        assert!(check_run(&p, &SolverSettings::paper_fd()).is_ok());
+        let tiny = SolverSettings {
+            dt: 1e-300,
+            tol: 0.0,
+            ..SolverSettings::default()
+        };
+        assert_eq!(name_of(check_run(&p, &tiny).unwrap_err()), "dt");
+        let tiny_cap = SolverSettings {
+            dt: 1e-12,
+            dt_max: 1e-12,
+            ..SolverSettings::default()
+        };
+        assert_eq!(name_of(check_run(&p, &tiny_cap).unwrap_err()), "dt_max");
+        let thin = ModelParams { sigma: 1e-3, ..p };
+        assert_eq!(
+            name_of(check_run(&thin, &SolverSettings::default()).unwrap_err()),
+            "sigma"
+        );
+        let small = ModelParams { radius: 0.1, ..p };
+        assert_eq!(
+            name_of(check_run(&small, &SolverSettings::default()).unwrap_err()),
+            "radius"
+        );
+        let unstable = SolverSettings {
+            dt: 2e-4,
+            ..SolverSettings::paper_fd()
+        };
+        assert_eq!(name_of(check_run(&p, &unstable).unwrap_err()), "dt");
+        assert_eq!(name_of(check_series(50.0, 1e-300).unwrap_err()), "every");
+        assert!(check_series(2000.0, 0.5).is_ok());
+    }
+
+    #[test]
+    fn the_stability_limit_is_forward_eulers() {
+        // Paper grid: dx = 0.025 -> 1.5624e-4, above the paper's dt = 1e-4.
+        let limit = paper_fd_max_dt(0.025);
+        assert!((limit - 2.0 / 12801.0).abs() < 1e-15);
+        assert!(limit > 1e-4);
+        // 100 x (4 t_max) / dt_max: the default runs on to 4 t_max.
+        assert_eq!(adaptive_step_cap(&SolverSettings::default()), 3_200_000);
+    }
+}

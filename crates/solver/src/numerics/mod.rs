@@ -1,0 +1,7 @@
+//! General numerics with no knowledge of the droplet: modified Bessel functions, the row-pruned
+//! 2-D real FFT and Newton's method for small dense systems.
+//!
+//! May use: nothing of this crate but `error`. Used by every other folder.
+pub mod bessel;
+pub mod fft2;
+pub mod newton;

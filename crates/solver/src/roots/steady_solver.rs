@@ -1,0 +1,233 @@
+//! The exact co-moving steady state (design notes, Sect. 2 "How to solve it": in the droplet's
+//! frame a steadily moving state is a fixed point, so it can be computed directly): for given `(v, a2, b2)` the field
+//! `u_hat = Theta_hat / (A (1 + k^2 - i k.v))` solves `0 = Lap u - u + v.grad u + Theta / A`
+//! (paper eq. S13), and the force balance `-eta_t v + F = 0`, `Ga - kappa2 a2 = 0`,
+//! `Gb - kappa2 b2 = 0` is solved by Newton. Same grid, `Theta` and force quadrature as
+//! [`crate::stepping::comoving_etd::ComovingEtd`], so its fixed points coincide with the solver's.
+use crate::error::SolverError;
+use crate::model::dynamics;
+use crate::model::forces::{spectral_forces, Forces};
+use crate::model::grid::Grid;
+use crate::model::params::ModelParams;
+use crate::model::shape::ShapeParams;
+use crate::model::shape_transform::ShapeTransform;
+use crate::numerics::fft2::PrunedFft2;
+use crate::numerics::newton::{self, NewtonOptions};
+use rustfft::num_complex::Complex64;
+
+/// Evaluates steady fields and force-balance residuals on an `N x N` co-moving grid.
+pub struct SteadySolver {
+    params: ModelParams,
+    grid: Grid,
+    fft: PrunedFft2,
+    shapes: ShapeTransform,
+    /// The shape `(a2, b2)` whose transforms `ph`, `yh` hold, and its area: a residual at a
+    /// new velocity and the same shape (half of a Jacobian's columns) transforms nothing.
+    shape_of: Option<(f64, f64, f64)>,
+    ph: Vec<Complex64>,
+    yh: Vec<Complex64>,
+    w: Vec<Complex64>,
+}
+
+/// A mirror line of the periodic square box on which [`SteadySolver::newton_on`] works: the
+/// steady states symmetric about it form a 2-unknown problem (speed along it, one shape
+/// amplitude).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum MirrorAxis {
+    /// Motion along x, shape `(a2, 0)`.
+    X,
+    /// Motion along `(1, 1) / sqrt 2`, shape `(0, b2)`. The box's images make this orientation
+    /// differ from `X` near thresholds (an ID droplet settles on the diagonal).
+    Diagonal,
+}
+
+/// A steady state found by [`SteadySolver::newton`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SteadyState {
+    /// Speed along the axis (+x for [`SteadySolver::newton`]).
+    pub v: f64,
+    /// Shape amplitude on the axis: `a2` for [`MirrorAxis::X`] (`b2 = 0`; `a2 < 0` is a
+    /// droplet elongated across the motion), `b2` for [`MirrorAxis::Diagonal`] (`a2 = 0`).
+    pub a2: f64,
+    /// Max norm of the residual at the solution.
+    pub residual: f64,
+    pub iterations: usize,
+}
+
+impl SteadySolver {
+    pub fn new(params: ModelParams, n: usize) -> Result<Self, SolverError> {
+        params.validate()?;
+        let grid = Grid::new(n, params.box_len)?;
+        let shape = ShapeParams {
+            radius: params.radius,
+            sigma: params.sigma,
+        };
+        let len = grid.spectral_len();
+        let z = Complex64::default();
+        Ok(Self {
+            params,
+            fft: PrunedFft2::new(n),
+            shapes: ShapeTransform::new(&grid, shape),
+            shape_of: None,
+            ph: vec![z; len],
+            yh: vec![z; len],
+            w: vec![z; len],
+            grid,
+        })
+    }
+
+    /// The steady co-moving field (normalised Fourier coefficients, `[kx][ky]`) of a droplet
+    /// of shape `(a2, b2)` moving at `(vx, vy)`, and the forces it exerts.
+    pub fn field_and_forces(
+        &mut self,
+        vx: f64,
+        vy: f64,
+        a2: f64,
+        b2: f64,
+    ) -> (&[Complex64], Forces) {
+        let n = self.grid.n;
+        let area = self.transform(a2, b2);
+        let norm = 1.0 / (area * (n * n) as f64);
+        for jx in 0..=n / 2 {
+            let kx = self.grid.kx[jx];
+            let kxd = self.grid.kx_d[jx];
+            for jy in 0..n {
+                let ky = self.grid.ky[jy];
+                let kv = kxd * vx + self.grid.ky_d[jy] * vy;
+                let denom = Complex64::new(1.0 + kx * kx + ky * ky, -kv);
+                let i = jx * n + jy;
+                // Theta_hat = Re of the packed transform.
+                self.w[i] = Complex64::new(self.ph[i].re * norm, 0.0) / denom;
+            }
+        }
+        let f = spectral_forces(&self.grid, &self.w, &self.ph, &self.yh, area);
+        (&self.w, f)
+    }
+
+    /// The packed shape transforms of a droplet `(a2, b2)` (of `Theta + X Theta` and of
+    /// `Y Theta`, raw, `[kx][ky]`; see [`crate::model::forces`]) and its area `A`.
+    pub fn shape_spectra(&mut self, a2: f64, b2: f64) -> (Vec<Complex64>, Vec<Complex64>, f64) {
+        let area = self.transform(a2, b2);
+        (self.ph.clone(), self.yh.clone(), area)
+    }
+
+    pub fn params(&self) -> &ModelParams {
+        &self.params
+    }
+
+    /// Moves the solver to another `(eta_t, kappa2)`: they enter only the force balance, so
+    /// nothing sampled or planned changes (the continuation's parameters).
+    pub fn set_control(&mut self, eta_t: f64, kappa2: f64) {
+        self.params.eta_t = eta_t;
+        self.params.kappa2 = kappa2;
+    }
+
+    /// Transforms the shape `(a2, b2)` into `ph`, `yh` unless they hold it; its area.
+    fn transform(&mut self, a2: f64, b2: f64) -> f64 {
+        match self.shape_of {
+            Some((a, b, area)) if a == a2 && b == b2 => area,
+            _ => {
+                let area = self.shapes.transform(a2, b2, &mut self.ph, &mut self.yh);
+                self.shape_of = Some((a2, b2, area));
+                area
+            }
+        }
+    }
+
+    /// The steady field in real space (co-moving, droplet at the grid centre; row-major,
+    /// `values[iy * n + ix]` at `((ix - n/2) dx, (iy - n/2) dx)`).
+    pub fn field(&mut self, vx: f64, vy: f64, a2: f64, b2: f64) -> Vec<f64> {
+        let n = self.grid.n;
+        self.field_and_forces(vx, vy, a2, b2);
+        let mut spec = self.w.clone();
+        let mut out = vec![0.0; n * n];
+        self.fft.inverse(&mut spec, &mut out, 0, n - 1);
+        out
+    }
+
+    /// Forces exerted by the steady field of a droplet `(a2, b2)` moving at `(vx, vy)`.
+    pub fn forces(&mut self, vx: f64, vy: f64, a2: f64, b2: f64) -> Forces {
+        self.field_and_forces(vx, vy, a2, b2).1
+    }
+
+    /// Force-balance residual `(-eta_t vx + Fx, Ga - kappa2 a2)` for motion along x, `b2 = 0`.
+    pub fn residual(&mut self, v: f64, a2: f64) -> [f64; 2] {
+        let f = self.forces(v, 0.0, a2, 0.0);
+        let r = dynamics::force_balance(&self.params, [v, 0.0, a2, 0.0], &f);
+        [r[0], r[2]]
+    }
+
+    /// The residual of [`Self::residual`] on a mirror axis: speed `v` along it, shape
+    /// amplitude `c` on it.
+    pub fn residual_on(&mut self, axis: MirrorAxis, v: f64, c: f64) -> [f64; 2] {
+        let p = self.params;
+        match axis {
+            MirrorAxis::X => self.residual(v, c),
+            MirrorAxis::Diagonal => {
+                let d = v * std::f64::consts::FRAC_1_SQRT_2;
+                let f = self.forces(d, d, 0.0, c);
+                let r = dynamics::force_balance(&p, [d, d, 0.0, c], &f);
+                // The balance along the diagonal: its x and y parts projected on (1, 1)/sqrt 2.
+                [(r[0] + r[1]) * std::f64::consts::FRAC_1_SQRT_2, r[3]]
+            }
+        }
+    }
+
+    /// Newton solve from `(v, a2)` on the x axis. With `v = 0` only `a2` is solved (ID and IC
+    /// states, where `F = 0` by symmetry); otherwise `(v, a2)` (MD, MC states moving along x).
+    pub fn newton(&mut self, v0: f64, a20: f64, tol: f64) -> Result<SteadyState, SolverError> {
+        self.newton_on(MirrorAxis::X, v0, a20, tol)
+    }
+
+    /// [`Self::newton`] on either mirror axis ([`crate::numerics::newton::solve`]: central differences
+    /// of step 1e-6, the shape step capped at 0.2 so that it never jumps past the
+    /// small-deformation model, at most 50 iterations).
+    pub fn newton_on(
+        &mut self,
+        axis: MirrorAxis,
+        v0: f64,
+        a20: f64,
+        tol: f64,
+    ) -> Result<SteadyState, SolverError> {
+        let moving = v0 != 0.0;
+        let opts = NewtonOptions {
+            tol,
+            max_iter: 50,
+            fd_step: 1e-6,
+            max_step: if moving {
+                vec![f64::INFINITY, 0.2]
+            } else {
+                vec![0.2]
+            },
+        };
+        let sol = if moving {
+            newton::solve(
+                |x| self.residual_on(axis, x[0], x[1]).to_vec(),
+                &[v0, a20],
+                &opts,
+            )?
+        } else {
+            newton::solve(
+                |x| vec![self.residual_on(axis, 0.0, x[0])[1]],
+                &[a20],
+                &opts,
+            )?
+        };
+        let (v, a2) = if moving {
+            (sol.x[0], sol.x[1])
+        } else {
+            (0.0, sol.x[0])
+        };
+        Ok(SteadyState {
+            v,
+            a2,
+            residual: sol.residual,
+            iterations: sol.iterations,
+        })
+    }
+
+    pub fn grid(&self) -> &Grid {
+        &self.grid
+    }
+}

@@ -1,0 +1,441 @@
+//! Where a slow run lands: the one-dimensional quasi-steady flow (design notes Sect. 7).
+//!
+//! Runs are slow only beside a bifurcation, and there only one direction is slow: the field
+//! relaxes at rate >= 1, the shape at about `|kappa2 - G'| / eta2`, while the drift (or
+//! deformation) mode crossing zero has a rate of 1e-3 or less. After a short transient the
+//! run moves along a one-dimensional family of quasi-steady states, and where it lands is
+//! decided by a scalar function of the family's coordinate, not by thousands of time units.
+//!
+//! Speed family (a moving run): on a mirror line of the box (x axis, or the diagonal; the
+//! run's direction of motion turned onto the nearest one), fix the speed `v`, take the
+//! co-moving steady field at that speed (exact, [`SteadySolver`]), solve only the shape
+//! balance `G(v, c) = kappa2 c` for the shape amplitude `c*(v)` on the line, and evaluate
+//! what is left of the velocity balance,
+//!
+//! `g(v) = F(v, c*(v)) - eta_t v`    (the paper's eq. 36 at steady field and shape).
+//!
+//! Its zeros are the steady states on the line (the resting state at `v = 0`, where `F = 0`
+//! by symmetry, and the moving roots); between two zeros its sign is the direction in which a
+//! run on the family drifts (`m dv/dt = g`). So a run on the family with speed `v_run` lands
+//! on the next zero of `g` in the direction of `sign g(v_run)`, or on the resting state if
+//! `g < 0` all the way down to `v = 0`.
+//!
+//! Shape family (a resting run): with `v = 0` the velocity balance holds by symmetry, and
+//! `h(c) = G(0, c) - kappa2 c` (paper eq. 38) plays the part of `g`, with `c >= 0` the
+//! deformation along the line's long axis (the disk, `c = 0`, is always a zero).
+//!
+//! The certificate that a run's future is decided ([`land`]): its fast residual is small
+//! (its shape within [`FAMILY_TOL`] of `c*(v_run)`), the walk along the family from the run
+//! to the landing root finds no zero in between (steps of at most [`MAX_STEP`], and at most
+//! half the distance to the zero that the local slope of `g` points at, so a dip of `g`
+//! towards zero is resolved before it can be stepped over), and the caller confirms that the
+//! landing root is a root of all four force-balance equations and is stable
+//! ([`crate::runs::finish`]).
+//!
+//! Limits: where two modes are slow at once (where the moving branch's fold meets the onset
+//! of motion, and where the ID and MD onsets meet) the family is two-dimensional and the
+//! scalar flow does not decide; the landing root's stability check then usually refuses it,
+//! and the run goes on by time stepping.
+use crate::roots::steady_solver::{MirrorAxis, SteadySolver};
+use std::f64::consts::{FRAC_1_SQRT_2, FRAC_PI_4};
+
+/// Largest distance of a run's shape amplitude from the family's, `|c_run - c*(v_run)|`, for
+/// the run to be on the family (its fast parts relaxed).
+pub const FAMILY_TOL: f64 = 2e-3;
+
+/// Largest step of the walk along the family (in `v` or `c`).
+pub const MAX_STEP: f64 = 0.01;
+
+/// Smallest step of the walk: a dip of `g` narrower than this is not resolved.
+pub const MIN_STEP: f64 = 1e-5;
+
+/// The largest speed (or deformation) the walk goes to before giving up.
+pub const MAX_COORDINATE: f64 = 2.0;
+
+/// A resting run (speed at most this) is placed on the shape family.
+pub const RESTING_SPEED: f64 = 1e-4;
+
+/// Which coordinate parametrises the family.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Coordinate {
+    /// The speed `v` along the mirror line (moving runs).
+    Speed,
+    /// The deformation `c` along the mirror line's long axis, at rest.
+    Shape,
+}
+
+/// Where the run lands, and how it was found.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Landing {
+    /// The landing root `(vx, vy, a2, b2)` in the run's own orientation (on the mirror line
+    /// nearest the run, turned by the run's lean from it).
+    pub z: [f64; 4],
+    pub coordinate: Coordinate,
+    /// The run's coordinate, and the landing root's.
+    pub from: f64,
+    pub to: f64,
+    /// Samples of the scalar flow taken by the walk.
+    pub samples: usize,
+}
+
+/// The state `z` turned by `angle`: the velocity by `angle`, the shape's mode 2 by twice it.
+pub fn rotated(z: &[f64; 4], angle: f64) -> [f64; 4] {
+    let (c, s) = (angle.cos(), angle.sin());
+    let (c2, s2) = ((2.0 * angle).cos(), (2.0 * angle).sin());
+    [
+        c * z[0] - s * z[1],
+        s * z[0] + c * z[1],
+        c2 * z[2] - s2 * z[3],
+        s2 * z[2] + c2 * z[3],
+    ]
+}
+
+/// The two mirror lines next to a run's orientation (direction of motion, or long axis at
+/// rest), the nearest first: each line, the box rotation `psi` (a multiple of 90 degrees)
+/// that brings the run next to it, and the run's lean from it. A run caught turning between
+/// the lines may be on the family of either (the box's anisotropy makes them differ).
+fn lines_near(orientation: f64) -> [(MirrorAxis, f64, f64); 2] {
+    let nearest = (orientation / FRAC_PI_4).round();
+    let other = nearest
+        + if orientation >= nearest * FRAC_PI_4 {
+            1.0
+        } else {
+            -1.0
+        };
+    [nearest, other].map(|n| {
+        let (axis, base) = if (n as i64).rem_euclid(2) == 0 {
+            (MirrorAxis::X, 0.0)
+        } else {
+            (MirrorAxis::Diagonal, FRAC_PI_4)
+        };
+        (axis, n * FRAC_PI_4 - base, orientation - n * FRAC_PI_4)
+    })
+}
+
+/// `(vx, vy, a2, b2)` of speed `v`, shape amplitude `c` on `axis`.
+fn on_line(axis: MirrorAxis, v: f64, c: f64) -> [f64; 4] {
+    match axis {
+        MirrorAxis::X => [v, 0.0, c, 0.0],
+        MirrorAxis::Diagonal => [v * FRAC_1_SQRT_2, v * FRAC_1_SQRT_2, 0.0, c],
+    }
+}
+
+/// The scalar flows of one mirror line.
+pub struct SlowFlow<'a> {
+    solver: &'a mut SteadySolver,
+    axis: MirrorAxis,
+    /// Samples taken.
+    pub samples: usize,
+}
+
+impl<'a> SlowFlow<'a> {
+    pub fn new(solver: &'a mut SteadySolver, axis: MirrorAxis) -> Self {
+        Self {
+            solver,
+            axis,
+            samples: 0,
+        }
+    }
+
+    /// The family's shape amplitude `c*(v)` at speed `v` (the shape balance solved by Newton
+    /// from `c0`, central differences), or `None` if it does not converge.
+    pub fn shape_at(&mut self, v: f64, c0: f64) -> Option<f64> {
+        let h = 1e-7;
+        let mut c = c0;
+        for _ in 0..60 {
+            let r = self.solver.residual_on(self.axis, v, c)[1];
+            if r.abs() < 1e-13 {
+                return Some(c);
+            }
+            let d = (self.solver.residual_on(self.axis, v, c + h)[1]
+                - self.solver.residual_on(self.axis, v, c - h)[1])
+                / (2.0 * h);
+            let step = -r / d;
+            if !step.is_finite() {
+                return None;
+            }
+            c += step.clamp(-0.005, 0.005);
+            if step.abs() < 1e-14 {
+                return Some(c);
+            }
+        }
+        None
+    }
+
+    /// `g(v)` on the speed family, and `c*(v)` (Newton from `c0`).
+    pub fn drift(&mut self, v: f64, c0: f64) -> Option<(f64, f64)> {
+        self.samples += 1;
+        let c = self.shape_at(v, c0)?;
+        Some((self.solver.residual_on(self.axis, v, c)[0], c))
+    }
+
+    /// `h(c)` on the shape family at rest.
+    pub fn shape_drive(&mut self, c: f64) -> f64 {
+        self.samples += 1;
+        self.solver.residual_on(self.axis, 0.0, c)[1]
+    }
+}
+
+/// The next step of a walk from `x` with value `f` (the previous sample `prev`): at most
+/// [`MAX_STEP`], at most half the distance to the zero the secant points at.
+fn step_size(x: f64, f: f64, prev: Option<(f64, f64)>) -> f64 {
+    let mut step = MAX_STEP;
+    if let Some((xp, fp)) = prev {
+        let slope = (f - fp) / (x - xp);
+        let to_zero = -f / slope;
+        // Only a zero ahead (same direction as the walk) limits the step.
+        if to_zero.is_finite() && to_zero * (x - xp) > 0.0 {
+            step = step.min(0.5 * to_zero.abs());
+        }
+    }
+    step.max(MIN_STEP)
+}
+
+/// Where a run at `z = (vx, vy, a2, b2)` may land, the likelier first: along the speed
+/// family if it moves at all, along the shape family if it is nearly at rest (speed at most
+/// [`RESTING_SPEED`]: a resting deformed droplet whose drift grows slowly leaves along the
+/// speed family; one whose drift decays stays on the shape family). Each is a landing the
+/// walk found (see the module's certificate); the caller takes the first whose root it
+/// confirms stable.
+pub fn landings(solver: &mut SteadySolver, z: [f64; 4]) -> Vec<Landing> {
+    let speed = z[0].hypot(z[1]);
+    let moving = (speed > 0.0).then(|| land_moving(solver, z)).flatten();
+    let resting = (speed <= RESTING_SPEED)
+        .then(|| land_resting(solver, z))
+        .flatten();
+    moving.into_iter().chain(resting).collect()
+}
+
+/// The first of [`landings`].
+pub fn land(solver: &mut SteadySolver, z: [f64; 4]) -> Option<Landing> {
+    landings(solver, z).into_iter().next()
+}
+
+fn land_moving(solver: &mut SteadySolver, z: [f64; 4]) -> Option<Landing> {
+    let [near, other] = lines_near(z[1].atan2(z[0]));
+    land_moving_on(solver, z, near).or_else(|| land_moving_on(solver, z, other))
+}
+
+/// [`land_moving`] on one mirror line (`(axis, psi, lean)` of [`lines_near`]).
+fn land_moving_on(
+    solver: &mut SteadySolver,
+    z: [f64; 4],
+    (axis, psi, lean): (MirrorAxis, f64, f64),
+) -> Option<Landing> {
+    let here = rotated(&z, -psi);
+    let v_run = z[0].hypot(z[1]);
+    // The run's shape amplitude on the line, turned back by its lean.
+    let turned = rotated(&here, -lean);
+    let c_run = match axis {
+        MirrorAxis::X => turned[2],
+        MirrorAxis::Diagonal => turned[3],
+    };
+    let mut flow = SlowFlow::new(solver, axis);
+    let (g_run, c_fam) = flow.drift(v_run, c_run)?;
+    if (c_fam - c_run).abs() > FAMILY_TOL || g_run == 0.0 {
+        return None;
+    }
+    let dir = g_run.signum();
+    let (mut v, mut g, mut c) = (v_run, g_run, c_fam);
+    let mut prev: Option<(f64, f64)> = None;
+    let (to, c_to) = loop {
+        let mut next = v + dir * step_size(v, g, prev);
+        if next <= 0.0 {
+            // Down to rest: the resting state on the line is the landing root.
+            next = 0.0;
+        }
+        if next > MAX_COORDINATE {
+            return None;
+        }
+        let (gn, cn) = flow.drift(next, c)?;
+        if next == 0.0 {
+            // g(0) = 0 by symmetry (a sample there is round-off): the resting state.
+            break (0.0, cn);
+        }
+        if gn == 0.0 || gn.signum() != dir {
+            // A zero in (v, next]: bisection on the bracket, the shape tracked.
+            break bisect(&mut flow, (v, g, c), (next, gn, cn))?;
+        }
+        prev = Some((v, g));
+        (v, g, c) = (next, gn, cn);
+    };
+    let root = rotated(&rotated(&on_line(axis, to, c_to), lean), psi);
+    Some(Landing {
+        z: root,
+        coordinate: Coordinate::Speed,
+        from: v_run,
+        to,
+        samples: flow.samples,
+    })
+}
+
+/// A zero of `g` between two samples of opposite sign (or a zero sample), to 1e-10 in `v`.
+fn bisect(
+    flow: &mut SlowFlow<'_>,
+    mut a: (f64, f64, f64),
+    mut b: (f64, f64, f64),
+) -> Option<(f64, f64)> {
+    if b.1 == 0.0 {
+        return Some((b.0, b.2));
+    }
+    while (b.0 - a.0).abs() > 1e-10 {
+        let m = 0.5 * (a.0 + b.0);
+        let (gm, cm) = flow.drift(m, a.2)?;
+        if gm == 0.0 {
+            return Some((m, cm));
+        }
+        if gm.signum() == a.1.signum() {
+            a = (m, gm, cm);
+        } else {
+            b = (m, gm, cm);
+        }
+    }
+    Some((b.0, b.2))
+}
+
+fn land_resting(solver: &mut SteadySolver, z: [f64; 4]) -> Option<Landing> {
+    let s_run = z[2].hypot(z[3]);
+    if s_run == 0.0 {
+        return None;
+    }
+    let [near, other] = lines_near(0.5 * z[3].atan2(z[2]));
+    land_resting_on(solver, s_run, near).or_else(|| land_resting_on(solver, s_run, other))
+}
+
+/// [`land_resting`] on one mirror line (`(axis, psi, lean)` of [`lines_near`]): the
+/// deformation is the family's coordinate itself, so a resting run is on it.
+fn land_resting_on(
+    solver: &mut SteadySolver,
+    s_run: f64,
+    (axis, psi, lean): (MirrorAxis, f64, f64),
+) -> Option<Landing> {
+    let mut flow = SlowFlow::new(solver, axis);
+    let h_run = flow.shape_drive(s_run);
+    if h_run == 0.0 {
+        return None;
+    }
+    let dir = h_run.signum();
+    let (mut c, mut h) = (s_run, h_run);
+    let mut prev: Option<(f64, f64)> = None;
+    let to = loop {
+        let next = (c + dir * step_size(c, h, prev)).max(0.0);
+        if next > MAX_COORDINATE.min(1.0) {
+            return None;
+        }
+        if next == 0.0 {
+            break 0.0;
+        }
+        let hn = flow.shape_drive(next);
+        if hn == 0.0 {
+            break next;
+        }
+        if hn.signum() != dir {
+            let (mut a, mut b) = ((c, h), (next, hn));
+            while (b.0 - a.0).abs() > 1e-10 {
+                let m = 0.5 * (a.0 + b.0);
+                let hm = flow.shape_drive(m);
+                if hm.signum() == a.1.signum() {
+                    a = (m, hm);
+                } else {
+                    b = (m, hm);
+                }
+            }
+            break b.0;
+        }
+        prev = Some((c, h));
+        (c, h) = (next, hn);
+    };
+    let root = rotated(&rotated(&on_line(axis, 0.0, to), lean), psi);
+    Some(Landing {
+        z: root,
+        coordinate: Coordinate::Shape,
+        from: s_run,
+        to,
+        samples: flow.samples,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::params::ModelParams;
+
+    fn solver(eta_t: f64, kappa2: f64) -> SteadySolver {
+        SteadySolver::new(ModelParams::at(eta_t, kappa2), 192).unwrap()
+    }
+
+    #[test]
+    fn the_speed_family_matches_the_design_notes() {
+        // Design notes Sect. 7 (independent numpy prototype, N = 192): at (0.0763, 0.16)
+        // g > 0 below v ~ 0.29 (max +2.2e-5 near v = 0.175); c*(v) = -0.00177, -0.00697,
+        // -0.01527 at v = 0.1, 0.2, 0.3.
+        let mut s = solver(0.0763, 0.16);
+        let mut flow = SlowFlow::new(&mut s, MirrorAxis::X);
+        let (g, c) = flow.drift(0.1, 0.0).unwrap();
+        assert!(g > 0.0 && (c + 0.00177).abs() < 2e-5, "{g} {c}");
+        let (g, c) = flow.drift(0.2, c).unwrap();
+        assert!(g > 0.0 && (c + 0.00697).abs() < 2e-5, "{g} {c}");
+        let (g175, _) = flow.drift(0.175, c).unwrap();
+        assert!((g175 - 2.2e-5).abs() < 2e-6, "{g175}");
+        let (g, c) = flow.drift(0.3, c).unwrap();
+        assert!(g < 0.0 && (c + 0.01527).abs() < 2e-5, "{g} {c}");
+        // (0.0765, 0.16): g < 0 for all 0 < v <= 0.45, -1.8e-5 at v = 0.2.
+        let mut s = solver(0.0765, 0.16);
+        let mut flow = SlowFlow::new(&mut s, MirrorAxis::X);
+        let (g, _) = flow.drift(0.2, -0.007).unwrap();
+        assert!((g + 1.8e-5).abs() < 2e-6, "{g}");
+    }
+
+    #[test]
+    fn runs_land_where_the_design_notes_say() {
+        // Just below the onset of motion a slow run leaving the disk lands on MD, v = 0.2926
+        // (along x; here leaning 3 degrees and moving along -y: the same root, turned).
+        let mut s = solver(0.0763, 0.16);
+        let turn = std::f64::consts::FRAC_PI_2 + 3f64.to_radians();
+        let run = rotated(&[0.05, 0.0, -0.0005, 0.0], turn);
+        let l = land(&mut s, run).unwrap();
+        let (v, sd) = (l.z[0].hypot(l.z[1]), l.z[2].hypot(l.z[3]));
+        assert!(
+            (v - 0.2926).abs() < 5e-4 && l.coordinate == Coordinate::Speed,
+            "{l:?}"
+        );
+        assert!(
+            (l.z[1].atan2(l.z[0]) - turn).abs() < 1e-9 && sd > 0.01,
+            "{l:?}"
+        );
+        // Just above it, a run decays to rest however fast it moves.
+        let mut s = solver(0.0765, 0.16);
+        let l = land(&mut s, [0.3, 0.0, -0.0153, 0.0]).unwrap();
+        assert!(l.z.iter().all(|x| x.abs() < 1e-9), "{l:?}");
+        // Inside the IC/MD band the unstable MD root is the separatrix (~0.27).
+        let mut s = solver(0.078, 0.13);
+        let mut flow = SlowFlow::new(&mut s, MirrorAxis::X);
+        let (c2, c33) = (
+            flow.shape_at(0.2, 0.0).unwrap(),
+            flow.shape_at(0.33, 0.0).unwrap(),
+        );
+        let low = land(&mut s, [0.2, 0.0, c2 + 1e-3, 0.0]).unwrap();
+        assert_eq!(low.to, 0.0, "{low:?}");
+        let high = land(&mut s, [0.33, 0.0, c33, 0.0]).unwrap();
+        assert!(high.to > 0.33, "{high:?}");
+        // A run off the family (its shape far from c*(v)) is not placed on it.
+        assert!(land(&mut s, [0.2, 0.0, c2 + 0.01, 0.0]).is_none());
+    }
+
+    #[test]
+    fn a_resting_run_lands_on_the_deformed_state_below_the_deformation_onset() {
+        // (0.085, 0.112): the disk is unstable to deformation (design notes Sect. 6), a
+        // slightly deformed resting run grows to the ID state; along the diagonal here.
+        let mut s = solver(0.085, 0.112);
+        let l = land(&mut s, [0.0, 0.0, 0.0, 0.02]).unwrap();
+        assert_eq!(l.coordinate, Coordinate::Shape);
+        assert!(
+            l.to > 0.05 && l.z[2].abs() < 1e-12 && l.z[3] > 0.05,
+            "{l:?}"
+        );
+        // Above the onset the disk is stable: a deformed resting run relaxes to it.
+        let mut s = solver(0.085, 0.13);
+        let l = land(&mut s, [0.0, 0.0, 0.03, 0.0]).unwrap();
+        assert_eq!(l.to, 0.0, "{l:?}");
+    }
+}

@@ -1,0 +1,441 @@
+//! Pseudo-spectral ETD2RK in the droplet's co-moving frame (design notes, Sect. 2: the lab-frame
+//! version with the moving source explicit gave steady v = 0.613 / 0.643 at dt = 0.01 / 0.02
+//! against the exact 0.597; in the co-moving frame a steadily moving droplet is an exact fixed
+//! point).
+//!
+//! With `w(xi, t) = u(xi + r_c(t), t)` the concentration equation (paper eq. 34) becomes
+//! `w_t = Lap w - w + v . grad w + Theta(a2, b2) / A`, in Fourier space
+//! `w_t = -(1 + k^2) w + i k.v w + Theta_hat / A`. The stiff part `-(1 + k^2)` is integrated
+//! exactly (ETD2RK, [`crate::stepping::etd`]); advection and the source form the explicit part. The
+//! droplet's own linear parts (`-eta_t / m`, `-kappa2 / eta2`) get the same exact treatment.
+//! Every ETD-RK step keeps the ODE's fixed points, so a steadily moving droplet is an exact
+//! fixed point of the scheme and its steady `v`, `s` do not depend on `dt`.
+//!
+//! Adaptive steps ([`Scheme::attempt`], [`crate::stepping::step_control`]): the corrector minus the
+//! ETD1 predictor of the droplet's integrated scalars is the embedded error estimate. It is
+//! known after the first half of the step (the predictor pass gives the forces the scalar
+//! corrector needs), so a refused step costs half a step and changes nothing.
+//!
+//! Cost per step: one shape transform (the new state's, [`crate::model::shape_transform`]: the
+//! point-symmetric half of the window, three row-pruned row transforms, one complex and one
+//! half-length real column transform; no inverse transform: forces by Parseval,
+//! [`crate::model::forces`]) and two fused passes over the spectrum that advance the field and
+//! accumulate the forces ([`super::spectral_pass`]), with no exponential or division per mode.
+//! The predictor's shape is extrapolated from the last two states
+//! ([`ComovingEtd::predictor_shape`]) rather than transformed.
+//!
+//! Measured at N = 192 (`cargo bench -p droplet-solver --bench step -- --quick`, fixed
+//! dt = 0.02, MD point, one machine, one session; the README's Speed table has the final
+//! before/after pair, 467 -> 291 us): 435 us per step before (two shapes per step, each two
+//! plain row-pruned transforms) -> 300 us (predictor extrapolated) -> 285 us (symmetric
+//! transform). Profile now: the two passes ~46 %, transforms ~27 %, sampling `Theta` ~13 %
+//! (half of it `exp` in the tanh band). Tried and dropped: AVX2 code generation
+//! (`x86-64-v3`: 2 % faster; `native` with AVX-512 was 35 % slower), 4-lane accumulators in
+//! the passes (no gain), `1 / c` computed per mode instead of stored (9 % slower), a narrower
+//! band `BAND_Q = 12` (3.5 %, not worth changing `Theta` by 4e-11).
+use crate::model::dynamics;
+use crate::model::forces::Forces;
+use crate::model::grid::Grid;
+use crate::model::params::ModelParams;
+use crate::model::shape::ShapeParams;
+use crate::model::shape_transform::ShapeTransform;
+use crate::model::state::DropletState;
+use crate::numerics::fft2::PrunedFft2;
+use crate::stepping::etd::{EtdCoef, SeparableExp};
+use crate::stepping::spectral_pass::{CorrectorPass, Modes, PredictorPass, PredictorShape};
+use crate::stepping::{Attempt, Field, Scheme};
+use rustfft::num_complex::Complex64;
+
+/// Packed transforms of one droplet shape (`p`: `Theta + X Theta`, `y`: `Y Theta`), its
+/// area and the shape `(a2, b2)` they belong to.
+struct ShapeSpectra {
+    p: Vec<Complex64>,
+    y: Vec<Complex64>,
+    area: f64,
+    a2: f64,
+    b2: f64,
+}
+
+impl ShapeSpectra {
+    fn new(len: usize) -> Self {
+        let z = Complex64::default();
+        Self {
+            p: vec![z; len],
+            y: vec![z; len],
+            area: 0.0,
+            a2: 0.0,
+            b2: 0.0,
+        }
+    }
+}
+
+/// The co-moving spectral integrator of one run.
+pub struct ComovingEtd {
+    params: ModelParams,
+    grid: Grid,
+    fft: PrunedFft2,
+    shapes: ShapeTransform,
+    /// Hold the centre fixed (deformation-only runs, Appendix E).
+    pinned: bool,
+    state: DropletState,
+    /// Normalised Fourier coefficients of `w`, `[kx][ky]`.
+    w_hat: Vec<Complex64>,
+    w_new: Vec<Complex64>,
+    a_hat: Vec<Complex64>,
+    /// Explicit part of the field at the step's start.
+    n0: Vec<Complex64>,
+    /// Shape spectra at the current state, at the state before it (valid when
+    /// `prev_valid`), and at the candidate new state (or the predictor, see
+    /// [`ComovingEtd::predictor_shape`]).
+    cur: ShapeSpectra,
+    prev: ShapeSpectra,
+    prev_valid: bool,
+    next: ShapeSpectra,
+    /// `Theta_hat` (raw, real) at the predictor.
+    pred_th: Vec<f64>,
+    /// Forces at the current state, if known.
+    forces0: Option<Forces>,
+    exp: SeparableExp,
+    /// `1 / c` with `c = -(1 + k^2)` per mode.
+    inv_c: Vec<f64>,
+}
+
+impl ComovingEtd {
+    /// A run from `state` with `u = 0`, on an `n x n` grid.
+    pub fn new(
+        params: ModelParams,
+        n: usize,
+        state: DropletState,
+        pinned: bool,
+    ) -> Result<Self, crate::error::SolverError> {
+        params.validate()?;
+        let grid = Grid::new(n, params.box_len)?;
+        let len = grid.spectral_len();
+        let shape = ShapeParams {
+            radius: params.radius,
+            sigma: params.sigma,
+        };
+        let mut state = state;
+        if pinned {
+            state.vx = 0.0;
+            state.vy = 0.0;
+        }
+        let zero = Complex64::default();
+        Ok(Self {
+            params,
+            fft: PrunedFft2::new(n),
+            shapes: ShapeTransform::new(&grid, shape),
+            pinned,
+            state,
+            w_hat: vec![zero; len],
+            w_new: vec![zero; len],
+            a_hat: vec![zero; len],
+            n0: vec![zero; len],
+            cur: ShapeSpectra::new(len),
+            prev: ShapeSpectra::new(len),
+            prev_valid: false,
+            next: ShapeSpectra::new(len),
+            pred_th: vec![0.0; len],
+            forces0: None,
+            exp: SeparableExp::default(),
+            inv_c: (0..len)
+                .map(|i| {
+                    let (kx, ky) = (grid.kx[i / n], grid.ky[i % n]);
+                    -1.0 / (1.0 + kx * kx + ky * ky)
+                })
+                .collect(),
+            grid,
+        })
+    }
+
+    /// The grid of the co-moving frame.
+    pub fn grid(&self) -> &Grid {
+        &self.grid
+    }
+
+    /// Replaces the co-moving field (normalised coefficients, `[kx][ky]`).
+    pub fn set_spectrum(&mut self, w_hat: &[Complex64]) {
+        self.w_hat.copy_from_slice(w_hat);
+        self.forces0 = None;
+    }
+
+    /// The co-moving field (normalised coefficients, `[kx][ky]`).
+    pub fn spectrum(&self) -> &[Complex64] {
+        &self.w_hat
+    }
+
+    /// Forces and area at the current state.
+    pub fn forces(&mut self) -> Forces {
+        self.ensure_current()
+    }
+
+    /// Samples the shape `(a2, b2)` and transforms it into `out`.
+    fn shape_spectra(shapes: &mut ShapeTransform, a2: f64, b2: f64, out: &mut ShapeSpectra) {
+        out.area = shapes.transform(a2, b2, &mut out.p, &mut out.y);
+        (out.a2, out.b2) = (a2, b2);
+    }
+
+    /// Shape spectra and forces at the current state (computed once per state).
+    fn ensure_current(&mut self) -> Forces {
+        if let Some(f) = self.forces0 {
+            return f;
+        }
+        self.prev_valid = false;
+        let st = self.state;
+        Self::shape_spectra(&mut self.shapes, st.a2, st.b2, &mut self.cur);
+        let f = crate::model::forces::spectral_forces(
+            &self.grid,
+            &self.w_hat,
+            &self.cur.p,
+            &self.cur.y,
+            self.cur.area,
+        );
+        self.set_overdamped_velocity(&f);
+        self.forces0 = Some(f);
+        f
+    }
+
+    /// The predictor's shape spectra for the shape `(a2, b2)`: `Some(alpha)` when they are the
+    /// extrapolation `cur + alpha (cur - prev)` along the last accepted step, else `None`
+    /// after transforming them into `next` (which the new state overwrites later).
+    ///
+    /// `alpha` projects the predictor's shape change onto the last step's; the part across it
+    /// is `O(h^2)`, as is the curvature of the path, so the predictor's shape is off by
+    /// `O(h^2)`. It enters the step only through the corrector's `h phi2 (N(a) - N(y_n))`, so
+    /// the local error stays `O(h^3)` and the scheme second order; at a fixed point the shape
+    /// does not change and the extrapolation is exact. Extrapolating further than
+    /// `MAX_ALPHA` steps, or with no previous state, transforms the shape instead.
+    fn predictor_shape(&mut self, a2: f64, b2: f64) -> Option<f64> {
+        const MAX_ALPHA: f64 = 2.0;
+        if self.prev_valid {
+            let (c, q) = (&self.cur, &self.prev);
+            let back = (c.a2 - q.a2, c.b2 - q.b2);
+            let ahead = (a2 - c.a2, b2 - c.b2);
+            let norm2 = back.0 * back.0 + back.1 * back.1;
+            let alpha = if norm2 > 0.0 {
+                (ahead.0 * back.0 + ahead.1 * back.1) / norm2
+            } else {
+                0.0
+            };
+            if alpha.abs() <= MAX_ALPHA {
+                return Some(alpha);
+            }
+        }
+        Self::shape_spectra(&mut self.shapes, a2, b2, &mut self.next);
+        None
+    }
+
+    /// In the overdamped limit (`m = 0`) the velocity is `F / eta_t` at every state.
+    fn set_overdamped_velocity(&mut self, f: &Forces) {
+        if self.params.mass == 0.0 && !self.pinned {
+            (self.state.vx, self.state.vy) = dynamics::overdamped_velocity(&self.params, f);
+        }
+    }
+
+    /// Velocity used for advection at a stage with forces `f` and integrated velocity `v`.
+    fn stage_velocity(&self, f: &Forces, v: (f64, f64)) -> (f64, f64) {
+        if self.pinned {
+            (0.0, 0.0)
+        } else if self.params.mass == 0.0 {
+            dynamics::overdamped_velocity(&self.params, f)
+        } else {
+            v
+        }
+    }
+
+    /// Explicit rates of `(vx, vy, a2, b2)` beyond their linear terms.
+    fn scalar_rates(&self, f: &Forces) -> [f64; 4] {
+        dynamics::forcing(&self.params, f, self.pinned)
+    }
+}
+
+impl Scheme for ComovingEtd {
+    fn state(&self) -> DropletState {
+        self.state
+    }
+
+    fn attempt(&mut self, h: f64, max_error: f64) -> Attempt {
+        let f0 = self.ensure_current();
+        let p = self.params;
+        let st = self.state;
+        let inertial = p.mass > 0.0 && !self.pinned;
+        let (rate_v, rate_s) = dynamics::linear_rates(&p, self.pinned);
+        let vel = EtdCoef::new(rate_v, h);
+        let shp = EtdCoef::new(rate_s, h);
+        let pos = EtdCoef::new(0.0, h);
+        self.exp.update(h, &self.grid.kx, &self.grid.ky);
+        let n = self.grid.n;
+        let da = self.grid.dx * self.grid.dx;
+        let norm = 1.0 / (n as f64 * n as f64);
+
+        // Predictor (ETD1) for the scalars; then the predictor's shape spectra.
+        let (v0x, v0y) = self.stage_velocity(&f0, (st.vx, st.vy));
+        let r0 = self.scalar_rates(&f0);
+        let (vxa, vya) = (vel.predict(st.vx, r0[0]), vel.predict(st.vy, r0[1]));
+        let a2a = shp.predict(st.a2, r0[2]);
+        let b2a = shp.predict(st.b2, r0[3]);
+        let alpha = self.predictor_shape(a2a, b2a);
+
+        // Field predictor fused with the forces at the predictor.
+        let (base, back, alpha) = match alpha {
+            Some(alpha) => (&self.cur, &self.prev, alpha),
+            None => (&self.next, &self.next, 0.0),
+        };
+        let area_a = base.area + alpha * (base.area - back.area);
+        let modes = Modes {
+            grid: &self.grid,
+            exp: &self.exp,
+            inv_c: &self.inv_c,
+            h,
+        };
+        let sums = PredictorPass {
+            modes,
+            velocity: (v0x, v0y),
+            src0: norm / self.cur.area,
+            w: &self.w_hat,
+            cur_p: &self.cur.p,
+            shape: PredictorShape {
+                base_p: &base.p,
+                base_y: &base.y,
+                back_p: &back.p,
+                back_y: &back.y,
+                alpha,
+            },
+            n0: &mut self.n0,
+            a_hat: &mut self.a_hat,
+            pred_th: &mut self.pred_th,
+        }
+        .run();
+        let fa = sums.finish(da, area_a);
+
+        // Corrector for the scalars, then the new state's shape spectra.
+        let (vax, vay) = self.stage_velocity(&fa, (vxa, vya));
+        let ra = self.scalar_rates(&fa);
+        let mut next = DropletState {
+            x: pos.correct(pos.predict(st.x, v0x), v0x, vax),
+            y: pos.correct(pos.predict(st.y, v0y), v0y, vay),
+            vx: vel.correct(vxa, r0[0], ra[0]),
+            vy: vel.correct(vya, r0[1], ra[1]),
+            a2: shp.correct(a2a, r0[2], ra[2]),
+            b2: shp.correct(b2a, r0[3], ra[3]),
+        };
+        if !inertial {
+            (next.vx, next.vy) = (st.vx, st.vy);
+        }
+        if self.pinned {
+            (next.x, next.y) = (st.x, st.y);
+        }
+        // Embedded estimate: corrector minus ETD1 predictor of the integrated scalars. The
+        // step can be refused here, before the second half of its cost.
+        let error = if self.pinned {
+            (next.a2 - a2a).abs().max((next.b2 - b2a).abs())
+        } else if inertial {
+            [next.vx - vxa, next.vy - vya, next.a2 - a2a, next.b2 - b2a]
+                .iter()
+                .fold(0.0f64, |m, d| m.max(d.abs()))
+        } else {
+            let (xa, ya) = (pos.predict(st.x, v0x), pos.predict(st.y, v0y));
+            [next.x - xa, next.y - ya, next.a2 - a2a, next.b2 - b2a]
+                .iter()
+                .fold(0.0f64, |m, d| m.max(d.abs()))
+        };
+        if max_error.is_finite() && (error.is_nan() || error > max_error) {
+            return Attempt {
+                accepted: false,
+                error: Some(error),
+            };
+        }
+        let sample_next = next.is_finite() && next.deformation() < 1.0;
+        if sample_next {
+            Self::shape_spectra(&mut self.shapes, next.a2, next.b2, &mut self.next);
+        }
+
+        // Field corrector fused with the forces at the new state.
+        let modes = Modes {
+            grid: &self.grid,
+            exp: &self.exp,
+            inv_c: &self.inv_c,
+            h,
+        };
+        let sums = CorrectorPass {
+            modes,
+            velocity: (vax, vay),
+            srca: norm / area_a,
+            a_hat: &self.a_hat,
+            pred_th: &self.pred_th,
+            n0: &self.n0,
+            next_p: &self.next.p,
+            next_y: &self.next.y,
+            w_new: &mut self.w_new,
+        }
+        .run();
+        std::mem::swap(&mut self.w_hat, &mut self.w_new);
+        self.state = next;
+        if sample_next {
+            std::mem::swap(&mut self.prev, &mut self.cur);
+            std::mem::swap(&mut self.cur, &mut self.next);
+            self.prev_valid = true;
+            let f = sums.finish(da, self.cur.area);
+            self.set_overdamped_velocity(&f);
+            self.forces0 = Some(f);
+        } else {
+            self.forces0 = None;
+        }
+        Attempt {
+            accepted: true,
+            error: Some(error),
+        }
+    }
+
+    fn leap(
+        &mut self,
+        root: [f64; 4],
+        root_field: &[Complex64],
+        factor: f64,
+        shift: [f64; 2],
+    ) -> bool {
+        if root_field.len() != self.w_hat.len() || self.pinned || self.params.mass == 0.0 {
+            return false;
+        }
+        for (w, r) in self.w_hat.iter_mut().zip(root_field) {
+            *w = r + (*w - r) * factor;
+        }
+        let st = &mut self.state;
+        let z = [&mut st.vx, &mut st.vy, &mut st.a2, &mut st.b2];
+        for (x, r) in z.into_iter().zip(root) {
+            *x = r + (*x - r) * factor;
+        }
+        st.x += shift[0];
+        st.y += shift[1];
+        // The shape changed: its spectra and forces are recomputed, and the predictor's
+        // extrapolation starts afresh.
+        self.forces0 = None;
+        self.prev_valid = false;
+        true
+    }
+
+    fn mass(&self) -> f64 {
+        self.params.box_len * self.params.box_len * self.w_hat[0].re
+    }
+
+    fn field(&mut self) -> Field {
+        // Lab frame: u(x) = w(x - r_c), an exact phase shift e^{-i k . r_c}.
+        let n = self.grid.n;
+        let (x, y) = (self.state.x, self.state.y);
+        let mut spec = self.w_hat.clone();
+        for jx in 0..=n / 2 {
+            let kx = self.grid.kx_d[jx];
+            for jy in 0..n {
+                let phase = -(kx * x + self.grid.ky_d[jy] * y);
+                spec[jx * n + jy] *= Complex64::from_polar(1.0, phase);
+            }
+        }
+        let mut values = vec![0.0; n * n];
+        self.fft.inverse(&mut spec, &mut values, 0, n - 1);
+        Field {
+            n,
+            len: self.params.box_len,
+            values,
+        }
+    }
+}

@@ -1,0 +1,108 @@
+//! Time stepping: the integrators of the droplet model ([`Scheme`]; each owns its field and the
+//! droplet state) and what they are built from.
+//!
+//! - `comoving_etd`: the default pseudo-spectral ETD2RK in the droplet's co-moving frame,
+//!   fixed or adaptive steps; `spectral_pass` its one spectral pass per stage; `etd` the
+//!   exponential time-differencing coefficients; `step_control` the PI step-size controller.
+//! - `paper_fd`: the paper's forward-Euler finite differences (the baseline).
+//!
+//! May use: `numerics`, `model`. Used by: `contract` (the scheme setting), `runs`.
+pub mod comoving_etd;
+pub mod etd;
+pub mod paper_fd;
+pub mod spectral_pass;
+pub mod step_control;
+
+use crate::error::SolverError;
+use crate::model::state::DropletState;
+use serde::{Deserialize, Serialize};
+use std::fmt;
+use std::str::FromStr;
+
+/// Which integrator a run uses.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SchemeKind {
+    /// Pseudo-spectral ETD2RK in the droplet's co-moving frame (default).
+    Spectral,
+    /// The paper's forward-Euler finite-difference scheme on the lab grid (baseline).
+    PaperFd,
+}
+
+impl SchemeKind {
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            Self::Spectral => "spectral",
+            Self::PaperFd => "paper-fd",
+        }
+    }
+}
+
+impl fmt::Display for SchemeKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+impl FromStr for SchemeKind {
+    type Err = SolverError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s {
+            "spectral" => Ok(Self::Spectral),
+            "paper-fd" => Ok(Self::PaperFd),
+            other => Err(SolverError::UnknownScheme(other.to_string())),
+        }
+    }
+}
+
+/// The concentration field on a lab-frame grid: `values[iy * n + ix]` at
+/// `x = (ix - n/2) dx`, `y = (iy - n/2) dx`.
+#[derive(Debug, Clone)]
+pub struct Field {
+    pub n: usize,
+    pub len: f64,
+    pub values: Vec<f64>,
+}
+
+/// What became of one step attempt.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Attempt {
+    /// The step was taken (else nothing changed).
+    pub accepted: bool,
+    /// Embedded local error estimate: max over the droplet's integrated scalars of
+    /// `|corrector - predictor|` (`None` for schemes without one).
+    pub error: Option<f64>,
+}
+
+/// One integrator: advance the droplet and its field by a step.
+pub trait Scheme: Send {
+    /// Current droplet state.
+    fn state(&self) -> DropletState;
+    /// Attempts a step of `h`. It is taken unless the scheme's embedded error estimate
+    /// exceeds `max_error`; a refused step leaves the scheme unchanged. Schemes without an
+    /// estimate always take the step.
+    fn attempt(&mut self, h: f64, max_error: f64) -> Attempt;
+    /// Advances by `h` unconditionally.
+    fn step(&mut self, h: f64) {
+        self.attempt(h, f64::INFINITY);
+    }
+    /// `Integral u dA`.
+    fn mass(&self) -> f64;
+    /// The concentration in the lab frame.
+    fn field(&mut self) -> Field;
+    /// Moves the run along a linear mode of the fixed point `root = (vx, vy, a2, b2)` whose
+    /// co-moving field is `root_field` (normalised coefficients, `[kx][ky]`, as
+    /// [`crate::roots::steady_solver::SteadySolver::field_and_forces`] gives them): the displacement of
+    /// the field and of `(vx, vy, a2, b2)` from the fixed point is multiplied by `factor`
+    /// and the centre moves by `shift` ([`crate::runs::leap`]). Schemes without a
+    /// co-moving spectrum return false and change nothing.
+    fn leap(
+        &mut self,
+        _root: [f64; 4],
+        _root_field: &[rustfft::num_complex::Complex64],
+        _factor: f64,
+        _shift: [f64; 2],
+    ) -> bool {
+        false
+    }
+}
