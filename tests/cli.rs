@@ -79,7 +79,8 @@ fn smoke_sweep_produces_typed_tables_and_a_picture() {
     assert_eq!(label_at(0.07, 0.10), "MD");
     assert_eq!(label_at(0.10, 0.16), "IC");
     // Metadata: spec, hash, versions, commit.
-    let meta = droplet_sweep::tables::read_metadata(&out.join("runs.parquet")).unwrap();
+    let meta =
+        droplet_sweep::tables::sweep_tables::read_metadata(&out.join("runs.parquet")).unwrap();
     for key in [
         "spec",
         "spec_sha256",
@@ -689,7 +690,8 @@ fn bench_quick_writes_its_table_summary_and_picture_and_rescores() {
     assert_eq!(df.height() as u64, j["rows"].as_u64().unwrap());
     assert_eq!(df.column("n").unwrap().dtype(), &DataType::UInt32);
     assert_eq!(df.column("err_series").unwrap().dtype(), &DataType::Float64);
-    let meta = droplet_sweep::tables::read_metadata(&out.join("bench.parquet")).unwrap();
+    let meta =
+        droplet_sweep::tables::sweep_tables::read_metadata(&out.join("bench.parquet")).unwrap();
     for k in ["git_commit", "machine", "command", "plan"] {
         assert!(meta.contains_key(k), "{k}");
     }

@@ -153,9 +153,9 @@ fn fig2b_class_changes_fall_between_the_committed_bifurcation_points() {
     // (results/continuation/run.sh): every class change between neighbouring grid points has a
     // P / SN point between them, or is a resting class where that state is unstable.
     let mut bracketed = 0;
-    for line in droplet_sweep::line_compare::FIG2B_LINES {
+    for line in droplet_sweep::map::line_compare::FIG2B_LINES {
         let name = line.0;
-        let changes = droplet_sweep::line_compare::compare_fig2b(line).unwrap();
+        let changes = droplet_sweep::map::line_compare::compare_fig2b(line).unwrap();
         assert!(!changes.is_empty(), "line {name}");
         for c in &changes {
             assert!(c.explained(), "line {name}: {c:?}");

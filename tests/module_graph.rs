@@ -1,9 +1,10 @@
-//! The module import graph of each library crate has no cycle: data and dependencies flow one
-//! way (spec -> plan -> runs -> tables -> pictures in the sweep crate; parameters and settings
-//! -> schemes -> run driver in the solver crate).
+//! The folders of each library crate depend one way, in the order their `lib.rs` lists them
+//! (numerics -> model -> stepping -> contract -> reduced -> roots -> runs -> continuation in
+//! the solver crate; spec -> store -> map -> audit -> tables -> pictures -> execution -> bench
+//! in the sweep crate), and the module graph has no cycle.
 //!
-//! A module is a top-level file or folder of `src/` (`scheme/comoving_etd.rs` belongs to
-//! `scheme`); it depends on another when its code (not its comments, not its `#[cfg(test)]`
+//! A module is a top-level file or folder of `src/` (`stepping/comoving_etd.rs` belongs to
+//! `stepping`); it depends on another when its code (not its comments, not its `#[cfg(test)]`
 //! part) names `crate::other`. A cycle fails the test with the modules on it.
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
@@ -155,9 +156,65 @@ fn library_crates_have_no_module_import_cycle() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     for krate in ["crates/solver", "crates/sweep"] {
         let g = graph(&root.join(krate).join("src"));
-        assert!(g.len() > 10, "{krate}: only {} modules found", g.len());
+        assert!(g.len() >= 9, "{krate}: only {} modules found", g.len());
         if let Some(cycle) = find_cycle(&g) {
             panic!("{krate}: module import cycle {}", cycle.join(" -> "));
+        }
+    }
+}
+
+/// The top-level modules of each crate, lowest first: each may use only those before it.
+const LAYERS: [(&str, &[&str]); 2] = [
+    (
+        "crates/solver",
+        &[
+            "error",
+            "numerics",
+            "model",
+            "stepping",
+            "contract",
+            "reduced",
+            "roots",
+            "runs",
+            "continuation",
+        ],
+    ),
+    (
+        "crates/sweep",
+        &[
+            "merge_report",
+            "error",
+            "spec",
+            "store",
+            "map",
+            "audit",
+            "tables",
+            "pictures",
+            "execution",
+            "bench",
+        ],
+    ),
+];
+
+#[test]
+fn folders_depend_one_way_in_the_documented_order() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    for (krate, order) in LAYERS {
+        let g = graph(&root.join(krate).join("src"));
+        let found: BTreeSet<&str> = g.keys().map(String::as_str).collect();
+        let listed: BTreeSet<&str> = order.iter().copied().collect();
+        assert_eq!(
+            found, listed,
+            "{krate}: the top-level modules changed; update LAYERS and lib.rs's map"
+        );
+        let rank = |m: &str| order.iter().position(|o| *o == m).unwrap();
+        for (m, deps) in &g {
+            for d in deps {
+                assert!(
+                    rank(d) < rank(m),
+                    "{krate}: {m} uses {d}, which comes after it in lib.rs's map"
+                );
+            }
         }
     }
 }

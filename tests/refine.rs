@@ -4,7 +4,7 @@
 //! share their runs in one directory.
 mod common;
 use common::{json, kill_at_random_moments, read, run, sweep, table_without_wall, write_spec};
-use droplet_sweep::boundary_table;
+use droplet_sweep::tables::boundaries;
 use polars::prelude::*;
 use std::collections::HashMap;
 use std::path::Path;
@@ -93,7 +93,7 @@ fn ode_refinement_reproduces_the_analytic_boundaries_to_the_finest_step() {
         pts.iter().any(|p| p.level == 4),
         "the finest level is reached"
     );
-    let curves: Vec<Vec<(f64, f64)>> = boundary_table::read(&out.join(boundary_table::FILE), "ode")
+    let curves: Vec<Vec<(f64, f64)>> = boundaries::read(&out.join(boundaries::FILE), "ode")
         .unwrap()
         .into_iter()
         .map(|c| c.points)

@@ -1,6 +1,6 @@
-//! `droplet bench`: the work-precision benchmark ([`droplet_sweep::bench`]).
+//! `droplet bench`: the work-precision benchmark ([`droplet_sweep::bench::cases`]).
 use super::{print_json, CliError};
-use droplet_sweep::bench_run::{run_benchmark, BenchOptions};
+use droplet_sweep::bench::run::{run_benchmark, BenchOptions};
 use std::path::PathBuf;
 
 /// Time representative runs against their references: speed and the error it costs.

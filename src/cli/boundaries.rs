@@ -3,8 +3,8 @@ use super::{print_json, CliError};
 use droplet_solver::continuation::boundaries::{boundaries, Window};
 use droplet_solver::model::params::ModelParams;
 use droplet_solver::reduced::coefficients::Coefficients;
-use droplet_sweep::boundary_table::{self, NamedCurve};
-use droplet_sweep::plot::Curve;
+use droplet_sweep::pictures::figures::Curve;
+use droplet_sweep::tables::boundaries::{self, NamedCurve};
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -98,7 +98,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
         ..base
     };
     base.validate()?;
-    droplet_sweep::atomic::create_output_dir(&a.out)?;
+    droplet_sweep::store::atomic::create_output_dir(&a.out)?;
     let started = Instant::now();
     eprintln!(
         "boundaries in eta_t {:?}, kappa2 {:?} at N = {} (about a minute at N = 192)",
@@ -130,8 +130,8 @@ pub fn run(a: Args) -> Result<(), CliError> {
         .into_iter()
         .chain(NamedCurve::from_boundaries("ode", &ode))
         .collect();
-    let path = a.out.join(boundary_table::FILE);
-    boundary_table::write(
+    let path = a.out.join(boundaries::FILE);
+    boundaries::write(
         &path,
         &all,
         sweep.as_ref().map(|s| s.source.as_str()),
@@ -151,7 +151,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
             dashed: c.model == "ode",
         })
         .collect();
-    let mut files = droplet_sweep::plot::boundary_picture(
+    let mut files = droplet_sweep::pictures::figures::boundary_picture(
         &a.out,
         "boundaries",
         &format!("Phase boundaries: PDE (N = {}) solid, ODE dashed", a.n),
@@ -161,7 +161,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
     )?;
     files.push(path);
     if sweep.is_some() {
-        let drawn = droplet_sweep::pictures::plot(&a.out)?;
+        let drawn = droplet_sweep::pictures::sweep_pictures::plot(&a.out)?;
         if drawn.missing > 0 {
             eprintln!(
                 "warning: {}",

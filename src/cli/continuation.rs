@@ -91,7 +91,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
             a.mass
         )));
     }
-    droplet_sweep::atomic::create_output_dir(&a.out)?;
+    droplet_sweep::store::atomic::create_output_dir(&a.out)?;
     let line = Line {
         base,
         n: a.n,
@@ -146,8 +146,9 @@ pub fn run(a: Args) -> Result<(), CliError> {
         "{fixed_name} = {fixed}, {varied} from {} to {}",
         a.line.from, a.line.to
     );
-    let [p1, p2] = droplet_sweep::continuation_table::write(&a.out, &stem, &branches, &desc, a.n)?;
-    let mut files = droplet_sweep::pictures::continuation(
+    let [p1, p2] =
+        droplet_sweep::tables::continuation::write(&a.out, &stem, &branches, &desc, a.n)?;
+    let mut files = droplet_sweep::pictures::sweep_pictures::continuation(
         &a.out,
         &stem,
         &branches,

@@ -3,7 +3,7 @@ use super::{print_json, CliError};
 use droplet_solver::model::params::ModelParams;
 use droplet_solver::reduced::coefficients::Coefficients;
 use droplet_solver::roots::h0_fit::fit_h0;
-use droplet_sweep::plot::{h0_picture, H0Picture};
+use droplet_sweep::pictures::figures::{h0_picture, H0Picture};
 use std::path::PathBuf;
 
 /// Fit the reduced model's h0 to deformation-only PDE steady states (Appendix E).
@@ -57,9 +57,9 @@ pub fn run(a: Args) -> Result<(), CliError> {
         )));
     }
     let count = count as usize;
-    droplet_sweep::atomic::create_output_dir(&a.out)?;
+    droplet_sweep::store::atomic::create_output_dir(&a.out)?;
     let ks: Vec<f64> = (0..count)
-        .map(|i| droplet_sweep::spec::round12(a.from + i as f64 * a.step))
+        .map(|i| droplet_sweep::spec::axes::round12(a.from + i as f64 * a.step))
         .collect();
     let base = ModelParams {
         sigma: a.sigma,
@@ -75,7 +75,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
             code: 1,
         });
     }
-    let table = droplet_sweep::h0_table::write(&a.out, &fit, a.n)?;
+    let table = droplet_sweep::tables::h0::write(&a.out, &fit, a.n)?;
     let g0t = Coefficients::new(base.radius, fit.p2).g0t;
     let pic = H0Picture {
         points: fit.points.clone(),

@@ -20,7 +20,7 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<(), CliError> {
-    match droplet_sweep::merge(&a.out, !a.no_plot) {
+    match droplet_sweep::execution::merge::merge(&a.out, !a.no_plot) {
         Ok(report) => {
             if a.json {
                 print_json(&report);
@@ -36,7 +36,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
             }
             Ok(())
         }
-        Err(droplet_sweep::SweepError::Incomplete(report)) => {
+        Err(droplet_sweep::error::SweepError::Incomplete(report)) => {
             if a.json {
                 print_json(&report);
             }

@@ -93,8 +93,8 @@ impl CliError {
     }
 }
 
-impl From<droplet_sweep::SweepError> for CliError {
-    fn from(e: droplet_sweep::SweepError) -> Self {
+impl From<droplet_sweep::error::SweepError> for CliError {
+    fn from(e: droplet_sweep::error::SweepError) -> Self {
         Self {
             code: if e.is_user_error() { 2 } else { 1 },
             message: e.to_string(),

@@ -117,14 +117,14 @@ pub fn run(a: Args) -> Result<(), CliError> {
                 radius,
                 ..ModelParams::default()
             })?;
-            droplet_sweep::atomic::create_output_dir(&out)?;
+            droplet_sweep::store::atomic::create_output_dir(&out)?;
             let c = Coefficients::new(radius, h0);
             let values: Vec<f64> = (0..steps)
                 .map(|i| from + (to - from) * i as f64 / (steps - 1) as f64)
                 .collect();
             let (pts, events) = diagram(&c, &base, axis, &values);
             let stem = format!("bifurcation_{}", fixed_label.replace(" = ", "_"));
-            let [p1, p2] = droplet_sweep::bifurcation_table::write(
+            let [p1, p2] = droplet_sweep::tables::bifurcation::write(
                 &out,
                 &stem,
                 &pts,
@@ -133,7 +133,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
                 &c,
                 &format!("{fixed_label}, {x_label} from {from} to {to}"),
             )?;
-            let mut files = droplet_sweep::pictures::ode_bifurcation(
+            let mut files = droplet_sweep::pictures::sweep_pictures::ode_bifurcation(
                 &out,
                 &stem,
                 &pts,

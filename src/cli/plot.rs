@@ -18,7 +18,7 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<(), CliError> {
-    let drawn = droplet_sweep::pictures::plot(&a.out)?;
+    let drawn = droplet_sweep::pictures::sweep_pictures::plot(&a.out)?;
     if a.json {
         print_json(&serde_json::json!({
             "files": drawn.files, "points": drawn.points, "missing": drawn.missing,

@@ -4,7 +4,7 @@ use droplet_solver::{
     contract::settings::SolverSettings, model::initial::InitialCondition,
     model::params::ModelParams, runs::driver::Run, stepping::SchemeKind,
 };
-use droplet_sweep::plot;
+use droplet_sweep::pictures::figures;
 use serde::Serialize;
 use std::path::PathBuf;
 
@@ -228,7 +228,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
     let out = run.execute();
     let mass_integral = run.scheme_mut().mass();
     if let Some(path) = &a.series {
-        droplet_sweep::series_table::write(path, &out.series, &params, &settings, &ic)?;
+        droplet_sweep::tables::series::write(path, &out.series, &params, &settings, &ic)?;
     }
     let mut pictures = Vec::new();
     if let Some(path) = &a.picture {
@@ -242,7 +242,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
             out.status.as_str(),
             out.t_end
         );
-        pictures = plot::run_picture(path, &title, &params, &field, &out.state, &out.series)?;
+        pictures = figures::run_picture(path, &title, &params, &field, &out.state, &out.series)?;
     }
     let final_state = (out.ended_by == Some(droplet_solver::contract::ending::Ending::Test)
         && settings.steady == droplet_solver::contract::ending::SteadyMethod::Test

@@ -1,6 +1,6 @@
 //! `droplet slurm`: a Slurm job array for a sweep, plus a dependent merge job.
 use super::{print_json, CliError};
-use droplet_sweep::{spec, SweepError};
+use droplet_sweep::{error::SweepError, spec};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -40,7 +40,7 @@ pub struct Args {
     #[arg(long)]
     droplet: Option<PathBuf>,
     /// Refuse specs with more runs than this (passed on to every shard).
-    #[arg(long, value_name = "RUNS", default_value_t = droplet_sweep::plan::DEFAULT_MAX_RUNS)]
+    #[arg(long, value_name = "RUNS", default_value_t = droplet_sweep::store::plan::DEFAULT_MAX_RUNS)]
     max_runs: u64,
     /// Submit with sbatch (array, then the merge job depending on it).
     #[arg(long)]
@@ -59,7 +59,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
     if a.shards == 0 || a.cpus == 0 {
         return Err(CliError::usage("--shards and --cpus must be at least 1"));
     }
-    droplet_sweep::plan::check_size(&sweep, a.max_runs)?;
+    droplet_sweep::store::plan::check_size(&sweep, a.max_runs)?;
     let out = abs(&a.out.clone().unwrap_or_else(|| sweep.output.clone()));
     let exe = match &a.droplet {
         Some(p) => abs(p),
@@ -67,19 +67,21 @@ pub fn run(a: Args) -> Result<(), CliError> {
             std::env::current_exe().map_err(|e| CliError::from(SweepError::io("droplet", e)))?
         }
     };
-    let scripts = droplet_sweep::slurm::write_scripts(&droplet_sweep::slurm::SlurmJob {
-        name: sweep.name.clone(),
-        spec: abs(&a.spec),
-        out: out.clone(),
-        exe,
-        shards: a.shards,
-        cpus: a.cpus,
-        partition: a.partition.clone(),
-        time: a.time.clone(),
-        mem: a.mem.clone(),
-        max_runs: a.max_runs,
-        levels: sweep.refine.map(|l| l.refine.levels),
-    })?;
+    let scripts = droplet_sweep::execution::slurm::write_scripts(
+        &droplet_sweep::execution::slurm::SlurmJob {
+            name: sweep.name.clone(),
+            spec: abs(&a.spec),
+            out: out.clone(),
+            exe,
+            shards: a.shards,
+            cpus: a.cpus,
+            partition: a.partition.clone(),
+            time: a.time.clone(),
+            mem: a.mem.clone(),
+            max_runs: a.max_runs,
+            levels: sweep.refine.map(|l| l.refine.levels),
+        },
+    )?;
     let (sweep_path, merge_path) = (scripts[0].clone(), scripts[1].clone());
     let mut jobs = Vec::new();
     if a.submit {

@@ -13,7 +13,7 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<(), CliError> {
-    let st = droplet_sweep::status::status(&a.out)?;
+    let st = droplet_sweep::execution::status::status(&a.out)?;
     if a.json {
         print_json(&st);
     } else {

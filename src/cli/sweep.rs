@@ -1,7 +1,7 @@
 //! `droplet sweep`: every (point, initial condition) run of a YAML spec, resumable.
 use super::{print_json, CliError};
-use droplet_sweep::shard::Shard;
-use droplet_sweep::{run_sweep, spec, SweepOptions};
+use droplet_sweep::store::shard::Shard;
+use droplet_sweep::{execution::execute::run_sweep, execution::execute::SweepOptions, spec};
 use std::path::PathBuf;
 
 /// Run a sweep from a YAML spec: every point from every initial condition, resumable.
@@ -38,7 +38,7 @@ pub struct Args {
     level: Option<u32>,
     /// Refuse specs with more runs than this (points x initial conditions), checked before
     /// anything is written. Raise it deliberately for very large sweeps.
-    #[arg(long, value_name = "RUNS", default_value_t = droplet_sweep::plan::DEFAULT_MAX_RUNS)]
+    #[arg(long, value_name = "RUNS", default_value_t = droplet_sweep::store::plan::DEFAULT_MAX_RUNS)]
     max_runs: u64,
     /// Print a JSON summary instead of text.
     #[arg(long)]

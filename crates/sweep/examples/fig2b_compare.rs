@@ -2,7 +2,7 @@
 //! changes against the continuation's bifurcation points on the same line.
 //!
 //! `cargo run --release -p droplet-sweep --example fig2b_compare > results/continuation/fig2b_comparison.md`
-use droplet_sweep::line_compare::{compare_fig2b, FIG2B_LINES};
+use droplet_sweep::map::line_compare::{compare_fig2b, FIG2B_LINES};
 
 fn main() {
     println!("# Fig. 2b: time-stepping class changes against continuation (N = 192)\n");

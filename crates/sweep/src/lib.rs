@@ -1,43 +1,41 @@
-//! Sweeps of the droplet model over `(eta_t, kappa2)`: YAML specs, content-keyed run store
-//! with resume, parallel execution, point classification, Parquet tables and pictures.
-//! Data flows one way: spec -> plan -> runs (store) -> tables -> pictures.
-pub mod atomic;
+//! Sweeps of the droplet model: YAML specs, a content-keyed run store with resume, parallel and
+//! sharded execution, point classification and refinement, the audit of a map against the
+//! stable states, Parquet tables and pictures.
+//!
+//! # Map of the crate
+//!
+//! Each folder holds one concern and uses only the folders listed before it (checked by
+//! `tests/module_graph.rs`):
+//!
+//! | folder | what it holds |
+//! |---|---|
+//! | [`spec`] | the YAML spec: strict parsing, the swept axes, the point lattice |
+//! | [`store`] | the plan (tasks and run keys), the run store and its lock, shards, atomic writes |
+//! | [`map`] | point classes, the phase map of a sweep, refinement, label counts, 1-D comparisons |
+//! | [`audit`] | `droplet audit`: every label checked against the stable states at its point |
+//! | [`tables`] | the Parquet tables (runs, points, series, branches, boundaries, `h0` fit) |
+//! | [`pictures`] | the figures as PNG and SVG |
+//! | [`execution`] | running, merging and watching a sweep; Slurm scripts; progress bars |
+//! | [`bench`] | the work-precision benchmark |
+//!
+//! [`error`] holds the crate's errors; [`merge_report`] what a merge found (errors carry it).
+//!
+//! # The path of one run
+//!
+//! A YAML line is parsed by [`spec::SweepSpec::load`]; [`store::plan::Plan`] turns the spec into
+//! tasks, each keyed by a hash of its parameters, settings and initial condition;
+//! [`execution::execute::run_sweep`] runs the tasks not yet in the [`store::run_store::Store`]
+//! through `droplet_solver::runs::driver::simulate` and stores each outcome as it finishes;
+//! [`map::phase_map::PhaseMap`] classes every point from its runs
+//! ([`map::point_class`]); [`sweep_tables::sweep_tables`] writes one row per run to `runs.parquet`
+//! and one per point to `points.parquet`; [`pictures::sweep_pictures`] draws the map.
 pub mod audit;
-pub mod axes;
 pub mod bench;
-pub mod bench_run;
-pub mod bench_table;
-pub mod bifurcation_table;
-pub mod boundary_table;
-pub mod branch_lines;
-pub mod continuation_table;
 pub mod error;
-pub mod execute;
-pub mod h0_table;
-pub mod level_walk;
-pub mod line_compare;
-pub mod merge;
+pub mod execution;
+pub mod map;
 pub mod merge_report;
-pub mod phase;
-pub mod phase_map;
 pub mod pictures;
-pub mod plan;
-pub mod plot;
-pub mod precision_plot;
-pub mod progress;
-pub mod refine;
-pub mod render;
-pub mod series_table;
-pub mod shard;
-pub mod slurm;
 pub mod spec;
-pub mod status;
 pub mod store;
 pub mod tables;
-pub mod tally;
-
-pub use error::{SpecError, SweepError};
-pub use execute::{run_sweep, SweepOptions, SweepSummary};
-pub use merge::merge;
-pub use merge_report::MergeReport;
-pub use spec::SweepSpec;

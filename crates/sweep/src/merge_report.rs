@@ -1,9 +1,9 @@
-//! What [`crate::merge::merge`] found: the runs of a sweep, those missing or unreadable, and
+//! What [`crate::execution::merge::merge`] found: the runs of a sweep, those missing or unreadable, and
 //! the tables written. Plain data, so that errors can carry it.
 use serde::Serialize;
 use std::path::PathBuf;
 
-/// Result of [`crate::merge::merge`].
+/// Result of [`crate::execution::merge::merge`].
 #[derive(Debug, Clone, Serialize)]
 pub struct MergeReport {
     pub output: PathBuf,

@@ -28,8 +28,6 @@ pub struct Coefficients {
     pub h0: f64,
 }
 
-/// The paper's fitted `h0` (Appendix E).
-
 impl Coefficients {
     /// Coefficients for radius `R > 0` (NaN otherwise) and the given `h0`.
     pub fn new(radius: f64, h0: f64) -> Self {

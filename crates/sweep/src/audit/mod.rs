@@ -1,7 +1,7 @@
 //! `droplet audit`: every point's label checked against the full model's stable states at
 //! that point, independently of how the runs ended.
 //!
-//! A point's label names the classes its runs ended on ([`crate::phase`]); each class must be
+//! A point's label names the classes its runs ended on ([`crate::map::point_class`]); each class must be
 //! a stable steady state of the PDE model there (design notes Sect. 6). For every point:
 //! - the resting disk's eigenvalues are computed at the point (the exact, pointwise form of
 //!   the onsets of motion and of deformation): a run labelled IC contradicts when one grows;
@@ -13,7 +13,7 @@
 //! - a run that did not end on a stable state (`unsettled`) is listed too: its point's label
 //!   is not proven.
 //!
-//! - the points table's label must be the one its runs give ([`crate::phase`]'s rule), so a
+//! - the points table's label must be the one its runs give ([`crate::map::point_class`]'s rule), so a
 //!   label edited by hand, or written by an older rule (a class from a run that had not
 //!   settled), is caught too.
 //!
@@ -249,7 +249,7 @@ fn audit_point(
     out
 }
 
-/// The label a point's runs give ([`crate::phase`]: the classes of the runs that ended
+/// The label a point's runs give ([`crate::map::point_class`]: the classes of the runs that ended
 /// steady).
 fn expected_label(runs: &[&Row]) -> String {
     let classes: BTreeSet<StateClass> = runs
@@ -260,7 +260,7 @@ fn expected_label(runs: &[&Row]) -> String {
     let count = |status: &str| runs.iter().filter(|r| r.status == status).count();
     let diverged = count(RunStatus::Diverged.as_str());
     let unsettled = runs.len() - count(RunStatus::Steady.as_str()) - diverged;
-    crate::phase::label_of(&classes, runs.len(), diverged, unsettled)
+    crate::map::point_class::label_of(&classes, runs.len(), diverged, unsettled)
 }
 
 /// Audits the map in `dir` (its `runs.parquet` and `points.parquet`).

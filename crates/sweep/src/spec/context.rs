@@ -1,8 +1,8 @@
 //! What every section parser of a spec needs: the file and text (for the line of a key),
 //! typed accessors that fail with the key path, the value and what is allowed, and the spec
 //! key of a solver error's field.
-use crate::axes::AXES;
 use crate::error::SpecError;
+use crate::spec::axes::AXES;
 use droplet_solver::error::show_number;
 use droplet_solver::error::SolverError;
 use serde_yaml::Value;

@@ -1,8 +1,8 @@
-//! The `grid` section: the two swept axes ([`crate::axes`]), each an inclusive
+//! The `grid` section: the two swept axes ([`crate::spec::axes`]), each an inclusive
 //! `{start, stop, step}` range or an explicit list.
 use super::context::{show, Ctx};
-use crate::axes::{round12, ETA_T, KAPPA2};
 use crate::error::SpecError;
+use crate::spec::axes::{round12, ETA_T, KAPPA2};
 use serde_yaml::{Mapping, Value};
 
 /// Most points one axis may have.

@@ -21,10 +21,12 @@
 //! [`grid`], [`params`], [`initial`], [`solver`], [`refine`], [`classify`]. Range checks are the
 //! solver crate's own (`ModelParams::validate`, `SolverSettings::validate`, `limits::check_run`), the same as for
 //! `droplet simulate`.
+pub mod axes;
 mod classify;
 mod context;
 mod grid;
 mod initial;
+pub mod lattice;
 mod params;
 mod refine;
 mod solver;
@@ -39,7 +41,6 @@ use serde::Serialize;
 use serde_yaml::Value;
 use std::path::{Path, PathBuf};
 
-pub use crate::axes::round12;
 pub use context::locate;
 pub use grid::MAX_AXIS_POINTS;
 pub use refine::MAX_LEVELS;
@@ -56,7 +57,7 @@ pub struct SweepSpec {
     pub initial_conditions: Vec<InitialCondition>,
     pub solver: SolverSettings,
     /// Adaptive refinement of the grid (`refine:`), if asked for.
-    pub refine: Option<crate::refine::Lattice>,
+    pub refine: Option<crate::spec::lattice::Lattice>,
     /// How point classes count runs stopped beside an unstable state (`classify:`).
     /// The spec's text, stored in the output metadata.
     #[serde(skip)]
@@ -85,7 +86,7 @@ fn too_large(file: &str, bytes: u64) -> SpecError {
 
 /// Reads and validates a spec file. A file that cannot be read (missing, a directory, not
 /// UTF-8) is a spec error too (exit code 2), naming the file and why.
-pub fn load(path: &Path) -> Result<SweepSpec, crate::SweepError> {
+pub fn load(path: &Path) -> Result<SweepSpec, crate::error::SweepError> {
     if let Ok(meta) = std::fs::metadata(path) {
         if meta.is_file() && meta.len() > MAX_SPEC_BYTES as u64 {
             return Err(too_large(&path.display().to_string(), meta.len()).into());
@@ -107,9 +108,10 @@ pub fn load(path: &Path) -> Result<SweepSpec, crate::SweepError> {
 }
 
 /// The spec stored in a sweep directory.
-pub fn load_stored(dir: &Path) -> Result<SweepSpec, crate::SweepError> {
+pub fn load_stored(dir: &Path) -> Result<SweepSpec, crate::error::SweepError> {
     let path = dir.join("spec.yaml");
-    let text = std::fs::read_to_string(&path).map_err(|e| crate::SweepError::io(&path, e))?;
+    let text =
+        std::fs::read_to_string(&path).map_err(|e| crate::error::SweepError::io(&path, e))?;
     Ok(parse(&text, &path.display().to_string(), "sweep")?)
 }
 

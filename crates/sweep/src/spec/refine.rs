@@ -1,4 +1,4 @@
-//! The `refine` section: adaptive refinement of the grid ([`crate::refine`]).
+//! The `refine` section: adaptive refinement of the grid ([`crate::map::refine`]).
 //!
 //! ```yaml
 //! refine:
@@ -10,9 +10,9 @@
 //! Both grid axes must be `{start, stop, step}` ranges: level 0 is that grid, and each level
 //! halves the step where the class changes.
 use super::context::{show, Ctx};
-use crate::axes::{ETA_T, KAPPA2};
 use crate::error::SpecError;
-use crate::refine::{Axis, Lattice, Refine};
+use crate::spec::axes::{ETA_T, KAPPA2};
+use crate::spec::lattice::{Axis, Lattice, Refine};
 use serde_yaml::Mapping;
 
 /// Most refinement levels (a finest cell 1/1024 of the grid's).

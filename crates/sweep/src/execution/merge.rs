@@ -1,9 +1,9 @@
 //! The final tables of a sharded sweep, built only when every run is present and valid.
 use crate::error::SweepError;
+use crate::map::phase_map::PhaseMap;
 use crate::merge_report::MergeReport;
-use crate::phase_map::PhaseMap;
-use crate::store::Store;
-use crate::tables::write_tables;
+use crate::store::run_store::Store;
+use crate::tables::sweep_tables::write_tables;
 use std::path::Path;
 
 /// Builds the final tables of the sweep in `dir` from all its stored runs (e.g. after the
@@ -12,7 +12,7 @@ use std::path::Path;
 pub fn merge(dir: &Path, draw: bool) -> Result<MergeReport, SweepError> {
     let store = Store::open_read(dir)?;
     let spec = crate::spec::load_stored(dir)?;
-    let plan = crate::level_walk::stored_plan(&spec, &store)?;
+    let plan = crate::map::levels::stored_plan(&spec, &store)?;
     let report = store.report_missing(&plan);
     if report.runs_missing > 0 {
         return Err(SweepError::Incomplete(Box::new(report)));
@@ -27,7 +27,7 @@ pub fn merge(dir: &Path, draw: bool) -> Result<MergeReport, SweepError> {
     let map = PhaseMap::new(&plan, &records);
     let mut tables = write_tables(&store, &spec, &plan, &records, &map)?;
     if draw {
-        tables.extend(crate::pictures::plot_records(
+        tables.extend(crate::pictures::sweep_pictures::plot_records(
             dir, &spec, &plan, &records, &map,
         )?);
     }

@@ -1,8 +1,8 @@
-//! The work-precision picture of [`crate::bench`]: error against wall time, log-log, one
+//! The work-precision picture of [`crate::bench::cases`]: error against wall time, log-log, one
 //! panel per case and one curve per method family.
-use crate::bench::BenchRow;
+use crate::bench::cases::BenchRow;
 use crate::error::SweepError;
-use crate::render::{perr, render, Figure};
+use crate::pictures::render::{perr, render, Figure};
 use droplet_solver::contract::outcome::RunStatus;
 use plotters::coord::Shift;
 use plotters::prelude::*;

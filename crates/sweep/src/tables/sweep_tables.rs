@@ -1,13 +1,13 @@
 //! Parquet tables: `runs.parquet` (one row per run), `points.parquet` (one row per point),
 //! time series; each with key-value metadata (spec, its hash, versions, git commit).
-use crate::axes::{ETA_T, KAPPA2};
 use crate::error::SweepError;
-use crate::phase::PointClass;
-use crate::phase_map::PhaseMap;
-use crate::plan::Plan;
+use crate::map::phase_map::PhaseMap;
+use crate::map::point_class::PointClass;
+use crate::spec::axes::{ETA_T, KAPPA2};
 use crate::spec::SweepSpec;
-use crate::store::RunRecord;
-use crate::store::Store;
+use crate::store::plan::Plan;
+use crate::store::run_store::RunRecord;
+use crate::store::run_store::Store;
 use polars::prelude::*;
 use sha2::{Digest, Sha256};
 use std::collections::HashMap;
@@ -41,7 +41,7 @@ pub fn metadata(spec_text: Option<&str>) -> Vec<(String, String)> {
     kv
 }
 
-/// Writes `df` to `path` with metadata (atomically, see [`crate::atomic::write_atomic`]).
+/// Writes `df` to `path` with metadata (atomically, see [`crate::store::atomic::write_atomic`]).
 pub fn write_parquet(
     df: &mut DataFrame,
     path: &Path,
@@ -51,7 +51,7 @@ pub fn write_parquet(
     ParquetWriter::new(&mut bytes)
         .with_key_value_metadata(Some(KeyValueMetadata::from_static(meta)))
         .finish(df)?;
-    crate::atomic::write_atomic(path, &bytes)?;
+    crate::store::atomic::write_atomic(path, &bytes)?;
     Ok(())
 }
 
@@ -81,7 +81,7 @@ pub fn runs_frame(
     plan: &Plan,
     records: &HashMap<String, RunRecord>,
 ) -> Result<DataFrame, SweepError> {
-    let rows: Vec<(crate::plan::Task, &RunRecord)> = plan
+    let rows: Vec<(crate::store::plan::Task, &RunRecord)> = plan
         .tasks()
         .filter_map(|t| records.get(&t.key).map(|r| (t, r)))
         .collect();

@@ -1,7 +1,7 @@
 //! A single run's time series, `(t, x, y, vx, vy, a2, b2, v, s)` per row, as Parquet with the
 //! run's parameters, settings and initial condition in the metadata.
 use crate::error::SweepError;
-use crate::tables::{f64_col, metadata, write_parquet};
+use crate::tables::sweep_tables::{f64_col, metadata, write_parquet};
 use droplet_solver::{
     contract::outcome::SeriesRow, contract::settings::SolverSettings,
     model::initial::InitialCondition, model::params::ModelParams,

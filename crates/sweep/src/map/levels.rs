@@ -1,14 +1,15 @@
-//! The point set of a refined sweep ([`crate::refine`]), level by level from the stored runs:
+//! The point set of a refined sweep ([`crate::map::refine`]), level by level from the stored runs:
 //! the points of level `l + 1` follow from the classes of the points up to level `l`, so the
 //! sweep that runs the levels and `droplet status` that reads them plan the same points, and a
 //! resumed sweep plans exactly the points an uninterrupted one would.
 use crate::error::SweepError;
-use crate::phase::{PointClass, DIVERGED, MISSING, NOT_CLASSIFIED, UNSETTLED};
-use crate::phase_map::PhaseMap;
-use crate::plan::{plan_nodes, Plan};
-use crate::refine::{split, Lattice, Node, Verdict};
+use crate::map::phase_map::PhaseMap;
+use crate::map::point_class::{PointClass, DIVERGED, MISSING, NOT_CLASSIFIED, UNSETTLED};
+use crate::map::refine::{split, Verdict};
+use crate::spec::lattice::{Lattice, Node};
 use crate::spec::SweepSpec;
-use crate::store::Store;
+use crate::store::plan::{plan_nodes, Plan};
+use crate::store::run_store::Store;
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 
 /// A point is settled for refinement ([`Verdict::settled`]): one class or a bistable pair
@@ -73,7 +74,7 @@ pub fn walk(
 /// refined sweep every level whose points are known (up to the first unfinished level).
 pub fn stored_plan(spec: &SweepSpec, store: &Store) -> Result<Plan, SweepError> {
     match &spec.refine {
-        None => Ok(crate::plan::plan(spec)),
+        None => Ok(crate::store::plan::plan(spec)),
         Some(lattice) => walk(spec, lattice, store, |_, plan, runs| {
             Ok(runs.iter().all(|&i| store.has(&plan.task(i).key)))
         }),

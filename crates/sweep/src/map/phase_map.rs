@@ -1,10 +1,10 @@
-//! The phase map of a sweep: every point with its class (from [`crate::phase`]) and the end
+//! The phase map of a sweep: every point with its class (from [`crate::map::point_class`]) and the end
 //! of each of its runs, computed once from the plan and the stored runs, and read by the
 //! points table, `droplet status` and the picture.
-use crate::phase::{classify_point, PointClass, MISSING};
-use crate::plan::Plan;
-use crate::store::RunRecord;
-use crate::tally::tally;
+use crate::map::point_class::{classify_point, PointClass, MISSING};
+use crate::map::tally::tally;
+use crate::store::plan::Plan;
+use crate::store::run_store::RunRecord;
 use droplet_solver::contract::outcome::RunStatus;
 use std::collections::{BTreeMap, HashMap};
 
@@ -52,7 +52,7 @@ fn run_end(r: &RunRecord) -> String {
     match (r.outcome.status, r.outcome.class) {
         (RunStatus::Steady, Some(c)) => c.as_str().to_string(),
         (RunStatus::Diverged, _) => RunStatus::Diverged.as_str().to_string(),
-        _ => crate::phase::UNSETTLED.to_string(),
+        _ => crate::map::point_class::UNSETTLED.to_string(),
     }
 }
 

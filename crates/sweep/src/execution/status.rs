@@ -1,9 +1,9 @@
 //! Progress and class counts of a sweep directory, finished or not.
 use crate::error::SweepError;
-use crate::phase_map::PhaseMap;
-use crate::plan::plan;
-use crate::store::Store;
-use crate::tally::tally;
+use crate::map::phase_map::PhaseMap;
+use crate::map::tally::tally;
+use crate::store::plan::plan;
+use crate::store::run_store::Store;
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -25,7 +25,7 @@ pub struct SweepStatus {
     /// Point labels over the points whose runs are all done.
     pub point_classes: BTreeMap<String, usize>,
     /// Points whose runs are all done, one of them unsettled (not on a stable state): their
-    /// labels are not proven ([`crate::phase::PointClass::settled`]).
+    /// labels are not proven ([`crate::map::point_class::PointClass::settled`]).
     pub points_unsettled: usize,
     pub cpu_s: f64,
     /// A refined sweep's levels so far (empty for a uniform one): the levels whose points
@@ -67,7 +67,7 @@ pub fn status(dir: &Path) -> Result<SweepStatus, SweepError> {
     let mut levels = Vec::new();
     let plan = match &spec.refine {
         None => plan(&spec),
-        Some(lattice) => crate::level_walk::walk(&spec, lattice, &store, |level, plan, runs| {
+        Some(lattice) => crate::map::levels::walk(&spec, lattice, &store, |level, plan, runs| {
             let done = runs
                 .iter()
                 .filter(|&&i| store.has(&plan.task(i).key))

@@ -1,15 +1,15 @@
 //! Runs a sweep: the pending tasks of a plan in a rayon pool, each persisted as it finishes,
 //! with progress (runs done / total, ETA, classes so far), then the final tables and picture.
 use crate::error::SweepError;
-use crate::phase_map::PhaseMap;
-use crate::plan::{plan, Plan, Task};
-use crate::progress::progress_bar;
-use crate::refine::Lattice;
-use crate::shard::{indices_of, Shard};
+use crate::execution::progress::progress_bar;
+use crate::map::phase_map::PhaseMap;
+use crate::map::tally::tally;
+use crate::spec::lattice::Lattice;
 use crate::spec::SweepSpec;
-use crate::store::{CorruptRun, RunRecord, Store, Stored};
-use crate::tables;
-use crate::tally::tally;
+use crate::store::plan::{plan, Plan, Task};
+use crate::store::run_store::{CorruptRun, RunRecord, Store, Stored};
+use crate::store::shard::{indices_of, Shard};
+use crate::tables::sweep_tables;
 use droplet_solver::runs::driver::simulate;
 use rayon::prelude::*;
 use serde::Serialize;
@@ -32,7 +32,7 @@ pub struct SweepOptions {
     pub level: Option<u32>,
     /// Draw the pictures with the tables (unsharded sweeps only).
     pub plot: bool,
-    /// Refuse specs with more runs than this (`None`: [`crate::plan::DEFAULT_MAX_RUNS`]).
+    /// Refuse specs with more runs than this (`None`: [`crate::store::plan::DEFAULT_MAX_RUNS`]).
     pub max_runs: Option<u64>,
 }
 
@@ -146,7 +146,7 @@ fn run_pending(
     })
 }
 
-/// Runs a refined sweep level by level ([`crate::level_walk`]). Unsharded: every level.
+/// Runs a refined sweep level by level ([`crate::map::levels`]). Unsharded: every level.
 /// Sharded (`Some((shard, level))`): only the shard's slice of `level`, after checking that
 /// every level below it is finished (its points follow from them), so a Slurm array per level,
 /// each depending on the one before, runs the sweep; a level refinement never reaches has
@@ -165,7 +165,7 @@ fn run_refined(
         corrupt: Vec::new(),
     };
     let mut mine = Vec::new();
-    let plan = crate::level_walk::walk(spec, lattice, store, |level, plan, runs| {
+    let plan = crate::map::levels::walk(spec, lattice, store, |level, plan, runs| {
         let runs = match shard {
             None => runs.to_vec(),
             Some((_, target)) if level < target => {
@@ -212,7 +212,11 @@ pub fn run_sweep(
     opts: &SweepOptions,
 ) -> Result<SweepSummary, SweepError> {
     let started = Instant::now();
-    crate::plan::check_size(spec, opts.max_runs.unwrap_or(crate::plan::DEFAULT_MAX_RUNS))?;
+    crate::store::plan::check_size(
+        spec,
+        opts.max_runs
+            .unwrap_or(crate::store::plan::DEFAULT_MAX_RUNS),
+    )?;
     let shard_level = match (&spec.refine, opts.shard, opts.level) {
         (Some(l), _, Some(level)) if level > l.refine.levels => {
             return Err(SweepError::Invalid(format!(
@@ -277,9 +281,9 @@ pub fn run_sweep(
     let map = PhaseMap::new(&plan, &records);
     let mut tables = Vec::new();
     if opts.shard.is_none() {
-        tables = tables::write_tables(&store, spec, &plan, &records, &map)?;
+        tables = sweep_tables::write_tables(&store, spec, &plan, &records, &map)?;
         if opts.plot {
-            tables.extend(crate::pictures::plot_records(
+            tables.extend(crate::pictures::sweep_pictures::plot_records(
                 out, spec, &plan, &records, &map,
             )?);
         }

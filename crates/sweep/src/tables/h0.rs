@@ -1,8 +1,8 @@
 //! The Appendix E fit's table, `h0_fit.parquet`: every deformation-only steady state
 //! `(kappa2, s)`, whether it entered the fit, and `p0`, `p2` in the metadata.
-use crate::axes::KAPPA2;
 use crate::error::SweepError;
-use crate::tables::{metadata, write_parquet};
+use crate::spec::axes::KAPPA2;
+use crate::tables::sweep_tables::{metadata, write_parquet};
 use droplet_solver::roots::h0_fit::H0Fit;
 use polars::prelude::*;
 use std::path::{Path, PathBuf};

@@ -3,9 +3,9 @@
 //! mode set aside, the rotation mode's eigenvalue, unstable count, stability) and
 //! `<stem>_events.parquet` (P / SN / H points with the crossing eigenvalue and the precision
 //! of their location in the varied parameter).
-use crate::axes::{ETA_T, KAPPA2};
 use crate::error::SweepError;
-use crate::tables::{metadata, write_parquet};
+use crate::spec::axes::{ETA_T, KAPPA2};
+use crate::tables::sweep_tables::{metadata, write_parquet};
 use droplet_solver::continuation::{branch::Branch, branch::BranchPoint};
 use polars::prelude::*;
 use std::path::{Path, PathBuf};

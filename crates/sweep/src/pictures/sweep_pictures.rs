@@ -1,14 +1,14 @@
 //! The pictures of a sweep from its runs: the phase map (Fig. 2a) with the reduced model's
 //! analytic boundaries (and their table, `boundaries.parquet`), and for a 1-D sweep the
 //! bifurcation lines (Fig. 2b).
-use crate::axes::{ETA_T, KAPPA2};
-use crate::boundary_table::NamedCurve;
-use crate::branch_lines::{branch_lines, BranchSample};
 use crate::error::SweepError;
-use crate::phase_map::PhaseMap;
-use crate::plot::{phase_map, vs_parameter, Curve, MapPoint, Marker};
+use crate::map::phase_map::PhaseMap;
+use crate::pictures::branch_lines::{branch_lines, BranchSample};
+use crate::pictures::figures::{phase_map, vs_parameter, Curve, MapPoint, Marker};
+use crate::spec::axes::{ETA_T, KAPPA2};
 use crate::spec::SweepSpec;
-use crate::store::Store;
+use crate::store::run_store::Store;
+use crate::tables::boundaries::NamedCurve;
 use droplet_solver::reduced::bifurcation::{Axis, Branch, Event, SteadyPoint};
 use droplet_solver::reduced::boundaries::boundaries;
 use droplet_solver::reduced::coefficients::Coefficients;
@@ -28,7 +28,7 @@ pub struct Drawn {
 pub fn plot(dir: &Path) -> Result<Drawn, SweepError> {
     let store = Store::open_idle(dir)?;
     let spec = crate::spec::load_stored(dir)?;
-    let plan = crate::level_walk::stored_plan(&spec, &store)?;
+    let plan = crate::map::levels::stored_plan(&spec, &store)?;
     let records = store.load_many(plan.tasks().map(|t| t.key));
     let map = PhaseMap::new(&plan, &records);
     let files = plot_records(dir, &spec, &plan, &records, &map)?;
@@ -43,8 +43,8 @@ pub fn plot(dir: &Path) -> Result<Drawn, SweepError> {
 pub fn plot_records(
     dir: &Path,
     spec: &SweepSpec,
-    plan: &crate::plan::Plan,
-    records: &std::collections::HashMap<String, crate::store::RunRecord>,
+    plan: &crate::store::plan::Plan,
+    records: &std::collections::HashMap<String, crate::store::run_store::RunRecord>,
     map: &PhaseMap,
 ) -> Result<Vec<PathBuf>, SweepError> {
     // A refined map: each point drawn as the quarters of the unsplit cells it is a corner of.
@@ -84,10 +84,10 @@ pub fn plot_records(
         &boundaries(&coef, span(&spec.eta_t), span(&spec.kappa2)),
     );
     // The full model's boundaries, if `droplet boundaries` put them here, are kept.
-    let path = dir.join(crate::boundary_table::FILE);
-    let pde = crate::boundary_table::read(&path, "pde")?;
+    let path = dir.join(crate::tables::boundaries::FILE);
+    let pde = crate::tables::boundaries::read(&path, "pde")?;
     let all: Vec<NamedCurve> = pde.into_iter().chain(ode).collect();
-    crate::boundary_table::write(&path, &all, Some(&spec.source), Vec::new())?;
+    crate::tables::boundaries::write(&path, &all, Some(&spec.source), Vec::new())?;
     let drawn: Vec<Curve> = all
         .into_iter()
         .map(|c| Curve {
@@ -114,8 +114,8 @@ pub fn plot_records(
 fn lines(
     dir: &Path,
     spec: &SweepSpec,
-    plan: &crate::plan::Plan,
-    records: &std::collections::HashMap<String, crate::store::RunRecord>,
+    plan: &crate::store::plan::Plan,
+    records: &std::collections::HashMap<String, crate::store::run_store::RunRecord>,
 ) -> Result<Vec<PathBuf>, SweepError> {
     let (along_eta, fixed) = match (spec.eta_t.len(), spec.kappa2.len()) {
         (n, 1) if n > 1 => (true, format!("{KAPPA2} = {}", spec.kappa2[0])),
@@ -321,11 +321,11 @@ fn branch_drawing(
     branches: &[droplet_solver::continuation::branch::Branch],
     axis: Axis,
 ) -> (
-    Vec<crate::branch_lines::BranchLine>,
+    Vec<crate::pictures::branch_lines::BranchLine>,
     Vec<Marker>,
     Vec<(f64, String)>,
 ) {
-    use crate::branch_lines::BranchLine;
+    use crate::pictures::branch_lines::BranchLine;
     let x_of = |p: &droplet_solver::continuation::branch::BranchPoint| match axis {
         Axis::EtaT => p.eta_t,
         Axis::Kappa2 => p.kappa2,

@@ -4,8 +4,8 @@
 //! its points was classified as a resting state (IC or ID, alone or bistable) where
 //! continuation finds that state unstable: the paper's steady test stopping on a slowly growing
 //! mode near its onset (the false steady state that the Newton finish is meant to remove).
-use crate::axes::{ETA_T, KAPPA2};
 use crate::error::SweepError;
+use crate::spec::axes::{ETA_T, KAPPA2};
 use polars::prelude::*;
 use std::path::Path;
 

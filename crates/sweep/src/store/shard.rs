@@ -3,7 +3,7 @@
 //! number of steps to its steady state from the same point and initial condition
 //! (microseconds per run): runs near transitions relax slowly in both models. Slices are
 //! assigned greedily, most expensive first, to the currently cheapest shard (LPT).
-use crate::plan::{Plan, Task};
+use crate::store::plan::{Plan, Task};
 use droplet_solver::{contract::settings::SolverSettings, runs::driver::simulate};
 
 /// Which slice of a sweep this process runs: `index` in `0..count`.
@@ -100,7 +100,7 @@ mod tests {
             "t",
         )
         .unwrap();
-        let plan = crate::plan::plan(&spec);
+        let plan = crate::store::plan::plan(&spec);
         let all: Vec<usize> = (0..plan.len()).collect();
         let n = 3;
         let mut seen = std::collections::HashSet::new();

@@ -14,39 +14,8 @@
 //! Everything here is a pure function of the grid and the point classes: the points of each
 //! level follow from the finished runs of the levels before, so a resumed sweep plans exactly
 //! the points an uninterrupted one would.
-use serde::Serialize;
+use crate::spec::lattice::{Lattice, Node};
 use std::collections::{BTreeMap, BTreeSet};
-
-/// A point on the finest lattice: `(i, j)` steps of `step / 2^levels` along each axis.
-pub type Node = (u64, u64);
-
-/// The refinement settings of a spec (`refine:`).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct Refine {
-    /// Levels beyond the spec's grid.
-    pub levels: u32,
-    /// Smallest cell side on each axis `(eta_t, kappa2)`.
-    pub min_step: (f64, f64),
-    /// Also split cells whose corners all share one bistable class (fills bistable bands
-    /// to the finest step; by default only their edges are refined).
-    pub split_bistable: bool,
-}
-
-/// The spec's uniform grid along one axis: `start + i step`, `i < count`.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct Axis {
-    pub start: f64,
-    pub step: f64,
-    pub count: u64,
-}
-
-/// The level-0 grid and the refinement settings.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct Lattice {
-    pub eta_t: Axis,
-    pub kappa2: Axis,
-    pub refine: Refine,
-}
 
 /// How a point's runs ended, as refinement needs it.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -57,97 +26,6 @@ pub struct Verdict {
     /// settled (steady, or unfinished with `v` and `s` settled), none diverged, at most two
     /// classes (one, with `split_bistable`).
     pub settled: bool,
-}
-
-impl Lattice {
-    /// Lattice units per level-0 step.
-    fn scale(&self) -> u64 {
-        1u64 << self.refine.levels
-    }
-
-    /// Side (lattice units) of a cell of `level`.
-    pub fn side(&self, level: u32) -> u64 {
-        self.scale() >> level
-    }
-
-    /// The cell size `(d_eta_t, d_kappa2)` of `level`.
-    pub fn cell_size(&self, level: u32) -> (f64, f64) {
-        let f = (1u64 << level) as f64;
-        (self.eta_t.step / f, self.kappa2.step / f)
-    }
-
-    /// `(eta_t, kappa2)` of a node, on the spec grid's decimal rounding (equal to a uniform
-    /// grid's value where a uniform grid has the point).
-    pub fn coords(&self, (i, j): Node) -> (f64, f64) {
-        let s = self.scale() as f64;
-        let at = |a: &Axis, k: u64| crate::axes::round12(a.start + (k as f64) * (a.step / s));
-        (at(&self.eta_t, i), at(&self.kappa2, j))
-    }
-
-    /// Whether cells of `level` may still be split (their quarters not below `min_step`).
-    pub fn splittable(&self, level: u32) -> bool {
-        let (de, dk) = self.cell_size(level + 1);
-        let (me, mk) = self.refine.min_step;
-        level < self.refine.levels && de >= me * (1.0 - 1e-9) && dk >= mk * (1.0 - 1e-9)
-    }
-
-    /// The points of level 0 (the spec grid), eta_t-major.
-    pub fn level0(&self) -> Vec<Node> {
-        let s = self.scale();
-        (0..self.eta_t.count)
-            .flat_map(|a| (0..self.kappa2.count).map(move |b| (a * s, b * s)))
-            .collect()
-    }
-
-    /// The cells of level 0, by their lower-left node.
-    pub fn cells0(&self) -> Vec<Node> {
-        let s = self.scale();
-        let (ne, nk) = (self.eta_t.count, self.kappa2.count);
-        (0..ne.saturating_sub(1))
-            .flat_map(|a| (0..nk.saturating_sub(1)).map(move |b| (a * s, b * s)))
-            .collect()
-    }
-}
-
-impl Lattice {
-    /// The node of a point `(eta_t, kappa2)` of this lattice (the inverse of [`Self::coords`]).
-    pub fn node_of(&self, (eta_t, kappa2): (f64, f64)) -> Node {
-        let s = self.scale() as f64;
-        let at = |a: &Axis, x: f64| ((x - a.start) / (a.step / s)).round().max(0.0) as u64;
-        (at(&self.eta_t, eta_t), at(&self.kappa2, kappa2))
-    }
-
-    /// The picture of a refined point set: for each point, the rectangles
-    /// `[eta_t0, kappa2_0, eta_t1, kappa2_1]` it stands for. Each cell that was not split (its
-    /// centre is not a point) is divided into four quarters, each belonging to the corner it
-    /// touches, so the map is tiled without gaps or overlaps at every level (a point in the
-    /// middle of a coarser neighbour's side has quarters on the finer side only).
-    pub fn tiles(&self, nodes: &BTreeSet<Node>) -> BTreeMap<Node, Vec<[f64; 4]>> {
-        let mut out: BTreeMap<Node, Vec<[f64; 4]>> = BTreeMap::new();
-        let mut stack: Vec<(Node, u32)> = self.cells0().into_iter().map(|c| (c, 0)).collect();
-        while let Some(((i, j), level)) = stack.pop() {
-            let side = self.side(level);
-            let half = side / 2;
-            if half > 0 && nodes.contains(&(i + half, j + half)) {
-                for (di, dj) in [(0, 0), (half, 0), (0, half), (half, half)] {
-                    stack.push(((i + di, j + dj), level + 1));
-                }
-                continue;
-            }
-            let (e0, k0) = self.coords((i, j));
-            let (e1, k1) = self.coords((i + side, j + side));
-            let (em, km) = (0.5 * (e0 + e1), 0.5 * (k0 + k1));
-            for ((di, dj), rect) in [
-                ((0, 0), [e0, k0, em, km]),
-                ((side, 0), [em, k0, e1, km]),
-                ((0, side), [e0, km, em, k1]),
-                ((side, side), [em, km, e1, k1]),
-            ] {
-                out.entry((i + di, j + dj)).or_default().push(rect);
-            }
-        }
-        out
-    }
 }
 
 /// Whether a cell with these corner verdicts is split.
@@ -205,6 +83,7 @@ pub fn split(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::spec::lattice::{Axis, Refine};
 
     fn lattice(levels: u32) -> Lattice {
         Lattice {
@@ -238,8 +117,8 @@ mod tests {
         let l = lattice(3);
         for (a, b) in [(0u64, 0u64), (1, 2), (3, 1)] {
             let (e, k) = l.coords((a * 8, b * 8));
-            assert_eq!(e, crate::axes::round12(0.07 + a as f64 * 0.01));
-            assert_eq!(k, crate::axes::round12(0.1 + b as f64 * 0.02));
+            assert_eq!(e, crate::spec::axes::round12(0.07 + a as f64 * 0.01));
+            assert_eq!(k, crate::spec::axes::round12(0.1 + b as f64 * 0.02));
         }
         assert_eq!(l.coords((4, 4)), (0.075, 0.11));
         assert_eq!(l.level0().len(), 12);

@@ -2,9 +2,9 @@
 //! steady state: branch, parameters, `v`, `s`, largest real part of the eigenvalues,
 //! stability) and `<stem>_events.parquet` (P / SN points), with the coefficients and the line
 //! in the metadata.
-use crate::axes::{ETA_T, KAPPA2};
 use crate::error::SweepError;
-use crate::tables::{metadata, write_parquet};
+use crate::spec::axes::{ETA_T, KAPPA2};
+use crate::tables::sweep_tables::{metadata, write_parquet};
 use droplet_solver::reduced::bifurcation::{Axis, Event, SteadyPoint};
 use droplet_solver::reduced::coefficients::Coefficients;
 use polars::prelude::*;

@@ -11,7 +11,7 @@
 //! also gives the reference class; IC states are exactly `v = s = 0`; the transient by the
 //! spectral scheme at `n_ref` with a small fixed step.
 use crate::error::SweepError;
-use crate::progress::progress_bar;
+use crate::execution::progress::progress_bar;
 use droplet_solver::contract::ending::SteadyMethod;
 use droplet_solver::roots::steady_solver::MirrorAxis;
 use droplet_solver::{

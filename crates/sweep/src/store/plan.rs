@@ -1,6 +1,6 @@
 //! Spec -> tasks: every (point, initial condition) pair is one run, keyed by a hash of
 //! everything that determines its result.
-use crate::refine::{Lattice, Node};
+use crate::spec::lattice::{Lattice, Node};
 use crate::spec::SweepSpec;
 use droplet_solver::{
     contract::settings::SolverSettings, model::initial::InitialCondition,
@@ -29,7 +29,7 @@ pub struct Task {
 pub struct Plan {
     /// `(eta_t, kappa2)` of each point.
     pub points: Vec<(f64, f64)>,
-    /// Refinement level of each point (0: the spec's grid; [`crate::refine`]).
+    /// Refinement level of each point (0: the spec's grid; [`crate::map::refine`]).
     pub levels: Vec<u32>,
     /// Cell size `(d_eta_t, d_kappa2)` of each point: the grid step of its level (`NaN` on
     /// an axis given as a list of one value).
@@ -101,10 +101,10 @@ fn point_count(spec: &SweepSpec) -> u64 {
 pub const DEFAULT_MAX_RUNS: u64 = 1_000_000;
 
 /// Refuses a spec with more than `max_runs` runs, before anything is planned or written.
-pub fn check_size(spec: &SweepSpec, max_runs: u64) -> Result<(), crate::SweepError> {
+pub fn check_size(spec: &SweepSpec, max_runs: u64) -> Result<(), crate::error::SweepError> {
     let count = run_count(spec);
     if count > max_runs {
-        return Err(crate::SweepError::TooLarge {
+        return Err(crate::error::SweepError::TooLarge {
             runs: count,
             points: point_count(spec),
             limit: max_runs,
@@ -235,7 +235,7 @@ mod tests {
         assert!(check_size(&spec, 12).is_ok());
         assert!(matches!(
             check_size(&spec, 11),
-            Err(crate::SweepError::TooLarge {
+            Err(crate::error::SweepError::TooLarge {
                 runs: 12,
                 limit: 11,
                 ..

@@ -2,7 +2,7 @@
 //! running `droplet sweep --shard $SLURM_ARRAY_TASK_ID/N` into the shared directory, and
 //! `DIR/slurm/merge.sbatch`, `droplet merge DIR` to run after the array (`afterany`).
 //!
-//! A spec with `refine:` is run one level at a time ([`crate::execute`]): `sweep.sbatch` then
+//! A spec with `refine:` is run one level at a time ([`crate::execution::execute`]): `sweep.sbatch` then
 //! takes the level as its argument (`sbatch sweep.sbatch L`), one array per
 //! level, each submitted with `--dependency=afterok:<the previous level's array>` (a level's
 //! points follow from the classes of the levels below), and the merge after the last.
@@ -33,7 +33,7 @@ pub struct SlurmJob {
 /// Writes both scripts (atomically); returns `[sweep.sbatch, merge.sbatch]`.
 pub fn write_scripts(job: &SlurmJob) -> Result<[PathBuf; 2], SweepError> {
     let dir = job.out.join("slurm");
-    crate::atomic::create_output_dir(&dir)?;
+    crate::store::atomic::create_output_dir(&dir)?;
     let partition = job
         .partition
         .as_ref()
@@ -74,7 +74,7 @@ pub fn write_scripts(job: &SlurmJob) -> Result<[PathBuf; 2], SweepError> {
     );
     let sweep_path = dir.join("sweep.sbatch");
     let merge_path = dir.join("merge.sbatch");
-    crate::atomic::write_atomic(&sweep_path, sweep_script.as_bytes())?;
-    crate::atomic::write_atomic(&merge_path, merge_script.as_bytes())?;
+    crate::store::atomic::write_atomic(&sweep_path, sweep_script.as_bytes())?;
+    crate::store::atomic::write_atomic(&merge_path, merge_script.as_bytes())?;
     Ok([sweep_path, merge_path])
 }

@@ -13,7 +13,7 @@
 //!   IC, ID, MD, MC (`IC/MD`, `ID/MD`, `IC/MC`, ...); three or more -> `not classified`;
 //!   no class at all: `unsettled` when a run is unsettled, `diverged` when every run
 //!   diverged, `missing` when there are no runs.
-use crate::store::RunRecord;
+use crate::store::run_store::RunRecord;
 use droplet_solver::{contract::outcome::RunStatus, model::classify::StateClass};
 use std::collections::BTreeSet;
 

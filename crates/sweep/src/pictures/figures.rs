@@ -1,12 +1,12 @@
 //! Pictures: the phase map (paper Fig. 2a), the single-run panels (Fig. 1), `v` and `s`
 //! against a parameter (Fig. 2b, 3b) and the Appendix E fit, each a [`Figure`] drawn as PNG
 //! and SVG by [`render`].
-use crate::axes::{ETA_T, KAPPA2};
-use crate::branch_lines::BranchLine;
 use crate::error::SweepError;
-use crate::phase::{DIVERGED, MISSING, NOT_CLASSIFIED, UNSETTLED};
-pub(crate) use crate::render::perr;
-use crate::render::{render, Figure};
+use crate::map::point_class::{DIVERGED, MISSING, NOT_CLASSIFIED, UNSETTLED};
+use crate::pictures::branch_lines::BranchLine;
+pub(crate) use crate::pictures::render::perr;
+use crate::pictures::render::{render, Figure};
+use crate::spec::axes::{ETA_T, KAPPA2};
 use droplet_solver::stepping::Field;
 use droplet_solver::{
     contract::outcome::SeriesRow, model::params::ModelParams, model::state::DropletState,
@@ -63,7 +63,7 @@ pub struct MapPoint {
     pub kappa2: f64,
     pub label: String,
     /// The rectangles `[eta_t0, kappa2_0, eta_t1, kappa2_1]` the point stands for on a
-    /// refined map ([`crate::refine::Lattice::tiles`]); empty: a square of the grid spacing.
+    /// refined map ([`crate::spec::lattice::Lattice::tiles`]); empty: a square of the grid spacing.
     pub tiles: Vec<[f64; 4]>,
 }
 

@@ -2,8 +2,8 @@
 //! backend; [`render`] draws it into an in-memory RGB buffer (encoded as PNG) and an SVG
 //! string, and writes each file atomically (temporary file, fsync, rename). A full disk or a
 //! kill therefore never leaves a partial or empty picture, and every error names its file.
-use crate::atomic::write_atomic;
 use crate::error::SweepError;
+use crate::store::atomic::write_atomic;
 use image::ImageEncoder;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -15,7 +15,7 @@ static FONT: Once = Once::new();
 /// Registers the bundled DejaVu Sans for every family plotters may ask for.
 pub(crate) fn register_fonts() {
     FONT.call_once(|| {
-        let bytes: &'static [u8] = include_bytes!("../../../assets/DejaVuSans.ttf");
+        let bytes: &'static [u8] = include_bytes!("../../../../assets/DejaVuSans.ttf");
         for family in ["sans-serif", "serif", "monospace"] {
             for style in [
                 FontStyle::Normal,

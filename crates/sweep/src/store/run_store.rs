@@ -1,11 +1,11 @@
 //! The run store of an output directory: one JSON file per finished run under `runs/`,
 //! written atomically (temporary file, fsync, rename) the moment the run finishes, and an
 //! exclusive lock so that two sweeps cannot write one directory at once.
-use crate::atomic::{create_output_dir, write_atomic};
-use crate::axes::{ETA_T, KAPPA2};
 use crate::error::SweepError;
 use crate::merge_report::MergeReport;
-use crate::plan::Plan;
+use crate::spec::axes::{ETA_T, KAPPA2};
+use crate::store::atomic::{create_output_dir, write_atomic};
+use crate::store::plan::Plan;
 use droplet_solver::{
     contract::outcome::RunOutcome, contract::settings::SolverSettings,
     model::initial::InitialCondition, model::params::ModelParams,
@@ -198,7 +198,7 @@ impl Store {
                 return Stored::Corrupt(format!("not a run record ({} bytes): {e}", bytes.len()))
             }
         };
-        let content_key = crate::plan::run_key(&rec.params, &rec.ic, &rec.settings);
+        let content_key = crate::store::plan::run_key(&rec.params, &rec.ic, &rec.settings);
         if rec.key != key
             || rec.solver_version != droplet_solver::solver_version(rec.settings.model)
             || content_key != key
@@ -344,7 +344,7 @@ mod tests {
             SolverSettings::default(),
         );
         RunRecord {
-            key: crate::plan::run_key(&params, &ic, &settings),
+            key: crate::store::plan::run_key(&params, &ic, &settings),
             params,
             ic,
             settings,

@@ -2,9 +2,9 @@
 //! `eta_t`, `kappa2`, points in order along each curve). The reduced model's are analytic
 //! (Fig. 3a); the full model's come from `droplet boundaries` (continuation of the
 //! bifurcation points). A sweep's `droplet plot` rewrites the ODE rows and keeps the PDE rows.
-use crate::axes::{ETA_T, KAPPA2};
 use crate::error::SweepError;
-use crate::tables::{metadata, write_parquet};
+use crate::spec::axes::{ETA_T, KAPPA2};
+use crate::tables::sweep_tables::{metadata, write_parquet};
 use polars::prelude::*;
 use std::path::Path;
 

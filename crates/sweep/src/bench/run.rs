@@ -1,10 +1,11 @@
-//! A whole benchmark run ([`crate::bench`]) from start to files: the references (computed
+//! A whole benchmark run ([`crate::bench::cases`]) from start to files: the references (computed
 //! once, then reused), the timed rows in a thread pool (or re-scored), and the outputs.
-use crate::bench::{
+use crate::bench::cases::{
     references, rescore, run, summarise, BenchPlan, BenchSummary, Profile, References,
 };
+use crate::bench::{precision_plot, table};
 use crate::error::SweepError;
-use crate::{bench_table, precision_plot, tables};
+use crate::tables::sweep_tables;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 
@@ -79,7 +80,7 @@ fn load_or_compute(dir: &Path, plan: &BenchPlan) -> Result<(References, bool), S
 }
 
 fn store_references(path: &Path, refs: &References) -> Result<(), SweepError> {
-    crate::atomic::write_atomic(
+    crate::store::atomic::write_atomic(
         path,
         serde_json::to_string_pretty(refs).expect("json").as_bytes(),
     )
@@ -87,7 +88,7 @@ fn store_references(path: &Path, refs: &References) -> Result<(), SweepError> {
 }
 
 /// Every row as a Markdown table (the Parquet table's main columns), grouped by case.
-fn markdown(rows: &[crate::bench::BenchRow]) -> String {
+fn markdown(rows: &[crate::bench::cases::BenchRow]) -> String {
     let mut out = String::from(
         "| case | method | dt | tol | status | class ok | err v | err s | err series | steps | rejected | wall s |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n",
     );
@@ -136,7 +137,7 @@ pub fn run_benchmark(a: &BenchOptions) -> Result<BenchReport, SweepError> {
             table.display()
         )));
     }
-    crate::atomic::create_output_dir(&a.out)?;
+    crate::store::atomic::create_output_dir(&a.out)?;
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(a.jobs.unwrap_or(0))
         .build()
@@ -144,7 +145,7 @@ pub fn run_benchmark(a: &BenchOptions) -> Result<BenchReport, SweepError> {
     let (refs, reused, rows) = pool.install(|| -> Result<_, SweepError> {
         let (refs, reused) = load_or_compute(&a.out, &plan)?;
         let rows = if a.rescore {
-            let mut rows = bench_table::read_bench(&table)?;
+            let mut rows = table::read_bench(&table)?;
             rescore(&refs, &mut rows);
             rows
         } else {
@@ -154,10 +155,10 @@ pub fn run_benchmark(a: &BenchOptions) -> Result<BenchReport, SweepError> {
     })?;
     let summary = summarise(&refs, &rows);
     let machine = machine();
-    let mut meta = tables::metadata(None);
+    let mut meta = sweep_tables::metadata(None);
     if a.rescore {
         // Keep the provenance of the measurement; add the re-scoring's.
-        let old = tables::read_metadata(&table)?;
+        let old = sweep_tables::read_metadata(&table)?;
         for k in ["machine", "command", "jobs", "git_commit"] {
             if let Some(v) = old.get(k) {
                 meta.push((format!("measured_{k}"), v.clone()));
@@ -171,12 +172,12 @@ pub fn run_benchmark(a: &BenchOptions) -> Result<BenchReport, SweepError> {
     ));
     meta.push(("jobs".into(), pool.current_num_threads().to_string()));
     meta.push(("plan".into(), serde_json::to_string(&plan).expect("json")));
-    let mut df = bench_table::bench_frame(&rows)?;
-    tables::write_parquet(&mut df, &table, meta)?;
+    let mut df = table::bench_frame(&rows)?;
+    sweep_tables::write_parquet(&mut df, &table, meta)?;
     let md_path = a.out.join("bench.md");
-    crate::atomic::write_atomic(&md_path, markdown(&rows).as_bytes())?;
+    crate::store::atomic::write_atomic(&md_path, markdown(&rows).as_bytes())?;
     let summary_path = a.out.join("summary.json");
-    crate::atomic::write_atomic(
+    crate::store::atomic::write_atomic(
         &summary_path,
         serde_json::to_string_pretty(&summary)
             .expect("json")
@@ -186,7 +187,7 @@ pub fn run_benchmark(a: &BenchOptions) -> Result<BenchReport, SweepError> {
         "Work-precision ({:?} profile; {}; commit {})",
         profile,
         machine,
-        tables::GIT_COMMIT
+        sweep_tables::GIT_COMMIT
     );
     let mut files = vec![table, md_path, summary_path, a.out.join("reference.json")];
     files.extend(precision_plot::work_precision(
