@@ -22,7 +22,7 @@
 //!
 //! # The path of one run
 //!
-//! A YAML line is parsed by [`spec::SweepSpec::load`]; [`store::plan::Plan`] turns the spec into
+//! A YAML line is parsed by [`spec::load`]; [`store::plan::plan`] turns the spec into
 //! tasks, each keyed by a hash of its parameters, settings and initial condition;
 //! [`execution::execute::run_sweep`] runs the tasks not yet in the [`store::run_store::Store`]
 //! through `droplet_solver::runs::driver::simulate` and stores each outcome as it finishes;

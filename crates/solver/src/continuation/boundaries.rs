@@ -110,7 +110,7 @@ pub fn mc_line(w: &Window, onset_eta_t: f64) -> Result<Vec<(f64, f64)>, SolverEr
         fd_step: 1e-7,
         max_step: vec![0.05, 0.002],
     };
-    // a2 ~ -0.18 v^2 on the moving branch near the onset of motion (design notes Sect. 7).
+    // a2 ~ -0.18 v^2 on the moving branch near the onset of motion (docs/model.md, "Where a slow run lands").
     let mut guess = [(-c / 0.18f64).sqrt(), onset_eta_t];
     let (k0, k1) = w.kappa2;
     let m = w.id_samples.max(2);

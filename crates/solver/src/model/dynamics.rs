@@ -1,5 +1,5 @@
-//! The droplet's equations of motion (paper eqs. 36-39 with the inertia `m` of the design notes,
-//! Decision 1: `m = 0.1`, the value that reproduces the paper's IC/MD bistability), in the one place every scheme and the steady equations take them from:
+//! The droplet's equations of motion (paper eqs. 36-39 with the inertia `m` of docs/model.md,
+//! "Inertia": `m = 0.1`, the value that reproduces the paper's IC/MD bistability), in the one place every scheme and the steady equations take them from:
 //!
 //! `m dv/dt = -eta_t v + F`,   `eta2 da2/dt = Ga - kappa2 a2`,   `eta2 db2/dt = Gb - kappa2 b2`,
 //!

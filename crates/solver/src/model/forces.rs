@@ -2,7 +2,7 @@
 //!
 //! On the grid `F = -dx^2 Sum grad(u) Theta`, `Ga = -dx^2 Sum (X u_x - Y u_y) Theta`,
 //! `Gb = -dx^2 Sum (Y u_x + X u_y) Theta` with the spectral gradient of `u` (Nyquist mode
-//! zeroed), the discretisation the design notes (Sect. 2) prescribe: `grad u` by spectral
+//! zeroed), the discretisation of docs/model.md, "Solving it in the droplet's frame": `grad u` by spectral
 //! derivative, multiplied by `Theta` and summed over the droplet's window only. By Parseval these sums are evaluated in Fourier space:
 //! `Sum f g = Sum_k f_hat conj(g_hat)`, so with the transforms of `Theta`, `X Theta`, `Y Theta`
 //! no inverse transform is needed. Measured: at N = 192 these forces are within 1e-5 (relative)
@@ -18,8 +18,8 @@ use crate::model::grid::Grid;
 use crate::model::shape::ShapeParams;
 use rustfft::num_complex::Complex64;
 
-/// Forces on the droplet and the numerical area `A = Sum(Theta) dx^2` of `Theta` (design notes,
-/// Decision 2: the numerical area, recomputed with the shape, reproduces the paper's Appendix E
+/// Forces on the droplet and the numerical area `A = Sum(Theta) dx^2` of `Theta` (docs/model.md,
+/// "The area `A` is the integrated area of `Theta`": the numerical area, recomputed with the shape, reproduces the paper's Appendix E
 /// fit; the constant `pi R^2` gives `p2 ~ 0.09` instead of 0.144).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Forces {

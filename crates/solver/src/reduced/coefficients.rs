@@ -15,7 +15,7 @@ pub struct Coefficients {
     /// `f3 = -F3^(x)`.
     pub f3: f64,
     /// `f3~ = F3~^(x) / 2`. The paper prints 0.09292 at R = 1; the formula gives 0.004781
-    /// (design notes, Decision 3: a typo in the paper, confirmed by a PDE force fit giving
+    /// (docs/model.md, "The reduced model's coefficients": a typo in the paper, confirmed by a PDE force fit giving
     /// 0.00478; not used in eqs. 58-59).
     pub f3t: f64,
     /// `g0~ = G0~^(2a)`.
@@ -67,7 +67,7 @@ mod tests {
     fn paper_values_at_r_1() {
         let c = Coefficients::paper();
         // The digits the paper prints (Sect. 5); f3~ from the formula (the paper's 0.09292 is a
-        // typo: design notes, Decision 3).
+        // typo: docs/model.md).
         let close = |x: f64, y: f64, digits: f64| (x - y).abs() < 0.5 * 10f64.powf(-digits);
         assert!(close(c.f1, 0.07812, 5.0), "{}", c.f1);
         assert!(close(c.f1t, 0.05980, 5.0), "{}", c.f1t);
@@ -76,7 +76,7 @@ mod tests {
         assert!(close(c.g2, 0.006909, 6.0), "{}", c.g2);
         assert!(close(c.g2t, 0.01487, 5.0), "{}", c.g2t);
         assert!(close(c.f3t, 0.004781, 6.0), "{}", c.f3t);
-        // Six-digit values from the Bessel formulas (design notes, Decision 3).
+        // Six-digit values from the Bessel formulas (docs/model.md).
         assert!(
             close(c.f1, 0.078119, 6.0)
                 && close(c.g0t, 0.119605, 6.0)

@@ -1,5 +1,5 @@
-//! Linear stability of a steady or steadily moving state, field included (design notes,
-//! Sect. 6). In the co-moving frame the linearisation about `(u0, z0)`, `z = (vx, vy, a2, b2)`,
+//! Linear stability of a steady or steadily moving state, field included (docs/model.md,
+//! "Steady states as roots"). In the co-moving frame the linearisation about `(u0, z0)`, `z = (vx, vy, a2, b2)`,
 //! is
 //!
 //! `du_t = D du + B dz`,  `M dz_t = E dz + C du`,  `M = diag(m, m, eta2, eta2)`,
@@ -428,7 +428,7 @@ mod tests {
         }
     }
 
-    /// The leading eigenvalues of design notes Sect. 6, from an independent numpy
+    /// The leading eigenvalues of docs/model.md's reference values, from an independent numpy
     /// implementation at N = 192 (IC: drift pair and the shape pair split by the square box;
     /// MD: the rotation-like mode first).
     #[test]

@@ -205,7 +205,7 @@ mod tests {
     #[test]
     fn the_resting_disks_thresholds_are_where_its_eigenvalues_cross_zero() {
         let th = ic_thresholds(&ModelParams::at(0.085, 0.13), 192).unwrap();
-        // Bracketed by the design notes' eigenvalues: drift +0.001445 at eta_t = 0.0763 and
+        // Bracketed by the reference eigenvalues of docs/model.md: drift +0.001445 at eta_t = 0.0763 and
         // -0.004036 at 0.077; shape > 0 at kappa2 = 0.112, < 0 at 0.13.
         assert!(th.eta_t > 0.0763 && th.eta_t < 0.077, "{th:?}");
         for k in [th.kappa2_a2, th.kappa2_b2] {

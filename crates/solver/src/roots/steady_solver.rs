@@ -1,4 +1,4 @@
-//! The exact co-moving steady state (design notes, Sect. 2 "How to solve it": in the droplet's
+//! The exact co-moving steady state (docs/model.md, "Steady states as roots": in the droplet's
 //! frame a steadily moving state is a fixed point, so it can be computed directly): for given `(v, a2, b2)` the field
 //! `u_hat = Theta_hat / (A (1 + k^2 - i k.v))` solves `0 = Lap u - u + v.grad u + Theta / A`
 //! (paper eq. S13), and the force balance `-eta_t v + F = 0`, `Ga - kappa2 a2 = 0`,

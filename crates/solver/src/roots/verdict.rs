@@ -1,4 +1,4 @@
-//! The stability verdict of one state: its eigenvalues (design notes Sect. 6), the
+//! The stability verdict of one state: its eigenvalues (docs/model.md, "Steady states as roots"), the
 //! near-neutral rotation mode told apart from the rest by its shape, and the count of unstable
 //! eigenvalues that decides stability.
 //!

@@ -1,5 +1,5 @@
-//! Finishing a run by Newton instead of creeping to the paper's steady test (design notes
-//! Sect. 6): the state a run converges to is a root of the co-moving force balance, which
+//! Finishing a run by Newton instead of creeping to the paper's steady test (docs/model.md,
+//! "Steady states as roots"; docs/numerics.md): the state a run converges to is a root of the co-moving force balance, which
 //! [`SteadySolver`] computes directly, and its stability ([`crate::roots::verdict`])
 //! says whether time stepping would stay there.
 //!

@@ -1,4 +1,4 @@
-//! Where a slow run lands: the one-dimensional quasi-steady flow (design notes Sect. 7).
+//! Where a slow run lands: the one-dimensional quasi-steady flow (docs/model.md, "Where a slow run lands").
 //!
 //! Runs are slow only beside a bifurcation, and there only one direction is slow: the field
 //! relaxes at rate >= 1, the shape at about `|kappa2 - G'| / eta2`, while the drift (or
@@ -424,7 +424,7 @@ mod tests {
 
     #[test]
     fn a_resting_run_lands_on_the_deformed_state_below_the_deformation_onset() {
-        // (0.085, 0.112): the disk is unstable to deformation (design notes Sect. 6), a
+        // (0.085, 0.112): the disk is unstable to deformation (docs/model.md reference values), a
         // slightly deformed resting run grows to the ID state; along the diagonal here.
         let mut s = solver(0.085, 0.112);
         let l = land(&mut s, [0.0, 0.0, 0.0, 0.02]).unwrap();

@@ -1,7 +1,7 @@
 //! One run of the full model, from an initial condition to its ending: the driver (`driver`:
 //! the time loop and its stop rules), the Newton finish and the diagnosis of a run that is not
 //! settled (`finish`), the leap along a departure from a saddle (`leap`) and the landing of a
-//! slow run where its one-dimensional quasi-steady flow ends (`landing`; docs/attractors.md).
+//! slow run where its one-dimensional quasi-steady flow ends (`landing`; docs/classification.md).
 //!
 //! May use: every folder below it (`numerics`, `model`, `stepping`, `contract`, `reduced`,
 //! `roots`). Used by: the sweep crate and the CLI.

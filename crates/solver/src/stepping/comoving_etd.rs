@@ -1,4 +1,4 @@
-//! Pseudo-spectral ETD2RK in the droplet's co-moving frame (design notes, Sect. 2: the lab-frame
+//! Pseudo-spectral ETD2RK in the droplet's co-moving frame (docs/model.md, "Solving it in the droplet's frame": the lab-frame
 //! version with the moving source explicit gave steady v = 0.613 / 0.643 at dt = 0.01 / 0.02
 //! against the exact 0.597; in the co-moving frame a steadily moving droplet is an exact fixed
 //! point).

@@ -2,7 +2,7 @@
 //! that point, independently of how the runs ended.
 //!
 //! A point's label names the classes its runs ended on ([`crate::map::point_class`]); each class must be
-//! a stable steady state of the PDE model there (design notes Sect. 6). For every point:
+//! a stable steady state of the PDE model there (docs/model.md, "Steady states as roots"). For every point:
 //! - the resting disk's eigenvalues are computed at the point (the exact, pointwise form of
 //!   the onsets of motion and of deformation): a run labelled IC contradicts when one grows;
 //! - every other run's final `(vx, vy, a2, b2)` is taken as a starting guess for Newton on
