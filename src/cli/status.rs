@@ -36,6 +36,9 @@ pub fn run(a: Args) -> Result<(), CliError> {
                 .collect::<Vec<_>>()
                 .join(", ")
         };
+        if st.from_tables {
+            outln!("(read from its tables: the directory has no runs/, as a committed result)");
+        }
         if st.runs_corrupt > 0 {
             outln!(
                 "{} stored runs cannot be used (unreadable or not matching their key): the next `droplet sweep` on this directory moves them to corrupt/ and recomputes them",

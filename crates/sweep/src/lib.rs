@@ -12,8 +12,8 @@
 //! | [`spec`] | the YAML spec: strict parsing, the swept axes, the point lattice |
 //! | [`store`] | the plan (tasks and run keys), the run store and its lock, shards, atomic writes |
 //! | [`map`] | point classes, the phase map of a sweep, refinement, label counts, 1-D comparisons |
+//! | [`tables`] | the Parquet tables (runs, points, series, branches, boundaries, `h0` fit), and read back as typed rows |
 //! | [`audit`] | `droplet audit`: every label checked against the stable states at its point |
-//! | [`tables`] | the Parquet tables (runs, points, series, branches, boundaries, `h0` fit) |
 //! | [`pictures`] | the figures as PNG and SVG |
 //! | [`execution`] | running, merging and watching a sweep; Slurm scripts; progress bars |
 //! | [`bench`] | the work-precision benchmark |

@@ -21,9 +21,11 @@
 //! are audited as they are. Roots met twice at one point (runs from several initial
 //! conditions on one state) are checked once. Points run in parallel, one steady solver
 //! per worker.
-mod rows;
+//!
+//! May use: `spec`, `store`, `map`, `tables`. Used by: the CLI.
 
 use crate::error::SweepError;
+use crate::tables::read::{self as tables, RunRow as Row};
 use droplet_solver::numerics::newton::{solve, NewtonOptions};
 use droplet_solver::roots::linearisation::Linearization;
 use droplet_solver::roots::verdict::{assess, Verdict};
@@ -32,7 +34,6 @@ use droplet_solver::{
     roots::steady_solver::SteadySolver,
 };
 use rayon::prelude::*;
-use rows::{read, read_runs, strings, u32s, Row};
 use serde::Serialize;
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
@@ -263,15 +264,29 @@ fn expected_label(runs: &[&Row]) -> String {
     crate::map::point_class::label_of(&classes, runs.len(), diverged, unsettled)
 }
 
+/// The runs by point; only maps of the PDE model with the spectral scheme (their steady
+/// equations and eigenvalues are what the audit computes).
+fn by_point(rows: Vec<Row>) -> Result<BTreeMap<u32, Vec<Row>>, SweepError> {
+    let mut out: BTreeMap<u32, Vec<Row>> = BTreeMap::new();
+    for r in rows {
+        if r.model != "pde" || r.scheme != "spectral" {
+            return Err(SweepError::Invalid(format!(
+                "audit checks maps of the PDE model with the spectral scheme (its steady \
+                 equations and eigenvalues); this one has model {} and scheme {}",
+                r.model, r.scheme
+            )));
+        }
+        out.entry(r.point).or_default().push(r);
+    }
+    Ok(out)
+}
+
 /// Audits the map in `dir` (its `runs.parquet` and `points.parquet`).
 pub fn audit(dir: &Path) -> Result<Audit, SweepError> {
-    let runs = read_runs(&read(&dir.join("runs.parquet"))?)?;
-    let points = read(&dir.join("points.parquet"))?;
-    let (index, labels) = (u32s(&points, "point")?, strings(&points, "class")?);
-    let labelled: BTreeMap<u32, String> = index
+    let runs = by_point(tables::runs(&dir.join(tables::RUNS))?)?;
+    let labelled: BTreeMap<u32, String> = tables::points(&dir.join(tables::POINTS))?
         .into_iter()
-        .zip(labels)
-        .map(|(i, l)| (i, l.unwrap_or_default()))
+        .map(|p| (p.point, p.label))
         .collect();
     if let Some(p) = runs.keys().find(|p| !labelled.contains_key(p)) {
         return Err(SweepError::Invalid(format!(

@@ -42,6 +42,9 @@ pub struct SweepStatus {
     /// Wall seconds until the known runs are done at that pace, measured from the first of
     /// those runs to now (`None` when none was stored in the window, or nothing remains).
     pub eta_s: Option<f64>,
+    /// Read from the directory's tables (`points.parquet`, `runs.parquet`), which has no run
+    /// store: a committed result directory.
+    pub from_tables: bool,
 }
 
 /// The window over which `droplet status` measures a running sweep's pace.
@@ -60,8 +63,12 @@ pub struct LevelStatus {
     pub runs_done: usize,
 }
 
-/// Reads the status of the sweep in `dir`.
+/// Reads the status of the sweep in `dir`: from its run store, or from its tables when it has
+/// none (a committed result directory).
 pub fn status(dir: &Path) -> Result<SweepStatus, SweepError> {
+    if crate::tables::read::is_tables_only(dir) {
+        return status_from_tables(dir);
+    }
     let store = Store::open_read(dir)?;
     let spec = crate::spec::load_stored(dir)?;
     let mut levels = Vec::new();
@@ -134,5 +141,51 @@ pub fn status(dir: &Path) -> Result<SweepStatus, SweepError> {
         runs_recent,
         pace_s,
         eta_s,
+        from_tables: false,
+    })
+}
+
+/// The status of a finished map known only by its tables.
+fn status_from_tables(dir: &Path) -> Result<SweepStatus, SweepError> {
+    use crate::tables::read;
+    let spec = read::stored_spec(&dir.join(read::POINTS))?;
+    let points = read::points(&dir.join(read::POINTS))?;
+    let runs = read::runs(&dir.join(read::RUNS))?;
+    let mut levels: BTreeMap<u32, LevelStatus> = BTreeMap::new();
+    if spec.refine.is_some() {
+        for p in &points {
+            let l = levels.entry(p.level).or_insert(LevelStatus {
+                level: p.level,
+                points: 0,
+                runs_total: 0,
+                runs_done: 0,
+            });
+            l.points += 1;
+            l.runs_total += p.n_runs as usize;
+            l.runs_done += p.n_runs as usize;
+        }
+    }
+    Ok(SweepStatus {
+        name: spec.name,
+        output: dir.to_path_buf(),
+        points: points.len(),
+        runs_total: runs.len(),
+        runs_done: runs.len(),
+        runs_corrupt: 0,
+        complete: true,
+        run_statuses: tally(runs.iter().map(|r| r.status.clone())),
+        run_classes: tally(
+            runs.iter()
+                .map(|r| r.class.map_or("none", |c| c.as_str()).to_string()),
+        ),
+        point_classes: tally(points.iter().map(|p| p.label.clone())),
+        points_unsettled: points.iter().filter(|p| !p.settled).count(),
+        cpu_s: runs.iter().fold(0.0, |acc, r| acc + r.wall_s),
+        levels: levels.into_values().collect(),
+        eta_cpu_s: None,
+        runs_recent: 0,
+        pace_s: 0.0,
+        eta_s: None,
+        from_tables: true,
     })
 }

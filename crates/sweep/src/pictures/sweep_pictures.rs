@@ -24,8 +24,19 @@ pub struct Drawn {
 }
 
 /// Draws `phase_map.png` / `.svg` of the sweep in `dir` (points without all runs: `missing`),
-/// from one consistent snapshot: refused while a sweep or shard works on `dir`.
+/// from one consistent snapshot: refused while a sweep or shard works on `dir`. A directory
+/// with no run store (a committed result) is drawn from its tables.
 pub fn plot(dir: &Path) -> Result<Drawn, SweepError> {
+    if crate::tables::read::is_tables_only(dir) {
+        let spec = crate::tables::read::stored_spec(&dir.join(crate::tables::read::POINTS))?;
+        let drawing = MapDrawing::from_tables(dir)?;
+        let files = draw(dir, &spec, &drawing)?;
+        return Ok(Drawn {
+            files,
+            points: drawing.points.len(),
+            missing: 0,
+        });
+    }
     let store = Store::open_idle(dir)?;
     let spec = crate::spec::load_stored(dir)?;
     let plan = crate::map::levels::stored_plan(&spec, &store)?;
@@ -39,6 +50,78 @@ pub fn plot(dir: &Path) -> Result<Drawn, SweepError> {
     })
 }
 
+/// What a sweep's pictures show: each point's label and where each settled run ended.
+#[derive(Debug, Clone, Default)]
+pub struct MapDrawing {
+    /// `(eta_t, kappa2, label)` of every point.
+    pub points: Vec<(f64, f64, String)>,
+    /// Every run that ended on a stable state.
+    pub ends: Vec<RunEnd>,
+}
+
+/// Where one settled run ended.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunEnd {
+    pub eta_t: f64,
+    pub kappa2: f64,
+    pub class: String,
+    pub v: f64,
+    pub s: f64,
+}
+
+impl MapDrawing {
+    /// From a sweep's plan, its stored runs and its map.
+    pub fn from_runs(
+        plan: &crate::store::plan::Plan,
+        records: &std::collections::HashMap<String, crate::store::run_store::RunRecord>,
+        map: &PhaseMap,
+    ) -> Self {
+        let points = map
+            .points
+            .iter()
+            .map(|p| (p.eta_t, p.kappa2, p.shown_label().to_string()))
+            .collect();
+        let ends = plan
+            .tasks()
+            .filter_map(|t| records.get(&t.key).map(|r| (t, r)))
+            .filter_map(|(t, r)| {
+                let (eta_t, kappa2) = plan.points[t.point];
+                let o = &r.outcome;
+                o.class.map(|c| RunEnd {
+                    eta_t,
+                    kappa2,
+                    class: c.as_str().to_string(),
+                    v: o.v,
+                    s: o.s,
+                })
+            })
+            .collect();
+        Self { points, ends }
+    }
+
+    /// From a finished map's tables (`points.parquet`, `runs.parquet`).
+    pub fn from_tables(dir: &Path) -> Result<Self, SweepError> {
+        use crate::tables::read;
+        let points = read::points(&dir.join(read::POINTS))?
+            .into_iter()
+            .map(|p| (p.eta_t, p.kappa2, p.label))
+            .collect();
+        let ends = read::runs(&dir.join(read::RUNS))?
+            .into_iter()
+            .filter_map(|r| {
+                r.class.map(|c| RunEnd {
+                    eta_t: r.params.eta_t,
+                    kappa2: r.params.kappa2,
+                    class: c.as_str().to_string(),
+                    v: r.v,
+                    s: r.s,
+                })
+            })
+            .collect();
+        Ok(Self { points, ends })
+    }
+}
+
 /// As [`plot`], from records already loaded (a sweep or merge that just wrote the tables).
 pub fn plot_records(
     dir: &Path,
@@ -47,21 +130,36 @@ pub fn plot_records(
     records: &std::collections::HashMap<String, crate::store::run_store::RunRecord>,
     map: &PhaseMap,
 ) -> Result<Vec<PathBuf>, SweepError> {
+    draw(dir, spec, &MapDrawing::from_runs(plan, records, map))
+}
+
+/// Draws a sweep's pictures into `dir`: the phase map (a 2-D sweep) with the boundaries
+/// (writing `boundaries.parquet`: the reduced model's analytic ones, and the full model's if
+/// `droplet boundaries` put them there), and the bifurcation lines (a 1-D sweep).
+pub fn draw(
+    dir: &Path,
+    spec: &SweepSpec,
+    drawing: &MapDrawing,
+) -> Result<Vec<PathBuf>, SweepError> {
     // A refined map: each point drawn as the quarters of the unsplit cells it is a corner of.
     let mut tiles = spec.refine.map(|lattice| {
-        let nodes = plan.points.iter().map(|&p| lattice.node_of(p)).collect();
+        let nodes = drawing
+            .points
+            .iter()
+            .map(|&(e, k, _)| lattice.node_of((e, k)))
+            .collect();
         (lattice, lattice.tiles(&nodes))
     });
-    let pts: Vec<MapPoint> = map
+    let pts: Vec<MapPoint> = drawing
         .points
         .iter()
-        .map(|p| MapPoint {
-            eta_t: p.eta_t,
-            kappa2: p.kappa2,
-            label: p.shown_label().to_string(),
+        .map(|(eta_t, kappa2, label)| MapPoint {
+            eta_t: *eta_t,
+            kappa2: *kappa2,
+            label: label.clone(),
             tiles: tiles
                 .as_mut()
-                .and_then(|(l, t)| t.remove(&l.node_of((p.eta_t, p.kappa2))))
+                .and_then(|(l, t)| t.remove(&l.node_of((*eta_t, *kappa2))))
                 .unwrap_or_default(),
         })
         .collect();
@@ -69,7 +167,7 @@ pub fn plot_records(
     let title = format!(
         "{}: {model} phase map ({} ICs per point)",
         spec.name,
-        plan.ic_names.len()
+        spec.initial_conditions.len()
     );
     // The reduced model's analytic boundaries (Fig. 3a), over both ODE and PDE maps.
     let coef = Coefficients::new(spec.params.radius, spec.solver.h0);
@@ -102,7 +200,7 @@ pub fn plot_records(
         Vec::new()
     };
     files.push(path);
-    files.extend(lines(dir, spec, plan, records)?);
+    files.extend(lines(dir, spec, &drawing.ends)?);
     Ok(files)
 }
 
@@ -111,34 +209,20 @@ pub fn plot_records(
 /// coloured by class, over the full model's branches along the line (PDE spectral sweeps:
 /// [`pde_branches`], solid where stable, dashed where unstable) — the way a physicist
 /// draws Fig. 2b, every run's end on a solid branch.
-fn lines(
-    dir: &Path,
-    spec: &SweepSpec,
-    plan: &crate::store::plan::Plan,
-    records: &std::collections::HashMap<String, crate::store::run_store::RunRecord>,
-) -> Result<Vec<PathBuf>, SweepError> {
+fn lines(dir: &Path, spec: &SweepSpec, ends: &[RunEnd]) -> Result<Vec<PathBuf>, SweepError> {
     let (along_eta, fixed) = match (spec.eta_t.len(), spec.kappa2.len()) {
         (n, 1) if n > 1 => (true, format!("{KAPPA2} = {}", spec.kappa2[0])),
         (1, n) if n > 1 => (false, format!("{ETA_T} = {}", spec.eta_t[0])),
         _ => return Ok(Vec::new()),
     };
-    let mut markers: Vec<Marker> = plan
-        .tasks()
-        .filter_map(|t| records.get(&t.key).map(|r| (t, r)))
-        .filter(|(_, r)| r.outcome.class.is_some())
-        .map(|(t, r)| {
-            let (eta, kappa) = plan.points[t.point];
-            Marker {
-                x: if along_eta { eta } else { kappa },
-                v: r.outcome.v,
-                s: r.outcome.s,
-                key: r
-                    .outcome
-                    .class
-                    .map(|c| c.as_str().to_string())
-                    .unwrap_or_default(),
-                bold: r.outcome.status == droplet_solver::contract::outcome::RunStatus::Steady,
-            }
+    let mut markers: Vec<Marker> = ends
+        .iter()
+        .map(|e| Marker {
+            x: if along_eta { e.eta_t } else { e.kappa2 },
+            v: e.v,
+            s: e.s,
+            key: e.class.clone(),
+            bold: true,
         })
         .collect();
     if markers.is_empty() {
@@ -147,11 +231,16 @@ fn lines(
     let axis = if along_eta { Axis::EtaT } else { Axis::Kappa2 };
     let (lines, events, vlines) = branch_drawing(&pde_branches(spec, axis), axis);
     markers.extend(events.into_iter().map(|e| Marker { bold: false, ..e }));
+    let ic_names: Vec<&str> = spec
+        .initial_conditions
+        .iter()
+        .map(|i| i.name.as_str())
+        .collect();
     let title = format!(
         "{}: {} runs (ICs {}) on the branches, {fixed}",
         spec.name,
         spec.solver.model.as_str().to_uppercase(),
-        plan.ic_names.join(", ")
+        ic_names.join(", ")
     );
     vs_parameter(
         dir,

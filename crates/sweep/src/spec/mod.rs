@@ -20,7 +20,10 @@
 //! One file per section: [`context`] (locating keys, typed accessors, error paths),
 //! [`grid`], [`params`], [`initial`], [`solver`], [`refine`], [`classify`]. Range checks are the
 //! solver crate's own (`ModelParams::validate`, `SolverSettings::validate`, `limits::check_run`), the same as for
-//! `droplet simulate`.
+//! `droplet simulate`. `axes` names the swept parameters; `lattice` is the integer point lattice of
+//! a refined sweep.
+//!
+//! May use: the crate's `error` (and the solver crate). Used by every other folder.
 pub mod axes;
 mod classify;
 mod context;
