@@ -8,7 +8,7 @@ use serde::{Deserialize, Serialize};
 /// `eta2` its friction, `radius` the droplet radius `R`, `sigma` the width of the smoothed
 /// indicator `Theta_sigma` (eq. 31), `box_len` the side `L` of the periodic square, and `mass`
 /// the inertia `m` (`m dv/dt = -eta_t v + F`; `m = 0` means overdamped `eta_t dr_c/dt = F`,
-/// docs/model.md, "Inertia": only `0.03 < m < 0.3` reproduces the paper's IC/MD bistability,
+/// docs/model.md, "Inertia": the paper's IC/MD bistability needs `m` of at least about 0.03,
 /// since with `m -> 0` the initial velocity is forgotten; default 0.1).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
