@@ -63,6 +63,8 @@ pub fn render(path: &Path, fig: &impl Figure) -> Result<Vec<PathBuf>, SweepError
     let mut text = String::new();
     fig.draw(SVGBackend::with_string(&mut text, (w, h)).into_drawing_area())
         .map_err(|e| named(&svg, e))?;
+    // plotters embeds a bitmap as `data:png;base64,...`; browsers want a MIME type.
+    let text = text.replace("href=\"data:png;base64,", "href=\"data:image/png;base64,");
     write_atomic(&svg, text.as_bytes())?;
     Ok(vec![png, svg])
 }
@@ -99,5 +101,43 @@ mod tests {
         // A directory that does not exist: the error names the file, nothing is written.
         let e = render(&dir.path().join("no/such/sq.png"), &Square).unwrap_err();
         assert!(e.to_string().contains("sq.png"), "{e}");
+    }
+
+    /// A picture that is one 200 x 200 bitmap.
+    struct Bitmap;
+
+    impl Figure for Bitmap {
+        fn size(&self) -> (u32, u32) {
+            (220, 220)
+        }
+
+        fn draw<DB: DrawingBackend>(&self, root: DrawingArea<DB, Shift>) -> Result<(), SweepError>
+        where
+            DB::ErrorType: 'static,
+        {
+            let rgb: Vec<u8> = (0..200 * 200)
+                .flat_map(|i| [(i % 251) as u8, 0, 90])
+                .collect();
+            let image =
+                plotters::element::BitMapElement::with_owned_buffer((10, 10), (200, 200), rgb)
+                    .expect("buffer of the right size");
+            root.draw(&image).map_err(perr)?;
+            root.present().map_err(perr)
+        }
+    }
+
+    #[test]
+    fn a_bitmap_is_one_embedded_png_in_the_svg() {
+        let dir = tempfile::tempdir().unwrap();
+        let files = render(&dir.path().join("bitmap.png"), &Bitmap).unwrap();
+        let svg = std::fs::read_to_string(&files[1]).unwrap();
+        assert_eq!(svg.matches("<image").count(), 1, "one image element");
+        assert!(
+            svg.contains("href=\"data:image/png;base64,"),
+            "a PNG with its MIME type"
+        );
+        // 40 000 pixels as rectangles would be megabytes.
+        assert!(svg.len() < 200_000, "{} bytes", svg.len());
+        assert!(svg.matches("<rect").count() < 10);
     }
 }
