@@ -10,6 +10,7 @@
 //! ([`droplet_solver::roots::steady_solver::SteadySolver`]) at `n_newton`, seeded from a fine time integration that
 //! also gives the reference class; IC states are exactly `v = s = 0`; the transient by the
 //! spectral scheme at `n_ref` with a small fixed step.
+use crate::bench::family::Family;
 use crate::error::SweepError;
 use crate::execution::progress::progress_bar;
 use droplet_solver::contract::ending::SteadyMethod;
@@ -38,8 +39,8 @@ pub struct Case {
 /// One way of computing a case.
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 pub struct Method {
-    /// Curve of the picture: `paper-fd`, `spectral N=192`, `adaptive N=192 dt_max=0.25`.
-    pub family: String,
+    /// Curve of the picture.
+    pub family: Family,
     pub settings: SolverSettings,
 }
 
@@ -127,7 +128,7 @@ impl BenchPlan {
             ..SolverSettings::paper_fd()
         };
         let mut methods = vec![Method {
-            family: "paper-fd".into(),
+            family: Family::PaperFd,
             settings: if quick {
                 SolverSettings {
                     n: 48,
@@ -141,7 +142,7 @@ impl BenchPlan {
         for &n in ns {
             for &dt in dts {
                 methods.push(Method {
-                    family: format!("spectral N={n}"),
+                    family: Family::Spectral { n },
                     settings: SolverSettings { n, dt, ..base },
                 });
             }
@@ -150,7 +151,7 @@ impl BenchPlan {
             for &dt_max in dt_maxes {
                 for &tol in tols {
                     methods.push(Method {
-                        family: format!("adaptive N={n} dt_max={dt_max}"),
+                        family: Family::Adaptive { n, dt_max },
                         settings: SolverSettings {
                             n,
                             tol,
@@ -166,7 +167,7 @@ impl BenchPlan {
         for &n in adaptive_ns {
             for &tol in tols {
                 methods.push(Method {
-                    family: format!("newton N={n} dt_max={dt_max}"),
+                    family: Family::Newton { n, dt_max },
                     settings: SolverSettings {
                         n,
                         tol,
@@ -259,7 +260,7 @@ pub struct References {
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 pub struct BenchRow {
     pub case: String,
-    pub family: String,
+    pub family: Family,
     pub scheme: String,
     pub n: usize,
     pub dt: f64,
@@ -465,7 +466,7 @@ pub fn run(refs: &References, progress: bool) -> Result<Vec<BenchRow>, SweepErro
             let s = &m.settings;
             let mut row = BenchRow {
                 case: c.name.clone(),
-                family: m.family.clone(),
+                family: m.family,
                 scheme: s.scheme.as_str().into(),
                 n: s.n,
                 dt: s.dt,
@@ -495,8 +496,8 @@ pub fn run(refs: &References, progress: bool) -> Result<Vec<BenchRow>, SweepErro
     bar.finish_and_clear();
     let mut rows = rows;
     rows.sort_by(|a, b| {
-        (a.case.as_str(), a.family.as_str(), a.dt, a.tol)
-            .partial_cmp(&(b.case.as_str(), b.family.as_str(), b.dt, b.tol))
+        (a.case.as_str(), a.family.to_string(), a.dt, a.tol)
+            .partial_cmp(&(b.case.as_str(), b.family.to_string(), b.dt, b.tol))
             .expect("finite settings")
     });
     Ok(rows)
@@ -538,7 +539,7 @@ pub struct BenchSummary {
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 pub struct VsPaperFd {
     pub case: String,
-    pub family: String,
+    pub family: Family,
     pub dt: f64,
     pub tol: f64,
     /// These are [`SolverSettings::default`]'s numerics.
@@ -576,7 +577,7 @@ pub fn summarise(refs: &References, rows: &[BenchRow]) -> BenchSummary {
             let est = fd_rate.zip(t_ref).map(|(rate, t)| rate * t);
             VsPaperFd {
                 case: r.case.clone(),
-                family: r.family.clone(),
+                family: r.family,
                 dt: r.dt,
                 tol: r.tol,
                 is_default: r.dt == d.dt
@@ -628,7 +629,7 @@ mod tests {
         // The paper's scheme runs the transient only.
         let fd: Vec<_> = jobs
             .iter()
-            .filter(|(_, m)| p.methods[*m].family == "paper-fd")
+            .filter(|(_, m)| p.methods[*m].family == Family::PaperFd)
             .collect();
         assert_eq!(fd.len(), 1);
         assert!(p.cases[fd[0].0].window.is_some());

@@ -4,6 +4,7 @@
 //!
 //! May use: every folder but `audit`. Used by: the CLI.
 pub mod cases;
+pub mod family;
 pub mod precision_plot;
 pub mod run;
 pub mod table;

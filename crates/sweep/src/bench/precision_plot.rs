@@ -1,6 +1,7 @@
 //! The work-precision picture of [`crate::bench::cases`]: error against wall time, log-log, one
 //! panel per case and one curve per method family.
 use crate::bench::cases::BenchRow;
+use crate::bench::family::Family;
 use crate::error::SweepError;
 use crate::pictures::render::{perr, render, Figure};
 use droplet_solver::contract::outcome::RunStatus;
@@ -12,46 +13,41 @@ use std::path::{Path, PathBuf};
 const FLOOR: f64 = 1e-10;
 
 /// Colour of a family: paper-fd black, fixed-step spectral in blues, adaptive in
-/// reds/oranges/greens by `dt_max`, the Newton finish in purples.
-fn colour(family: &str, index: usize) -> RGBColor {
-    if family == "paper-fd" {
-        return BLACK;
-    }
-    let shades: [RGBColor; 4] = if family.starts_with("spectral") {
-        [
+/// reds/oranges/greens by `dt_max`, the Newton finish in purples; `index` picks the shade.
+fn colour(family: &Family, index: usize) -> RGBColor {
+    let is = |dt_max: f64, x: f64| (dt_max - x).abs() < 1e-12;
+    let shades: [RGBColor; 4] = match *family {
+        Family::PaperFd => return BLACK,
+        Family::Spectral { .. } => [
             RGBColor(150, 190, 230),
             RGBColor(80, 140, 210),
             RGBColor(20, 80, 180),
             RGBColor(10, 30, 110),
-        ]
-    } else if family.starts_with("newton") {
-        [
+        ],
+        Family::Newton { .. } => [
             RGBColor(200, 160, 230),
             RGBColor(140, 80, 200),
             RGBColor(90, 30, 150),
             RGBColor(50, 0, 90),
-        ]
-    } else if family.contains("dt_max=0.1") {
-        [
+        ],
+        Family::Adaptive { dt_max, .. } if is(dt_max, 0.1) => [
             RGBColor(150, 220, 150),
             RGBColor(40, 160, 60),
             RGBColor(10, 90, 30),
             RGBColor(0, 60, 0),
-        ]
-    } else if family.contains("dt_max=0.25") {
-        [
+        ],
+        Family::Adaptive { dt_max, .. } if is(dt_max, 0.25) => [
             RGBColor(250, 190, 120),
             RGBColor(240, 130, 30),
             RGBColor(170, 80, 0),
             RGBColor(110, 50, 0),
-        ]
-    } else {
-        [
+        ],
+        Family::Adaptive { .. } => [
             RGBColor(240, 150, 150),
             RGBColor(220, 50, 50),
             RGBColor(150, 0, 0),
             RGBColor(90, 0, 0),
-        ]
+        ],
     };
     shades[index.min(3)]
 }
@@ -80,22 +76,18 @@ impl Figure for WorkPrecision<'_> {
                 cases.push(&r.case);
             }
         }
-        let mut families: Vec<&str> = Vec::new();
+        let mut families: Vec<Family> = Vec::new();
         for r in rows {
-            if !families.contains(&r.family.as_str()) {
-                families.push(&r.family);
+            if !families.contains(&r.family) {
+                families.push(r.family);
             }
         }
         // Shade index within a colour group: by N, in order of appearance.
-        let shade = |f: &str| {
-            let group = |g: &str| {
-                g.split(' ').next().unwrap_or("").to_string()
-                    + g.split("dt_max").nth(1).unwrap_or("")
-            };
+        let shade = |f: &Family| {
             families
                 .iter()
-                .filter(|g| group(g) == group(f))
-                .position(|g| *g == f)
+                .filter(|g| g.colour_group() == f.colour_group())
+                .position(|g| g == f)
                 .unwrap_or(0)
         };
         let panels = root.split_evenly((2, 3));

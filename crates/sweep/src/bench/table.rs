@@ -1,5 +1,6 @@
 //! The benchmark's Parquet table: one row per timed run, written and read back (re-scoring).
 use crate::bench::cases::BenchRow;
+use crate::bench::family::Family;
 use crate::error::SweepError;
 use crate::tables::sweep_tables::{f64_col, str_col};
 use polars::prelude::*;
@@ -14,7 +15,7 @@ pub fn bench_frame(rows: &[BenchRow]) -> Result<DataFrame, SweepError> {
     let opt = |g: fn(&BenchRow) -> Option<f64>| rows.iter().map(g).collect::<Vec<Option<f64>>>();
     let cols = vec![
         str_col("case", st(|r| r.case.clone())),
-        str_col("family", st(|r| r.family.clone())),
+        str_col("family", st(|r| r.family.to_string())),
         str_col("scheme", st(|r| r.scheme.clone())),
         Column::new(
             "n".into(),
@@ -80,6 +81,15 @@ pub fn read_bench(path: &Path) -> Result<Vec<BenchRow>, SweepError> {
         s("status")?,
         s("class")?,
     );
+    let family = family
+        .iter()
+        .map(|f| {
+            f.as_deref()
+                .unwrap_or_default()
+                .parse::<Family>()
+                .map_err(|e| SweepError::Invalid(format!("{}: {e}", path.display())))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
     let (n, steps, rejected) = (u("n")?, u("steps")?, u("rejected")?);
     // Tables written before the Newton finish have no `steady` column: all ran the test.
     let steady = if df.get_column_names().iter().any(|c| c.as_str() == "steady") {
@@ -96,7 +106,7 @@ pub fn read_bench(path: &Path) -> Result<Vec<BenchRow>, SweepError> {
     Ok((0..df.height())
         .map(|i| BenchRow {
             case: case[i].clone().unwrap_or_default(),
-            family: family[i].clone().unwrap_or_default(),
+            family: family[i],
             scheme: scheme[i].clone().unwrap_or_default(),
             n: n[i].unwrap_or(0) as usize,
             dt: nan(dt[i]),
