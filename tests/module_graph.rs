@@ -1,6 +1,6 @@
 //! The folders of each library crate depend one way, in the order their `lib.rs` lists them
 //! (numerics -> model -> stepping -> contract -> reduced -> roots -> runs -> continuation in
-//! the solver crate; spec -> store -> map -> tables -> audit -> pictures -> execution -> bench
+//! the solver crate; spec -> store -> map -> tables -> audit -> pictures -> execution -> studies -> bench
 //! in the sweep crate), and the module graph has no cycle.
 //!
 //! A module is a top-level file or folder of `src/` (`stepping/comoving_etd.rs` belongs to
@@ -191,6 +191,7 @@ const LAYERS: [(&str, &[&str]); 2] = [
             "audit",
             "pictures",
             "execution",
+            "studies",
             "bench",
         ],
     ),

@@ -93,12 +93,15 @@ fn ode_refinement_reproduces_the_analytic_boundaries_to_the_finest_step() {
         pts.iter().any(|p| p.level == 4),
         "the finest level is reached"
     );
-    let curves: Vec<Vec<(f64, f64)>> = boundaries::read(&out.join(boundaries::FILE), "ode")
-        .unwrap()
-        .into_iter()
-        .map(|c| c.points)
-        .filter(|p| p.len() >= 2)
-        .collect();
+    let curves: Vec<Vec<(f64, f64)>> = boundaries::read(
+        &out.join(boundaries::FILE),
+        droplet_solver::contract::settings::ModelKind::Ode,
+    )
+    .unwrap()
+    .into_iter()
+    .map(|c| c.points)
+    .filter(|p| p.len() >= 2)
+    .collect();
     assert!(!curves.is_empty());
     let near_a_boundary =
         |p: (f64, f64), within: f64| curves.iter().any(|c| distance(p, c, finest) <= within);

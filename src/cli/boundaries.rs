@@ -1,12 +1,7 @@
 //! `droplet boundaries`: the full model's phase boundaries in the (eta_t, kappa2) plane.
 use super::{print_json, CliError};
-use droplet_solver::continuation::boundaries::{boundaries, Window};
-use droplet_solver::model::params::ModelParams;
-use droplet_solver::reduced::coefficients::Coefficients;
-use droplet_sweep::pictures::figures::Curve;
-use droplet_sweep::tables::boundaries::{self, NamedCurve};
+use droplet_sweep::studies::boundaries::BoundaryStudy;
 use std::path::PathBuf;
-use std::time::Instant;
 
 /// Compute the full model's exact phase boundaries in the (eta_t, kappa2) plane.
 ///
@@ -62,25 +57,12 @@ fn range(text: &str, flag: &str) -> Result<(f64, f64), CliError> {
 }
 
 pub fn run(a: Args) -> Result<(), CliError> {
-    let sweep = droplet_sweep::spec::load_stored(&a.out).ok();
-    let span = |v: &[f64]| {
-        v.iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| {
-                (lo.min(x), hi.max(x))
-            })
-    };
-    let eta_t = match (&a.eta_t, &sweep) {
-        (Some(t), _) => range(t, "eta-t")?,
-        (None, Some(s)) if s.eta_t.len() > 1 => span(&s.eta_t),
-        _ => (0.07, 0.10),
-    };
-    let kappa2 = match (&a.kappa2, &sweep) {
-        (Some(t), _) => range(t, "kappa2")?,
-        (None, Some(s)) if s.kappa2.len() > 1 => span(&s.kappa2),
-        _ => (0.10, 0.17),
-    };
-    super::line::within_limit("eta_t window HI (from the sweep in --out)", eta_t.1)?;
-    super::line::within_limit("kappa2 window HI (from the sweep in --out)", kappa2.1)?;
+    let eta_t = a.eta_t.as_deref().map(|t| range(t, "eta-t")).transpose()?;
+    let kappa2 = a
+        .kappa2
+        .as_deref()
+        .map(|t| range(t, "kappa2"))
+        .transpose()?;
     super::check_grid(a.n)?;
     if !(2..=10_000).contains(&a.samples) {
         return Err(CliError::usage(format!(
@@ -88,109 +70,42 @@ pub fn run(a: Args) -> Result<(), CliError> {
             a.samples
         )));
     }
-    let base = match &sweep {
-        Some(s) => s.params,
-        None => ModelParams::default(),
-    };
-    let base = ModelParams {
-        eta_t: eta_t.0,
-        kappa2: kappa2.0,
-        ..base
-    };
-    base.validate()?;
-    droplet_sweep::store::atomic::create_output_dir(&a.out)?;
-    let started = Instant::now();
+    let study = BoundaryStudy::new(&a.out, eta_t, kappa2, a.n, a.samples)?;
+    super::line::within_limit("eta_t window HI (from the sweep in --out)", study.eta_t.1)?;
+    super::line::within_limit("kappa2 window HI (from the sweep in --out)", study.kappa2.1)?;
     eprintln!(
         "boundaries in eta_t {:?}, kappa2 {:?} at N = {} (about a minute at N = 192)",
-        eta_t, kappa2, a.n
+        study.eta_t, study.kappa2, a.n
     );
-    let w = Window {
-        base,
-        n: a.n,
-        eta_t,
-        kappa2,
-        id_samples: a.samples,
-    };
-    let pde = boundaries(&w).map_err(|e| CliError {
-        message: e.to_string(),
-        code: 1,
-    })?;
-    let seconds = started.elapsed().as_secs_f64();
-    let h0 = sweep
-        .as_ref()
-        .map_or(droplet_solver::contract::settings::H0_PAPER, |s| {
-            s.solver.h0
-        });
-    let ode = droplet_solver::reduced::boundaries::boundaries(
-        &Coefficients::new(base.radius, h0),
-        eta_t,
-        kappa2,
-    );
-    let all: Vec<NamedCurve> = NamedCurve::from_boundaries("pde", &pde)
-        .into_iter()
-        .chain(NamedCurve::from_boundaries("ode", &ode))
-        .collect();
-    let path = a.out.join(boundaries::FILE);
-    boundaries::write(
-        &path,
-        &all,
-        sweep.as_ref().map(|s| s.source.as_str()),
-        vec![
-            ("n".into(), a.n.to_string()),
-            (
-                "window".into(),
-                format!("eta_t {eta_t:?}, kappa2 {kappa2:?}"),
-            ),
-        ],
-    )?;
-    let drawn: Vec<Curve> = all
-        .iter()
-        .map(|c| Curve {
-            label: format!("{}: {}", c.model.to_uppercase(), c.name),
-            points: c.points.clone(),
-            dashed: c.model == "ode",
-        })
-        .collect();
-    let mut files = droplet_sweep::pictures::figures::boundary_picture(
-        &a.out,
-        "boundaries",
-        &format!("Phase boundaries: PDE (N = {}) solid, ODE dashed", a.n),
-        &drawn,
-        eta_t,
-        kappa2,
-    )?;
-    files.push(path);
-    if sweep.is_some() {
-        let drawn = droplet_sweep::pictures::sweep_pictures::plot(&a.out)?;
-        if drawn.missing > 0 {
-            eprintln!(
-                "warning: {}",
-                super::plot::missing_message(drawn.missing, drawn.points, &a.out)
-            );
-        }
-        files.extend(drawn.files);
+    let done = study.run()?;
+    if let Some((missing, points)) = done.missing.filter(|m| m.0 > 0) {
+        eprintln!(
+            "warning: {}",
+            super::plot::missing_message(missing, points, &a.out)
+        );
     }
     if a.json {
-        let curves: Vec<_> = all
+        let curves: Vec<_> = done
+            .curves
             .iter()
             .map(|c| {
                 serde_json::json!({
-                    "model": c.model, "curve": c.name, "points": c.points.len(),
+                    "model": c.model.as_str(), "curve": c.name, "points": c.points.len(),
                     "eta_t": c.points.iter().map(|p| p.0).collect::<Vec<_>>(),
                     "kappa2": c.points.iter().map(|p| p.1).collect::<Vec<_>>(),
                 })
             })
             .collect();
         print_json(&serde_json::json!({
-            "eta_t": [eta_t.0, eta_t.1], "kappa2": [kappa2.0, kappa2.1], "n": a.n,
-            "seconds": seconds, "curves": curves, "files": files,
+            "eta_t": [study.eta_t.0, study.eta_t.1], "kappa2": [study.kappa2.0, study.kappa2.1],
+            "n": a.n, "seconds": done.seconds, "curves": curves, "files": done.files,
         }));
     } else {
-        for c in &all {
+        for c in &done.curves {
+            let model = c.model.as_str().to_uppercase();
             match (c.points.first(), c.points.last()) {
                 (Some(first), Some(last)) => outln!(
-                    "{}: {:<40} {:>4} points, from ({:.7}, {:.7}) to ({:.7}, {:.7})",
-                    c.model.to_uppercase(),
+                    "{model}: {:<40} {:>4} points, from ({:.7}, {:.7}) to ({:.7}, {:.7})",
                     c.name,
                     c.points.len(),
                     first.0,
@@ -198,17 +113,13 @@ pub fn run(a: Args) -> Result<(), CliError> {
                     last.0,
                     last.1
                 ),
-                _ => outln!(
-                    "{}: {:<40} none in this window",
-                    c.model.to_uppercase(),
-                    c.name
-                ),
+                _ => outln!("{model}: {:<40} none in this window", c.name),
             }
         }
-        for f in files {
+        for f in &done.files {
             outln!("wrote {}", f.display());
         }
-        outln!("{seconds:.1} s");
+        outln!("{:.1} s", done.seconds);
     }
     Ok(())
 }

@@ -2,13 +2,12 @@
 //! with their stability and bifurcation points (the PDE's Fig. 3b).
 use super::{print_json, CliError};
 use droplet_solver::continuation::arclength::ArclengthOptions;
-use droplet_solver::continuation::{
-    branch::follow, branch::Branch, branch::Line, branch::EVENT_PRECISION, problem::Family,
-};
+use droplet_solver::continuation::{branch::Line, branch::EVENT_PRECISION, problem::Family};
 use droplet_solver::model::params::ModelParams;
-use droplet_solver::reduced::bifurcation::Axis;
+use droplet_sweep::studies::continuation::{
+    ContinuationStudy, ContinuationWritten, ImpreciseEvent, Progress,
+};
 use std::path::PathBuf;
-use std::time::Instant;
 
 /// Follow branches of steady states in one parameter, with stability and bifurcations.
 ///
@@ -79,8 +78,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
             a.ds_max
         )));
     }
-    let (parameter, fixed_name, fixed) = a.line.parameter();
-    let varied = a.line.varied();
+    let (parameter, _, _) = a.line.parameter();
     let base = a.line.start(ModelParams {
         mass: a.mass,
         ..ModelParams::default()
@@ -91,111 +89,38 @@ pub fn run(a: Args) -> Result<(), CliError> {
             a.mass
         )));
     }
-    droplet_sweep::store::atomic::create_output_dir(&a.out)?;
-    let line = Line {
-        base,
-        n: a.n,
-        parameter,
-        from: a.line.from,
-        to: a.line.to,
-        max_points: a.max_points,
-        opts: ArclengthOptions {
-            ds_max: a.ds_max,
-            ..ArclengthOptions::default()
+    let study = ContinuationStudy {
+        out: a.out.clone(),
+        line: Line {
+            base,
+            n: a.n,
+            parameter,
+            from: a.line.from,
+            to: a.line.to,
+            max_points: a.max_points,
+            opts: ArclengthOptions {
+                ds_max: a.ds_max,
+                ..ArclengthOptions::default()
+            },
         },
+        families,
+        mirror,
     };
-    let started = Instant::now();
-    let mut branches: Vec<Branch> = Vec::new();
-    for f in &families {
-        let t0 = Instant::now();
-        eprint!("following {} ({}) ... ", f.as_str(), a.axis);
-        match follow(&line, *f, mirror) {
-            Ok(b) => {
-                eprintln!(
-                    "{} states, {} events in {:.1} s",
-                    b.points.len(),
-                    b.events.len(),
-                    t0.elapsed().as_secs_f64()
-                );
-                branches.push(b);
-            }
-            Err(droplet_solver::error::SolverError::NoBranch { .. }) if families.len() > 1 => {
-                eprintln!("none on this line");
-            }
-            Err(e) => {
-                eprintln!();
-                return Err(CliError {
-                    message: e.to_string(),
-                    code: 1,
-                });
-            }
-        }
-    }
-    let seconds = started.elapsed().as_secs_f64();
-    // Ten significant digits: a short, stable file name for any value within the limits.
-    let fixed_text = format!("{fixed:.9e}").parse::<f64>().unwrap_or(fixed);
-    let stem = match mirror {
-        droplet_solver::roots::steady_solver::MirrorAxis::X => {
-            format!("continuation_{fixed_name}_{fixed_text}")
-        }
-        droplet_solver::roots::steady_solver::MirrorAxis::Diagonal => {
-            format!("continuation_{fixed_name}_{fixed_text}_diagonal")
-        }
-    };
-    let desc = format!(
-        "{fixed_name} = {fixed}, {varied} from {} to {}",
-        a.line.from, a.line.to
-    );
-    let [p1, p2] =
-        droplet_sweep::tables::continuation::write(&a.out, &stem, &branches, &desc, a.n)?;
-    let mut files = droplet_sweep::pictures::sweep_pictures::continuation(
-        &a.out,
-        &stem,
-        &branches,
-        parameter,
-        &format!(
-            "PDE (N = {}), {fixed_name} = {fixed}: solid = stable, dashed = unstable",
-            a.n
-        ),
-    )?;
-    files.extend([p1, p2]);
-    let at = |p: &droplet_solver::continuation::branch::BranchPoint| {
-        if parameter == Axis::EtaT {
-            p.eta_t
-        } else {
-            p.kappa2
-        }
-    };
+    let axis = a.axis.clone();
+    let done = study.run(&mut |p| match p {
+        Progress::Following(f) => eprint!("following {} ({axis}) ... ", f.as_str()),
+        Progress::Followed {
+            states,
+            events,
+            seconds,
+        } => eprintln!("{states} states, {events} events in {seconds:.1} s"),
+        Progress::NoneOnLine => eprintln!("none on this line"),
+    })?;
+    let varied = study.varied();
     if a.json {
-        let events: Vec<_> = branches
-            .iter()
-            .flat_map(|b| {
-                b.events.iter().map(move |e| {
-                    serde_json::json!({
-                        "kind": e.kind, "what": e.what, "branch": b.family.as_str(),
-                        "mirror": b.mirror, "eta_t": e.point.eta_t, "kappa2": e.point.kappa2,
-                        "v": e.point.v, "s": e.point.s, "eigenvalue": e.eigenvalue,
-                        "precision": e.precision,
-                    })
-                })
-            })
-            .collect();
-        let summary: Vec<_> = branches
-            .iter()
-            .map(|b| {
-                serde_json::json!({
-                    "branch": b.family.as_str(), "mirror": b.mirror, "points": b.points.len(),
-                    "stable_points": b.points.iter().filter(|p| p.verdict.stable()).count(),
-                    "ends": b.ends,
-                })
-            })
-            .collect();
-        print_json(&serde_json::json!({
-            "line": desc, "n": a.n, "seconds": seconds, "branches": summary,
-            "events": events, "files": files,
-        }));
+        print_json(&json_summary(&done, a.n));
     } else {
-        for b in &branches {
+        for b in &done.branches {
             outln!(
                 "{:<14} {:>4} states ({} stable); ends: {} | {}",
                 b.family.as_str(),
@@ -208,54 +133,80 @@ pub fn run(a: Args) -> Result<(), CliError> {
                 outln!(
                     "  {:>2} at {varied} = {:.9}  v = {:.6}  s = {:.6}  ({})",
                     e.kind,
-                    at(&e.point),
+                    study.at(&e.point),
                     e.point.v,
                     e.point.s,
                     e.what
                 );
             }
         }
-        for f in files {
+        for f in &done.files {
             outln!("wrote {}", f.display());
         }
-        outln!("{seconds:.1} s");
+        outln!("{:.1} s", done.seconds);
     }
-    precise_events(&branches, varied, at)
+    precise_events(&done.imprecise, varied)
 }
 
-/// Every event of `branches` located to [`EVENT_PRECISION`] in the varied parameter, else an
-/// error (exit 1) naming each one that is not (`at` reads a point's varied parameter).
-fn precise_events(
-    branches: &[Branch],
-    varied: &str,
-    at: impl Fn(&droplet_solver::continuation::branch::BranchPoint) -> f64,
-) -> Result<(), CliError> {
-    let imprecise: Vec<String> = branches
+/// The `--json` object: the line, the branches, every event with its precision, the files.
+fn json_summary(done: &ContinuationWritten, n: usize) -> serde_json::Value {
+    let events: Vec<_> = done
+        .branches
         .iter()
-        .flat_map(|b| b.events.iter().map(move |e| (b, e)))
-        .filter(|(_, e)| e.precision.is_nan() || e.precision > EVENT_PRECISION)
-        .map(|(b, e)| {
+        .flat_map(|b| {
+            b.events.iter().map(move |e| {
+                serde_json::json!({
+                    "kind": e.kind, "what": e.what, "branch": b.family.as_str(),
+                    "mirror": b.mirror, "eta_t": e.point.eta_t, "kappa2": e.point.kappa2,
+                    "v": e.point.v, "s": e.point.s, "eigenvalue": e.eigenvalue,
+                    "precision": e.precision,
+                })
+            })
+        })
+        .collect();
+    let summary: Vec<_> = done
+        .branches
+        .iter()
+        .map(|b| {
+            serde_json::json!({
+                "branch": b.family.as_str(), "mirror": b.mirror, "points": b.points.len(),
+                "stable_points": b.points.iter().filter(|p| p.verdict.stable()).count(),
+                "ends": b.ends,
+            })
+        })
+        .collect();
+    serde_json::json!({
+        "line": done.description, "n": n, "seconds": done.seconds, "branches": summary,
+        "events": events, "files": done.files,
+    })
+}
+
+/// An error (exit 1) naming every event not located to [`EVENT_PRECISION`] in the varied
+/// parameter; the tables mark them in their `precision` column.
+fn precise_events(imprecise: &[ImpreciseEvent], varied: &str) -> Result<(), CliError> {
+    if imprecise.is_empty() {
+        return Ok(());
+    }
+    let named: Vec<String> = imprecise
+        .iter()
+        .map(|e| {
             format!(
                 "{} {} at {varied} = {} only to {:e}",
-                b.family.as_str(),
+                e.family.as_str(),
                 e.kind,
-                at(&e.point),
+                e.at,
                 e.precision
             )
         })
         .collect();
-    if imprecise.is_empty() {
-        Ok(())
-    } else {
-        Err(CliError {
-            message: format!(
-                "{} bifurcation point(s) could not be located to {EVENT_PRECISION:e} in {varied} \
-                 ({}); the tables mark them in their `precision` column: follow a shorter line \
-                 around them (--from/--to) or lower --ds-max",
-                imprecise.len(),
-                imprecise.join("; ")
-            ),
-            code: 1,
-        })
-    }
+    Err(CliError {
+        message: format!(
+            "{} bifurcation point(s) could not be located to {EVENT_PRECISION:e} in {varied} \
+             ({}); the tables mark them in their `precision` column: follow a shorter line \
+             around them (--from/--to) or lower --ds-max",
+            imprecise.len(),
+            named.join("; ")
+        ),
+        code: 1,
+    })
 }

@@ -16,6 +16,7 @@
 //! | [`audit`] | `droplet audit`: every label checked against the stable states at its point |
 //! | [`pictures`] | the figures as PNG and SVG |
 //! | [`execution`] | running, merging and watching a sweep; Slurm scripts; progress bars |
+//! | [`studies`] | whole studies behind one command: exact phase boundaries, continuation |
 //! | [`bench`] | the work-precision benchmark |
 //!
 //! [`error`] holds the crate's errors; [`merge_report`] what a merge found (errors carry it).
@@ -38,4 +39,5 @@ pub mod merge_report;
 pub mod pictures;
 pub mod spec;
 pub mod store;
+pub mod studies;
 pub mod tables;

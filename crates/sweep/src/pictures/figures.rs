@@ -76,6 +76,17 @@ pub struct Curve {
     pub dashed: bool,
 }
 
+impl Curve {
+    /// A boundary curve as drawn: labelled with its model, the reduced model's dashed.
+    pub fn of(c: &crate::tables::boundaries::NamedCurve) -> Self {
+        Self {
+            label: format!("{}: {}", c.model.as_str().to_uppercase(), c.name),
+            dashed: c.model == droplet_solver::contract::settings::ModelKind::Ode,
+            points: c.points.clone(),
+        }
+    }
+}
+
 fn spacing(v: &mut Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
     v.dedup();

@@ -9,6 +9,7 @@ use crate::spec::axes::{ETA_T, KAPPA2};
 use crate::spec::SweepSpec;
 use crate::store::run_store::Store;
 use crate::tables::boundaries::NamedCurve;
+use droplet_solver::contract::settings::ModelKind;
 use droplet_solver::reduced::bifurcation::{Axis, Branch, Event, SteadyPoint};
 use droplet_solver::reduced::boundaries::boundaries;
 use droplet_solver::reduced::coefficients::Coefficients;
@@ -178,22 +179,15 @@ pub fn draw(
             })
     };
     let ode = NamedCurve::from_boundaries(
-        "ode",
+        ModelKind::Ode,
         &boundaries(&coef, span(&spec.eta_t), span(&spec.kappa2)),
     );
     // The full model's boundaries, if `droplet boundaries` put them here, are kept.
     let path = dir.join(crate::tables::boundaries::FILE);
-    let pde = crate::tables::boundaries::read(&path, "pde")?;
+    let pde = crate::tables::boundaries::read(&path, ModelKind::Pde)?;
     let all: Vec<NamedCurve> = pde.into_iter().chain(ode).collect();
     crate::tables::boundaries::write(&path, &all, Some(&spec.source), Vec::new())?;
-    let drawn: Vec<Curve> = all
-        .into_iter()
-        .map(|c| Curve {
-            label: format!("{}: {}", c.model.to_uppercase(), c.name),
-            dashed: c.model == "ode",
-            points: c.points,
-        })
-        .collect();
+    let drawn: Vec<Curve> = all.iter().map(Curve::of).collect();
     let mut files = if spec.eta_t.len() > 1 && spec.kappa2.len() > 1 {
         phase_map(dir, "phase_map", &title, &pts, &drawn)?
     } else {

@@ -5,6 +5,7 @@
 use crate::error::SweepError;
 use crate::spec::axes::{ETA_T, KAPPA2};
 use crate::tables::sweep_tables::{metadata, write_parquet};
+use droplet_solver::contract::settings::ModelKind;
 use polars::prelude::*;
 use std::path::Path;
 
@@ -14,8 +15,8 @@ pub const FILE: &str = "boundaries.parquet";
 /// One boundary curve of one model.
 #[derive(Debug, Clone, PartialEq)]
 pub struct NamedCurve {
-    /// `pde` or `ode`.
-    pub model: String,
+    /// The full model (`pde`, from continuation) or the reduced one (`ode`, analytic).
+    pub model: ModelKind,
     pub name: String,
     /// `(eta_t, kappa2)` in order along the curve.
     pub points: Vec<(f64, f64)>,
@@ -23,13 +24,13 @@ pub struct NamedCurve {
 
 impl NamedCurve {
     pub fn from_boundaries(
-        model: &str,
+        model: ModelKind,
         curves: &[droplet_solver::reduced::boundaries::Boundary],
     ) -> Vec<Self> {
         curves
             .iter()
             .map(|c| Self {
-                model: model.to_string(),
+                model,
                 name: c.name.to_string(),
                 points: c.points.clone(),
             })
@@ -54,7 +55,7 @@ pub fn write(
             Column::new(
                 "model".into(),
                 rows.iter()
-                    .map(|(c, _)| c.model.clone())
+                    .map(|(c, _)| c.model.as_str())
                     .collect::<Vec<_>>(),
             ),
             Column::new(
@@ -78,7 +79,7 @@ pub fn write(
 
 /// The curves of `model` stored in `path` (none if the file does not exist or predates the
 /// `model` column).
-pub fn read(path: &Path, model: &str) -> Result<Vec<NamedCurve>, SweepError> {
+pub fn read(path: &Path, model: ModelKind) -> Result<Vec<NamedCurve>, SweepError> {
     if !path.exists() {
         return Ok(Vec::new());
     }
@@ -93,7 +94,7 @@ pub fn read(path: &Path, model: &str) -> Result<Vec<NamedCurve>, SweepError> {
     let kappa = df.column(KAPPA2)?.f64()?.clone();
     let mut out: Vec<NamedCurve> = Vec::new();
     for i in 0..df.height() {
-        if models.get(i) != Some(model) {
+        if models.get(i) != Some(model.as_str()) {
             continue;
         }
         let name = names.get(i).unwrap_or_default().to_string();
@@ -104,7 +105,7 @@ pub fn read(path: &Path, model: &str) -> Result<Vec<NamedCurve>, SweepError> {
         match out.last_mut() {
             Some(c) if c.name == name => c.points.push(p),
             _ => out.push(NamedCurve {
-                model: model.to_string(),
+                model,
                 name,
                 points: vec![p],
             }),

@@ -1,0 +1,154 @@
+//! `droplet boundaries`: the full model's phase boundaries in a window of `(eta_t, kappa2)`
+//! (the onsets of motion and deformation, the resting deformed droplet's onset of motion, the
+//! MD fold and the MC onset; `droplet_solver::continuation::boundaries`), with the reduced
+//! model's analytic ones, as `boundaries.parquet` and a picture; a sweep's phase map in the
+//! same directory is redrawn with them.
+use crate::error::SweepError;
+use crate::pictures::figures::{boundary_picture, Curve};
+use crate::tables::boundaries::{self as table, NamedCurve};
+use droplet_solver::contract::settings::{ModelKind, H0_PAPER};
+use droplet_solver::model::params::ModelParams;
+use droplet_solver::reduced::coefficients::Coefficients;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// The paper's Fig. 2a window, the default without a sweep.
+pub const FIG2A_WINDOW: ((f64, f64), (f64, f64)) = ((0.07, 0.10), (0.10, 0.17));
+
+/// A boundaries study: where, at what resolution, written where.
+#[derive(Debug, Clone)]
+pub struct BoundaryStudy {
+    pub out: PathBuf,
+    pub eta_t: (f64, f64),
+    pub kappa2: (f64, f64),
+    /// The other parameters (the sweep's in `out`, else the defaults), at the window's corner.
+    pub base: ModelParams,
+    pub h0: f64,
+    /// Grid points per side.
+    pub n: usize,
+    /// Points of the ID onset line.
+    pub samples: usize,
+    /// The spec of the sweep in `out`, if there is one (its map is redrawn).
+    pub sweep_spec: Option<String>,
+}
+
+/// What a boundaries study computed and wrote.
+#[derive(Debug, Clone)]
+pub struct BoundariesWritten {
+    /// The full model's curves (`model` = pde) and the reduced model's (ode).
+    pub curves: Vec<NamedCurve>,
+    pub files: Vec<PathBuf>,
+    /// Wall seconds of the full model's boundaries.
+    pub seconds: f64,
+    /// The redrawn sweep map's points drawn as missing, and its points (a sweep in `out`).
+    pub missing: Option<(usize, usize)>,
+}
+
+impl BoundaryStudy {
+    /// A study into `out`: the window given, else the sweep's in `out` (if it spans both
+    /// axes), else [`FIG2A_WINDOW`]; the other parameters the sweep's, else the defaults.
+    pub fn new(
+        out: &Path,
+        eta_t: Option<(f64, f64)>,
+        kappa2: Option<(f64, f64)>,
+        n: usize,
+        samples: usize,
+    ) -> Result<Self, SweepError> {
+        let sweep = crate::spec::load_stored(out).ok();
+        let span = |v: &[f64]| {
+            v.iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| {
+                    (lo.min(x), hi.max(x))
+                })
+        };
+        let eta_t = match (eta_t, &sweep) {
+            (Some(w), _) => w,
+            (None, Some(s)) if s.eta_t.len() > 1 => span(&s.eta_t),
+            _ => FIG2A_WINDOW.0,
+        };
+        let kappa2 = match (kappa2, &sweep) {
+            (Some(w), _) => w,
+            (None, Some(s)) if s.kappa2.len() > 1 => span(&s.kappa2),
+            _ => FIG2A_WINDOW.1,
+        };
+        let base = ModelParams {
+            eta_t: eta_t.0,
+            kappa2: kappa2.0,
+            ..sweep
+                .as_ref()
+                .map_or_else(ModelParams::default, |s| s.params)
+        };
+        base.validate()
+            .map_err(|e| SweepError::Invalid(e.to_string()))?;
+        Ok(Self {
+            out: out.to_path_buf(),
+            eta_t,
+            kappa2,
+            base,
+            h0: sweep.as_ref().map_or(H0_PAPER, |s| s.solver.h0),
+            n,
+            samples,
+            sweep_spec: sweep.map(|s| s.source),
+        })
+    }
+
+    /// Computes the boundaries and writes `boundaries.parquet` and `boundaries.png/.svg`
+    /// (and the sweep's redrawn pictures) into `out`.
+    pub fn run(&self) -> Result<BoundariesWritten, SweepError> {
+        crate::store::atomic::create_output_dir(&self.out)?;
+        let started = Instant::now();
+        let window = droplet_solver::continuation::boundaries::Window {
+            base: self.base,
+            n: self.n,
+            eta_t: self.eta_t,
+            kappa2: self.kappa2,
+            id_samples: self.samples,
+        };
+        let pde = droplet_solver::continuation::boundaries::boundaries(&window)?;
+        let seconds = started.elapsed().as_secs_f64();
+        let ode = droplet_solver::reduced::boundaries::boundaries(
+            &Coefficients::new(self.base.radius, self.h0),
+            self.eta_t,
+            self.kappa2,
+        );
+        let curves: Vec<NamedCurve> = NamedCurve::from_boundaries(ModelKind::Pde, &pde)
+            .into_iter()
+            .chain(NamedCurve::from_boundaries(ModelKind::Ode, &ode))
+            .collect();
+        let path = self.out.join(table::FILE);
+        table::write(
+            &path,
+            &curves,
+            self.sweep_spec.as_deref(),
+            vec![
+                ("n".into(), self.n.to_string()),
+                (
+                    "window".into(),
+                    format!("eta_t {:?}, kappa2 {:?}", self.eta_t, self.kappa2),
+                ),
+            ],
+        )?;
+        let drawn: Vec<Curve> = curves.iter().map(Curve::of).collect();
+        let mut files = boundary_picture(
+            &self.out,
+            "boundaries",
+            &format!("Phase boundaries: PDE (N = {}) solid, ODE dashed", self.n),
+            &drawn,
+            self.eta_t,
+            self.kappa2,
+        )?;
+        files.push(path);
+        let mut missing = None;
+        if self.sweep_spec.is_some() {
+            let map = crate::pictures::sweep_pictures::plot(&self.out)?;
+            missing = Some((map.missing, map.points));
+            files.extend(map.files);
+        }
+        Ok(BoundariesWritten {
+            curves,
+            files,
+            seconds,
+            missing,
+        })
+    }
+}

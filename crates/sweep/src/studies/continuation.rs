@@ -1,0 +1,167 @@
+//! `droplet continue`: branches of steady states of the full model followed in one parameter
+//! (pseudo-arclength, through folds), with the stability of every state and the bifurcation
+//! points located on them (`droplet_solver::continuation`), written as tables and a picture.
+use crate::error::SweepError;
+use droplet_solver::continuation::branch::{follow, Branch, BranchPoint, Line, EVENT_PRECISION};
+use droplet_solver::continuation::problem::Family;
+use droplet_solver::error::SolverError;
+use droplet_solver::reduced::bifurcation::Axis;
+use droplet_solver::roots::steady_solver::MirrorAxis;
+use std::path::PathBuf;
+use std::time::Instant;
+
+/// A continuation study: the line, the families followed on it, written where.
+#[derive(Debug, Clone)]
+pub struct ContinuationStudy {
+    pub out: PathBuf,
+    pub line: Line,
+    /// The families to follow; with more than one, a family with no state on the line is
+    /// skipped, with one it is an error.
+    pub families: Vec<Family>,
+    pub mirror: MirrorAxis,
+}
+
+/// Where a study is, for a progress line.
+#[derive(Debug, Clone, Copy)]
+pub enum Progress {
+    Following(Family),
+    Followed {
+        states: usize,
+        events: usize,
+        seconds: f64,
+    },
+    NoneOnLine,
+}
+
+/// A bifurcation point not located to [`EVENT_PRECISION`] in the varied parameter.
+#[derive(Debug, Clone)]
+pub struct ImpreciseEvent {
+    pub family: Family,
+    pub kind: String,
+    /// The varied parameter's value there.
+    pub at: f64,
+    pub precision: f64,
+}
+
+/// What a continuation study computed and wrote.
+#[derive(Debug, Clone)]
+pub struct ContinuationWritten {
+    pub branches: Vec<Branch>,
+    /// The line in words: `kappa2 = 0.13, eta_t from 0.07 to 0.1`.
+    pub description: String,
+    pub files: Vec<PathBuf>,
+    pub seconds: f64,
+    /// Events the tables mark as imprecise (the command then exits 1).
+    pub imprecise: Vec<ImpreciseEvent>,
+}
+
+impl ContinuationStudy {
+    /// The fixed parameter's name and value.
+    pub fn fixed(&self) -> (&'static str, f64) {
+        match self.line.parameter {
+            Axis::EtaT => ("kappa2", self.line.base.kappa2),
+            Axis::Kappa2 => ("eta_t", self.line.base.eta_t),
+        }
+    }
+
+    /// The varied parameter's name.
+    pub fn varied(&self) -> &'static str {
+        match self.line.parameter {
+            Axis::EtaT => "eta_t",
+            Axis::Kappa2 => "kappa2",
+        }
+    }
+
+    /// The varied parameter's value at `p`.
+    pub fn at(&self, p: &BranchPoint) -> f64 {
+        match self.line.parameter {
+            Axis::EtaT => p.eta_t,
+            Axis::Kappa2 => p.kappa2,
+        }
+    }
+
+    /// The files' common stem: `continuation_<fixed>_<value>` (+ `_diagonal`), the value to
+    /// ten significant digits (short and stable for any value within the limits).
+    pub fn stem(&self) -> String {
+        let (name, value) = self.fixed();
+        let value = format!("{value:.9e}").parse::<f64>().unwrap_or(value);
+        match self.mirror {
+            MirrorAxis::X => format!("continuation_{name}_{value}"),
+            MirrorAxis::Diagonal => format!("continuation_{name}_{value}_diagonal"),
+        }
+    }
+
+    /// Follows every family, then writes `<stem>.parquet`, `<stem>_events.parquet` and
+    /// `<stem>.png/.svg` into `out`; `progress` hears of each family as it goes.
+    pub fn run(
+        &self,
+        progress: &mut dyn FnMut(Progress),
+    ) -> Result<ContinuationWritten, SweepError> {
+        crate::store::atomic::create_output_dir(&self.out)?;
+        let started = Instant::now();
+        let mut branches: Vec<Branch> = Vec::new();
+        for f in &self.families {
+            let t0 = Instant::now();
+            progress(Progress::Following(*f));
+            match follow(&self.line, *f, self.mirror) {
+                Ok(b) => {
+                    progress(Progress::Followed {
+                        states: b.points.len(),
+                        events: b.events.len(),
+                        seconds: t0.elapsed().as_secs_f64(),
+                    });
+                    branches.push(b);
+                }
+                Err(SolverError::NoBranch { .. }) if self.families.len() > 1 => {
+                    progress(Progress::NoneOnLine);
+                }
+                Err(e) => return Err(e.into()),
+            }
+        }
+        let seconds = started.elapsed().as_secs_f64();
+        let (fixed_name, fixed) = self.fixed();
+        let description = format!(
+            "{fixed_name} = {fixed}, {} from {} to {}",
+            self.varied(),
+            self.line.from,
+            self.line.to
+        );
+        let stem = self.stem();
+        let tables = crate::tables::continuation::write(
+            &self.out,
+            &stem,
+            &branches,
+            &description,
+            self.line.n,
+        )?;
+        let mut files = crate::pictures::sweep_pictures::continuation(
+            &self.out,
+            &stem,
+            &branches,
+            self.line.parameter,
+            &format!(
+                "PDE (N = {}), {fixed_name} = {fixed}: solid = stable, dashed = unstable",
+                self.line.n
+            ),
+        )?;
+        files.extend(tables);
+        let imprecise = branches
+            .iter()
+            .flat_map(|b| b.events.iter().map(move |e| (b, e)))
+            .filter(|(_, e)| e.precision.is_nan() || e.precision > EVENT_PRECISION)
+            .map(|(b, e)| ImpreciseEvent {
+                family: b.family,
+                kind: e.kind.to_string(),
+                at: self.at(&e.point),
+                precision: e.precision,
+            })
+            .collect();
+        Ok(ContinuationWritten {
+            branches,
+            description,
+            files,
+            seconds,
+            imprecise,
+        })
+    }
+}
