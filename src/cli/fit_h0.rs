@@ -3,7 +3,7 @@ use super::{print_json, CliError};
 use droplet_solver::model::params::ModelParams;
 use droplet_solver::reduced::coefficients::Coefficients;
 use droplet_solver::roots::h0_fit::fit_h0;
-use droplet_sweep::pictures::figures::{h0_picture, H0Picture};
+use droplet_sweep::pictures::h0_figure::{h0_picture, H0Picture};
 use std::path::PathBuf;
 
 /// Fit the reduced model's h0 to deformation-only PDE steady states (Appendix E).

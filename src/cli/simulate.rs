@@ -4,7 +4,7 @@ use droplet_solver::{
     contract::settings::SolverSettings, model::initial::InitialCondition,
     model::params::ModelParams, runs::driver::Run, stepping::SchemeKind,
 };
-use droplet_sweep::pictures::figures;
+use droplet_sweep::pictures::run_figure;
 use serde::Serialize;
 use std::path::PathBuf;
 
@@ -242,7 +242,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
             out.status.as_str(),
             out.t_end
         );
-        pictures = figures::run_picture(path, &title, &params, &field, &out.state, &out.series)?;
+        pictures = run_figure::run_picture(path, &title, &params, &field, &out.state, &out.series)?;
     }
     let final_state = (out.ended_by == Some(droplet_solver::contract::ending::Ending::Test)
         && settings.steady == droplet_solver::contract::ending::SteadyMethod::Test

@@ -1,11 +1,16 @@
-//! Pictures, each drawn as PNG and SVG by one scaffold (`render`): the figures (`figures`: the
-//! phase map of Fig. 2a, the single-run panels of Fig. 1, `v` and `s` against a parameter of
-//! Fig. 2b/3b, the Appendix E fit), a sweep's pictures from its runs with the boundaries
+//! Pictures, each drawn as PNG and SVG by one scaffold (`render`): the phase map of Fig. 2a
+//! (`map_figure`, colours and legend in `legend`), the single-run panels of Fig. 1
+//! (`run_figure`), `v` and `s` against a parameter of Fig. 2b/3b (`line_figure`), the
+//! Appendix E fit (`h0_figure`), a sweep's pictures from its runs with the boundaries
 //! (`sweep_pictures`), and sampled steady states joined into drawable branches
 //! (`branch_lines`).
 //!
 //! May use: `spec`, `store`, `map`, `tables`. Used by: `execution`, `bench`, the CLI.
 pub mod branch_lines;
-pub mod figures;
+pub mod h0_figure;
+pub mod legend;
+pub mod line_figure;
+pub mod map_figure;
 pub mod render;
+pub mod run_figure;
 pub mod sweep_pictures;

@@ -4,7 +4,8 @@
 use crate::error::SweepError;
 use crate::map::phase_map::PhaseMap;
 use crate::pictures::branch_lines::{branch_lines, BranchSample};
-use crate::pictures::figures::{phase_map, vs_parameter, Curve, MapPoint, Marker};
+use crate::pictures::line_figure::{vs_parameter, Marker};
+use crate::pictures::map_figure::{phase_map, Curve, MapPoint};
 use crate::spec::axes::{ETA_T, KAPPA2};
 use crate::spec::SweepSpec;
 use crate::store::run_store::Store;

@@ -4,7 +4,7 @@
 //! model's analytic ones, as `boundaries.parquet` and a picture; a sweep's phase map in the
 //! same directory is redrawn with them.
 use crate::error::SweepError;
-use crate::pictures::figures::{boundary_picture, Curve};
+use crate::pictures::map_figure::{boundary_picture, Curve};
 use crate::tables::boundaries::{self as table, NamedCurve};
 use droplet_solver::contract::settings::{ModelKind, H0_PAPER};
 use droplet_solver::model::params::ModelParams;

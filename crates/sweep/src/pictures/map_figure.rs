@@ -1,0 +1,308 @@
+//! The phase map (paper Fig. 2a): one tile per point in its label's colour, boundary curves
+//! over it, the legend beside it; and the boundaries alone.
+use crate::error::SweepError;
+use crate::pictures::legend::{class_colour, draw_legend, LegendKey, ORDER};
+use crate::pictures::render::perr;
+use crate::pictures::render::{render, Figure};
+use crate::spec::axes::{ETA_T, KAPPA2};
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use std::path::{Path, PathBuf};
+
+/// One point of a phase map.
+#[derive(Debug, Clone)]
+pub struct MapPoint {
+    pub eta_t: f64,
+    pub kappa2: f64,
+    pub label: String,
+    /// The rectangles `[eta_t0, kappa2_0, eta_t1, kappa2_1]` the point stands for on a
+    /// refined map ([`crate::spec::lattice::Lattice::tiles`]); empty: a square of the grid spacing.
+    pub tiles: Vec<[f64; 4]>,
+}
+
+/// A curve drawn over a phase map (e.g. an analytic boundary).
+#[derive(Debug, Clone)]
+pub struct Curve {
+    pub label: String,
+    pub points: Vec<(f64, f64)>,
+    /// Drawn dashed (the reduced model's boundaries) or solid (the full model's).
+    pub dashed: bool,
+}
+
+impl Curve {
+    /// A boundary curve as drawn: labelled with its model, the reduced model's dashed.
+    pub fn of(c: &crate::tables::boundaries::NamedCurve) -> Self {
+        Self {
+            label: format!("{}: {}", c.model.as_str().to_uppercase(), c.name),
+            dashed: c.model == droplet_solver::contract::settings::ModelKind::Ode,
+            points: c.points.clone(),
+        }
+    }
+}
+
+pub(crate) fn spacing(v: &mut Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v.dedup();
+    v.windows(2)
+        .map(|w| w[1] - w[0])
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// The phase map: one square per point in its class colour, curves drawn over it, the legend
+/// in a panel on the right.
+struct PhaseMap<'a> {
+    title: &'a str,
+    pts: &'a [MapPoint],
+    curves: &'a [Curve],
+}
+
+/// Width of the legend panel beside a phase map.
+pub(crate) const LEGEND_W: u32 = 340;
+
+impl Figure for PhaseMap<'_> {
+    fn size(&self) -> (u32, u32) {
+        (900 + LEGEND_W, 760)
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: DrawingArea<DB, Shift>) -> Result<(), SweepError>
+    where
+        DB::ErrorType: 'static,
+    {
+        let (pts, curves) = (self.pts, self.curves);
+        root.fill(&WHITE).map_err(perr)?;
+        let (plot_area, legend_area) = root.split_horizontally(900);
+        let mut xs: Vec<f64> = pts.iter().map(|p| p.eta_t).collect();
+        let mut ys: Vec<f64> = pts.iter().map(|p| p.kappa2).collect();
+        let dx = spacing(&mut xs);
+        let dy = spacing(&mut ys);
+        let dx = if dx.is_finite() { dx } else { 0.01 };
+        let dy = if dy.is_finite() { dy } else { 0.01 };
+        let (mut x0, mut x1) = (xs[0] - dx / 2.0, xs[xs.len() - 1] + dx / 2.0);
+        let (mut y0, mut y1) = (ys[0] - dy / 2.0, ys[ys.len() - 1] + dy / 2.0);
+        let tiled = pts.iter().any(|p| !p.tiles.is_empty());
+        if tiled {
+            // A refined map is drawn edge to edge: its extent is the tiles'.
+            let rects = pts.iter().flat_map(|p| &p.tiles);
+            (x0, y0, x1, y1) = rects.fold(
+                (
+                    f64::INFINITY,
+                    f64::INFINITY,
+                    f64::NEG_INFINITY,
+                    f64::NEG_INFINITY,
+                ),
+                |(a, b, c, d), r| (a.min(r[0]), b.min(r[1]), c.max(r[2]), d.max(r[3])),
+            );
+        }
+        let mut chart = plane_chart(&plot_area, self.title, (x0, x1), (y0, y1), false)?;
+        let mut legend = Vec::new();
+        for label in ORDER.iter().copied().chain(
+            pts.iter()
+                .map(|p| p.label.as_str())
+                .filter(|l| !ORDER.contains(l))
+                .collect::<std::collections::BTreeSet<_>>(),
+        ) {
+            let mine: Vec<&MapPoint> = pts.iter().filter(|p| p.label == label).collect();
+            if mine.is_empty() {
+                continue;
+            }
+            let colour = class_colour(label);
+            if tiled {
+                chart
+                    .draw_series(
+                        mine.iter()
+                            .flat_map(|p| &p.tiles)
+                            .map(|r| Rectangle::new([(r[0], r[1]), (r[2], r[3])], colour.filled())),
+                    )
+                    .map_err(perr)?;
+            } else {
+                chart
+                    .draw_series(mine.iter().map(|p| {
+                        Rectangle::new(
+                            [
+                                (p.eta_t - 0.42 * dx, p.kappa2 - 0.42 * dy),
+                                (p.eta_t + 0.42 * dx, p.kappa2 + 0.42 * dy),
+                            ],
+                            colour.filled(),
+                        )
+                    }))
+                    .map_err(perr)?;
+            }
+            legend.push((format!("{label} ({})", mine.len()), LegendKey::Box(colour)));
+        }
+        draw_curves(&mut chart, curves, (x0, x1), (y0, y1), &mut legend)?;
+        draw_legend(&legend_area, &legend)?;
+        root.present().map_err(perr)?;
+        Ok(())
+    }
+}
+
+/// The `(eta_t, kappa2)` plane over `x` and `y` with its axes drawn (and a mesh if `mesh`).
+pub(crate) fn plane_chart<'a, DB: DrawingBackend>(
+    area: &'a DrawingArea<DB, Shift>,
+    title: &str,
+    x: (f64, f64),
+    y: (f64, f64),
+    mesh: bool,
+) -> Result<
+    ChartContext<
+        'a,
+        DB,
+        Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+    >,
+    SweepError,
+>
+where
+    DB::ErrorType: 'static,
+{
+    let mut chart = ChartBuilder::on(area)
+        .caption(title, ("sans-serif", 22))
+        .margin(12)
+        .x_label_area_size(48)
+        .y_label_area_size(64)
+        .build_cartesian_2d(x.0..x.1, y.0..y.1)
+        .map_err(perr)?;
+    let mut m = chart.configure_mesh();
+    if !mesh {
+        m.disable_mesh();
+    }
+    m.x_desc(ETA_T)
+        .y_desc(KAPPA2)
+        .label_style(("sans-serif", 15))
+        .axis_desc_style(("sans-serif", 18))
+        .x_label_formatter(&|v| format!("{v:.3}"))
+        .y_label_formatter(&|v| format!("{v:.3}"))
+        .draw()
+        .map_err(perr)?;
+    Ok(chart)
+}
+
+/// Draws `curves` (the part inside the window) on a phase-plane chart, adding each to the
+/// legend: the full model's solid, the reduced model's dashed, each in its own colour.
+pub(crate) fn draw_curves<DB: DrawingBackend>(
+    chart: &mut ChartContext<
+        '_,
+        DB,
+        Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+    >,
+    curves: &[Curve],
+    (x0, x1): (f64, f64),
+    (y0, y1): (f64, f64),
+    legend: &mut Vec<(String, LegendKey)>,
+) -> Result<(), SweepError>
+where
+    DB::ErrorType: 'static,
+{
+    let styles = [
+        BLACK,
+        RGBColor(90, 90, 90),
+        RGBColor(160, 0, 160),
+        RGBColor(0, 110, 110),
+        RGBColor(200, 90, 0),
+        RGBColor(0, 150, 60),
+        RGBColor(255, 140, 0),
+    ];
+    // The reduced model's curves in lighter colours of their own.
+    let light = [
+        RGBColor(120, 120, 120),
+        RGBColor(200, 120, 200),
+        RGBColor(90, 170, 220),
+        RGBColor(220, 170, 60),
+    ];
+    let (mut solid, mut dashed) = (0, 0);
+    for c in curves {
+        let colour = if c.dashed {
+            dashed += 1;
+            light[(dashed - 1) % light.len()]
+        } else {
+            solid += 1;
+            styles[(solid - 1) % styles.len()]
+        };
+        let style = colour.stroke_width(if c.dashed { 2 } else { 3 });
+        let inside: Vec<(f64, f64)> = c
+            .points
+            .iter()
+            .copied()
+            .filter(|(x, y)| (x0..=x1).contains(x) && (y0..=y1).contains(y))
+            .collect();
+        if inside.len() < 2 {
+            continue;
+        }
+        if c.dashed {
+            chart
+                .draw_series(DashedLineSeries::new(inside, 8, 6, style))
+                .map_err(perr)?;
+        } else {
+            chart
+                .draw_series(LineSeries::new(inside, style))
+                .map_err(perr)?;
+        }
+        legend.push((c.label.clone(), LegendKey::Line(style)));
+    }
+    Ok(())
+}
+
+/// Phase boundaries alone in the `(eta_t, kappa2)` window (`droplet boundaries`).
+struct BoundaryFigure<'a> {
+    title: &'a str,
+    curves: &'a [Curve],
+    eta_t: (f64, f64),
+    kappa2: (f64, f64),
+}
+
+impl Figure for BoundaryFigure<'_> {
+    fn size(&self) -> (u32, u32) {
+        (900 + LEGEND_W + 80, 760)
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: DrawingArea<DB, Shift>) -> Result<(), SweepError>
+    where
+        DB::ErrorType: 'static,
+    {
+        root.fill(&WHITE).map_err(perr)?;
+        let (plot_area, legend_area) = root.split_horizontally(900);
+        let (x, y) = (self.eta_t, self.kappa2);
+        let mut chart = plane_chart(&plot_area, self.title, x, y, true)?;
+        let mut legend = Vec::new();
+        draw_curves(&mut chart, self.curves, x, y, &mut legend)?;
+        draw_legend(&legend_area, &legend)?;
+        root.present().map_err(perr)?;
+        Ok(())
+    }
+}
+
+/// Renders `<stem>.png` and `.svg` in `dir`: `curves` in the window; returns both paths.
+pub fn boundary_picture(
+    dir: &Path,
+    stem: &str,
+    title: &str,
+    curves: &[Curve],
+    eta_t: (f64, f64),
+    kappa2: (f64, f64),
+) -> Result<Vec<PathBuf>, SweepError> {
+    render(
+        &dir.join(format!("{stem}.png")),
+        &BoundaryFigure {
+            title,
+            curves,
+            eta_t,
+            kappa2,
+        },
+    )
+}
+
+/// Renders `<stem>.png` and `<stem>.svg` in `dir`; returns both paths.
+pub fn phase_map(
+    dir: &Path,
+    stem: &str,
+    title: &str,
+    pts: &[MapPoint],
+    curves: &[Curve],
+) -> Result<Vec<PathBuf>, SweepError> {
+    if pts.is_empty() {
+        return Err(SweepError::Invalid("no points to draw".into()));
+    }
+    render(
+        &dir.join(format!("{stem}.png")),
+        &PhaseMap { title, pts, curves },
+    )
+}
