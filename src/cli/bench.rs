@@ -1,4 +1,4 @@
-//! `droplet bench`: the work-precision benchmark ([`droplet_sweep::bench::cases`]).
+//! `droplet bench`: the work-precision benchmark ([`droplet_sweep::bench`]).
 use super::{print_json, CliError};
 use droplet_sweep::bench::run::{run_benchmark, BenchOptions};
 use std::path::PathBuf;

@@ -14,7 +14,7 @@
 //! included: the run ends where the box would leave it), and the run is on its way there: its
 //! speed and deformation differ from `z*`'s by at most 10 times what the linear decay at the
 //! slowest decisive rate predicts from its present change (`(change / window) / |lambda|`),
-//! and at most [`MAX_SETTLED`]; and its orientation is within [`ORIENTATION`] of `z*`'s, or
+//! and at most [`MAX_SETTLED`]; and its orientation is within [`crate::runs::orientation::ORIENTATION`] of `z*`'s, or
 //! closer to it than at the previous try (it turns at the slow rotation rate). Orientations
 //! are compared like with like: directions of motion when both move, long axes otherwise (a
 //! run slowing down onto a resting ID moves along its short axis). The run then ends
@@ -30,7 +30,7 @@
 //! lean `phi` of the run from it decides ([`NewtonFinish::stable_root`]): a
 //! mirror-symmetric run (`phi = 0`; leans below 1e-9 rad are its round-off) never turns and
 //! ends at that root; otherwise the first stable root on the side it leans to is looked for
-//! by Newton from the state turned by [`TURN_SEARCH`] degrees (a pitchfork pair a degree or
+//! by Newton from the state turned by [`crate::runs::orientation::TURN_SEARCH`] degrees (a pitchfork pair a degree or
 //! so off the line, else the root on the next mirror line), and the run ends there: speed and
 //! deformation settle long before the orientation, and that root's `v` and `s` are what the
 //! time stepper reaches after the turn.
@@ -50,7 +50,7 @@
 //! where the paper's rule gives up on it; and if every speed and deformation within the bound
 //! of the saddle's has the class of the run's present state, it would end with that class.
 //! It then stops now with status `saddle`, its own state (not the root's) and a diagnosis
-//! that starts like a `t_max` run's there ([`BESIDE_UNSTABLE`]).
+//! that starts like a `t_max` run's there ([`crate::runs::finding::BESIDE_UNSTABLE`]).
 //!
 //! Leaving a saddle (setting `leap_departures`): when two tries find the run leaving the same
 //! saddle along one growing mode, still in its linear stretch, the run leaps along the mode
@@ -59,7 +59,6 @@ use crate::contract::ending::Ending;
 use crate::contract::outcome::Unsettled;
 use crate::contract::settings::SolverSettings;
 use crate::error::SolverError;
-use crate::model::classify::StateClass;
 use crate::model::dynamics::force_balance;
 use crate::model::params::ModelParams;
 use crate::model::state::max_distance;
@@ -67,190 +66,23 @@ use crate::numerics::newton::{solve, NewtonOptions};
 use crate::roots::linearisation::Linearization;
 use crate::roots::steady_solver::SteadySolver;
 use crate::roots::verdict::{assess, Verdict};
-use crate::runs::landing::{landings, rotated};
+use crate::runs::finding::{Diagnosis, Finding};
 use crate::runs::leap::{leap, Leap, Sighting};
+use crate::runs::orientation::{
+    angle_to, class_of, invariant_distance, one_class_within, ORIENTATION,
+};
 use rustfft::num_complex::Complex64;
 
 /// Newton is first tried when the change per window is below this many steady tolerances.
 pub const TRIGGER_FACTOR: f64 = 100.0;
 
-/// What a Newton try found: the root, its stability, and whether it is the turned root.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Finding {
-    /// The root, `(vx, vy, a2, b2)`.
-    pub z: [f64; 4],
-    pub verdict: Verdict,
-    /// The root of the turned state (the run is to turn there), not the one near the run.
-    pub turned: bool,
-}
-
-impl Finding {
-    /// Largest real part of all eigenvalues, the rotation mode included.
-    pub fn slowest(&self) -> f64 {
-        self.verdict.eigenvalues.first().map_or(-1.0, |l| l[0])
-    }
-
-    /// Every eigenvalue decays (the rotation mode included).
-    pub fn stable(&self) -> bool {
-        self.slowest() < 0.0
-    }
-
-    /// Why a run stopped at `z` (the state Newton started from) is not settled on this root.
-    pub fn reason(&self, z: &[f64; 4]) -> Unsettled {
-        if self.verdict.unstable > 0 {
-            Unsettled::BesideSaddle
-        } else if self
-            .verdict
-            .rotation
-            .is_some_and(|r| r >= self.verdict.max_re)
-            && invariant_distance(z, &self.z) <= SETTLED_WITHIN
-            && class_of(z) == class_of(&self.z)
-        {
-            Unsettled::Turning
-        } else {
-            Unsettled::Converging
-        }
-    }
-
-    /// The class of the root, if it is stable (rotation mode aside): where a run near it
-    /// is heading.
-    pub fn heading(&self) -> Option<StateClass> {
-        (self.verdict.unstable == 0).then(|| class_of(&self.z))
-    }
-
-    /// A sentence for the `diagnosis` column of a run stopped at `z` (the state Newton started
-    /// from). Only the rotation mode slow and the run's speed and deformation within
-    /// [`SETTLED_WITHIN`] of the root's, with its class: [`SETTLED`] (the run only turns).
-    pub fn describe(&self, z: &[f64; 4]) -> String {
-        let rot = self.verdict.rotation;
-        if self.verdict.unstable > 0 {
-            format!(
-                "{BESIDE_UNSTABLE} ({} growing mode(s), largest {:+.2e})",
-                self.verdict.unstable, self.verdict.max_re
-            )
-        } else if let Some(r) = rot.filter(|r| *r >= self.verdict.max_re) {
-            let d = invariant_distance(z, &self.z);
-            if d <= SETTLED_WITHIN && class_of(z) == class_of(&self.z) {
-                format!(
-                    "rotation mode {r:+.2e}: the direction of motion / long axis turns slowly (box effect); {SETTLED}"
-                )
-            } else {
-                format!(
-                    "rotation mode {r:+.2e} slowest, but v and s are {d:.1e} from the root's: still on the way"
-                )
-            }
-        } else {
-            format!(
-                "slowest eigenvalue {:+.2e}: converging slowly",
-                self.slowest()
-            )
-        }
-    }
-}
-
-/// Largest difference in speed or deformation between a run and its root for the run to be
-/// settled (with the root's class) when only the rotation mode is slow: [`MAX_SETTLED`], the
-/// bound for a run approaching a root (a run turning between the box's mirror lines differs
-/// from the root on one by the box's anisotropy, up to 2e-2 in `v` for the fastest MD).
-/// Before numerics version 3 the run's distance was not checked, and a run still leaving
-/// the resting disk towards an MD root far away was called settled.
-pub const SETTLED_WITHIN: f64 = MAX_SETTLED;
-
-/// The end of a diagnosis whose run has settled in speed and deformation (only its direction
-/// still turns, at the box's slow rotation rate): its class is that of its final state.
-pub const SETTLED: &str = "v and s are settled";
-
-/// The start of a diagnosis whose run stopped beside an unstable steady state.
-pub const BESIDE_UNSTABLE: &str = "near an unstable steady state";
-
 /// Largest difference in speed or deformation between a run and the root it is taken to be
 /// approaching.
 pub const MAX_SETTLED: f64 = 0.05;
 
-/// Largest angle between a run's orientation and a stable root's for the run to be taken to
-/// be turning towards it.
-/// Known limitation: a run within this angle whose lean is growing (just past the basin
-/// boundary between two stable orientations, e.g. at (0.1, 0.1) from IC iv) is also taken,
-/// and ends on the wrong mirror line: same class, `s` off by the box's anisotropy (docs/numerics.md,
-/// "Finishing runs by Newton").
-pub const ORIENTATION: f64 = std::f64::consts::PI / 16.0;
-
-/// The turns (degrees) from a state on a mirror line that is unstable in its rotation mode
-/// at which [`NewtonFinish::stable_root`] looks for the stable root the run turns to.
-pub const TURN_SEARCH: [f64; 7] = [1.0, 2.0, 4.0, 8.0, 16.0, 32.0, 45.0];
-
 /// Largest distance from a saddle (max over `vx, vy, a2, b2`) that a run may reach by `t_max`
 /// and still be taken to be beside it then (with `stop_beside_saddle`): the class threshold.
 pub const LEAVE: f64 = crate::model::classify::CLASS_THRESHOLD;
-
-/// Leans (radians) below this are round-off of a mirror-symmetric run and count as none.
-pub const LEAN_FLOOR: f64 = 1e-9;
-
-/// The direction of motion, or for a resting droplet the direction of its long axis.
-fn orientation(z: &[f64; 4]) -> f64 {
-    if z[0].hypot(z[1]) > 1e-9 {
-        z[1].atan2(z[0])
-    } else {
-        0.5 * z[3].atan2(z[2])
-    }
-}
-
-/// The angle from the root `root`'s orientation to the run `z`'s, compared like with like:
-/// directions of motion when both move, else long axes (modulo pi; a run slowing down onto
-/// a resting deformed root moves along its short axis, not its long one), and 0 for a
-/// resting round root, which has no orientation. In (-pi/2, pi/2].
-fn angle_to(z: &[f64; 4], root: &[f64; 4]) -> f64 {
-    let moving = |z: &[f64; 4]| z[0].hypot(z[1]) > 1e-9;
-    if moving(z) && moving(root) {
-        return (z[1].atan2(z[0]) - root[1].atan2(root[0])).sin().asin();
-    }
-    if root[2].hypot(root[3]) <= 1e-9 {
-        return 0.0;
-    }
-    let d = 0.5 * (z[3].atan2(z[2]) - root[3].atan2(root[2]));
-    d - std::f64::consts::PI * (d / std::f64::consts::PI).round()
-}
-
-/// Speed `v` and deformation `s` of `(vx, vy, a2, b2)`.
-fn speed_and_deformation(z: &[f64; 4]) -> (f64, f64) {
-    (z[0].hypot(z[1]), z[2].hypot(z[3]))
-}
-
-/// The class of `(vx, vy, a2, b2)`.
-fn class_of(z: &[f64; 4]) -> StateClass {
-    let (v, s) = speed_and_deformation(z);
-    StateClass::of(v, s)
-}
-
-/// Max of the differences in speed and in deformation (invariant under rotation).
-fn invariant_distance(a: &[f64; 4], b: &[f64; 4]) -> f64 {
-    let ((va, sa), (vb, sb)) = (speed_and_deformation(a), speed_and_deformation(b));
-    (va - vb).abs().max((sa - sb).abs())
-}
-
-/// Whether every state whose speed and deformation are within `reach` (max over the 4
-/// components, so `sqrt(2) reach` in `v` and `s`) of the root `root`'s has the class of `z`.
-/// Classes are quadrants of the `(v, s)` plane, so the corners of that box decide.
-fn one_class_within(z: &[f64; 4], root: &[f64; 4], reach: f64) -> bool {
-    let class = class_of(z);
-    let (v, s) = speed_and_deformation(root);
-    let r = std::f64::consts::SQRT_2 * reach;
-    [(v - r).max(0.0), v + r].iter().all(|&v| {
-        [(s - r).max(0.0), s + r]
-            .iter()
-            .all(|&s| StateClass::of(v, s) == class)
-    })
-}
-
-/// What a run that did not finish was doing when it stopped.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Diagnosis {
-    /// A sentence (the `diagnosis` column).
-    pub text: String,
-    pub reason: Unsettled,
-    /// The class of the stable root it was heading to, if one is known.
-    pub heading: Option<StateClass>,
-}
 
 /// The decision after one judged window.
 #[derive(Debug, Clone, PartialEq)]
@@ -266,23 +98,23 @@ pub enum Decision {
 
 /// The Newton finish of one run.
 pub struct NewtonFinish {
-    params: ModelParams,
-    n: usize,
-    t_max: f64,
-    stop_beside_saddle: bool,
-    leap_departures: bool,
-    landing: bool,
+    pub(super) params: ModelParams,
+    pub(super) n: usize,
+    pub(super) t_max: f64,
+    pub(super) stop_beside_saddle: bool,
+    pub(super) leap_departures: bool,
+    pub(super) landing: bool,
     /// The last try that found the run beside a saddle (for `leap_departures`).
-    sighting: Option<Sighting>,
-    solver: Option<SteadySolver>,
+    pub(super) sighting: Option<Sighting>,
+    pub(super) solver: Option<SteadySolver>,
     /// The root of the last try and the run's angle to it then.
-    last_turn: Option<([f64; 4], f64)>,
+    pub(super) last_turn: Option<([f64; 4], f64)>,
     /// Roots already assessed and their verdicts (a run's later tries usually find the same
     /// root again; its eigenvalues are not recomputed).
-    assessed: Vec<([f64; 4], Verdict)>,
-    trigger: f64,
-    window: f64,
-    next_try: f64,
+    pub(super) assessed: Vec<([f64; 4], Verdict)>,
+    pub(super) trigger: f64,
+    pub(super) window: f64,
+    pub(super) next_try: f64,
 }
 
 impl NewtonFinish {
@@ -355,67 +187,6 @@ impl NewtonFinish {
         })
     }
 
-    /// The root the run at `z` ends at, if Newton finds one, and whether it may
-    /// end there: the root near `z`, if every eigenvalue decays. If that root is unstable only
-    /// in its rotation mode (an orientation the box turns away from), the run turns away only
-    /// if it leans at all (a lean `phi` grows like `phi exp(lambda_rot t)`, however long that
-    /// takes: before numerics 4 a run that could not turn by 0.01 rad before `t_max` ended
-    /// on the unstable line, `v` off by the box's anisotropy from where longer stepping
-    /// lands); a mirror-symmetric run (`phi = 0`)
-    /// ends at the root like the paper's test would. A run that can turn goes to the root of
-    /// the state turned by 45 degrees (motion and long axis together, towards the side it
-    /// leans to), where the box's other mirror line is, if that root is stable.
-    pub fn stable_root(&mut self, z: [f64; 4]) -> Option<(Finding, bool)> {
-        let near = match self.root_near(z) {
-            Ok(near) => near,
-            Err(_) => self.aligned_root(z)?,
-        };
-        if near.verdict.rotation.is_none() || near.stable() {
-            let ok = near.stable();
-            return Some((near, ok));
-        }
-        if near.verdict.unstable > 0 {
-            return Some((near, false));
-        }
-        let lean = angle_to(&z, &near.z);
-        // Below LEAN_FLOOR a lean is the round-off of a mirror-symmetric run: none.
-        let lean = if lean.abs() < LEAN_FLOOR { 0.0 } else { lean };
-        if lean == 0.0 {
-            // A mirror-symmetric run stays on its line for ever.
-            return Some((near, true));
-        }
-        let side = if lean >= 0.0 { 1.0 } else { -1.0 };
-        // The run turns away from `near` towards the side it leans to, and ends on the first
-        // stable root that way: where the unstable line's root lost its rotational stability
-        // in a pitchfork, a pair of roots a few degrees to either side; else the root on the
-        // box's next mirror line, 45 degrees away. Newton from the state turned by growing
-        // angles finds the nearest first.
-        let quarter = std::f64::consts::FRAC_PI_4;
-        for degrees in TURN_SEARCH {
-            let Ok(other) = self.root_near(rotated(&near.z, side * degrees.to_radians())) else {
-                continue;
-            };
-            // A root the run turns to differs from `near` by the box's anisotropy only (its
-            // class may differ where `s` is near the threshold: MD on one line, MC on the
-            // other); one further away (a resting state, say) is not where a turn ends.
-            let turn = side * angle_to(&other.z, &near.z);
-            if other.stable()
-                && invariant_distance(&other.z, &near.z) <= MAX_SETTLED
-                && turn > 1e-6
-                && turn <= quarter + 1e-6
-            {
-                return Some((
-                    Finding {
-                        turned: true,
-                        ..other
-                    },
-                    true,
-                ));
-            }
-        }
-        Some((near, false))
-    }
-
     /// Why a run stopped at `z` did not finish: what Newton from `z` finds
     /// ([`Finding::describe`]), or from `z` turned onto the box's nearest mirror lines if
     /// Newton from `z` does not converge (a run caught mid-turn); and where it was heading:
@@ -450,100 +221,6 @@ impl NewtonFinish {
             reason,
             heading,
         }
-    }
-
-    /// The stable root the run at `z` lands on along its slow flow
-    /// ([`crate::runs::landing`]), confirmed by Newton on all four equations and by its
-    /// eigenvalues: the flow's root itself (speed and deformation equal to 1e-6; a flow's root
-    /// on another mirror line than the run's, when the run was caught between them, to
-    /// [`MAX_SETTLED`]). A flow's root unstable in its rotation mode is not landed on.
-    /// Failing that, a run caught turning between two mirror lines ends where it turns to
-    /// ([`Self::turn_root`]).
-    pub fn landing_root(&mut self, z: [f64; 4]) -> Option<Finding> {
-        for landing in landings(self.steady_solver().ok()?, z) {
-            let Some((found, may_end)) = self.stable_root(landing.z) else {
-                continue;
-            };
-            if found.turned {
-                // The flow's root is unstable in its rotation mode: where the run ends depends
-                // on how it turns while it speeds up or slows down (two stable orientations
-                // can compete), which the one-dimensional flow does not follow. Time stepping
-                // goes on; the Newton finish takes the run once it is near its root.
-                continue;
-            }
-            let distance = invariant_distance(&found.z, &landing.z);
-            // The flow's own root, or one the run turns to from it.
-            let own = angle_to(&found.z, &landing.z).abs() <= ORIENTATION;
-            let same = class_of(&found.z) == class_of(&landing.z)
-                && distance <= if own { 1e-6 } else { MAX_SETTLED };
-            if may_end && same {
-                return Some(found);
-            }
-        }
-        self.turn_root(z)
-    }
-
-    /// The root a run turning between the box's two mirror lines next to it ends on. The
-    /// run's orientation is the slow coordinate (the near-neutral rotation mode); the
-    /// roots on the two lines are the zeros of its flow next to it (by the box's symmetry).
-    /// If one is stable and the other unstable in its rotation mode only, the run turns
-    /// away from the second towards the first and ends there, provided that both roots have
-    /// the run's class and the run's speed and deformation lie between theirs (within
-    /// [`crate::runs::landing::FAMILY_TOL`]): it is on the circle of states joining them. Both
-    /// stable (two orientations, each with its basin) or both unstable: no decision.
-    pub fn turn_root(&mut self, z: [f64; 4]) -> Option<Finding> {
-        let quarter = std::f64::consts::FRAC_PI_4;
-        let phi = orientation(&z);
-        let nearest = (phi / quarter).round() * quarter;
-        let other = nearest + if phi >= nearest { quarter } else { -quarter };
-        let class = class_of(&z);
-        let mut roots = Vec::with_capacity(2);
-        for target in [nearest, other] {
-            let found = self.root_near(rotated(&z, target - phi)).ok()?;
-            let on_line = (orientation(&found.z) - target).sin().abs() < 1e-6;
-            if !on_line || class_of(&found.z) != class || found.verdict.unstable > 0 {
-                return None;
-            }
-            roots.push(found);
-        }
-        let (b, a) = (roots.pop()?, roots.pop()?);
-        let (run, ra, rb) = (
-            speed_and_deformation(&z),
-            speed_and_deformation(&a.z),
-            speed_and_deformation(&b.z),
-        );
-        let tol = crate::runs::landing::FAMILY_TOL;
-        let between = |x: f64, p: f64, q: f64| x >= p.min(q) - tol && x <= p.max(q) + tol;
-        if !(between(run.0, ra.0, rb.0) && between(run.1, ra.1, rb.1)) {
-            return None;
-        }
-        match (a.stable(), b.stable()) {
-            (true, false) => Some(a),
-            (false, true) => Some(b),
-            _ => None,
-        }
-    }
-
-    /// The root of a run caught mid-turn, between the box's mirror lines, where Newton from
-    /// the run's own state need not converge: Newton from the state turned onto the nearest
-    /// mirror line (motion or long axis at a multiple of 45 degrees), then onto the next one
-    /// on the other side; the first stable root, else the first root found.
-    pub fn aligned_root(&mut self, z: [f64; 4]) -> Option<Finding> {
-        let quarter = std::f64::consts::FRAC_PI_4;
-        let phi = orientation(&z);
-        let nearest = (phi / quarter).round() * quarter;
-        let other = nearest + if phi >= nearest { quarter } else { -quarter };
-        let mut first = None;
-        for target in [nearest, other] {
-            let Ok(found) = self.root_near(rotated(&z, target - phi)) else {
-                continue;
-            };
-            if found.stable() {
-                return Some(found);
-            }
-            first.get_or_insert(found);
-        }
-        first
     }
 
     /// One judged window at time `t`: the state `z`, its change over the window (scaled to
@@ -624,7 +301,7 @@ impl NewtonFinish {
     }
 
     /// The run's steady solver, made at its first use.
-    fn steady_solver(&mut self) -> Result<&mut SteadySolver, SolverError> {
+    pub(super) fn steady_solver(&mut self) -> Result<&mut SteadySolver, SolverError> {
         if self.solver.is_none() {
             self.solver = Some(SteadySolver::new(self.params, self.n)?);
         }
@@ -668,6 +345,10 @@ impl NewtonFinish {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::classify::StateClass;
+    use crate::runs::finding::SETTLED;
+    use crate::runs::landing::rotated;
+    use crate::runs::orientation::{angle_to, one_class_within, orientation};
 
     #[test]
     fn orientations_compare_like_with_like() {

@@ -6,6 +6,9 @@
 //! May use: every folder below it (`numerics`, `model`, `stepping`, `contract`, `reduced`,
 //! `roots`). Used by: the sweep crate and the CLI.
 pub mod driver;
+pub mod finding;
 pub mod finish;
 pub mod landing;
 pub mod leap;
+pub mod orientation;
+pub mod root_search;

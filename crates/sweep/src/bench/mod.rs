@@ -1,10 +1,13 @@
-//! The work-precision benchmark (`droplet bench`): the cases and methods with their fine
-//! references (`cases`), a whole benchmark run from references to files (`run`), its Parquet
-//! table (`table`) and its picture (`precision_plot`).
+//! The work-precision benchmark (`droplet bench`): the cases and methods (`plan`, each method
+//! of a typed `family`), their fine references computed once (`references`), the timed rows
+//! and their scores (`scoring`), a whole benchmark run from references to files (`run`), its
+//! Parquet table (`table`) and its picture (`precision_plot`).
 //!
-//! May use: every folder but `audit`. Used by: the CLI.
-pub mod cases;
+//! May use: every folder but `audit` and `studies`. Used by: the CLI.
 pub mod family;
+pub mod plan;
 pub mod precision_plot;
+pub mod references;
 pub mod run;
+pub mod scoring;
 pub mod table;

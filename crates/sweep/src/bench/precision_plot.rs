@@ -1,7 +1,7 @@
-//! The work-precision picture of [`crate::bench::cases`]: error against wall time, log-log, one
+//! The work-precision picture of [`crate::bench`]: error against wall time, log-log, one
 //! panel per case and one curve per method family.
-use crate::bench::cases::BenchRow;
 use crate::bench::family::Family;
+use crate::bench::scoring::BenchRow;
 use crate::error::SweepError;
 use crate::pictures::render::{perr, render, Figure};
 use droplet_solver::contract::outcome::RunStatus;

@@ -1,8 +1,8 @@
-//! A whole benchmark run ([`crate::bench::cases`]) from start to files: the references (computed
+//! A whole benchmark run ([`crate::bench`]) from start to files: the references (computed
 //! once, then reused), the timed rows in a thread pool (or re-scored), and the outputs.
-use crate::bench::cases::{
-    references, rescore, run, summarise, BenchPlan, BenchSummary, Profile, References,
-};
+use crate::bench::plan::{BenchPlan, Profile};
+use crate::bench::references::{references, References};
+use crate::bench::scoring::{rescore, run, summarise, BenchSummary};
 use crate::bench::{precision_plot, table};
 use crate::error::SweepError;
 use crate::tables::sweep_tables;
@@ -88,7 +88,7 @@ fn store_references(path: &Path, refs: &References) -> Result<(), SweepError> {
 }
 
 /// Every row as a Markdown table (the Parquet table's main columns), grouped by case.
-fn markdown(rows: &[crate::bench::cases::BenchRow]) -> String {
+fn markdown(rows: &[crate::bench::scoring::BenchRow]) -> String {
     let mut out = String::from(
         "| case | method | dt | tol | status | class ok | err v | err s | err series | steps | rejected | wall s |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n",
     );

@@ -1,13 +1,13 @@
 //! The benchmark's Parquet table: one row per timed run, written and read back (re-scoring).
-use crate::bench::cases::BenchRow;
 use crate::bench::family::Family;
+use crate::bench::scoring::BenchRow;
 use crate::error::SweepError;
 use crate::tables::sweep_tables::{f64_col, str_col};
 use polars::prelude::*;
 use std::fs::File;
 use std::path::Path;
 
-/// The work-precision benchmark's rows ([`crate::bench::cases`]).
+/// The work-precision benchmark's rows ([`crate::bench`]).
 pub fn bench_frame(rows: &[BenchRow]) -> Result<DataFrame, SweepError> {
     use BenchRow;
     let f = |g: fn(&BenchRow) -> f64| rows.iter().map(g).collect::<Vec<f64>>();

@@ -1,0 +1,76 @@
+//! How a run's state `(vx, vy, a2, b2)` compares with a root's, invariant under the box's
+//! near-symmetries: its orientation (direction of motion, or long axis at rest), the angle
+//! between the two compared like with like, a rotation-invariant distance, and whether one
+//! class lies within reach of a root.
+use crate::model::classify::StateClass;
+
+/// Largest angle between a run's orientation and a stable root's for the run to be taken to
+/// be turning towards it.
+/// Known limitation: a run within this angle whose lean is growing (just past the basin
+/// boundary between two stable orientations, e.g. at (0.1, 0.1) from IC iv) is also taken,
+/// and ends on the wrong mirror line: same class, `s` off by the box's anisotropy (docs/numerics.md,
+/// "Finishing runs by Newton").
+pub const ORIENTATION: f64 = std::f64::consts::PI / 16.0;
+
+/// The turns (degrees) from a state on a mirror line that is unstable in its rotation mode
+/// at which [`NewtonFinish::stable_root`] looks for the stable root the run turns to.
+pub const TURN_SEARCH: [f64; 7] = [1.0, 2.0, 4.0, 8.0, 16.0, 32.0, 45.0];
+
+/// Leans (radians) below this are round-off of a mirror-symmetric run and count as none.
+pub const LEAN_FLOOR: f64 = 1e-9;
+
+/// The direction of motion, or for a resting droplet the direction of its long axis.
+pub(crate) fn orientation(z: &[f64; 4]) -> f64 {
+    if z[0].hypot(z[1]) > 1e-9 {
+        z[1].atan2(z[0])
+    } else {
+        0.5 * z[3].atan2(z[2])
+    }
+}
+
+/// The angle from the root `root`'s orientation to the run `z`'s, compared like with like:
+/// directions of motion when both move, else long axes (modulo pi; a run slowing down onto
+/// a resting deformed root moves along its short axis, not its long one), and 0 for a
+/// resting round root, which has no orientation. In (-pi/2, pi/2].
+pub(crate) fn angle_to(z: &[f64; 4], root: &[f64; 4]) -> f64 {
+    let moving = |z: &[f64; 4]| z[0].hypot(z[1]) > 1e-9;
+    if moving(z) && moving(root) {
+        return (z[1].atan2(z[0]) - root[1].atan2(root[0])).sin().asin();
+    }
+    if root[2].hypot(root[3]) <= 1e-9 {
+        return 0.0;
+    }
+    let d = 0.5 * (z[3].atan2(z[2]) - root[3].atan2(root[2]));
+    d - std::f64::consts::PI * (d / std::f64::consts::PI).round()
+}
+
+/// Speed `v` and deformation `s` of `(vx, vy, a2, b2)`.
+pub(crate) fn speed_and_deformation(z: &[f64; 4]) -> (f64, f64) {
+    (z[0].hypot(z[1]), z[2].hypot(z[3]))
+}
+
+/// The class of `(vx, vy, a2, b2)`.
+pub(crate) fn class_of(z: &[f64; 4]) -> StateClass {
+    let (v, s) = speed_and_deformation(z);
+    StateClass::of(v, s)
+}
+
+/// Max of the differences in speed and in deformation (invariant under rotation).
+pub(crate) fn invariant_distance(a: &[f64; 4], b: &[f64; 4]) -> f64 {
+    let ((va, sa), (vb, sb)) = (speed_and_deformation(a), speed_and_deformation(b));
+    (va - vb).abs().max((sa - sb).abs())
+}
+
+/// Whether every state whose speed and deformation are within `reach` (max over the 4
+/// components, so `sqrt(2) reach` in `v` and `s`) of the root `root`'s has the class of `z`.
+/// Classes are quadrants of the `(v, s)` plane, so the corners of that box decide.
+pub(crate) fn one_class_within(z: &[f64; 4], root: &[f64; 4], reach: f64) -> bool {
+    let class = class_of(z);
+    let (v, s) = speed_and_deformation(root);
+    let r = std::f64::consts::SQRT_2 * reach;
+    [(v - r).max(0.0), v + r].iter().all(|&v| {
+        [(s - r).max(0.0), s + r]
+            .iter()
+            .all(|&s| StateClass::of(v, s) == class)
+    })
+}

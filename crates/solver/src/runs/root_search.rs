@@ -1,0 +1,170 @@
+//! Which stable root a run that Newton near it cannot end will reach: the first stable root
+//! on the side a run leans to when its own is unstable only in rotation
+//! ([`NewtonFinish::stable_root`]), the root its one-dimensional slow flow lands on
+//! ([`NewtonFinish::landing_root`]), the stable one of two roots a run turning between mirror
+//! lines is caught between ([`NewtonFinish::turn_root`]), and the root on the nearest mirror
+//! line ([`NewtonFinish::aligned_root`]).
+use crate::runs::finding::Finding;
+use crate::runs::finish::{NewtonFinish, MAX_SETTLED};
+use crate::runs::landing::{landings, rotated};
+use crate::runs::orientation::{
+    angle_to, class_of, invariant_distance, orientation, speed_and_deformation, LEAN_FLOOR,
+    ORIENTATION, TURN_SEARCH,
+};
+
+impl NewtonFinish {
+    /// The root the run at `z` ends at, if Newton finds one, and whether it may
+    /// end there: the root near `z`, if every eigenvalue decays. If that root is unstable only
+    /// in its rotation mode (an orientation the box turns away from), the run turns away only
+    /// if it leans at all (a lean `phi` grows like `phi exp(lambda_rot t)`, however long that
+    /// takes: before numerics 4 a run that could not turn by 0.01 rad before `t_max` ended
+    /// on the unstable line, `v` off by the box's anisotropy from where longer stepping
+    /// lands); a mirror-symmetric run (`phi = 0`)
+    /// ends at the root like the paper's test would. A run that can turn goes to the root of
+    /// the state turned by 45 degrees (motion and long axis together, towards the side it
+    /// leans to), where the box's other mirror line is, if that root is stable.
+    pub fn stable_root(&mut self, z: [f64; 4]) -> Option<(Finding, bool)> {
+        let near = match self.root_near(z) {
+            Ok(near) => near,
+            Err(_) => self.aligned_root(z)?,
+        };
+        if near.verdict.rotation.is_none() || near.stable() {
+            let ok = near.stable();
+            return Some((near, ok));
+        }
+        if near.verdict.unstable > 0 {
+            return Some((near, false));
+        }
+        let lean = angle_to(&z, &near.z);
+        // Below LEAN_FLOOR a lean is the round-off of a mirror-symmetric run: none.
+        let lean = if lean.abs() < LEAN_FLOOR { 0.0 } else { lean };
+        if lean == 0.0 {
+            // A mirror-symmetric run stays on its line for ever.
+            return Some((near, true));
+        }
+        let side = if lean >= 0.0 { 1.0 } else { -1.0 };
+        // The run turns away from `near` towards the side it leans to, and ends on the first
+        // stable root that way: where the unstable line's root lost its rotational stability
+        // in a pitchfork, a pair of roots a few degrees to either side; else the root on the
+        // box's next mirror line, 45 degrees away. Newton from the state turned by growing
+        // angles finds the nearest first.
+        let quarter = std::f64::consts::FRAC_PI_4;
+        for degrees in TURN_SEARCH {
+            let Ok(other) = self.root_near(rotated(&near.z, side * degrees.to_radians())) else {
+                continue;
+            };
+            // A root the run turns to differs from `near` by the box's anisotropy only (its
+            // class may differ where `s` is near the threshold: MD on one line, MC on the
+            // other); one further away (a resting state, say) is not where a turn ends.
+            let turn = side * angle_to(&other.z, &near.z);
+            if other.stable()
+                && invariant_distance(&other.z, &near.z) <= MAX_SETTLED
+                && turn > 1e-6
+                && turn <= quarter + 1e-6
+            {
+                return Some((
+                    Finding {
+                        turned: true,
+                        ..other
+                    },
+                    true,
+                ));
+            }
+        }
+        Some((near, false))
+    }
+
+    /// The stable root the run at `z` lands on along its slow flow
+    /// ([`crate::runs::landing`]), confirmed by Newton on all four equations and by its
+    /// eigenvalues: the flow's root itself (speed and deformation equal to 1e-6; a flow's root
+    /// on another mirror line than the run's, when the run was caught between them, to
+    /// [`MAX_SETTLED`]). A flow's root unstable in its rotation mode is not landed on.
+    /// Failing that, a run caught turning between two mirror lines ends where it turns to
+    /// ([`Self::turn_root`]).
+    pub fn landing_root(&mut self, z: [f64; 4]) -> Option<Finding> {
+        for landing in landings(self.steady_solver().ok()?, z) {
+            let Some((found, may_end)) = self.stable_root(landing.z) else {
+                continue;
+            };
+            if found.turned {
+                // The flow's root is unstable in its rotation mode: where the run ends depends
+                // on how it turns while it speeds up or slows down (two stable orientations
+                // can compete), which the one-dimensional flow does not follow. Time stepping
+                // goes on; the Newton finish takes the run once it is near its root.
+                continue;
+            }
+            let distance = invariant_distance(&found.z, &landing.z);
+            // The flow's own root, or one the run turns to from it.
+            let own = angle_to(&found.z, &landing.z).abs() <= ORIENTATION;
+            let same = class_of(&found.z) == class_of(&landing.z)
+                && distance <= if own { 1e-6 } else { MAX_SETTLED };
+            if may_end && same {
+                return Some(found);
+            }
+        }
+        self.turn_root(z)
+    }
+
+    /// The root a run turning between the box's two mirror lines next to it ends on. The
+    /// run's orientation is the slow coordinate (the near-neutral rotation mode); the
+    /// roots on the two lines are the zeros of its flow next to it (by the box's symmetry).
+    /// If one is stable and the other unstable in its rotation mode only, the run turns
+    /// away from the second towards the first and ends there, provided that both roots have
+    /// the run's class and the run's speed and deformation lie between theirs (within
+    /// [`crate::runs::landing::FAMILY_TOL`]): it is on the circle of states joining them. Both
+    /// stable (two orientations, each with its basin) or both unstable: no decision.
+    pub fn turn_root(&mut self, z: [f64; 4]) -> Option<Finding> {
+        let quarter = std::f64::consts::FRAC_PI_4;
+        let phi = orientation(&z);
+        let nearest = (phi / quarter).round() * quarter;
+        let other = nearest + if phi >= nearest { quarter } else { -quarter };
+        let class = class_of(&z);
+        let mut roots = Vec::with_capacity(2);
+        for target in [nearest, other] {
+            let found = self.root_near(rotated(&z, target - phi)).ok()?;
+            let on_line = (orientation(&found.z) - target).sin().abs() < 1e-6;
+            if !on_line || class_of(&found.z) != class || found.verdict.unstable > 0 {
+                return None;
+            }
+            roots.push(found);
+        }
+        let (b, a) = (roots.pop()?, roots.pop()?);
+        let (run, ra, rb) = (
+            speed_and_deformation(&z),
+            speed_and_deformation(&a.z),
+            speed_and_deformation(&b.z),
+        );
+        let tol = crate::runs::landing::FAMILY_TOL;
+        let between = |x: f64, p: f64, q: f64| x >= p.min(q) - tol && x <= p.max(q) + tol;
+        if !(between(run.0, ra.0, rb.0) && between(run.1, ra.1, rb.1)) {
+            return None;
+        }
+        match (a.stable(), b.stable()) {
+            (true, false) => Some(a),
+            (false, true) => Some(b),
+            _ => None,
+        }
+    }
+
+    /// The root of a run caught mid-turn, between the box's mirror lines, where Newton from
+    /// the run's own state need not converge: Newton from the state turned onto the nearest
+    /// mirror line (motion or long axis at a multiple of 45 degrees), then onto the next one
+    /// on the other side; the first stable root, else the first root found.
+    pub fn aligned_root(&mut self, z: [f64; 4]) -> Option<Finding> {
+        let quarter = std::f64::consts::FRAC_PI_4;
+        let phi = orientation(&z);
+        let nearest = (phi / quarter).round() * quarter;
+        let other = nearest + if phi >= nearest { quarter } else { -quarter };
+        let mut first = None;
+        for target in [nearest, other] {
+            let Ok(found) = self.root_near(rotated(&z, target - phi)) else {
+                continue;
+            };
+            if found.stable() {
+                return Some(found);
+            }
+            first.get_or_insert(found);
+        }
+        first
+    }
+}
