@@ -133,7 +133,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
                 &c,
                 &format!("{fixed_label}, {x_label} from {from} to {to}"),
             )?;
-            let mut files = droplet_sweep::pictures::sweep_pictures::ode_bifurcation(
+            let mut files = droplet_sweep::pictures::branch_pictures::ode_bifurcation(
                 &out,
                 &stem,
                 &pts,

@@ -2,11 +2,13 @@
 //! (`map_figure`, colours and legend in `legend`), the single-run panels of Fig. 1
 //! (`run_figure`), `v` and `s` against a parameter of Fig. 2b/3b (`line_figure`), the
 //! Appendix E fit (`h0_figure`), a sweep's pictures from its runs with the boundaries
-//! (`sweep_pictures`), and sampled steady states joined into drawable branches
+//! (`sweep_pictures`), bifurcation diagrams of the reduced model and of continuation
+//! (`branch_pictures`), and sampled steady states joined into drawable branches
 //! (`branch_lines`).
 //!
-//! May use: `spec`, `store`, `map`, `tables`. Used by: `execution`, `bench`, the CLI.
+//! May use: `spec`, `store`, `map`, `tables`. Used by: `execution`, `studies`, `bench`, the CLI.
 pub mod branch_lines;
+pub mod branch_pictures;
 pub mod h0_figure;
 pub mod legend;
 pub mod line_figure;

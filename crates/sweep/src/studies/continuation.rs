@@ -134,7 +134,7 @@ impl ContinuationStudy {
             &description,
             self.line.n,
         )?;
-        let mut files = crate::pictures::sweep_pictures::continuation(
+        let mut files = crate::pictures::branch_pictures::continuation(
             &self.out,
             &stem,
             &branches,
