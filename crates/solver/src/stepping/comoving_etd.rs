@@ -24,15 +24,13 @@
 //! The predictor's shape is extrapolated from the last two states
 //! ([`ComovingEtd::predictor_shape`]) rather than transformed.
 //!
-//! Measured at N = 192 (`cargo bench -p droplet-solver --bench step -- --quick`, fixed
-//! dt = 0.02, MD point, one machine, one session; the README's Speed table has the final
-//! before/after pair, 467 -> 291 us): 435 us per step before (two shapes per step, each two
-//! plain row-pruned transforms) -> 300 us (predictor extrapolated) -> 285 us (symmetric
-//! transform). Profile now: the two passes ~46 %, transforms ~27 %, sampling `Theta` ~13 %
-//! (half of it `exp` in the tanh band). Tried and dropped: AVX2 code generation
-//! (`x86-64-v3`: 2 % faster; `native` with AVX-512 was 35 % slower), 4-lane accumulators in
-//! the passes (no gain), `1 / c` computed per mode instead of stored (9 % slower), a narrower
-//! band `BAND_Q = 12` (3.5 %, not worth changing `Theta` by 4e-11).
+//! Profile at N = 192: the two passes about 46 %, transforms 27 %, sampling `Theta` 13 %
+//! (half of it `exp` in the tanh band); measured step times and what was tried and not kept
+//! are in docs/performance.md, "Speed".
+//!
+//! One step ([`Scheme::attempt`]) is [`ComovingEtd::predict`] (the first pass),
+//! [`ComovingEtd::correct_scalars`] and [`ComovingEtd::step_error`] (where a step may be
+//! refused), then [`ComovingEtd::correct_field`] (the second pass).
 use crate::model::dynamics;
 use crate::model::forces::Forces;
 use crate::model::grid::Grid;
@@ -247,41 +245,37 @@ impl ComovingEtd {
     fn scalar_rates(&self, f: &Forces) -> [f64; 4] {
         dynamics::forcing(&self.params, f, self.pinned)
     }
-}
-
-impl Scheme for ComovingEtd {
-    fn state(&self) -> DropletState {
-        self.state
-    }
-
-    fn attempt(&mut self, h: f64, max_error: f64) -> Attempt {
+    /// The first half of a step of size `h`: the ETD1 predictor of the scalars and the field
+    /// predictor fused with the forces there (one spectral pass).
+    fn predict(&mut self, h: f64) -> Half {
         let f0 = self.ensure_current();
         let p = self.params;
         let st = self.state;
-        let inertial = p.mass > 0.0 && !self.pinned;
         let (rate_v, rate_s) = dynamics::linear_rates(&p, self.pinned);
         let vel = EtdCoef::new(rate_v, h);
         let shp = EtdCoef::new(rate_s, h);
         let pos = EtdCoef::new(0.0, h);
         self.exp.update(h, &self.grid.kx, &self.grid.ky);
         let n = self.grid.n;
-        let da = self.grid.dx * self.grid.dx;
         let norm = 1.0 / (n as f64 * n as f64);
 
         // Predictor (ETD1) for the scalars; then the predictor's shape spectra.
-        let (v0x, v0y) = self.stage_velocity(&f0, (st.vx, st.vy));
+        let v0 = self.stage_velocity(&f0, (st.vx, st.vy));
         let r0 = self.scalar_rates(&f0);
-        let (vxa, vya) = (vel.predict(st.vx, r0[0]), vel.predict(st.vy, r0[1]));
-        let a2a = shp.predict(st.a2, r0[2]);
-        let b2a = shp.predict(st.b2, r0[3]);
-        let alpha = self.predictor_shape(a2a, b2a);
+        let predicted = [
+            vel.predict(st.vx, r0[0]),
+            vel.predict(st.vy, r0[1]),
+            shp.predict(st.a2, r0[2]),
+            shp.predict(st.b2, r0[3]),
+        ];
+        let alpha = self.predictor_shape(predicted[2], predicted[3]);
 
         // Field predictor fused with the forces at the predictor.
         let (base, back, alpha) = match alpha {
             Some(alpha) => (&self.cur, &self.prev, alpha),
             None => (&self.next, &self.next, 0.0),
         };
-        let area_a = base.area + alpha * (base.area - back.area);
+        let area = base.area + alpha * (base.area - back.area);
         let modes = Modes {
             grid: &self.grid,
             exp: &self.exp,
@@ -290,7 +284,7 @@ impl Scheme for ComovingEtd {
         };
         let sums = PredictorPass {
             modes,
-            velocity: (v0x, v0y),
+            velocity: v0,
             src0: norm / self.cur.area,
             w: &self.w_hat,
             cur_p: &self.cur.p,
@@ -306,61 +300,87 @@ impl Scheme for ComovingEtd {
             pred_th: &mut self.pred_th,
         }
         .run();
-        let fa = sums.finish(da, area_a);
+        let forces = sums.finish(self.grid.dx * self.grid.dx, area);
+        Half {
+            h,
+            vel,
+            shp,
+            pos,
+            v0,
+            r0,
+            predicted,
+            area,
+            forces,
+        }
+    }
 
-        // Corrector for the scalars, then the new state's shape spectra.
-        let (vax, vay) = self.stage_velocity(&fa, (vxa, vya));
-        let ra = self.scalar_rates(&fa);
+    /// The corrector of the scalars after `half`: the candidate new state and the velocity the
+    /// field is advected with in the corrector.
+    fn correct_scalars(&self, half: &Half) -> (DropletState, (f64, f64)) {
+        let st = self.state;
+        let (vel, shp, pos, v0, r0) = (&half.vel, &half.shp, &half.pos, half.v0, half.r0);
+        let [vxa, vya, a2a, b2a] = half.predicted;
+        let (vax, vay) = self.stage_velocity(&half.forces, (vxa, vya));
+        let ra = self.scalar_rates(&half.forces);
         let mut next = DropletState {
-            x: pos.correct(pos.predict(st.x, v0x), v0x, vax),
-            y: pos.correct(pos.predict(st.y, v0y), v0y, vay),
+            x: pos.correct(pos.predict(st.x, v0.0), v0.0, vax),
+            y: pos.correct(pos.predict(st.y, v0.1), v0.1, vay),
             vx: vel.correct(vxa, r0[0], ra[0]),
             vy: vel.correct(vya, r0[1], ra[1]),
             a2: shp.correct(a2a, r0[2], ra[2]),
             b2: shp.correct(b2a, r0[3], ra[3]),
         };
-        if !inertial {
+        if !(self.params.mass > 0.0 && !self.pinned) {
             (next.vx, next.vy) = (st.vx, st.vy);
         }
         if self.pinned {
             (next.x, next.y) = (st.x, st.y);
         }
-        // Embedded estimate: corrector minus ETD1 predictor of the integrated scalars. The
-        // step can be refused here, before the second half of its cost.
-        let error = if self.pinned {
+        (next, (vax, vay))
+    }
+
+    /// The embedded error estimate of the step to `next`: the corrector minus the ETD1
+    /// predictor of the integrated scalars (the shape, and the velocity, or the position when
+    /// overdamped).
+    fn step_error(&self, half: &Half, next: &DropletState) -> f64 {
+        let st = self.state;
+        let [vxa, vya, a2a, b2a] = half.predicted;
+        if self.pinned {
             (next.a2 - a2a).abs().max((next.b2 - b2a).abs())
-        } else if inertial {
+        } else if self.params.mass > 0.0 {
             [next.vx - vxa, next.vy - vya, next.a2 - a2a, next.b2 - b2a]
                 .iter()
                 .fold(0.0f64, |m, d| m.max(d.abs()))
         } else {
-            let (xa, ya) = (pos.predict(st.x, v0x), pos.predict(st.y, v0y));
+            let (xa, ya) = (
+                half.pos.predict(st.x, half.v0.0),
+                half.pos.predict(st.y, half.v0.1),
+            );
             [next.x - xa, next.y - ya, next.a2 - a2a, next.b2 - b2a]
                 .iter()
                 .fold(0.0f64, |m, d| m.max(d.abs()))
-        };
-        if max_error.is_finite() && (error.is_nan() || error > max_error) {
-            return Attempt {
-                accepted: false,
-                error: Some(error),
-            };
         }
+    }
+
+    /// The second half of an accepted step: the new state's shape spectra and the field
+    /// corrector fused with the forces there (one spectral pass); the run moves to `next`.
+    fn correct_field(&mut self, half: &Half, next: DropletState, velocity: (f64, f64)) {
+        let n = self.grid.n;
+        let norm = 1.0 / (n as f64 * n as f64);
         let sample_next = next.is_finite() && next.deformation() < 1.0;
         if sample_next {
             Self::shape_spectra(&mut self.shapes, next.a2, next.b2, &mut self.next);
         }
-
-        // Field corrector fused with the forces at the new state.
         let modes = Modes {
             grid: &self.grid,
             exp: &self.exp,
             inv_c: &self.inv_c,
-            h,
+            h: half.h,
         };
         let sums = CorrectorPass {
             modes,
-            velocity: (vax, vay),
-            srca: norm / area_a,
+            velocity,
+            srca: norm / half.area,
             a_hat: &self.a_hat,
             pred_th: &self.pred_th,
             n0: &self.n0,
@@ -375,12 +395,46 @@ impl Scheme for ComovingEtd {
             std::mem::swap(&mut self.prev, &mut self.cur);
             std::mem::swap(&mut self.cur, &mut self.next);
             self.prev_valid = true;
-            let f = sums.finish(da, self.cur.area);
+            let f = sums.finish(self.grid.dx * self.grid.dx, self.cur.area);
             self.set_overdamped_velocity(&f);
             self.forces0 = Some(f);
         } else {
             self.forces0 = None;
         }
+    }
+}
+
+/// The first half of a step: its coefficients, the velocity and scalar rates at its start,
+/// the ETD1 predictor `(vx, vy, a2, b2)`, and the predictor's area and forces.
+struct Half {
+    h: f64,
+    vel: EtdCoef,
+    shp: EtdCoef,
+    pos: EtdCoef,
+    v0: (f64, f64),
+    r0: [f64; 4],
+    predicted: [f64; 4],
+    area: f64,
+    forces: Forces,
+}
+
+impl Scheme for ComovingEtd {
+    fn state(&self) -> DropletState {
+        self.state
+    }
+
+    fn attempt(&mut self, h: f64, max_error: f64) -> Attempt {
+        let half = self.predict(h);
+        let (next, corrector_velocity) = self.correct_scalars(&half);
+        // The step can be refused here, before the second half of its cost.
+        let error = self.step_error(&half, &next);
+        if max_error.is_finite() && (error.is_nan() || error > max_error) {
+            return Attempt {
+                accepted: false,
+                error: Some(error),
+            };
+        }
+        self.correct_field(&half, next, corrector_velocity);
         Attempt {
             accepted: true,
             error: Some(error),
