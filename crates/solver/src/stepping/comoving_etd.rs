@@ -39,19 +39,18 @@ use crate::model::shape::ShapeParams;
 use crate::model::shape_transform::ShapeTransform;
 use crate::model::state::DropletState;
 use crate::numerics::fft2::PrunedFft2;
-use crate::stepping::etd::{EtdCoef, SeparableExp};
-use crate::stepping::spectral_pass::{CorrectorPass, Modes, PredictorPass, PredictorShape};
+use crate::stepping::etd::SeparableExp;
 use crate::stepping::{Attempt, Field, Scheme};
 use rustfft::num_complex::Complex64;
 
 /// Packed transforms of one droplet shape (`p`: `Theta + X Theta`, `y`: `Y Theta`), its
 /// area and the shape `(a2, b2)` they belong to.
-struct ShapeSpectra {
-    p: Vec<Complex64>,
-    y: Vec<Complex64>,
-    area: f64,
-    a2: f64,
-    b2: f64,
+pub(super) struct ShapeSpectra {
+    pub(super) p: Vec<Complex64>,
+    pub(super) y: Vec<Complex64>,
+    pub(super) area: f64,
+    pub(super) a2: f64,
+    pub(super) b2: f64,
 }
 
 impl ShapeSpectra {
@@ -69,33 +68,33 @@ impl ShapeSpectra {
 
 /// The co-moving spectral integrator of one run.
 pub struct ComovingEtd {
-    params: ModelParams,
-    grid: Grid,
-    fft: PrunedFft2,
-    shapes: ShapeTransform,
+    pub(super) params: ModelParams,
+    pub(super) grid: Grid,
+    pub(super) fft: PrunedFft2,
+    pub(super) shapes: ShapeTransform,
     /// Hold the centre fixed (deformation-only runs, Appendix E).
-    pinned: bool,
-    state: DropletState,
+    pub(super) pinned: bool,
+    pub(super) state: DropletState,
     /// Normalised Fourier coefficients of `w`, `[kx][ky]`.
-    w_hat: Vec<Complex64>,
-    w_new: Vec<Complex64>,
-    a_hat: Vec<Complex64>,
+    pub(super) w_hat: Vec<Complex64>,
+    pub(super) w_new: Vec<Complex64>,
+    pub(super) a_hat: Vec<Complex64>,
     /// Explicit part of the field at the step's start.
-    n0: Vec<Complex64>,
+    pub(super) n0: Vec<Complex64>,
     /// Shape spectra at the current state, at the state before it (valid when
     /// `prev_valid`), and at the candidate new state (or the predictor, see
     /// [`ComovingEtd::predictor_shape`]).
-    cur: ShapeSpectra,
-    prev: ShapeSpectra,
-    prev_valid: bool,
-    next: ShapeSpectra,
+    pub(super) cur: ShapeSpectra,
+    pub(super) prev: ShapeSpectra,
+    pub(super) prev_valid: bool,
+    pub(super) next: ShapeSpectra,
     /// `Theta_hat` (raw, real) at the predictor.
-    pred_th: Vec<f64>,
+    pub(super) pred_th: Vec<f64>,
     /// Forces at the current state, if known.
-    forces0: Option<Forces>,
-    exp: SeparableExp,
+    pub(super) forces0: Option<Forces>,
+    pub(super) exp: SeparableExp,
     /// `1 / c` with `c = -(1 + k^2)` per mode.
-    inv_c: Vec<f64>,
+    pub(super) inv_c: Vec<f64>,
 }
 
 impl ComovingEtd {
@@ -168,13 +167,18 @@ impl ComovingEtd {
     }
 
     /// Samples the shape `(a2, b2)` and transforms it into `out`.
-    fn shape_spectra(shapes: &mut ShapeTransform, a2: f64, b2: f64, out: &mut ShapeSpectra) {
+    pub(super) fn shape_spectra(
+        shapes: &mut ShapeTransform,
+        a2: f64,
+        b2: f64,
+        out: &mut ShapeSpectra,
+    ) {
         out.area = shapes.transform(a2, b2, &mut out.p, &mut out.y);
         (out.a2, out.b2) = (a2, b2);
     }
 
     /// Shape spectra and forces at the current state (computed once per state).
-    fn ensure_current(&mut self) -> Forces {
+    pub(super) fn ensure_current(&mut self) -> Forces {
         if let Some(f) = self.forces0 {
             return f;
         }
@@ -203,7 +207,7 @@ impl ComovingEtd {
     /// the local error stays `O(h^3)` and the scheme second order; at a fixed point the shape
     /// does not change and the extrapolation is exact. Extrapolating further than
     /// `MAX_ALPHA` steps, or with no previous state, transforms the shape instead.
-    fn predictor_shape(&mut self, a2: f64, b2: f64) -> Option<f64> {
+    pub(super) fn predictor_shape(&mut self, a2: f64, b2: f64) -> Option<f64> {
         const MAX_ALPHA: f64 = 2.0;
         if self.prev_valid {
             let (c, q) = (&self.cur, &self.prev);
@@ -224,14 +228,14 @@ impl ComovingEtd {
     }
 
     /// In the overdamped limit (`m = 0`) the velocity is `F / eta_t` at every state.
-    fn set_overdamped_velocity(&mut self, f: &Forces) {
+    pub(super) fn set_overdamped_velocity(&mut self, f: &Forces) {
         if self.params.mass == 0.0 && !self.pinned {
             (self.state.vx, self.state.vy) = dynamics::overdamped_velocity(&self.params, f);
         }
     }
 
     /// Velocity used for advection at a stage with forces `f` and integrated velocity `v`.
-    fn stage_velocity(&self, f: &Forces, v: (f64, f64)) -> (f64, f64) {
+    pub(super) fn stage_velocity(&self, f: &Forces, v: (f64, f64)) -> (f64, f64) {
         if self.pinned {
             (0.0, 0.0)
         } else if self.params.mass == 0.0 {
@@ -242,180 +246,9 @@ impl ComovingEtd {
     }
 
     /// Explicit rates of `(vx, vy, a2, b2)` beyond their linear terms.
-    fn scalar_rates(&self, f: &Forces) -> [f64; 4] {
+    pub(super) fn scalar_rates(&self, f: &Forces) -> [f64; 4] {
         dynamics::forcing(&self.params, f, self.pinned)
     }
-    /// The first half of a step of size `h`: the ETD1 predictor of the scalars and the field
-    /// predictor fused with the forces there (one spectral pass).
-    fn predict(&mut self, h: f64) -> Half {
-        let f0 = self.ensure_current();
-        let p = self.params;
-        let st = self.state;
-        let (rate_v, rate_s) = dynamics::linear_rates(&p, self.pinned);
-        let vel = EtdCoef::new(rate_v, h);
-        let shp = EtdCoef::new(rate_s, h);
-        let pos = EtdCoef::new(0.0, h);
-        self.exp.update(h, &self.grid.kx, &self.grid.ky);
-        let n = self.grid.n;
-        let norm = 1.0 / (n as f64 * n as f64);
-
-        // Predictor (ETD1) for the scalars; then the predictor's shape spectra.
-        let v0 = self.stage_velocity(&f0, (st.vx, st.vy));
-        let r0 = self.scalar_rates(&f0);
-        let predicted = [
-            vel.predict(st.vx, r0[0]),
-            vel.predict(st.vy, r0[1]),
-            shp.predict(st.a2, r0[2]),
-            shp.predict(st.b2, r0[3]),
-        ];
-        let alpha = self.predictor_shape(predicted[2], predicted[3]);
-
-        // Field predictor fused with the forces at the predictor.
-        let (base, back, alpha) = match alpha {
-            Some(alpha) => (&self.cur, &self.prev, alpha),
-            None => (&self.next, &self.next, 0.0),
-        };
-        let area = base.area + alpha * (base.area - back.area);
-        let modes = Modes {
-            grid: &self.grid,
-            exp: &self.exp,
-            inv_c: &self.inv_c,
-            h,
-        };
-        let sums = PredictorPass {
-            modes,
-            velocity: v0,
-            src0: norm / self.cur.area,
-            w: &self.w_hat,
-            cur_p: &self.cur.p,
-            shape: PredictorShape {
-                base_p: &base.p,
-                base_y: &base.y,
-                back_p: &back.p,
-                back_y: &back.y,
-                alpha,
-            },
-            n0: &mut self.n0,
-            a_hat: &mut self.a_hat,
-            pred_th: &mut self.pred_th,
-        }
-        .run();
-        let forces = sums.finish(self.grid.dx * self.grid.dx, area);
-        Half {
-            h,
-            vel,
-            shp,
-            pos,
-            v0,
-            r0,
-            predicted,
-            area,
-            forces,
-        }
-    }
-
-    /// The corrector of the scalars after `half`: the candidate new state and the velocity the
-    /// field is advected with in the corrector.
-    fn correct_scalars(&self, half: &Half) -> (DropletState, (f64, f64)) {
-        let st = self.state;
-        let (vel, shp, pos, v0, r0) = (&half.vel, &half.shp, &half.pos, half.v0, half.r0);
-        let [vxa, vya, a2a, b2a] = half.predicted;
-        let (vax, vay) = self.stage_velocity(&half.forces, (vxa, vya));
-        let ra = self.scalar_rates(&half.forces);
-        let mut next = DropletState {
-            x: pos.correct(pos.predict(st.x, v0.0), v0.0, vax),
-            y: pos.correct(pos.predict(st.y, v0.1), v0.1, vay),
-            vx: vel.correct(vxa, r0[0], ra[0]),
-            vy: vel.correct(vya, r0[1], ra[1]),
-            a2: shp.correct(a2a, r0[2], ra[2]),
-            b2: shp.correct(b2a, r0[3], ra[3]),
-        };
-        if !(self.params.mass > 0.0 && !self.pinned) {
-            (next.vx, next.vy) = (st.vx, st.vy);
-        }
-        if self.pinned {
-            (next.x, next.y) = (st.x, st.y);
-        }
-        (next, (vax, vay))
-    }
-
-    /// The embedded error estimate of the step to `next`: the corrector minus the ETD1
-    /// predictor of the integrated scalars (the shape, and the velocity, or the position when
-    /// overdamped).
-    fn step_error(&self, half: &Half, next: &DropletState) -> f64 {
-        let st = self.state;
-        let [vxa, vya, a2a, b2a] = half.predicted;
-        if self.pinned {
-            (next.a2 - a2a).abs().max((next.b2 - b2a).abs())
-        } else if self.params.mass > 0.0 {
-            [next.vx - vxa, next.vy - vya, next.a2 - a2a, next.b2 - b2a]
-                .iter()
-                .fold(0.0f64, |m, d| m.max(d.abs()))
-        } else {
-            let (xa, ya) = (
-                half.pos.predict(st.x, half.v0.0),
-                half.pos.predict(st.y, half.v0.1),
-            );
-            [next.x - xa, next.y - ya, next.a2 - a2a, next.b2 - b2a]
-                .iter()
-                .fold(0.0f64, |m, d| m.max(d.abs()))
-        }
-    }
-
-    /// The second half of an accepted step: the new state's shape spectra and the field
-    /// corrector fused with the forces there (one spectral pass); the run moves to `next`.
-    fn correct_field(&mut self, half: &Half, next: DropletState, velocity: (f64, f64)) {
-        let n = self.grid.n;
-        let norm = 1.0 / (n as f64 * n as f64);
-        let sample_next = next.is_finite() && next.deformation() < 1.0;
-        if sample_next {
-            Self::shape_spectra(&mut self.shapes, next.a2, next.b2, &mut self.next);
-        }
-        let modes = Modes {
-            grid: &self.grid,
-            exp: &self.exp,
-            inv_c: &self.inv_c,
-            h: half.h,
-        };
-        let sums = CorrectorPass {
-            modes,
-            velocity,
-            srca: norm / half.area,
-            a_hat: &self.a_hat,
-            pred_th: &self.pred_th,
-            n0: &self.n0,
-            next_p: &self.next.p,
-            next_y: &self.next.y,
-            w_new: &mut self.w_new,
-        }
-        .run();
-        std::mem::swap(&mut self.w_hat, &mut self.w_new);
-        self.state = next;
-        if sample_next {
-            std::mem::swap(&mut self.prev, &mut self.cur);
-            std::mem::swap(&mut self.cur, &mut self.next);
-            self.prev_valid = true;
-            let f = sums.finish(self.grid.dx * self.grid.dx, self.cur.area);
-            self.set_overdamped_velocity(&f);
-            self.forces0 = Some(f);
-        } else {
-            self.forces0 = None;
-        }
-    }
-}
-
-/// The first half of a step: its coefficients, the velocity and scalar rates at its start,
-/// the ETD1 predictor `(vx, vy, a2, b2)`, and the predictor's area and forces.
-struct Half {
-    h: f64,
-    vel: EtdCoef,
-    shp: EtdCoef,
-    pos: EtdCoef,
-    v0: (f64, f64),
-    r0: [f64; 4],
-    predicted: [f64; 4],
-    area: f64,
-    forces: Forces,
 }
 
 impl Scheme for ComovingEtd {

@@ -8,6 +8,7 @@
 //!
 //! May use: `numerics`, `model`. Used by: `contract` (the scheme setting), `runs`.
 pub mod comoving_etd;
+pub mod comoving_step;
 pub mod etd;
 pub mod paper_fd;
 pub mod spectral_pass;
