@@ -9,6 +9,7 @@ use crate::error::SolverError;
 use crate::model::classify::StateClass;
 use crate::model::initial::InitialCondition;
 use crate::model::params::ModelParams;
+use crate::model::state::DropletState;
 use crate::runs::finding::Diagnosis;
 use crate::runs::finish::{Decision, NewtonFinish};
 use crate::stepping::step_control::PiController;
@@ -78,109 +79,54 @@ impl Run {
     pub fn execute(&mut self) -> RunOutcome {
         let started = Instant::now();
         let cfg = self.settings;
-        let adaptive = cfg.adaptive();
-        // A run that has not ended on a stable state by t_max runs on (setting `run_on`).
-        let give_up = cfg.give_up_at();
-        let max_steps = (give_up / cfg.dt).round() as u64;
-        let step_cap = crate::contract::limits::adaptive_step_cap(&cfg);
-        // Times within `slack` of a target count as reaching it (round-off of sums of steps).
-        let slack = 1e-9 * cfg.dt;
-        let mut controller = PiController::new(cfg.dt_max);
-        let mut h = cfg.dt;
-        let mut series = Vec::new();
-        let start = self.scheme.state();
-        let mut steady_test = SteadyTest::new(&cfg, 0.0, start.monitored());
-        let mut next_record = self.record_every;
-        if next_record.is_some() {
-            series.push(SeriesRow::at(0.0, &start));
-        }
-        let (mut t, mut steps, mut rejected) = (0.0, 0u64, 0u64);
-        let mut max_step_error: Option<f64> = None;
-        let mut status = RunStatus::TMax;
-        let mut t_steady = None;
+        let mut clock = Clock::new(&cfg);
+        let mut rec = Recorder::new(self.record_every, &self.scheme.state(), clock.slack);
+        let mut steady_test = SteadyTest::new(&cfg, 0.0, self.scheme.state().monitored());
         // The Newton finish needs the linearisation, which needs inertia: an overdamped
         // droplet (m = 0) is finished by the paper's test.
         let mut finish = (cfg.steady == SteadyMethod::Newton && self.params.mass > 0.0)
             .then(|| NewtonFinish::new(&self.params, &cfg));
-        let mut ended_by = None;
-        let mut polished: Option<[f64; 4]> = None;
-        let mut saddle_diagnosis = None;
-        let mut t_leapt = 0.0;
+        let mut end = End::default();
         loop {
-            if adaptive {
-                if t >= give_up - slack {
+            match clock.step(self.scheme.as_mut(), &cfg, rec.next) {
+                Step::Taken => {}
+                Step::Retry => continue,
+                Step::Stop(status) => {
+                    end.status = status;
                     break;
                 }
-                if steps >= step_cap {
-                    status = RunStatus::StepLimit;
-                    break;
-                }
-                let mut h_try = h.min(give_up - t);
-                if let Some(tr) = next_record {
-                    h_try = h_try.min(tr - t);
-                }
-                let a = self.scheme.attempt(h_try, cfg.tol);
-                let err = a.error.unwrap_or(0.0) / cfg.tol;
-                if !a.accepted {
-                    rejected += 1;
-                    h = controller.reject(h_try, err);
-                    if h < MIN_STEP {
-                        status = RunStatus::Diverged;
-                        break;
-                    }
-                    continue;
-                }
-                h = controller.accept(h_try, err);
-                t += h_try;
-                steps += 1;
-                max_step_error = larger(max_step_error, a.error);
-            } else {
-                if steps >= max_steps {
-                    break;
-                }
-                let a = self.scheme.attempt(cfg.dt, f64::INFINITY);
-                steps += 1;
-                t = steps as f64 * cfg.dt;
-                max_step_error = larger(max_step_error, a.error);
             }
             let st = self.scheme.state();
             if diverged(st.monitored(), &[st.x, st.y]) {
-                status = RunStatus::Diverged;
+                end.status = RunStatus::Diverged;
                 break;
             }
-            if let (Some(tr), Some(every)) = (next_record, self.record_every) {
-                if t >= tr - slack {
-                    series.push(SeriesRow::at(t, &st));
-                    next_record = Some(tr + every);
-                }
-            }
-            let Some(change) = steady_test.judge(t, st.monitored()) else {
+            rec.sample(clock.t, &st);
+            let Some(change) = steady_test.judge(clock.t, st.monitored()) else {
                 continue;
             };
             let fired = change < cfg.steady_tol;
             let decision = match finish.as_mut() {
                 None if fired => Decision::End(Ending::Test, st.monitored()),
                 None => Decision::Continue,
-                Some(f) => f.consider(t, st.monitored(), change, fired),
+                Some(f) => f.consider(clock.t, st.monitored(), change, fired),
             };
             match decision {
                 Decision::Continue => {}
                 Decision::End(ending, z) => {
-                    status = RunStatus::Steady;
-                    t_steady = Some(t);
-                    ended_by = Some(ending);
-                    if finish.is_some() {
-                        polished = Some(z);
-                    }
+                    end.status = RunStatus::Steady;
+                    end.t_steady = Some(clock.t);
+                    end.ended_by = Some(ending);
+                    end.polished = finish.is_some().then_some(z);
                     break;
                 }
                 Decision::Saddle(diagnosis) => {
-                    status = RunStatus::Saddle;
-                    saddle_diagnosis = Some(diagnosis);
+                    end.status = RunStatus::Saddle;
+                    end.saddle_diagnosis = Some(diagnosis);
                     break;
                 }
                 // Leaps only in adaptive runs (a fixed-step run's time is its step count).
-                Decision::Leap(leap) if adaptive => {
+                Decision::Leap(leap) if cfg.adaptive() => {
                     let leapt = finish
                         .as_mut()
                         .and_then(|f| f.root_field(leap.root).ok())
@@ -189,31 +135,37 @@ impl Run {
                             self.scheme.leap(leap.root, &field, leap.factor(), shift)
                         });
                     if leapt {
-                        t += leap.duration;
-                        t_leapt += leap.duration;
+                        clock.t += leap.duration;
+                        end.t_leapt += leap.duration;
                         let st = self.scheme.state();
-                        steady_test = SteadyTest::new(&cfg, t, st.monitored());
-                        if let (Some(tr), Some(every)) = (next_record, self.record_every) {
-                            // The series skips the leapt times.
-                            series.push(SeriesRow::at(t, &st));
-                            if tr <= t {
-                                next_record = Some(tr + every * (((t - tr) / every).floor() + 1.0));
-                            }
-                        }
+                        steady_test = SteadyTest::new(&cfg, clock.t, st.monitored());
+                        rec.after_leap(clock.t, &st);
                     }
                 }
                 Decision::Leap(_) => {}
             }
         }
+        self.outcome(clock, rec, end, finish, started)
+    }
+
+    /// The outcome of a run that stopped: the final state (the root, if the Newton finish
+    /// ended it), its class if it ended steady, else why it did not settle.
+    fn outcome(
+        &self,
+        clock: Clock,
+        rec: Recorder,
+        end: End,
+        mut finish: Option<NewtonFinish>,
+        started: Instant,
+    ) -> RunOutcome {
         let mut state = self.scheme.state();
         // The series ends with the time-stepped state; the outcome, with the root if the
         // Newton finish ended the run.
-        if series.last().is_some_and(|r| r.t < t - slack) {
-            series.push(SeriesRow::at(t, &state));
-        }
-        if let Some([vx, vy, a2, b2]) = polished {
+        let series = rec.finish(clock.t, &state);
+        if let Some([vx, vy, a2, b2]) = end.polished {
             (state.vx, state.vy, state.a2, state.b2) = (vx, vy, a2, b2);
         }
+        let status = end.status;
         let found = match status {
             RunStatus::Steady => None,
             RunStatus::Diverged => Some(Diagnosis {
@@ -222,7 +174,7 @@ impl Run {
                 heading: None,
             }),
             RunStatus::Saddle => Some(Diagnosis {
-                text: saddle_diagnosis.unwrap_or_default(),
+                text: end.saddle_diagnosis.unwrap_or_default(),
                 reason: Unsettled::BesideSaddle,
                 heading: None,
             }),
@@ -237,20 +189,20 @@ impl Run {
             .map(|d| d.text.clone());
         RunOutcome {
             status,
-            // Only a run that ended on a stable steady state has a class (numerics 4).
+            // Only a run that ended on a stable steady state has a class.
             class: (status == RunStatus::Steady).then(|| StateClass::of(v, s)),
             state,
             v,
             s,
-            t_end: t,
-            t_steady,
-            steps,
-            rejected,
-            max_step_error,
+            t_end: clock.t,
+            t_steady: end.t_steady,
+            steps: clock.steps,
+            rejected: clock.rejected,
+            max_step_error: clock.max_step_error,
             wall_s: started.elapsed().as_secs_f64(),
-            ended_by,
+            ended_by: end.ended_by,
             diagnosis,
-            t_leapt,
+            t_leapt: end.t_leapt,
             unsettled: found.as_ref().map(|d| d.reason),
             heading: found.and_then(|d| d.heading),
             series,
@@ -275,6 +227,167 @@ impl Run {
             }
         };
         f.diagnose(z)
+    }
+}
+
+/// How a run's time loop ended.
+struct End {
+    status: RunStatus,
+    t_steady: Option<f64>,
+    ended_by: Option<Ending>,
+    /// The root the Newton finish ended the run at.
+    polished: Option<[f64; 4]>,
+    saddle_diagnosis: Option<String>,
+    t_leapt: f64,
+}
+
+impl Default for End {
+    fn default() -> Self {
+        Self {
+            status: RunStatus::TMax,
+            t_steady: None,
+            ended_by: None,
+            polished: None,
+            saddle_diagnosis: None,
+            t_leapt: 0.0,
+        }
+    }
+}
+
+/// The outcome of one pass of the time loop's stepping.
+enum Step {
+    Taken,
+    /// An adaptive step was refused; try again with the smaller step.
+    Retry,
+    Stop(RunStatus),
+}
+
+/// The time of a run and its steps: fixed (`dt`), or adaptive under the PI controller.
+struct Clock {
+    adaptive: bool,
+    /// A run that has not ended on a stable state by t_max runs on (setting `run_on`).
+    give_up: f64,
+    max_steps: u64,
+    step_cap: u64,
+    /// Times within `slack` of a target count as reaching it (round-off of sums of steps).
+    slack: f64,
+    controller: PiController,
+    h: f64,
+    t: f64,
+    steps: u64,
+    rejected: u64,
+    max_step_error: Option<f64>,
+}
+
+impl Clock {
+    fn new(cfg: &SolverSettings) -> Self {
+        let give_up = cfg.give_up_at();
+        Self {
+            adaptive: cfg.adaptive(),
+            give_up,
+            max_steps: (give_up / cfg.dt).round() as u64,
+            step_cap: crate::contract::limits::adaptive_step_cap(cfg),
+            slack: 1e-9 * cfg.dt,
+            controller: PiController::new(cfg.dt_max),
+            h: cfg.dt,
+            t: 0.0,
+            steps: 0,
+            rejected: 0,
+            max_step_error: None,
+        }
+    }
+
+    /// One step of `scheme`, landing on `next_record` (adaptive steps), or why the run stops.
+    fn step(
+        &mut self,
+        scheme: &mut dyn Scheme,
+        cfg: &SolverSettings,
+        next_record: Option<f64>,
+    ) -> Step {
+        if !self.adaptive {
+            if self.steps >= self.max_steps {
+                return Step::Stop(RunStatus::TMax);
+            }
+            let a = scheme.attempt(cfg.dt, f64::INFINITY);
+            self.steps += 1;
+            self.t = self.steps as f64 * cfg.dt;
+            self.max_step_error = larger(self.max_step_error, a.error);
+            return Step::Taken;
+        }
+        if self.t >= self.give_up - self.slack {
+            return Step::Stop(RunStatus::TMax);
+        }
+        if self.steps >= self.step_cap {
+            return Step::Stop(RunStatus::StepLimit);
+        }
+        let mut h_try = self.h.min(self.give_up - self.t);
+        if let Some(tr) = next_record {
+            h_try = h_try.min(tr - self.t);
+        }
+        let a = scheme.attempt(h_try, cfg.tol);
+        let err = a.error.unwrap_or(0.0) / cfg.tol;
+        if !a.accepted {
+            self.rejected += 1;
+            self.h = self.controller.reject(h_try, err);
+            if self.h < MIN_STEP {
+                return Step::Stop(RunStatus::Diverged);
+            }
+            return Step::Retry;
+        }
+        self.h = self.controller.accept(h_try, err);
+        self.t += h_try;
+        self.steps += 1;
+        self.max_step_error = larger(self.max_step_error, a.error);
+        Step::Taken
+    }
+}
+
+/// The time series of a run, one row every `every` time units (if asked).
+struct Recorder {
+    every: Option<f64>,
+    /// The next recording time.
+    next: Option<f64>,
+    slack: f64,
+    rows: Vec<SeriesRow>,
+}
+
+impl Recorder {
+    fn new(every: Option<f64>, start: &DropletState, slack: f64) -> Self {
+        Self {
+            every,
+            next: every,
+            slack,
+            rows: every.map_or_else(Vec::new, |_| vec![SeriesRow::at(0.0, start)]),
+        }
+    }
+
+    /// Records `st` if `t` reached the next recording time.
+    fn sample(&mut self, t: f64, st: &DropletState) {
+        if let (Some(tr), Some(every)) = (self.next, self.every) {
+            if t >= tr - self.slack {
+                self.rows.push(SeriesRow::at(t, st));
+                self.next = Some(tr + every);
+            }
+        }
+    }
+
+    /// After a leap to `t`: the state there, and the next recording time past it (the series
+    /// skips the leapt times).
+    fn after_leap(&mut self, t: f64, st: &DropletState) {
+        if let (Some(tr), Some(every)) = (self.next, self.every) {
+            self.rows.push(SeriesRow::at(t, st));
+            if tr <= t {
+                self.next = Some(tr + every * (((t - tr) / every).floor() + 1.0));
+            }
+        }
+    }
+
+    /// The series, ending with the final state at `t`.
+    fn finish(mut self, t: f64, st: &DropletState) -> Vec<SeriesRow> {
+        if self.rows.last().is_some_and(|r| r.t < t - self.slack) {
+            self.rows.push(SeriesRow::at(t, st));
+        }
+        self.rows
     }
 }
 
