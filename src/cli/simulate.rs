@@ -169,6 +169,71 @@ struct Report {
 }
 
 pub fn run(a: Args) -> Result<(), CliError> {
+    let (params, settings) = model_of(&a)?;
+    let ic = InitialCondition::parse(&a.ic)?;
+    let record = check_outputs(&a, &settings)?;
+    let mut run = Run::new(&params, &ic, &settings)?.record_every(record.then_some(a.every));
+    let out = run.execute();
+    let mass_integral = run.scheme_mut().mass();
+    if let Some(path) = &a.series {
+        droplet_sweep::tables::series::write(path, &out.series, &params, &settings, &ic)?;
+    }
+    let mut pictures = Vec::new();
+    if let Some(path) = &a.picture {
+        let field = run.scheme_mut().field();
+        let title = format!(
+            "eta_t = {}, kappa2 = {}, IC {}: {} ({}), t = {:.1}",
+            params.eta_t,
+            params.kappa2,
+            ic.name,
+            out.class.map_or("-", |c| c.as_str()),
+            out.status.as_str(),
+            out.t_end
+        );
+        pictures = run_figure::run_picture(path, &title, &params, &field, &out.state, &out.series)?;
+    }
+    let final_state = final_state_of(&params, &settings, &out);
+    let report = Report {
+        status: out.status.as_str().into(),
+        class: out.class.map(|c| c.as_str().into()),
+        v: out.v,
+        s: out.s,
+        vx: out.state.vx,
+        vy: out.state.vy,
+        a2: out.state.a2,
+        b2: out.state.b2,
+        x: out.state.x,
+        y: out.state.y,
+        t_end: out.t_end,
+        t_steady: out.t_steady,
+        t_leapt: out.t_leapt,
+        steps: out.steps,
+        rejected: out.rejected,
+        max_step_error: out.max_step_error,
+        dt_warning: out.dt_warning(&settings),
+        ended_by: out.ended_by.map(|e| e.as_str().into()),
+        unsettled: out.unsettled.map(|u| u.as_str().into()),
+        heading: out.heading.map(|c| c.as_str().into()),
+        diagnosis: out.diagnosis.clone(),
+        final_state,
+        wall_s: out.wall_s,
+        mass_integral,
+        params,
+        settings,
+        ic,
+        series: a.series.clone(),
+        picture: pictures,
+    };
+    if a.json {
+        print_json(&report);
+    } else {
+        print_text(&report);
+    }
+    Ok(())
+}
+
+/// The model parameters and solver settings the arguments ask for.
+fn model_of(a: &Args) -> Result<(ModelParams, SolverSettings), CliError> {
     let scheme: SchemeKind = a.scheme.parse()?;
     let base = match scheme {
         SchemeKind::Spectral => SolverSettings::default(),
@@ -204,7 +269,11 @@ pub fn run(a: Args) -> Result<(), CliError> {
         box_len: a.box_len,
         mass: a.mass,
     };
-    let ic = InitialCondition::parse(&a.ic)?;
+    Ok((params, settings))
+}
+
+/// Checks `--every` and the output paths; whether the run records a series.
+fn check_outputs(a: &Args, settings: &SolverSettings) -> Result<bool, CliError> {
     let record = a.series.is_some() || a.picture.is_some();
     if record {
         droplet_solver::contract::limits::check_series(settings.give_up_at(), a.every)?;
@@ -224,32 +293,22 @@ pub fn run(a: Args) -> Result<(), CliError> {
             }
         }
     }
-    let mut run = Run::new(&params, &ic, &settings)?.record_every(record.then_some(a.every));
-    let out = run.execute();
-    let mass_integral = run.scheme_mut().mass();
-    if let Some(path) = &a.series {
-        droplet_sweep::tables::series::write(path, &out.series, &params, &settings, &ic)?;
-    }
-    let mut pictures = Vec::new();
-    if let Some(path) = &a.picture {
-        let field = run.scheme_mut().field();
-        let title = format!(
-            "eta_t = {}, kappa2 = {}, IC {}: {} ({}), t = {:.1}",
-            params.eta_t,
-            params.kappa2,
-            ic.name,
-            out.class.map_or("-", |c| c.as_str()),
-            out.status.as_str(),
-            out.t_end
-        );
-        pictures = run_figure::run_picture(path, &title, &params, &field, &out.state, &out.series)?;
-    }
-    let final_state = (out.ended_by == Some(droplet_solver::contract::ending::Ending::Test)
+    Ok(record)
+}
+
+/// For a run the paper's test ended (`--steady test`): the root near its final state and its
+/// stability, so that a stop on an unstable state is reported.
+fn final_state_of(
+    params: &ModelParams,
+    settings: &SolverSettings,
+    out: &droplet_solver::contract::outcome::RunOutcome,
+) -> Option<FinalState> {
+    (out.ended_by == Some(droplet_solver::contract::ending::Ending::Test)
         && settings.steady == droplet_solver::contract::ending::SteadyMethod::Test
         && settings.scheme == SchemeKind::Spectral
         && !settings.pinned)
         .then(|| {
-            let mut f = droplet_solver::runs::finish::NewtonFinish::new(&params, &settings);
+            let mut f = droplet_solver::runs::finish::NewtonFinish::new(params, settings);
             f.root_near(out.state.monitored())
                 .ok()
                 .map(|found| FinalState {
@@ -259,85 +318,53 @@ pub fn run(a: Args) -> Result<(), CliError> {
                     note: found.describe(&out.state.monitored()),
                 })
         })
-        .flatten();
-    let report = Report {
-        status: out.status.as_str().into(),
-        class: out.class.map(|c| c.as_str().into()),
-        v: out.v,
-        s: out.s,
-        vx: out.state.vx,
-        vy: out.state.vy,
-        a2: out.state.a2,
-        b2: out.state.b2,
-        x: out.state.x,
-        y: out.state.y,
-        t_end: out.t_end,
-        t_steady: out.t_steady,
-        t_leapt: out.t_leapt,
-        steps: out.steps,
-        rejected: out.rejected,
-        max_step_error: out.max_step_error,
-        dt_warning: out.dt_warning(&settings),
-        ended_by: out.ended_by.map(|e| e.as_str().into()),
-        unsettled: out.unsettled.map(|u| u.as_str().into()),
-        heading: out.heading.map(|c| c.as_str().into()),
-        diagnosis: out.diagnosis.clone(),
-        final_state,
-        wall_s: out.wall_s,
-        mass_integral,
-        params,
-        settings,
-        ic,
-        series: a.series.clone(),
-        picture: pictures.clone(),
-    };
-    if a.json {
-        print_json(&report);
-    } else {
+        .flatten()
+}
+
+/// The text report of a run.
+fn print_text(report: &Report) {
+    outln!(
+        "status {}  class {}  v = {:.6}  s = {:.6}  t = {:.2}  ({} steps, {:.2} s wall)",
+        report.status,
+        report.class.as_deref().unwrap_or("-"),
+        report.v,
+        report.s,
+        report.t_end,
+        report.steps,
+        report.wall_s
+    );
+    if let Some(e) = &report.ended_by {
+        outln!("ended by {}", e.replace('_', " "));
+    }
+    if report.t_leapt > 0.0 {
         outln!(
-            "status {}  class {}  v = {:.6}  s = {:.6}  t = {:.2}  ({} steps, {:.2} s wall)",
-            report.status,
-            report.class.as_deref().unwrap_or("-"),
-            report.v,
-            report.s,
-            report.t_end,
-            report.steps,
-            report.wall_s
+            "leapt {:.1} time units along a departure from an unstable steady state",
+            report.t_leapt
         );
-        if let Some(e) = &report.ended_by {
-            outln!("ended by {}", e.replace('_', " "));
-        }
-        if report.t_leapt > 0.0 {
-            outln!(
-                "leapt {:.1} time units along a departure from an unstable steady state",
-                report.t_leapt
-            );
-        }
-        if let Some(u) = &report.unsettled {
-            outln!(
-                "unsettled ({}): no class{}",
-                u.replace('_', " "),
-                report
-                    .heading
-                    .as_ref()
-                    .map_or(String::new(), |h| format!("; heading to {h}"))
-            );
-        }
-        if let Some(d) = &report.diagnosis {
-            outln!("not finished: {d}");
-        }
-        if let Some(f) = report.final_state.as_ref().filter(|f| !f.stable) {
-            eprintln!(
+    }
+    if let Some(u) = &report.unsettled {
+        outln!(
+            "unsettled ({}): no class{}",
+            u.replace('_', " "),
+            report
+                .heading
+                .as_ref()
+                .map_or(String::new(), |h| format!("; heading to {h}"))
+        );
+    }
+    if let Some(d) = &report.diagnosis {
+        outln!("not finished: {d}");
+    }
+    if let Some(f) = report.final_state.as_ref().filter(|f| !f.stable) {
+        eprintln!(
                 "warning: the paper's test stopped this run on an unstable state ({}); with --steady newton it would go on",
                 f.note
             );
-        }
-        if let Some(w) = &report.dt_warning {
-            eprintln!("warning: {w}");
-        }
-        for p in a.series.iter().chain(&pictures) {
-            outln!("wrote {}", p.display());
-        }
     }
-    Ok(())
+    if let Some(w) = &report.dt_warning {
+        eprintln!("warning: {w}");
+    }
+    for p in report.series.iter().chain(&report.picture) {
+        outln!("wrote {}", p.display());
+    }
 }
