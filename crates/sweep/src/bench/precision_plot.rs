@@ -52,6 +52,86 @@ fn colour(family: &Family, index: usize) -> RGBColor {
     shades[index.min(3)]
 }
 
+/// The legend panel: one line per family in its colour, and what the markers mean.
+fn draw_family_legend<DB: DrawingBackend>(
+    legend: &DrawingArea<DB, Shift>,
+    families: &[Family],
+    shade: &dyn Fn(&Family) -> usize,
+) -> Result<(), SweepError>
+where
+    DB::ErrorType: 'static,
+{
+    let (w, _) = legend.dim_in_pixel();
+    let columns = if families.len() > 8 { 2 } else { 1 };
+    let per = families.len().div_ceil(columns);
+    for (i, f) in families.iter().enumerate() {
+        let (col, row) = (i / per, i % per);
+        let x = 20 + col as i32 * (w as i32 / 2);
+        let y = 20 + row as i32 * 22;
+        let c = colour(f, shade(f));
+        legend
+            .draw(&PathElement::new(
+                vec![(x, y + 7), (x + 24, y + 7)],
+                c.stroke_width(3),
+            ))
+            .map_err(perr)?;
+        legend
+            .draw(&Text::new(f.to_string(), (x + 30, y), ("sans-serif", 13)))
+            .map_err(perr)?;
+    }
+    let y = 30 + per as i32 * 22;
+    legend
+        .draw(&Text::new(
+            "dot: class agrees with the reference; cross: it does not",
+            (20, y),
+            ("sans-serif", 13),
+        ))
+        .map_err(perr)?;
+    Ok(())
+}
+
+/// One curve per family over a case's panel: error against wall time, a dot where the run's
+/// class agrees with the reference, a cross where it does not.
+fn draw_families<DB: DrawingBackend>(
+    chart: &mut ChartContext<'_, DB, Cartesian2d<LogCoord<f64>, LogCoord<f64>>>,
+    mine: &[&BenchRow],
+    families: &[Family],
+    shade: &dyn Fn(&Family) -> usize,
+) -> Result<(), SweepError>
+where
+    DB::ErrorType: 'static,
+{
+    for f in families {
+        let mut pts: Vec<(f64, f64, bool)> = mine
+            .iter()
+            .filter(|r| r.family == *f)
+            .map(|r| (r.wall_s.max(1e-4), r.error().max(FLOOR), r.class_ok))
+            .collect();
+        pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+        if pts.is_empty() {
+            continue;
+        }
+        let c = colour(f, shade(f));
+        chart
+            .draw_series(LineSeries::new(
+                pts.iter().map(|p| (p.0, p.1)),
+                c.stroke_width(2),
+            ))
+            .map_err(perr)?;
+        // Filled: class agrees with the reference; cross: it does not.
+        chart
+            .draw_series(pts.iter().map(|p| {
+                if p.2 {
+                    Circle::new((p.0, p.1), 3, c.filled()).into_dyn()
+                } else {
+                    Cross::new((p.0, p.1), 5, c.stroke_width(2)).into_dyn()
+                }
+            }))
+            .map_err(perr)?;
+    }
+    Ok(())
+}
+
 /// The work-precision picture.
 struct WorkPrecision<'a> {
     title: &'a str,
@@ -135,63 +215,11 @@ impl Figure for WorkPrecision<'_> {
                 .light_line_style(WHITE)
                 .draw()
                 .map_err(perr)?;
-            for f in &families {
-                let mut pts: Vec<(f64, f64, bool)> = mine
-                    .iter()
-                    .filter(|r| r.family == *f)
-                    .map(|r| (r.wall_s.max(1e-4), r.error().max(FLOOR), r.class_ok))
-                    .collect();
-                pts.sort_by(|a, b| a.0.total_cmp(&b.0));
-                if pts.is_empty() {
-                    continue;
-                }
-                let c = colour(f, shade(f));
-                chart
-                    .draw_series(LineSeries::new(
-                        pts.iter().map(|p| (p.0, p.1)),
-                        c.stroke_width(2),
-                    ))
-                    .map_err(perr)?;
-                // Filled: class agrees with the reference; cross: it does not.
-                chart
-                    .draw_series(pts.iter().map(|p| {
-                        if p.2 {
-                            Circle::new((p.0, p.1), 3, c.filled()).into_dyn()
-                        } else {
-                            Cross::new((p.0, p.1), 5, c.stroke_width(2)).into_dyn()
-                        }
-                    }))
-                    .map_err(perr)?;
-            }
+            draw_families(&mut chart, &mine, &families, &shade)?;
         }
         // Legend panel: the sixth cell.
         if let Some(legend) = panels.get(cases.len()) {
-            let (w, _) = legend.dim_in_pixel();
-            let columns = if families.len() > 8 { 2 } else { 1 };
-            let per = families.len().div_ceil(columns);
-            for (i, f) in families.iter().enumerate() {
-                let (col, row) = (i / per, i % per);
-                let x = 20 + col as i32 * (w as i32 / 2);
-                let y = 20 + row as i32 * 22;
-                let c = colour(f, shade(f));
-                legend
-                    .draw(&PathElement::new(
-                        vec![(x, y + 7), (x + 24, y + 7)],
-                        c.stroke_width(3),
-                    ))
-                    .map_err(perr)?;
-                legend
-                    .draw(&Text::new(f.to_string(), (x + 30, y), ("sans-serif", 13)))
-                    .map_err(perr)?;
-            }
-            let y = 30 + per as i32 * 22;
-            legend
-                .draw(&Text::new(
-                    "dot: class agrees with the reference; cross: it does not",
-                    (20, y),
-                    ("sans-serif", 13),
-                ))
-                .map_err(perr)?;
+            draw_family_legend(legend, &families, &shade)?;
         }
         root.present().map_err(perr)?;
         Ok(())

@@ -31,6 +31,115 @@ struct VsFigure<'a> {
     vlines: &'a [(f64, String)],
 }
 
+impl VsFigure<'_> {
+    /// One panel: `v` (`speed`) or `s` against the parameter over `x`, with the lines, the
+    /// markers, the vertical lines and the legend.
+    fn draw_panel<DB: DrawingBackend>(
+        &self,
+        panel: &DrawingArea<DB, Shift>,
+        speed: bool,
+        x: (f64, f64),
+    ) -> Result<(), SweepError>
+    where
+        DB::ErrorType: 'static,
+    {
+        let (markers, lines) = (self.markers, self.lines);
+        let val = |m: &Marker| if speed { m.v } else { m.s };
+        let lval = |p: &(f64, f64, f64)| if speed { p.1 } else { p.2 };
+        let ymax = markers
+            .iter()
+            .map(val)
+            .chain(lines.iter().flat_map(|l| l.points.iter().map(lval)))
+            .fold(0.0, f64::max)
+            .max(1e-3)
+            * 1.08;
+        let mut chart = ChartBuilder::on(panel)
+            .margin(12)
+            .x_label_area_size(42)
+            .y_label_area_size(52)
+            .build_cartesian_2d(x.0..x.1, 0.0..ymax)
+            .map_err(perr)?;
+        chart
+            .configure_mesh()
+            .disable_mesh()
+            .x_desc(self.x_label)
+            .y_desc(if speed { "speed v" } else { "deformation s" })
+            .label_style(("sans-serif", 14))
+            .axis_desc_style(("sans-serif", 16))
+            .x_label_formatter(&|v| format!("{v:.3}"))
+            .draw()
+            .map_err(perr)?;
+        for (x, label) in self.vlines {
+            chart
+                .draw_series(LineSeries::new(
+                    vec![(*x, 0.0), (*x, ymax)],
+                    BLACK.mix(0.4).stroke_width(1),
+                ))
+                .map_err(perr)?;
+            chart
+                .draw_series([Text::new(
+                    label.clone(),
+                    (*x, ymax * 0.97),
+                    ("sans-serif", 13),
+                )])
+                .map_err(perr)?;
+        }
+        let mut keys: Vec<&str> = markers
+            .iter()
+            .map(|m| m.key.as_str())
+            .chain(lines.iter().map(|l| l.key.as_str()))
+            .collect();
+        keys.sort();
+        keys.dedup();
+        for key in keys {
+            let colour = class_colour(key);
+            let mut legend_done = false;
+            for l in lines.iter().filter(|l| l.key == key) {
+                let pts = l.points.iter().map(|p| (p.0, lval(p)));
+                let anno = if l.stable {
+                    chart
+                        .draw_series(LineSeries::new(pts, colour.stroke_width(3)))
+                        .map_err(perr)?
+                } else {
+                    chart
+                        .draw_series(DashedLineSeries::new(pts, 7, 5, colour.stroke_width(2)))
+                        .map_err(perr)?
+                };
+                if !legend_done {
+                    legend_done = true;
+                    anno.label(key.to_string()).legend(move |(x, y)| {
+                        PathElement::new(vec![(x, y), (x + 14, y)], colour.stroke_width(3))
+                    });
+                }
+            }
+            let mine = markers.iter().filter(|m| m.key == key);
+            let anno = chart
+                .draw_series(mine.map(|m| {
+                    let style = if m.bold {
+                        colour.filled()
+                    } else {
+                        colour.stroke_width(1)
+                    };
+                    Circle::new((m.x, val(m)), if m.bold { 3 } else { 2 }, style)
+                }))
+                .map_err(perr)?;
+            if !legend_done {
+                anno.label(key.to_string())
+                    .legend(move |(x, y)| Circle::new((x + 6, y), 4, colour.filled()));
+            }
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .label_font(("sans-serif", 13))
+            .draw()
+            .map_err(perr)?;
+        Ok(())
+    }
+}
+
 impl Figure for VsFigure<'_> {
     fn size(&self) -> (u32, u32) {
         (1200, 520)
@@ -53,98 +162,7 @@ impl Figure for VsFigure<'_> {
         let pad = ((x1 - x0) * 0.03).max(1e-6);
         let panels = root.split_evenly((1, 2));
         for (i, panel) in panels.iter().enumerate() {
-            let val = |m: &Marker| if i == 0 { m.v } else { m.s };
-            let lval = |p: &(f64, f64, f64)| if i == 0 { p.1 } else { p.2 };
-            let ymax = markers
-                .iter()
-                .map(val)
-                .chain(lines.iter().flat_map(|l| l.points.iter().map(lval)))
-                .fold(0.0, f64::max)
-                .max(1e-3)
-                * 1.08;
-            let mut chart = ChartBuilder::on(panel)
-                .margin(12)
-                .x_label_area_size(42)
-                .y_label_area_size(52)
-                .build_cartesian_2d(x0 - pad..x1 + pad, 0.0..ymax)
-                .map_err(perr)?;
-            chart
-                .configure_mesh()
-                .disable_mesh()
-                .x_desc(self.x_label)
-                .y_desc(if i == 0 { "speed v" } else { "deformation s" })
-                .label_style(("sans-serif", 14))
-                .axis_desc_style(("sans-serif", 16))
-                .x_label_formatter(&|v| format!("{v:.3}"))
-                .draw()
-                .map_err(perr)?;
-            for (x, label) in self.vlines {
-                chart
-                    .draw_series(LineSeries::new(
-                        vec![(*x, 0.0), (*x, ymax)],
-                        BLACK.mix(0.4).stroke_width(1),
-                    ))
-                    .map_err(perr)?;
-                chart
-                    .draw_series([Text::new(
-                        label.clone(),
-                        (*x, ymax * 0.97),
-                        ("sans-serif", 13),
-                    )])
-                    .map_err(perr)?;
-            }
-            let mut keys: Vec<&str> = markers
-                .iter()
-                .map(|m| m.key.as_str())
-                .chain(lines.iter().map(|l| l.key.as_str()))
-                .collect();
-            keys.sort();
-            keys.dedup();
-            for key in keys {
-                let colour = class_colour(key);
-                let mut legend_done = false;
-                for l in lines.iter().filter(|l| l.key == key) {
-                    let pts = l.points.iter().map(|p| (p.0, lval(p)));
-                    let anno = if l.stable {
-                        chart
-                            .draw_series(LineSeries::new(pts, colour.stroke_width(3)))
-                            .map_err(perr)?
-                    } else {
-                        chart
-                            .draw_series(DashedLineSeries::new(pts, 7, 5, colour.stroke_width(2)))
-                            .map_err(perr)?
-                    };
-                    if !legend_done {
-                        legend_done = true;
-                        anno.label(key.to_string()).legend(move |(x, y)| {
-                            PathElement::new(vec![(x, y), (x + 14, y)], colour.stroke_width(3))
-                        });
-                    }
-                }
-                let mine = markers.iter().filter(|m| m.key == key);
-                let anno = chart
-                    .draw_series(mine.map(|m| {
-                        let style = if m.bold {
-                            colour.filled()
-                        } else {
-                            colour.stroke_width(1)
-                        };
-                        Circle::new((m.x, val(m)), if m.bold { 3 } else { 2 }, style)
-                    }))
-                    .map_err(perr)?;
-                if !legend_done {
-                    anno.label(key.to_string())
-                        .legend(move |(x, y)| Circle::new((x + 6, y), 4, colour.filled()));
-                }
-            }
-            chart
-                .configure_series_labels()
-                .position(SeriesLabelPosition::UpperRight)
-                .background_style(WHITE.mix(0.85))
-                .border_style(BLACK)
-                .label_font(("sans-serif", 13))
-                .draw()
-                .map_err(perr)?;
+            self.draw_panel(panel, i == 0, (x0 - pad, x1 + pad))?;
         }
         root.present().map_err(perr)?;
         Ok(())

@@ -7,6 +7,7 @@ use droplet_solver::stepping::Field;
 use droplet_solver::{
     contract::outcome::SeriesRow, model::params::ModelParams, model::state::DropletState,
 };
+use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::colors::colormaps::ViridisRGB;
@@ -89,67 +90,92 @@ impl RunFigure<'_> {
         let image = BitMapElement::with_owned_buffer((-half, half), (w, h), rgb)
             .ok_or_else(|| SweepError::Plot("field bitmap of the wrong size".into()))?;
         chart.draw_series(std::iter::once(image)).map_err(perr)?;
-        // Outline r = R (1 + a2 cos 2t + b2 sin 2t) around the centre wrapped into the box.
-        let wrap = |c: f64| c - field.len * (c / field.len).round();
-        let (xc, yc) = (wrap(state.x), wrap(state.y));
-        let outline: Vec<(f64, f64)> = (0..=180)
-            .map(|i| {
-                let t = i as f64 / 180.0 * std::f64::consts::TAU;
-                let r =
-                    params.radius * (1.0 + state.a2 * (2.0 * t).cos() + state.b2 * (2.0 * t).sin());
-                (xc + r * t.cos(), yc + r * t.sin())
-            })
-            .collect();
-        chart
-            .draw_series(LineSeries::new(
-                outline,
-                RGBColor(255, 140, 0).stroke_width(2),
-            ))
-            .map_err(perr)?;
-        let v = state.speed();
-        if v > 1e-3 {
-            let (ux, uy) = (state.vx / v, state.vy / v);
-            let tip = (xc + 1.8 * ux, yc + 1.8 * uy);
-            let head = |sgn: f64| {
-                (
-                    tip.0 - 0.35 * ux + sgn * 0.2 * uy,
-                    tip.1 - 0.35 * uy - sgn * 0.2 * ux,
-                )
-            };
-            let orange = RGBColor(255, 140, 0).stroke_width(3);
-            chart
-                .draw_series([
-                    PathElement::new(vec![(xc, yc), tip], orange),
-                    PathElement::new(vec![head(1.0), tip, head(-1.0)], orange),
-                ])
-                .map_err(perr)?;
-        }
-        // Colour bar: the same map over [lo, hi], labelled in u.
-        let mut bar = ChartBuilder::on(&bar_area)
-            .margin_top(40)
-            .margin_bottom(46)
-            .margin_right(8)
-            .y_label_area_size(62)
-            .build_cartesian_2d(0.0..1.0, lo..hi)
-            .map_err(perr)?;
-        bar.configure_mesh()
-            .disable_mesh()
-            .disable_x_axis()
-            .y_label_style(("sans-serif", 12))
-            .y_label_formatter(&|v| format!("{v:.3}"))
-            .draw()
-            .map_err(perr)?;
-        let steps = 200;
-        bar.draw_series((0..steps).map(|i| {
-            let (a, b) = (
-                lo + (hi - lo) * i as f64 / steps as f64,
-                lo + (hi - lo) * (i + 1) as f64 / steps as f64,
-            );
-            Rectangle::new([(0.0, a), (1.0, b)], colour(0.5 * (a + b)).filled())
-        }))
-        .map_err(perr)?;
-        Ok(())
+        draw_droplet(&mut chart, field.len, state, params)?;
+        colour_bar(&bar_area, lo, hi)
     }
+}
+
+/// The droplet's outline `r = R (1 + a2 cos 2t + b2 sin 2t)` around its centre wrapped into
+/// the box of side `len`, and an arrow along its velocity.
+fn draw_droplet<DB: DrawingBackend>(
+    chart: &mut ChartContext<'_, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
+    len: f64,
+    state: &DropletState,
+    params: &ModelParams,
+) -> Result<(), SweepError>
+where
+    DB::ErrorType: 'static,
+{
+    let wrap = |c: f64| c - len * (c / len).round();
+    let (xc, yc) = (wrap(state.x), wrap(state.y));
+    let outline: Vec<(f64, f64)> = (0..=180)
+        .map(|i| {
+            let t = i as f64 / 180.0 * std::f64::consts::TAU;
+            let r = params.radius * (1.0 + state.a2 * (2.0 * t).cos() + state.b2 * (2.0 * t).sin());
+            (xc + r * t.cos(), yc + r * t.sin())
+        })
+        .collect();
+    chart
+        .draw_series(LineSeries::new(
+            outline,
+            RGBColor(255, 140, 0).stroke_width(2),
+        ))
+        .map_err(perr)?;
+    let v = state.speed();
+    if v > 1e-3 {
+        let (ux, uy) = (state.vx / v, state.vy / v);
+        let tip = (xc + 1.8 * ux, yc + 1.8 * uy);
+        let head = |sgn: f64| {
+            (
+                tip.0 - 0.35 * ux + sgn * 0.2 * uy,
+                tip.1 - 0.35 * uy - sgn * 0.2 * ux,
+            )
+        };
+        let orange = RGBColor(255, 140, 0).stroke_width(3);
+        chart
+            .draw_series([
+                PathElement::new(vec![(xc, yc), tip], orange),
+                PathElement::new(vec![head(1.0), tip, head(-1.0)], orange),
+            ])
+            .map_err(perr)?;
+    }
+    Ok(())
+}
+
+/// The colour bar beside the field: the field's colour map over `[lo, hi]`, labelled in `u`.
+fn colour_bar<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    lo: f64,
+    hi: f64,
+) -> Result<(), SweepError>
+where
+    DB::ErrorType: 'static,
+{
+    let colour = |v: f64| ViridisRGB::get_color_normalized(v, lo, hi);
+    let mut bar = ChartBuilder::on(area)
+        .margin_top(40)
+        .margin_bottom(46)
+        .margin_right(8)
+        .y_label_area_size(62)
+        .build_cartesian_2d(0.0..1.0, lo..hi)
+        .map_err(perr)?;
+    bar.configure_mesh()
+        .disable_mesh()
+        .disable_x_axis()
+        .y_label_style(("sans-serif", 12))
+        .y_label_formatter(&|v| format!("{v:.3}"))
+        .draw()
+        .map_err(perr)?;
+    let steps = 200;
+    bar.draw_series((0..steps).map(|i| {
+        let (a, b) = (
+            lo + (hi - lo) * i as f64 / steps as f64,
+            lo + (hi - lo) * (i + 1) as f64 / steps as f64,
+        );
+        Rectangle::new([(0.0, a), (1.0, b)], colour(0.5 * (a + b)).filled())
+    }))
+    .map_err(perr)?;
+    Ok(())
 }
 
 impl Figure for RunFigure<'_> {
