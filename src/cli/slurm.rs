@@ -83,60 +83,15 @@ pub fn run(a: Args) -> Result<(), CliError> {
         },
     )?;
     let (sweep_path, merge_path) = (scripts[0].clone(), scripts[1].clone());
-    let mut jobs = Vec::new();
-    if a.submit {
-        let sbatch = |args: &[&str]| -> Result<String, CliError> {
-            let o = Command::new("sbatch")
-                .args(args)
-                .output()
-                .map_err(|e| CliError {
-                    message: format!("cannot run sbatch: {e} (is Slurm installed here?)"),
-                    code: 1,
-                })?;
-            if !o.status.success() {
-                return Err(CliError {
-                    message: format!(
-                        "sbatch {}: {}",
-                        args.join(" "),
-                        String::from_utf8_lossy(&o.stderr).trim()
-                    ),
-                    code: 1,
-                });
-            }
-            Ok(String::from_utf8_lossy(&o.stdout)
-                .trim()
-                .split(';')
-                .next()
-                .unwrap_or("")
-                .to_string())
-        };
-        let script = sweep_path.to_str().unwrap_or_default();
-        match sweep.refine {
-            None => jobs.push(sbatch(&["--parsable", script])?),
-            Some(l) => {
-                for level in 0..=l.refine.levels {
-                    let level = level.to_string();
-                    let job = match jobs.last() {
-                        None => sbatch(&["--parsable", script, &level])?,
-                        Some(prev) => sbatch(&[
-                            "--parsable",
-                            &format!("--dependency=afterok:{prev}"),
-                            "--kill-on-invalid-dep=yes",
-                            script,
-                            &level,
-                        ])?,
-                    };
-                    jobs.push(job);
-                }
-            }
-        }
-        let dep = format!("--dependency=afterany:{}", jobs[jobs.len() - 1]);
-        jobs.push(sbatch(&[
-            "--parsable",
-            &dep,
-            merge_path.to_str().unwrap_or_default(),
-        ])?);
-    }
+    let jobs = if a.submit {
+        submit(
+            &sweep_path,
+            &merge_path,
+            sweep.refine.map(|l| l.refine.levels),
+        )?
+    } else {
+        Vec::new()
+    };
     if a.json {
         print_json(
             &serde_json::json!({ "sweep_script": sweep_path, "merge_script": merge_path, "jobs": jobs, "output": out }),
@@ -167,4 +122,66 @@ pub fn run(a: Args) -> Result<(), CliError> {
         }
     }
     Ok(())
+}
+
+/// Submits the sweep's array job (one per refinement level, each after the one before) and
+/// the merge after the last; returns their job ids, the merge's last.
+fn submit(
+    sweep_path: &std::path::Path,
+    merge_path: &std::path::Path,
+    levels: Option<u32>,
+) -> Result<Vec<String>, CliError> {
+    let mut jobs = Vec::new();
+    let sbatch = |args: &[&str]| -> Result<String, CliError> {
+        let o = Command::new("sbatch")
+            .args(args)
+            .output()
+            .map_err(|e| CliError {
+                message: format!("cannot run sbatch: {e} (is Slurm installed here?)"),
+                code: 1,
+            })?;
+        if !o.status.success() {
+            return Err(CliError {
+                message: format!(
+                    "sbatch {}: {}",
+                    args.join(" "),
+                    String::from_utf8_lossy(&o.stderr).trim()
+                ),
+                code: 1,
+            });
+        }
+        Ok(String::from_utf8_lossy(&o.stdout)
+            .trim()
+            .split(';')
+            .next()
+            .unwrap_or("")
+            .to_string())
+    };
+    let script = sweep_path.to_str().unwrap_or_default();
+    match levels {
+        None => jobs.push(sbatch(&["--parsable", script])?),
+        Some(levels) => {
+            for level in 0..=levels {
+                let level = level.to_string();
+                let job = match jobs.last() {
+                    None => sbatch(&["--parsable", script, &level])?,
+                    Some(prev) => sbatch(&[
+                        "--parsable",
+                        &format!("--dependency=afterok:{prev}"),
+                        "--kill-on-invalid-dep=yes",
+                        script,
+                        &level,
+                    ])?,
+                };
+                jobs.push(job);
+            }
+        }
+    }
+    let dep = format!("--dependency=afterany:{}", jobs[jobs.len() - 1]);
+    jobs.push(sbatch(&[
+        "--parsable",
+        &dep,
+        merge_path.to_str().unwrap_or_default(),
+    ])?);
+    Ok(jobs)
 }

@@ -72,6 +72,85 @@ fn case(name: &str, eta_t: f64, kappa2: f64, window: Option<f64>) -> Case {
     }
 }
 
+/// The methods of a profile: the paper's scheme, fixed spectral steps (N x dt), adaptive
+/// steps (N x dt_max x tol) and the Newton finish (N x tol at the default step cap), each
+/// from `base` (fixed steps, the paper's test).
+fn methods(quick: bool, base: &SolverSettings) -> Vec<Method> {
+    let base = *base;
+    // Fixed steps: N x dt; adaptive: N x dt_max x tol.
+    let (ns, dts): (&[usize], &[f64]) = if quick {
+        (&[32, 48], &[0.05, 0.1])
+    } else {
+        (&[96, 128, 192, 256], &[0.005, 0.01, 0.02, 0.05, 0.1])
+    };
+    let (adaptive_ns, dt_maxes): (&[usize], &[f64]) = if quick {
+        (&[48], &[0.25])
+    } else {
+        (&[128, 192, 256], &[0.1, 0.25, 1.0])
+    };
+    let tols: &[f64] = if quick {
+        &[1e-4, 1e-3]
+    } else {
+        &[1e-5, 1e-4, 1e-3]
+    };
+    let fd = SolverSettings {
+        dt_max: base.dt_max,
+        ..SolverSettings::paper_fd()
+    };
+    let mut methods = vec![Method {
+        family: Family::PaperFd,
+        settings: if quick {
+            SolverSettings {
+                n: 48,
+                dt: 1e-3,
+                ..fd
+            }
+        } else {
+            fd
+        },
+    }];
+    for &n in ns {
+        for &dt in dts {
+            methods.push(Method {
+                family: Family::Spectral { n },
+                settings: SolverSettings { n, dt, ..base },
+            });
+        }
+    }
+    for &n in adaptive_ns {
+        for &dt_max in dt_maxes {
+            for &tol in tols {
+                methods.push(Method {
+                    family: Family::Adaptive { n, dt_max },
+                    settings: SolverSettings {
+                        n,
+                        tol,
+                        dt_max,
+                        ..base
+                    },
+                });
+            }
+        }
+    }
+    // Adaptive steps finished by Newton (the default for sweeps), at the default step cap.
+    let dt_max = droplet_solver::contract::settings::DEFAULT_DT_MAX;
+    for &n in adaptive_ns {
+        for &tol in tols {
+            methods.push(Method {
+                family: Family::Newton { n, dt_max },
+                settings: SolverSettings {
+                    n,
+                    tol,
+                    dt_max,
+                    steady: SteadyMethod::Newton,
+                    ..base
+                },
+            });
+        }
+    }
+    methods
+}
+
 impl BenchPlan {
     pub fn new(profile: Profile) -> Self {
         let quick = profile == Profile::Quick;
@@ -97,77 +176,7 @@ impl BenchPlan {
             steady: SteadyMethod::Test,
             ..SolverSettings::default()
         };
-        // Fixed steps: N x dt; adaptive: N x dt_max x tol.
-        let (ns, dts): (&[usize], &[f64]) = if quick {
-            (&[32, 48], &[0.05, 0.1])
-        } else {
-            (&[96, 128, 192, 256], &[0.005, 0.01, 0.02, 0.05, 0.1])
-        };
-        let (adaptive_ns, dt_maxes): (&[usize], &[f64]) = if quick {
-            (&[48], &[0.25])
-        } else {
-            (&[128, 192, 256], &[0.1, 0.25, 1.0])
-        };
-        let tols: &[f64] = if quick {
-            &[1e-4, 1e-3]
-        } else {
-            &[1e-5, 1e-4, 1e-3]
-        };
-        let fd = SolverSettings {
-            dt_max: base.dt_max,
-            ..SolverSettings::paper_fd()
-        };
-        let mut methods = vec![Method {
-            family: Family::PaperFd,
-            settings: if quick {
-                SolverSettings {
-                    n: 48,
-                    dt: 1e-3,
-                    ..fd
-                }
-            } else {
-                fd
-            },
-        }];
-        for &n in ns {
-            for &dt in dts {
-                methods.push(Method {
-                    family: Family::Spectral { n },
-                    settings: SolverSettings { n, dt, ..base },
-                });
-            }
-        }
-        for &n in adaptive_ns {
-            for &dt_max in dt_maxes {
-                for &tol in tols {
-                    methods.push(Method {
-                        family: Family::Adaptive { n, dt_max },
-                        settings: SolverSettings {
-                            n,
-                            tol,
-                            dt_max,
-                            ..base
-                        },
-                    });
-                }
-            }
-        }
-        // Adaptive steps finished by Newton (the default for sweeps), at the default step cap.
-        let dt_max = droplet_solver::contract::settings::DEFAULT_DT_MAX;
-        for &n in adaptive_ns {
-            for &tol in tols {
-                methods.push(Method {
-                    family: Family::Newton { n, dt_max },
-                    settings: SolverSettings {
-                        n,
-                        tol,
-                        dt_max,
-                        steady: SteadyMethod::Newton,
-                        ..base
-                    },
-                });
-            }
-        }
+        let methods = methods(quick, &base);
         Self {
             profile,
             cases,
