@@ -65,33 +65,7 @@ const MAX_STEPS: usize = 1_000_000;
 
 pub fn run(a: Args) -> Result<(), CliError> {
     match a.command {
-        OdeCommand::Coefficients { radius, h0, json } => {
-            if !(radius > 0.0 && radius.is_finite()) {
-                return Err(CliError::usage(format!(
-                    "invalid --radius {radius}: a finite number > 0"
-                )));
-            }
-            let c = Coefficients::new(radius, h0);
-            if json {
-                print_json(&c);
-            } else {
-                outln!(
-                    "R = {radius}: f1 = {:.6}  f1~ = {:.6}  f3 = {:.6}  f3~ = {:.6}",
-                    c.f1,
-                    c.f1t,
-                    c.f3,
-                    c.f3t
-                );
-                outln!(
-                    "        g0~ = {:.6}  g2 = {:.6}  g2~ = {:.6}  h0 = {}",
-                    c.g0t,
-                    c.g2,
-                    c.g2t,
-                    c.h0
-                );
-            }
-            Ok(())
-        }
+        OdeCommand::Coefficients { radius, h0, json } => coefficients(radius, h0, json),
         OdeCommand::Bifurcation {
             line,
             steps,
@@ -101,67 +75,111 @@ pub fn run(a: Args) -> Result<(), CliError> {
             eta2,
             out,
             json,
-        } => {
-            if !(2..=MAX_STEPS).contains(&steps) {
-                return Err(CliError::usage(format!(
-                    "invalid --steps {steps}: from 2 to {MAX_STEPS}"
-                )));
-            }
-            let (axis, fixed_name, fixed) = line.parameter();
-            let x_label = line.varied();
-            let fixed_label = format!("{fixed_name} = {fixed}");
-            let (from, to) = (line.from, line.to);
-            let base = line.start(ModelParams {
+        } => bifurcation(
+            &line,
+            steps,
+            ModelParams {
                 mass,
                 eta2,
                 radius,
                 ..ModelParams::default()
-            })?;
-            droplet_sweep::store::atomic::create_output_dir(&out)?;
-            let c = Coefficients::new(radius, h0);
-            let values: Vec<f64> = (0..steps)
-                .map(|i| from + (to - from) * i as f64 / (steps - 1) as f64)
-                .collect();
-            let (pts, events) = diagram(&c, &base, axis, &values);
-            let stem = format!("bifurcation_{}", fixed_label.replace(" = ", "_"));
-            let [p1, p2] = droplet_sweep::tables::bifurcation::write(
-                &out,
-                &stem,
-                &pts,
-                &events,
-                axis,
-                &c,
-                &format!("{fixed_label}, {x_label} from {from} to {to}"),
-            )?;
-            let mut files = droplet_sweep::pictures::branch_pictures::ode_bifurcation(
-                &out,
-                &stem,
-                &pts,
-                &events,
-                axis,
-                &format!(
-                    "ODE model, {fixed_label}: solid = stable, dashed = unstable, dots = P / SN"
-                ),
-            )?;
-            files.extend([p1, p2]);
-            if json {
-                print_json(
-                    &serde_json::json!({ "events": events, "files": files, "points": pts.len() }),
-                );
-            } else {
-                for e in &events {
-                    outln!(
-                        "{:>3} on {:<14} at {x_label} = {:.5}",
-                        e.kind,
-                        e.branch.as_str(),
-                        e.at
-                    );
-                }
-                for f in files {
-                    outln!("wrote {}", f.display());
-                }
-            }
-            Ok(())
+            },
+            h0,
+            &out,
+            json,
+        ),
+    }
+}
+
+/// `droplet ode coefficients`: the reduced model's coefficients at radius `radius`.
+fn coefficients(radius: f64, h0: f64, json: bool) -> Result<(), CliError> {
+    if !(radius > 0.0 && radius.is_finite()) {
+        return Err(CliError::usage(format!(
+            "invalid --radius {radius}: a finite number > 0"
+        )));
+    }
+    let c = Coefficients::new(radius, h0);
+    if json {
+        print_json(&c);
+    } else {
+        outln!(
+            "R = {radius}: f1 = {:.6}  f1~ = {:.6}  f3 = {:.6}  f3~ = {:.6}",
+            c.f1,
+            c.f1t,
+            c.f3,
+            c.f3t
+        );
+        outln!(
+            "        g0~ = {:.6}  g2 = {:.6}  g2~ = {:.6}  h0 = {}",
+            c.g0t,
+            c.g2,
+            c.g2t,
+            c.h0
+        );
+    }
+    Ok(())
+}
+
+/// `droplet ode bifurcation`: the reduced model's steady states along `line` (`steps`
+/// values), with their stability and bifurcation points, as tables and a picture in `out`.
+fn bifurcation(
+    line: &super::line::LineArgs,
+    steps: usize,
+    params: ModelParams,
+    h0: f64,
+    out: &std::path::Path,
+    json: bool,
+) -> Result<(), CliError> {
+    let radius = params.radius;
+    if !(2..=MAX_STEPS).contains(&steps) {
+        return Err(CliError::usage(format!(
+            "invalid --steps {steps}: from 2 to {MAX_STEPS}"
+        )));
+    }
+    let (axis, fixed_name, fixed) = line.parameter();
+    let x_label = line.varied();
+    let fixed_label = format!("{fixed_name} = {fixed}");
+    let (from, to) = (line.from, line.to);
+    let base = line.start(params)?;
+    droplet_sweep::store::atomic::create_output_dir(out)?;
+    let c = Coefficients::new(radius, h0);
+    let values: Vec<f64> = (0..steps)
+        .map(|i| from + (to - from) * i as f64 / (steps - 1) as f64)
+        .collect();
+    let (pts, events) = diagram(&c, &base, axis, &values);
+    let stem = format!("bifurcation_{}", fixed_label.replace(" = ", "_"));
+    let [p1, p2] = droplet_sweep::tables::bifurcation::write(
+        out,
+        &stem,
+        &pts,
+        &events,
+        axis,
+        &c,
+        &format!("{fixed_label}, {x_label} from {from} to {to}"),
+    )?;
+    let mut files = droplet_sweep::pictures::branch_pictures::ode_bifurcation(
+        out,
+        &stem,
+        &pts,
+        &events,
+        axis,
+        &format!("ODE model, {fixed_label}: solid = stable, dashed = unstable, dots = P / SN"),
+    )?;
+    files.extend([p1, p2]);
+    if json {
+        print_json(&serde_json::json!({ "events": events, "files": files, "points": pts.len() }));
+    } else {
+        for e in &events {
+            outln!(
+                "{:>3} on {:<14} at {x_label} = {:.5}",
+                e.kind,
+                e.branch.as_str(),
+                e.at
+            );
+        }
+        for f in files {
+            outln!("wrote {}", f.display());
         }
     }
+    Ok(())
 }
