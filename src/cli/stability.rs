@@ -83,24 +83,7 @@ struct Report {
 
 pub fn run(a: Args) -> Result<(), CliError> {
     let axis = super::mirror_axis(&a.axis)?;
-    let seed = match &a.seed {
-        None => None,
-        Some(text) => {
-            let parts: Vec<f64> = text
-                .split(',')
-                .map(|p| p.trim().parse::<f64>())
-                .collect::<Result<_, _>>()
-                .map_err(|_| CliError::usage(format!("invalid --seed `{text}`: V,SHAPE")))?;
-            match parts[..] {
-                [v, c] if v.is_finite() && c.is_finite() && c.abs() < 1.0 => Some((v, c)),
-                _ => {
-                    return Err(CliError::usage(format!(
-                        "invalid --seed `{text}`: two finite numbers V,SHAPE with |SHAPE| < 1"
-                    )))
-                }
-            }
-        }
-    };
+    let seed = seed_of(a.seed.as_deref())?;
     let params = ModelParams {
         eta_t: a.eta_t,
         kappa2: a.kappa2,
@@ -148,32 +131,58 @@ pub fn run(a: Args) -> Result<(), CliError> {
     if a.json {
         print_json(&report);
     } else {
-        outln!(
-            "{:?} on {} at eta_t = {}, kappa2 = {} (N = {}): v = {:.6}  s = {:.6}  (vx {:.6}, vy {:.6}, a2 {:.6}, b2 {:.6}; residual {:.1e})",
-            report.state, report.axis, report.eta_t, report.kappa2, report.n, report.v, report.s, vx, vy, a2, b2, report.residual
-        );
-        for l in &report.eigenvalues {
-            outln!("  eigenvalue {:+.6} {:+.6}i", l.re, l.im);
-        }
-        if let Some(th) = &report.ic_thresholds {
-            outln!(
-                "resting disk: moves for eta_t < {:.9}; deforms (a2) for kappa2 < {:.9}, (b2, diagonal) for kappa2 < {:.9}",
-                th.eta_t, th.kappa2_a2, th.kappa2_b2
-            );
-        }
-        outln!(
-            "{}",
-            if report.stable {
-                "stable".to_string()
-            } else {
-                format!("unstable ({unstable} eigenvalues with positive real part)")
-            }
-        );
-        if let Some(r) = report.rotation {
-            outln!(
-                "rotation mode {r:+.6} (box effect: which orientation the box prefers; not counted)"
-            );
-        }
+        print_text(&report);
     }
     Ok(())
+}
+
+/// `--seed V,SHAPE`: a starting guess for Newton, if given.
+fn seed_of(text: Option<&str>) -> Result<Option<(f64, f64)>, CliError> {
+    let Some(text) = text else {
+        return Ok(None);
+    };
+    let parts: Vec<f64> = text
+        .split(',')
+        .map(|p| p.trim().parse::<f64>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| CliError::usage(format!("invalid --seed `{text}`: V,SHAPE")))?;
+    match parts[..] {
+        [v, c] if v.is_finite() && c.is_finite() && c.abs() < 1.0 => Ok(Some((v, c))),
+        _ => Err(CliError::usage(format!(
+            "invalid --seed `{text}`: two finite numbers V,SHAPE with |SHAPE| < 1"
+        ))),
+    }
+}
+
+/// The text report of a state and its stability.
+fn print_text(report: &Report) {
+    outln!(
+        "{:?} on {} at eta_t = {}, kappa2 = {} (N = {}): v = {:.6}  s = {:.6}  (vx {:.6}, vy {:.6}, a2 {:.6}, b2 {:.6}; residual {:.1e})",
+        report.state, report.axis, report.eta_t, report.kappa2, report.n, report.v, report.s, report.vx, report.vy, report.a2, report.b2, report.residual
+    );
+    for l in &report.eigenvalues {
+        outln!("  eigenvalue {:+.6} {:+.6}i", l.re, l.im);
+    }
+    if let Some(th) = &report.ic_thresholds {
+        outln!(
+            "resting disk: moves for eta_t < {:.9}; deforms (a2) for kappa2 < {:.9}, (b2, diagonal) for kappa2 < {:.9}",
+            th.eta_t, th.kappa2_a2, th.kappa2_b2
+        );
+    }
+    outln!(
+        "{}",
+        if report.stable {
+            "stable".to_string()
+        } else {
+            format!(
+                "unstable ({} eigenvalues with positive real part)",
+                report.unstable
+            )
+        }
+    );
+    if let Some(r) = report.rotation {
+        outln!(
+            "rotation mode {r:+.6} (box effect: which orientation the box prefers; not counted)"
+        );
+    }
 }
