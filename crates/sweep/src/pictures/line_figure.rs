@@ -5,6 +5,7 @@ use crate::pictures::branch_lines::BranchLine;
 use crate::pictures::legend::class_colour;
 use crate::pictures::render::perr;
 use crate::pictures::render::{render, Figure};
+use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
@@ -92,41 +93,7 @@ impl VsFigure<'_> {
         keys.sort();
         keys.dedup();
         for key in keys {
-            let colour = class_colour(key);
-            let mut legend_done = false;
-            for l in lines.iter().filter(|l| l.key == key) {
-                let pts = l.points.iter().map(|p| (p.0, lval(p)));
-                let anno = if l.stable {
-                    chart
-                        .draw_series(LineSeries::new(pts, colour.stroke_width(3)))
-                        .map_err(perr)?
-                } else {
-                    chart
-                        .draw_series(DashedLineSeries::new(pts, 7, 5, colour.stroke_width(2)))
-                        .map_err(perr)?
-                };
-                if !legend_done {
-                    legend_done = true;
-                    anno.label(key.to_string()).legend(move |(x, y)| {
-                        PathElement::new(vec![(x, y), (x + 14, y)], colour.stroke_width(3))
-                    });
-                }
-            }
-            let mine = markers.iter().filter(|m| m.key == key);
-            let anno = chart
-                .draw_series(mine.map(|m| {
-                    let style = if m.bold {
-                        colour.filled()
-                    } else {
-                        colour.stroke_width(1)
-                    };
-                    Circle::new((m.x, val(m)), if m.bold { 3 } else { 2 }, style)
-                }))
-                .map_err(perr)?;
-            if !legend_done {
-                anno.label(key.to_string())
-                    .legend(move |(x, y)| Circle::new((x + 6, y), 4, colour.filled()));
-            }
+            self.draw_key(&mut chart, key, speed)?;
         }
         chart
             .configure_series_labels()
@@ -136,6 +103,57 @@ impl VsFigure<'_> {
             .label_font(("sans-serif", 13))
             .draw()
             .map_err(perr)?;
+        Ok(())
+    }
+
+    /// The lines and markers of one class (or branch) `key` on a panel, with its legend entry.
+    fn draw_key<DB: DrawingBackend>(
+        &self,
+        chart: &mut ChartContext<'_, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
+        key: &str,
+        speed: bool,
+    ) -> Result<(), SweepError>
+    where
+        DB::ErrorType: 'static,
+    {
+        let (markers, lines) = (self.markers, self.lines);
+        let val = |m: &Marker| if speed { m.v } else { m.s };
+        let lval = |p: &(f64, f64, f64)| if speed { p.1 } else { p.2 };
+        let colour = class_colour(key);
+        let mut legend_done = false;
+        for l in lines.iter().filter(|l| l.key == key) {
+            let pts = l.points.iter().map(|p| (p.0, lval(p)));
+            let anno = if l.stable {
+                chart
+                    .draw_series(LineSeries::new(pts, colour.stroke_width(3)))
+                    .map_err(perr)?
+            } else {
+                chart
+                    .draw_series(DashedLineSeries::new(pts, 7, 5, colour.stroke_width(2)))
+                    .map_err(perr)?
+            };
+            if !legend_done {
+                legend_done = true;
+                anno.label(key.to_string()).legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 14, y)], colour.stroke_width(3))
+                });
+            }
+        }
+        let mine = markers.iter().filter(|m| m.key == key);
+        let anno = chart
+            .draw_series(mine.map(|m| {
+                let style = if m.bold {
+                    colour.filled()
+                } else {
+                    colour.stroke_width(1)
+                };
+                Circle::new((m.x, val(m)), if m.bold { 3 } else { 2 }, style)
+            }))
+            .map_err(perr)?;
+        if !legend_done {
+            anno.label(key.to_string())
+                .legend(move |(x, y)| Circle::new((x + 6, y), 4, colour.filled()));
+        }
         Ok(())
     }
 }
