@@ -56,6 +56,28 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<(), CliError> {
+    let study = study_of(&a)?;
+    let axis = a.axis.clone();
+    let done = study.run(&mut |p| match p {
+        Progress::Following(f) => eprint!("following {} ({axis}) ... ", f.as_str()),
+        Progress::Followed {
+            states,
+            events,
+            seconds,
+        } => eprintln!("{states} states, {events} events in {seconds:.1} s"),
+        Progress::NoneOnLine => eprintln!("none on this line"),
+    })?;
+    let varied = study.varied();
+    if a.json {
+        print_json(&json_summary(&done, a.n));
+    } else {
+        print_text(&study, &done);
+    }
+    precise_events(&done.imprecise, varied)
+}
+
+/// The study the arguments ask for, every value checked.
+fn study_of(a: &Args) -> Result<ContinuationStudy, CliError> {
     let mirror = super::mirror_axis(&a.axis)?;
     let families: Vec<Family> = if a.branch == "all" {
         vec![Family::IC, Family::ID, Family::MdMinor, Family::MdMajor]
@@ -89,7 +111,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
             a.mass
         )));
     }
-    let study = ContinuationStudy {
+    Ok(ContinuationStudy {
         out: a.out.clone(),
         line: Line {
             base,
@@ -105,47 +127,36 @@ pub fn run(a: Args) -> Result<(), CliError> {
         },
         families,
         mirror,
-    };
-    let axis = a.axis.clone();
-    let done = study.run(&mut |p| match p {
-        Progress::Following(f) => eprint!("following {} ({axis}) ... ", f.as_str()),
-        Progress::Followed {
-            states,
-            events,
-            seconds,
-        } => eprintln!("{states} states, {events} events in {seconds:.1} s"),
-        Progress::NoneOnLine => eprintln!("none on this line"),
-    })?;
+    })
+}
+
+/// The text report: each branch with its states and events, the files, the time.
+fn print_text(study: &ContinuationStudy, done: &ContinuationWritten) {
     let varied = study.varied();
-    if a.json {
-        print_json(&json_summary(&done, a.n));
-    } else {
-        for b in &done.branches {
+    for b in &done.branches {
+        outln!(
+            "{:<14} {:>4} states ({} stable); ends: {} | {}",
+            b.family.as_str(),
+            b.points.len(),
+            b.points.iter().filter(|p| p.verdict.stable()).count(),
+            b.ends[0],
+            b.ends[1]
+        );
+        for e in &b.events {
             outln!(
-                "{:<14} {:>4} states ({} stable); ends: {} | {}",
-                b.family.as_str(),
-                b.points.len(),
-                b.points.iter().filter(|p| p.verdict.stable()).count(),
-                b.ends[0],
-                b.ends[1]
+                "  {:>2} at {varied} = {:.9}  v = {:.6}  s = {:.6}  ({})",
+                e.kind,
+                study.at(&e.point),
+                e.point.v,
+                e.point.s,
+                e.what
             );
-            for e in &b.events {
-                outln!(
-                    "  {:>2} at {varied} = {:.9}  v = {:.6}  s = {:.6}  ({})",
-                    e.kind,
-                    study.at(&e.point),
-                    e.point.v,
-                    e.point.s,
-                    e.what
-                );
-            }
         }
-        for f in &done.files {
-            outln!("wrote {}", f.display());
-        }
-        outln!("{:.1} s", done.seconds);
     }
-    precise_events(&done.imprecise, varied)
+    for f in &done.files {
+        outln!("wrote {}", f.display());
+    }
+    outln!("{:.1} s", done.seconds);
 }
 
 /// The `--json` object: the line, the branches, every event with its precision, the files.

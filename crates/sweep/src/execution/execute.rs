@@ -205,6 +205,37 @@ fn run_refined(
     Ok((plan, mine, total))
 }
 
+/// The shard and refinement level this invocation runs (`--shard I/N --level L` on a spec
+/// with `refine:`), or none; the combinations that make no sense are refused.
+fn shard_level(spec: &SweepSpec, opts: &SweepOptions) -> Result<Option<(Shard, u32)>, SweepError> {
+    match (&spec.refine, opts.shard, opts.level) {
+        (Some(l), _, Some(level)) if level > l.refine.levels => {
+            Err(SweepError::Invalid(format!(
+                "invalid --level {level}: the spec's refine: has levels 0..={}",
+                l.refine.levels
+            )))
+        }
+        (Some(_), Some(sh), Some(level)) => Ok(Some((sh, level))),
+        (Some(l), Some(_), None) => {
+            Err(SweepError::Invalid(format!(
+                "a spec with refine: is sharded one level at a time (each level's points follow from the one before): add --level L, L in 0..={} (`droplet slurm` submits one array per level)",
+                l.refine.levels
+            )))
+        }
+        (None, _, Some(_)) => {
+            Err(SweepError::Invalid(
+                "--level is for specs with refine: (this one has a uniform grid)".into(),
+            ))
+        }
+        (_, None, Some(_)) => {
+            Err(SweepError::Invalid(
+                "--level goes with --shard (an unsharded sweep runs every level)".into(),
+            ))
+        }
+        _ => Ok(None),
+    }
+}
+
 /// Runs every pending task of `spec` into `out` and writes the tables.
 pub fn run_sweep(
     spec: &SweepSpec,
@@ -217,32 +248,7 @@ pub fn run_sweep(
         opts.max_runs
             .unwrap_or(crate::store::plan::DEFAULT_MAX_RUNS),
     )?;
-    let shard_level = match (&spec.refine, opts.shard, opts.level) {
-        (Some(l), _, Some(level)) if level > l.refine.levels => {
-            return Err(SweepError::Invalid(format!(
-                "invalid --level {level}: the spec's refine: has levels 0..={}",
-                l.refine.levels
-            )))
-        }
-        (Some(_), Some(sh), Some(level)) => Some((sh, level)),
-        (Some(l), Some(_), None) => {
-            return Err(SweepError::Invalid(format!(
-                "a spec with refine: is sharded one level at a time (each level's points follow from the one before): add --level L, L in 0..={} (`droplet slurm` submits one array per level)",
-                l.refine.levels
-            )))
-        }
-        (None, _, Some(_)) => {
-            return Err(SweepError::Invalid(
-                "--level is for specs with refine: (this one has a uniform grid)".into(),
-            ))
-        }
-        (_, None, Some(_)) => {
-            return Err(SweepError::Invalid(
-                "--level goes with --shard (an unsharded sweep runs every level)".into(),
-            ))
-        }
-        _ => None,
-    };
+    let shard_level = shard_level(spec, opts)?;
     let store = match opts.shard {
         None => Store::open_locked(out)?,
         Some(sh) => Store::open_shard(out, &sh.lock_name())?,
