@@ -118,50 +118,37 @@ pub fn load_stored(dir: &Path) -> Result<SweepSpec, crate::error::SweepError> {
     Ok(parse(&text, &path.display().to_string(), "sweep")?)
 }
 
-/// Parses and validates a spec's text; `file` names it in errors, `stem` is the default name.
-pub fn parse(text: &str, file: &str, stem: &str) -> Result<SweepSpec, SpecError> {
-    if text.len() > MAX_SPEC_BYTES {
-        return Err(too_large(file, text.len() as u64));
-    }
-    let ctx = Ctx { file, text };
-    let doc: Value = serde_yaml::from_str(text).map_err(|e| {
-        let line = e.location().map(|l| l.line());
-        match duplicate_key(&e.to_string()) {
-            Some(path) => {
-                let key = path.rsplit('.').next().unwrap_or(&path).to_string();
-                SpecError {
-                    file: file.to_string(),
-                    line: line.map(|l| context::second_key_line(text, l, &key).unwrap_or(l)),
-                    value: format!("a second `{key}`"),
-                    path,
-                    allowed: "each key once in its section".into(),
-                }
-            }
-            None => SpecError {
+/// A YAML error as a spec error: a duplicated key on the line of its second occurrence,
+/// anything else as invalid YAML.
+fn yaml_error(e: &serde_yaml::Error, file: &str, text: &str) -> SpecError {
+    let line = e.location().map(|l| l.line());
+    match duplicate_key(&e.to_string()) {
+        Some(path) => {
+            let key = path.rsplit('.').next().unwrap_or(&path).to_string();
+            SpecError {
                 file: file.to_string(),
-                path: "(document)".into(),
-                line,
-                value: "not valid YAML".into(),
-                allowed: e.to_string(),
-            },
+                line: line.map(|l| context::second_key_line(text, l, &key).unwrap_or(l)),
+                value: format!("a second `{key}`"),
+                path,
+                allowed: "each key once in its section".into(),
+            }
         }
-    })?;
-    let top = ctx.mapping(
-        &doc,
-        &[],
-        &[
-            "name",
-            "output",
-            "model",
-            "params",
-            "grid",
-            "initial_conditions",
-            "solver",
-            "refine",
-            "classify",
-        ],
-    )?;
+        None => SpecError {
+            file: file.to_string(),
+            path: "(document)".into(),
+            line,
+            value: "not valid YAML".into(),
+            allowed: e.to_string(),
+        },
+    }
+}
 
+/// The spec's `name` (default: the file's stem), `output` (default: `out/<name>`) and `model`.
+fn header(
+    ctx: &Ctx,
+    top: &serde_yaml::Mapping,
+    stem: &str,
+) -> Result<(String, PathBuf, ModelKind), SpecError> {
     let name = match top.get("name") {
         None => stem.to_string(),
         Some(v) => {
@@ -200,6 +187,33 @@ pub fn parse(text: &str, file: &str, stem: &str) -> Result<SweepSpec, SpecError>
             _ => return Err(ctx.err(&["model"], show(v), "pde or ode")),
         },
     };
+    Ok((name, output, model))
+}
+
+/// Parses and validates a spec's text; `file` names it in errors, `stem` is the default name.
+pub fn parse(text: &str, file: &str, stem: &str) -> Result<SweepSpec, SpecError> {
+    if text.len() > MAX_SPEC_BYTES {
+        return Err(too_large(file, text.len() as u64));
+    }
+    let ctx = Ctx { file, text };
+    let doc: Value = serde_yaml::from_str(text).map_err(|e| yaml_error(&e, file, text))?;
+    let top = ctx.mapping(
+        &doc,
+        &[],
+        &[
+            "name",
+            "output",
+            "model",
+            "params",
+            "grid",
+            "initial_conditions",
+            "solver",
+            "refine",
+            "classify",
+        ],
+    )?;
+
+    let (name, output, model) = header(&ctx, top, stem)?;
 
     let params = params::parse(&ctx, top)?;
     let (eta_t, kappa2) = grid::parse(&ctx, top)?;

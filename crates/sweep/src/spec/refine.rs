@@ -18,6 +18,38 @@ use serde_yaml::Mapping;
 /// Most refinement levels (a finest cell 1/1024 of the grid's).
 pub const MAX_LEVELS: u32 = 10;
 
+/// The grid axis `key` with `values` as the lattice's level-0 axis: a `{start, stop, step}`
+/// range of at least two points (refinement halves its step).
+fn grid_axis(
+    ctx: &Ctx,
+    top: &Mapping,
+    key: &'static str,
+    values: &[f64],
+) -> Result<Axis, SpecError> {
+    let grid = top.get("grid").and_then(|g| g.as_mapping());
+    let step = grid
+        .and_then(|g| g.get(key))
+        .and_then(|a| a.as_mapping())
+        .and_then(|a| a.get("step"))
+        .and_then(|s| s.as_f64());
+    match step {
+        Some(step) if values.len() >= 2 => Ok(Axis {
+            start: values[0],
+            step,
+            count: values.len() as u64,
+        }),
+        _ => Err(ctx.err(
+            &["grid", key],
+            if step.is_some() {
+                "a single point".to_string()
+            } else {
+                "a list".to_string()
+            },
+            "a {start, stop, step} range of at least two points (refine: halves its step)",
+        )),
+    }
+}
+
 /// The `refine` section, if present, on the grid `(eta_t, kappa2)` already parsed.
 pub(super) fn parse(
     ctx: &Ctx,
@@ -57,33 +89,9 @@ pub(super) fn parse(
             .as_bool()
             .ok_or_else(|| ctx.err(&["refine", "split_bistable"], show(x), "true or false"))?,
     };
-    let grid = top.get("grid").and_then(|g| g.as_mapping());
-    let axis = |key: &'static str, values: &[f64]| -> Result<Axis, SpecError> {
-        let step = grid
-            .and_then(|g| g.get(key))
-            .and_then(|a| a.as_mapping())
-            .and_then(|a| a.get("step"))
-            .and_then(|s| s.as_f64());
-        match step {
-            Some(step) if values.len() >= 2 => Ok(Axis {
-                start: values[0],
-                step,
-                count: values.len() as u64,
-            }),
-            _ => Err(ctx.err(
-                &["grid", key],
-                if step.is_some() {
-                    "a single point".to_string()
-                } else {
-                    "a list".to_string()
-                },
-                "a {start, stop, step} range of at least two points (refine: halves its step)",
-            )),
-        }
-    };
     let lattice = Lattice {
-        eta_t: axis(ETA_T, eta_t)?,
-        kappa2: axis(KAPPA2, kappa2)?,
+        eta_t: grid_axis(ctx, top, ETA_T, eta_t)?,
+        kappa2: grid_axis(ctx, top, KAPPA2, kappa2)?,
         refine: Refine {
             levels,
             min_step,

@@ -28,6 +28,52 @@ const KEYS: [&str; 14] = [
     "h0",
 ];
 
+/// The on/off settings: each key, what `true` means, and its field.
+type Flag = (
+    &'static str,
+    &'static str,
+    fn(&mut SolverSettings) -> &mut bool,
+);
+
+const FLAGS: [Flag; 4] = [
+    (
+        "stop_beside_saddle",
+        "stop a run beside a saddle it cannot leave before t_max",
+        |s| &mut s.stop_beside_saddle,
+    ),
+    (
+        "leap_departures",
+        "leap along the linear stretch of a departure from a saddle",
+        |s| &mut s.leap_departures,
+    ),
+    (
+        "landing",
+        "end a slow run where its one-dimensional quasi-steady flow lands; the default",
+        |s| &mut s.landing,
+    ),
+    (
+        "run_on",
+        "run a run not yet on a stable state on to 4 t_max; the default",
+        |s| &mut s.run_on,
+    ),
+];
+
+/// Reads the on/off settings of the `solver` section `m` into `solver`.
+fn flags(ctx: &Ctx, m: &Mapping, solver: &mut SolverSettings) -> Result<(), SpecError> {
+    for (key, meaning, field) in FLAGS {
+        if let Some(x) = m.get(key) {
+            *field(solver) = x.as_bool().ok_or_else(|| {
+                ctx.err(
+                    &["solver", key],
+                    show(x),
+                    format!("true ({meaning}) or false"),
+                )
+            })?;
+        }
+    }
+    Ok(())
+}
+
 /// The `solver` section for `model`, validated against `params`.
 pub(super) fn parse(
     ctx: &Ctx,
@@ -66,43 +112,7 @@ pub(super) fn parse(
                 )
             })?;
         }
-        let flag = |key: &str, meaning: &str| -> Result<Option<bool>, SpecError> {
-            m.get(key)
-                .map(|x| {
-                    x.as_bool().ok_or_else(|| {
-                        ctx.err(
-                            &["solver", key],
-                            show(x),
-                            format!("true ({meaning}) or false"),
-                        )
-                    })
-                })
-                .transpose()
-        };
-        if let Some(on) = flag(
-            "stop_beside_saddle",
-            "stop a run beside a saddle it cannot leave before t_max",
-        )? {
-            solver.stop_beside_saddle = on;
-        }
-        if let Some(on) = flag(
-            "leap_departures",
-            "leap along the linear stretch of a departure from a saddle",
-        )? {
-            solver.leap_departures = on;
-        }
-        if let Some(on) = flag(
-            "landing",
-            "end a slow run where its one-dimensional quasi-steady flow lands; the default",
-        )? {
-            solver.landing = on;
-        }
-        if let Some(on) = flag(
-            "run_on",
-            "run a run not yet on a stable state on to 4 t_max; the default",
-        )? {
-            solver.run_on = on;
-        }
+        flags(ctx, m, &mut solver)?;
         ctx.numbers(m, "solver", &KEYS[7..], |key, val| match key {
             "dt" => solver.dt = val,
             "tol" => solver.tol = val,
