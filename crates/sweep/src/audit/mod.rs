@@ -153,8 +153,6 @@ fn audit_point(
     states: &mut usize,
 ) -> Vec<Contradiction> {
     let mut out = Vec::new();
-    let mut disk: Option<Verdict> = None;
-    let mut roots: Vec<([f64; 4], Checked)> = Vec::new();
     let expected = expected_label(runs);
     if let Some(r) = runs.first().filter(|_| expected != label) {
         out.push(Contradiction {
@@ -168,8 +166,21 @@ fn audit_point(
             key: "-".into(),
         });
     }
+    let mut point = PointStates {
+        solver,
+        disk: None,
+        roots: Vec::new(),
+        states,
+    };
     for r in runs {
-        let mut add = |kind: Kind, detail: String| {
+        let steady = r.status == RunStatus::Steady.as_str();
+        let problem = match (r.status.as_str(), r.class) {
+            ("diverged", _) => None,
+            (_, Some(StateClass::IC)) if steady => point.check_disk(),
+            (_, Some(class)) if steady => point.check_root(r.z, class),
+            _ => Some((Kind::Unsettled, unsettled_detail(r))),
+        };
+        if let Some((kind, detail)) = problem {
             out.push(Contradiction {
                 eta_t: r.params.eta_t,
                 kappa2: r.params.kappa2,
@@ -179,75 +190,88 @@ fn audit_point(
                 kind,
                 detail,
                 key: r.key.clone(),
-            })
-        };
-        let steady = r.status == RunStatus::Steady.as_str();
-        match (r.status.as_str(), r.class) {
-            ("diverged", _) => {}
-            (_, Some(StateClass::IC)) if steady => {
-                let v = disk.get_or_insert_with(|| {
-                    *states += 1;
-                    assess(&Linearization::at(solver, [0.0; 4]), [0.0; 4])
-                });
-                if !v.stable() {
-                    add(
-                        Kind::UnstableDisk,
-                        format!("the resting disk is unstable here: {}", growth(v)),
-                    );
-                }
-            }
-            (_, Some(class)) if steady => {
-                let z = r.z;
-                let known = roots.iter().find(|(start, _)| {
-                    droplet_solver::model::state::max_distance(start, &z) < 1e-9
-                });
-                let found = match known {
-                    Some((_, f)) => f.clone(),
-                    None => {
-                        let f = root_near(solver, z);
-                        *states += usize::from(f.is_some());
-                        roots.push((z, f.clone()));
-                        f
-                    }
-                };
-                match found {
-                    None => add(
-                        Kind::NoRoot,
-                        format!("Newton finds no steady state from the run's final state {z:?}"),
-                    ),
-                    Some((root, _)) if class_of(&root) != class => add(
-                        Kind::OtherClass,
-                        format!(
-                            "the steady state there is {} (v = {:.6}, s = {:.6})",
-                            class_of(&root),
-                            root[0].hypot(root[1]),
-                            root[2].hypot(root[3])
-                        ),
-                    ),
-                    Some((_, v)) if !v.stable() => add(
-                        Kind::UnstableRoot,
-                        format!("the {class} state is unstable here: {}", growth(&v)),
-                    ),
-                    Some(_) => {}
-                }
-            }
-            _ => add(
-                Kind::Unsettled,
-                format!(
-                    "{} at t = {:.1}: {}{}",
-                    r.status,
-                    r.t_end,
-                    r.unsettled
-                        .as_deref()
-                        .unwrap_or("did not end on a stable state"),
-                    r.heading
-                        .as_ref()
-                        .map_or(String::new(), |h| format!(", heading to {h}"))
-                ),
-            ),
+            });
         }
     }
     out
+}
+
+/// The steady states met at one point, each computed once: the resting disk's verdict and the
+/// roots near the runs' final states (counted in `states`).
+struct PointStates<'a> {
+    solver: &'a mut SteadySolver,
+    disk: Option<Verdict>,
+    roots: Vec<([f64; 4], Checked)>,
+    states: &'a mut usize,
+}
+
+impl PointStates<'_> {
+    /// An IC run: the resting disk must be stable here.
+    fn check_disk(&mut self) -> Option<(Kind, String)> {
+        let (solver, states) = (&mut *self.solver, &mut *self.states);
+        let v = self.disk.get_or_insert_with(|| {
+            *states += 1;
+            assess(&Linearization::at(solver, [0.0; 4]), [0.0; 4])
+        });
+        (!v.stable()).then(|| {
+            (
+                Kind::UnstableDisk,
+                format!("the resting disk is unstable here: {}", growth(v)),
+            )
+        })
+    }
+
+    /// A run of `class` ending at `z`: Newton from `z` must find a stable root of that class.
+    fn check_root(&mut self, z: [f64; 4], class: StateClass) -> Option<(Kind, String)> {
+        let known = self
+            .roots
+            .iter()
+            .find(|(start, _)| droplet_solver::model::state::max_distance(start, &z) < 1e-9);
+        let found = match known {
+            Some((_, f)) => f.clone(),
+            None => {
+                let f = root_near(self.solver, z);
+                *self.states += usize::from(f.is_some());
+                self.roots.push((z, f.clone()));
+                f
+            }
+        };
+        match found {
+            None => Some((
+                Kind::NoRoot,
+                format!("Newton finds no steady state from the run's final state {z:?}"),
+            )),
+            Some((root, _)) if class_of(&root) != class => Some((
+                Kind::OtherClass,
+                format!(
+                    "the steady state there is {} (v = {:.6}, s = {:.6})",
+                    class_of(&root),
+                    root[0].hypot(root[1]),
+                    root[2].hypot(root[3])
+                ),
+            )),
+            Some((_, v)) if !v.stable() => Some((
+                Kind::UnstableRoot,
+                format!("the {class} state is unstable here: {}", growth(&v)),
+            )),
+            Some(_) => None,
+        }
+    }
+}
+
+/// Why a run that did not settle says its point's label is not proven.
+fn unsettled_detail(r: &Row) -> String {
+    format!(
+        "{} at t = {:.1}: {}{}",
+        r.status,
+        r.t_end,
+        r.unsettled
+            .as_deref()
+            .unwrap_or("did not end on a stable state"),
+        r.heading
+            .as_ref()
+            .map_or(String::new(), |h| format!(", heading to {h}"))
+    )
 }
 
 /// The label a point's runs give ([`crate::map::point_class`]: the classes of the runs that ended
