@@ -132,6 +132,17 @@ where
     Ok(())
 }
 
+/// The distinct values of `items`, in order of first appearance.
+fn in_order<T: PartialEq>(items: impl Iterator<Item = T>) -> Vec<T> {
+    let mut out: Vec<T> = Vec::new();
+    for x in items {
+        if !out.contains(&x) {
+            out.push(x);
+        }
+    }
+    out
+}
+
 /// The work-precision picture.
 struct WorkPrecision<'a> {
     title: &'a str,
@@ -150,18 +161,8 @@ impl Figure for WorkPrecision<'_> {
         let (title, rows) = (self.title, self.rows);
         root.fill(&WHITE).map_err(perr)?;
         let root = root.titled(title, ("sans-serif", 20)).map_err(perr)?;
-        let mut cases: Vec<&str> = Vec::new();
-        for r in rows {
-            if !cases.contains(&r.case.as_str()) {
-                cases.push(&r.case);
-            }
-        }
-        let mut families: Vec<Family> = Vec::new();
-        for r in rows {
-            if !families.contains(&r.family) {
-                families.push(r.family);
-            }
-        }
+        let cases = in_order(rows.iter().map(|r| r.case.as_str()));
+        let families = in_order(rows.iter().map(|r| r.family));
         // Shade index within a colour group: by N, in order of appearance.
         let shade = |f: &Family| {
             families

@@ -26,6 +26,72 @@ pub struct BranchLine {
 /// picture's range; states further apart start a new track).
 const MAX_JUMP: f64 = 0.25;
 
+/// Extends the open tracks by one `column` of samples at the same `x`: the nearest (track,
+/// sample) pairs within [`MAX_JUMP`] first; a track left without a sample is closed, a sample
+/// left without a track starts a new one. Returns the tracks still open.
+fn extend_tracks<'a>(
+    mut open: Vec<Vec<&'a BranchSample>>,
+    column: &[&'a BranchSample],
+    closed: &mut Vec<Vec<&'a BranchSample>>,
+    dist: &dyn Fn(&BranchSample, &BranchSample) -> f64,
+) -> Vec<Vec<&'a BranchSample>> {
+    let mut pairs: Vec<(f64, usize, usize)> = open
+        .iter()
+        .enumerate()
+        .flat_map(|(t, track)| {
+            let end = *track.last().expect("tracks are never empty");
+            column
+                .iter()
+                .enumerate()
+                .map(move |(c, p)| (dist(end, p), t, c))
+        })
+        .filter(|(d, _, _)| *d <= MAX_JUMP)
+        .collect();
+    pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let (mut track_used, mut point_used) = (vec![false; open.len()], vec![false; column.len()]);
+    for (_, t, c) in pairs {
+        if !track_used[t] && !point_used[c] {
+            track_used[t] = true;
+            point_used[c] = true;
+            open[t].push(column[c]);
+        }
+    }
+    let mut still_open = Vec::new();
+    for (t, track) in open.into_iter().enumerate() {
+        if track_used[t] {
+            still_open.push(track);
+        } else {
+            closed.push(track);
+        }
+    }
+    still_open.extend(
+        column
+            .iter()
+            .zip(&point_used)
+            .filter(|(_, used)| !**used)
+            .map(|(p, _)| vec![*p]),
+    );
+    still_open
+}
+
+/// A track cut where its stability changes; the joining segment takes the new stability.
+fn stability_runs(key: &str, track: &[BranchSample]) -> Vec<BranchLine> {
+    let mut lines = Vec::new();
+    let mut start: usize = 0;
+    for k in 1..=track.len() {
+        if k == track.len() || track[k].stable != track[k - 1].stable {
+            let from = start.saturating_sub(1);
+            lines.push(BranchLine {
+                key: key.to_string(),
+                points: track[from..k].iter().map(|p| (p.x, p.v, p.s)).collect(),
+                stable: track[start].stable,
+            });
+            start = k;
+        }
+    }
+    lines
+}
+
 /// Joins `samples` into lines (see the module doc). Samples of one family share their `x`
 /// values when they come from one line of parameter values. `events` are bifurcation points
 /// `(family, x)` found between samples: there the tracks are closed up, so that a branch runs
@@ -60,44 +126,7 @@ pub fn branch_lines(samples: &[BranchSample], events: &[(String, f64)]) -> Vec<B
         while i < mine.len() {
             let j = i + mine[i..].iter().take_while(|p| p.x == mine[i].x).count();
             let column = &mine[i..j];
-            let mut pairs: Vec<(f64, usize, usize)> = open
-                .iter()
-                .enumerate()
-                .flat_map(|(t, track)| {
-                    let end = *track.last().expect("tracks are never empty");
-                    column
-                        .iter()
-                        .enumerate()
-                        .map(move |(c, p)| (dist(end, p), t, c))
-                })
-                .filter(|(d, _, _)| *d <= MAX_JUMP)
-                .collect();
-            pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
-            let (mut track_used, mut point_used) =
-                (vec![false; open.len()], vec![false; column.len()]);
-            for (_, t, c) in pairs {
-                if !track_used[t] && !point_used[c] {
-                    track_used[t] = true;
-                    point_used[c] = true;
-                    open[t].push(column[c]);
-                }
-            }
-            let mut still_open = Vec::new();
-            for (t, track) in open.into_iter().enumerate() {
-                if track_used[t] {
-                    still_open.push(track);
-                } else {
-                    closed.push(track);
-                }
-            }
-            still_open.extend(
-                column
-                    .iter()
-                    .zip(&point_used)
-                    .filter(|(_, used)| !**used)
-                    .map(|(p, _)| vec![*p]),
-            );
-            open = still_open;
+            open = extend_tracks(open, column, &mut closed, &dist);
             i = j;
         }
         closed.extend(open);
@@ -114,19 +143,7 @@ pub fn branch_lines(samples: &[BranchSample], events: &[(String, f64)]) -> Vec<B
             join_at(&mut tracks, at, 1.5 * step, samples, key, &dist);
         }
         for track in tracks {
-            // Cut where the stability changes; the joining segment takes the new stability.
-            let mut start: usize = 0;
-            for k in 1..=track.len() {
-                if k == track.len() || track[k].stable != track[k - 1].stable {
-                    let from = start.saturating_sub(1);
-                    lines.push(BranchLine {
-                        key: key.to_string(),
-                        points: track[from..k].iter().map(|p| (p.x, p.v, p.s)).collect(),
-                        stable: track[start].stable,
-                    });
-                    start = k;
-                }
-            }
+            lines.extend(stability_runs(key, &track));
         }
     }
     lines

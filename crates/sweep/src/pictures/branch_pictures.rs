@@ -37,13 +37,6 @@ pub fn ode_bifurcation(
             (a.min(x), b.max(x))
         });
     let span = hi - lo;
-    let x_of = |p: &droplet_solver::reduced::bifurcation::SteadyPoint| {
-        if axis == Axis::EtaT {
-            p.eta_t
-        } else {
-            p.kappa2
-        }
-    };
     // Branches as lines (solid stable, dashed unstable); markers only at P / SN.
     let samples: Vec<BranchSample> = pts
         .iter()

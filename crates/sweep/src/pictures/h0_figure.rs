@@ -8,6 +8,18 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
 
+impl H0Picture {
+    /// `s = sqrt((p0 - kappa2) / p2)` sampled over `(k0, k1)` (padded by 0.001), below `smax`.
+    fn parabola(&self, p0: f64, (k0, k1): (f64, f64), smax: f64) -> Vec<(f64, f64)> {
+        (0..=300)
+            .map(|i| k0 - 0.001 + (k1 - k0 + 0.002) * i as f64 / 300.0)
+            .filter(|k| *k < p0)
+            .map(|k| (k, ((p0 - k) / self.p2).sqrt()))
+            .filter(|(_, s)| *s <= smax)
+            .collect()
+    }
+}
+
 impl Figure for H0Picture {
     fn size(&self) -> (u32, u32) {
         (900, 640)
@@ -49,14 +61,7 @@ impl Figure for H0Picture {
             .x_label_formatter(&|v| format!("{v:.3}"))
             .draw()
             .map_err(perr)?;
-        let curve = |p0: f64| -> Vec<(f64, f64)> {
-            (0..=300)
-                .map(|i| k0 - 0.001 + (k1 - k0 + 0.002) * i as f64 / 300.0)
-                .filter(|k| *k < p0)
-                .map(|k| (k, ((p0 - k) / fit.p2).sqrt()))
-                .filter(|(_, s)| *s <= smax)
-                .collect()
-        };
+        let curve = |p0: f64| fit.parabola(p0, (k0, k1), smax);
         chart
             .draw_series(LineSeries::new(curve(fit.p0), BLUE.stroke_width(2)))
             .map_err(perr)?
