@@ -87,6 +87,27 @@ pub fn references(plan: &BenchPlan) -> Result<References, SweepError> {
     })
 }
 
+/// The box's mirror line nearest to a run's final orientation: its motion (MD) or its long
+/// axis (ID). The periodic images make x and diagonal states differ.
+fn nearest_mirror(
+    st: &droplet_solver::model::state::DropletState,
+    class: StateClass,
+) -> MirrorAxis {
+    let diagonal = if class == StateClass::MD {
+        let ang = st.vy.atan2(st.vx).rem_euclid(std::f64::consts::FRAC_PI_2);
+        (ang - std::f64::consts::FRAC_PI_4).abs() < std::f64::consts::FRAC_PI_8
+    } else {
+        st.b2.abs() > st.a2.abs()
+    };
+    if diagonal {
+        MirrorAxis::Diagonal
+    } else {
+        MirrorAxis::X
+    }
+}
+
+/// The reference of case `c`: the transient by accurate fixed steps; a steady case classed by
+/// a fine run, its `v` and `s` by Newton on the exact steady equations (0 for the disk).
 fn reference(plan: &BenchPlan, c: &Case) -> Result<Reference, SweepError> {
     if c.window.is_some() {
         let s = plan.transient_reference;
@@ -128,19 +149,7 @@ fn reference(plan: &BenchPlan, c: &Case) -> Result<Reference, SweepError> {
         StateClass::MD | StateClass::ID => {
             let mut newton = SteadySolver::new(params(c), plan.n_newton)?;
             let st = &out.state;
-            // The box's mirror line nearest to the run's final orientation: its motion (MD)
-            // or its long axis (ID). The periodic images make x and diagonal states differ.
-            let diagonal = if class == StateClass::MD {
-                let ang = st.vy.atan2(st.vx).rem_euclid(std::f64::consts::FRAC_PI_2);
-                (ang - std::f64::consts::FRAC_PI_4).abs() < std::f64::consts::FRAC_PI_8
-            } else {
-                st.b2.abs() > st.a2.abs()
-            };
-            let axis = if diagonal {
-                MirrorAxis::Diagonal
-            } else {
-                MirrorAxis::X
-            };
+            let axis = nearest_mirror(st, class);
             // Moving droplets are elongated across the motion (amplitude < 0 on the axis).
             let (v0, c0) = if class == StateClass::MD {
                 (out.v, -out.s)

@@ -113,6 +113,35 @@ fn markdown(rows: &[crate::bench::scoring::BenchRow]) -> String {
     out
 }
 
+/// The benchmark table's metadata: the machine, the command, the threads and the plan; on a
+/// re-scoring, also those of the measurement it re-scores.
+fn table_metadata(
+    a: &BenchOptions,
+    table: &Path,
+    plan: &BenchPlan,
+    machine: &str,
+    jobs: usize,
+) -> Result<Vec<(String, String)>, SweepError> {
+    let mut meta = sweep_tables::metadata(None);
+    if a.rescore {
+        // Keep the provenance of the measurement; add the re-scoring's.
+        let old = sweep_tables::read_metadata(table)?;
+        for k in ["machine", "command", "jobs", "git_commit"] {
+            if let Some(v) = old.get(k) {
+                meta.push((format!("measured_{k}"), v.clone()));
+            }
+        }
+    }
+    meta.push(("machine".into(), machine.to_string()));
+    meta.push((
+        "command".into(),
+        std::env::args().collect::<Vec<_>>().join(" "),
+    ));
+    meta.push(("jobs".into(), jobs.to_string()));
+    meta.push(("plan".into(), serde_json::to_string(plan).expect("json")));
+    Ok(meta)
+}
+
 /// Runs (or with `rescore`, re-scores) the benchmark into `opts.out`: references loaded or
 /// computed once, the rows in a pool of `opts.jobs` threads, then `bench.parquet`, `bench.md`,
 /// `summary.json` and the work-precision picture.
@@ -155,23 +184,7 @@ pub fn run_benchmark(a: &BenchOptions) -> Result<BenchReport, SweepError> {
     })?;
     let summary = summarise(&refs, &rows);
     let machine = machine();
-    let mut meta = sweep_tables::metadata(None);
-    if a.rescore {
-        // Keep the provenance of the measurement; add the re-scoring's.
-        let old = sweep_tables::read_metadata(&table)?;
-        for k in ["machine", "command", "jobs", "git_commit"] {
-            if let Some(v) = old.get(k) {
-                meta.push((format!("measured_{k}"), v.clone()));
-            }
-        }
-    }
-    meta.push(("machine".into(), machine.clone()));
-    meta.push((
-        "command".into(),
-        std::env::args().collect::<Vec<_>>().join(" "),
-    ));
-    meta.push(("jobs".into(), pool.current_num_threads().to_string()));
-    meta.push(("plan".into(), serde_json::to_string(&plan).expect("json")));
+    let meta = table_metadata(a, &table, &plan, &machine, pool.current_num_threads())?;
     let mut df = table::bench_frame(&rows)?;
     sweep_tables::write_parquet(&mut df, &table, meta)?;
     let md_path = a.out.join("bench.md");

@@ -205,6 +205,18 @@ fn run_refined(
     Ok((plan, mine, total))
 }
 
+/// A pool of `jobs` worker threads (default: one per core) and its size.
+fn worker_pool(jobs: Option<usize>) -> Result<(rayon::ThreadPool, usize), SweepError> {
+    let jobs = jobs
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
+        .max(1);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(jobs)
+        .build()
+        .map_err(|e| SweepError::Invalid(format!("cannot start {jobs} worker threads: {e}")))?;
+    Ok((pool, jobs))
+}
+
 /// The shard and refinement level this invocation runs (`--shard I/N --level L` on a spec
 /// with `refine:`), or none; the combinations that make no sense are refused.
 fn shard_level(spec: &SweepSpec, opts: &SweepOptions) -> Result<Option<(Shard, u32)>, SweepError> {
@@ -254,14 +266,7 @@ pub fn run_sweep(
         Some(sh) => Store::open_shard(out, &sh.lock_name())?,
     };
     store.write_file("spec.yaml", spec.source.as_bytes())?;
-    let jobs = opts
-        .jobs
-        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
-        .max(1);
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(jobs)
-        .build()
-        .map_err(|e| SweepError::Invalid(format!("cannot start {jobs} worker threads: {e}")))?;
+    let (pool, jobs) = worker_pool(opts.jobs)?;
     let (plan, mine, ran) = match &spec.refine {
         Some(lattice) => run_refined(spec, lattice, &store, &pool, opts.progress, shard_level)?,
         None => {
