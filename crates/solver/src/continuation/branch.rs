@@ -188,6 +188,103 @@ impl Tracer<'_> {
         }
     }
 
+    /// Where the trace ends by `stop` between `a` and `b` (the last step, of size `ds`): the
+    /// end of the line located exactly, or the meeting with another family as a pitchfork
+    /// event; returns why the branch ends.
+    fn finish_at(
+        &mut self,
+        stop: Stop,
+        (a, b): (&CurvePoint, &CurvePoint),
+        ds: f64,
+        out: &mut Vec<BranchPoint>,
+        events: &mut Vec<BranchEvent>,
+    ) -> String {
+        let family = self.prob.family;
+        match stop {
+            Stop::Range(bound) => {
+                let (g0, g1) = (q_of(a) - bound, q_of(b) - bound);
+                let mut g = |_: &mut Problem, p: &CurvePoint| q_of(p) - bound;
+                let (p, _) = self.locate((a, b), ds, (g0, g1), &mut g);
+                // Not when only the step beyond the end could be had.
+                if (q_of(&p) - bound).abs() < 1e-9 {
+                    let v = self.prob.verdict(&p.y);
+                    out.push(self.point(&p.y, v));
+                }
+                "end of the line".to_string()
+            }
+            Stop::Meets => {
+                let Some(y) = self.prob.meeting(&a.y) else {
+                    return "meets another family (not located)".to_string();
+                };
+                let verdict = self.prob.verdict(&y);
+                let pt = self.point(&y, verdict);
+                let other = if family == Family::ID || pt.s < 1e-6 {
+                    "IC"
+                } else {
+                    "ID"
+                };
+                events.push(BranchEvent {
+                    kind: "P",
+                    what: format!("meets {other}"),
+                    point: pt.clone(),
+                    eigenvalue: None,
+                    precision: 0.0,
+                });
+                out.push(pt);
+                format!("meets {other} (pitchfork)")
+            }
+            Stop::Deformation => format!("deformation reached {MAX_DEFORMATION}"),
+        }
+    }
+
+    /// The bifurcation between two consecutive states `a` and `b` (verdicts `va`, `vb`, step
+    /// `ds`), located on the branch: a fold (the tangent's parameter component changes sign)
+    /// or a change in the number of unstable eigenvalues (P, or H for a complex pair).
+    fn event_between(
+        &mut self,
+        (a, va): (&CurvePoint, &Verdict),
+        (b, vb): (&CurvePoint, &Verdict),
+        ds: f64,
+    ) -> Option<BranchEvent> {
+        let tq = |p: &CurvePoint| *p.tangent.last().expect("q");
+        if tq(a) != 0.0 && tq(b).signum() != tq(a).signum() {
+            let mut g = |_: &mut Problem, p: &CurvePoint| tq(p);
+            let (p, precision) = self.locate((a, b), ds, (tq(a), tq(b)), &mut g);
+            let verdict = self.prob.verdict(&p.y);
+            let pt = self.point(&p.y, verdict);
+            Some(BranchEvent {
+                kind: "SN",
+                what: "fold".into(),
+                point: pt,
+                eigenvalue: None,
+                precision,
+            })
+        } else if va.unstable != vb.unstable {
+            let idx = va.unstable.min(vb.unstable);
+            let re_at = |v: &Verdict| v.decisive().get(idx).map_or(-1.0, |l| l.re);
+            let (g0, g1) = (re_at(va), re_at(vb));
+            let mut g = |prob: &mut Problem, p: &CurvePoint| re_at(&prob.verdict(&p.y));
+            let (p, precision) = self.locate((a, b), ds, (g0, g1), &mut g);
+            let verdict = self.prob.verdict(&p.y);
+            let lambda = verdict.decisive().get(idx).copied();
+            let complex = lambda.is_some_and(|l| l.im.abs() > 1e-7);
+            let pt = self.point(&p.y, verdict);
+            Some(BranchEvent {
+                kind: if complex { "H" } else { "P" },
+                what: if complex {
+                    "complex pair crosses 0 (Hopf)".into()
+                } else {
+                    "real eigenvalue crosses 0".into()
+                },
+                point: pt,
+                eigenvalue: lambda.map(|l| [l.re, l.im]),
+                precision,
+            })
+        } else {
+            None
+        }
+    }
+
     /// Follows the branch from `first` (tangent oriented) until it stops.
     fn trace(
         &mut self,
@@ -200,7 +297,6 @@ impl Tracer<'_> {
         let mut out = vec![self.point(&first.y, first_verdict.clone())];
         let mut events = Vec::new();
         let (mut a, mut va) = (first, first_verdict);
-        let tq = |p: &CurvePoint| *p.tangent.last().expect("q");
         let along = |p: &CurvePoint| -> f64 {
             match family {
                 Family::IC => 1.0,
@@ -231,79 +327,11 @@ impl Tracer<'_> {
             } else {
                 None
             };
-            match stop {
-                Some(Stop::Range(bound)) => {
-                    let (g0, g1) = (q_of(&a) - bound, q_of(&b) - bound);
-                    let mut g = |_: &mut Problem, p: &CurvePoint| q_of(p) - bound;
-                    let (p, _) = self.locate((&a, &b), step.ds, (g0, g1), &mut g);
-                    // Not when only the step beyond the end could be had.
-                    if (q_of(&p) - bound).abs() < 1e-9 {
-                        let v = self.prob.verdict(&p.y);
-                        out.push(self.point(&p.y, v));
-                    }
-                    break "end of the line".to_string();
-                }
-                Some(Stop::Meets) => {
-                    let Some(y) = self.prob.meeting(&a.y) else {
-                        break "meets another family (not located)".to_string();
-                    };
-                    let verdict = self.prob.verdict(&y);
-                    let pt = self.point(&y, verdict);
-                    let other = if family == Family::ID || pt.s < 1e-6 {
-                        "IC"
-                    } else {
-                        "ID"
-                    };
-                    events.push(BranchEvent {
-                        kind: "P",
-                        what: format!("meets {other}"),
-                        point: pt.clone(),
-                        eigenvalue: None,
-                        precision: 0.0,
-                    });
-                    out.push(pt);
-                    break format!("meets {other} (pitchfork)");
-                }
-                Some(Stop::Deformation) => {
-                    break format!("deformation reached {MAX_DEFORMATION}");
-                }
-                None => {}
+            if let Some(stop) = stop {
+                break self.finish_at(stop, (&a, &b), step.ds, &mut out, &mut events);
             }
             let vb = self.prob.verdict(&b.y);
-            if tq(&a) != 0.0 && tq(&b).signum() != tq(&a).signum() {
-                let mut g = |_: &mut Problem, p: &CurvePoint| tq(p);
-                let (p, precision) = self.locate((&a, &b), step.ds, (tq(&a), tq(&b)), &mut g);
-                let verdict = self.prob.verdict(&p.y);
-                let pt = self.point(&p.y, verdict);
-                events.push(BranchEvent {
-                    kind: "SN",
-                    what: "fold".into(),
-                    point: pt,
-                    eigenvalue: None,
-                    precision,
-                });
-            } else if va.unstable != vb.unstable {
-                let idx = va.unstable.min(vb.unstable);
-                let re_at = |v: &Verdict| v.decisive().get(idx).map_or(-1.0, |l| l.re);
-                let (g0, g1) = (re_at(&va), re_at(&vb));
-                let mut g = |prob: &mut Problem, p: &CurvePoint| re_at(&prob.verdict(&p.y));
-                let (p, precision) = self.locate((&a, &b), step.ds, (g0, g1), &mut g);
-                let verdict = self.prob.verdict(&p.y);
-                let lambda = verdict.decisive().get(idx).copied();
-                let complex = lambda.is_some_and(|l| l.im.abs() > 1e-7);
-                let pt = self.point(&p.y, verdict);
-                events.push(BranchEvent {
-                    kind: if complex { "H" } else { "P" },
-                    what: if complex {
-                        "complex pair crosses 0 (Hopf)".into()
-                    } else {
-                        "real eigenvalue crosses 0".into()
-                    },
-                    point: pt,
-                    eigenvalue: lambda.map(|l| [l.re, l.im]),
-                    precision,
-                });
-            }
+            events.extend(self.event_between((&a, &va), (&b, &vb), step.ds));
             out.push(self.point(&b.y, vb.clone()));
             a = b;
             va = vb;
