@@ -184,14 +184,9 @@ impl FoldSystem {
     }
 }
 
-/// The MD saddle-node curve on `mirror`: located on the one-parameter MD branch at the first
-/// `kappa2` of `starts` that has a fold, then continued both ways in `(eta_t, kappa2)`.
-pub fn md_fold_curve(
-    w: &Window,
-    mirror: MirrorAxis,
-    starts: &[f64],
-) -> Result<Vec<(f64, f64)>, SolverError> {
-    let mut first = None;
+/// The MD fold on the first of the lines `kappa2 = starts[i]` (eta_t across the window) that
+/// has one: `(v, shape amplitude, eta_t, kappa2)` there.
+fn first_fold(w: &Window, mirror: MirrorAxis, starts: &[f64]) -> Option<(f64, f64, f64, f64)> {
     for &k in starts {
         let line = Line {
             base: ModelParams {
@@ -213,10 +208,20 @@ pub fn md_fold_curve(
                 MirrorAxis::X => (e.point.z[0], e.point.z[2]),
                 MirrorAxis::Diagonal => (e.point.v, e.point.z[3]),
             };
-            first = Some((v, c, e.point.eta_t, k));
-            break;
+            return Some((v, c, e.point.eta_t, k));
         }
     }
+    None
+}
+
+/// The MD saddle-node curve on `mirror`: located on the one-parameter MD branch at the first
+/// `kappa2` of `starts` that has a fold, then continued both ways in `(eta_t, kappa2)`.
+pub fn md_fold_curve(
+    w: &Window,
+    mirror: MirrorAxis,
+    starts: &[f64],
+) -> Result<Vec<(f64, f64)>, SolverError> {
+    let first = first_fold(w, mirror, starts);
     let Some((v, c, eta, kappa)) = first else {
         return Ok(Vec::new());
     };
