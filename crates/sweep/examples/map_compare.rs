@@ -61,9 +61,18 @@ fn main() {
             Some((it.next()?.to_string(), it.next()?.parse().ok()?))
         })
         .collect();
+    cost_table(&a, &b, &elapsed);
+    class_changes(&a, &b);
+    for s in [&a, &b] {
+        unfinished_runs(s);
+    }
+}
+
+/// Runs, endings and time of both sweeps, one row each.
+fn cost_table(a: &Sweep, b: &Sweep, elapsed: &[(String, f64)]) {
     println!("| sweep | runs | steady | t_max / step_limit / saddle | diverged | sweep wall (s) | sum of run wall_s (s) | mean t_end |");
     println!("|---|---|---|---|---|---|---|---|");
-    for s in [&a, &b] {
+    for s in [a, b] {
         let status = strings(&s.runs, "status");
         let count = |w: &str| status.iter().filter(|x| x.as_deref() == Some(w)).count();
         let wall = floats(&s.runs, "wall_s").iter().sum::<f64>();
@@ -82,6 +91,10 @@ fn main() {
             t_end.iter().sum::<f64>() / t_end.len().max(1) as f64
         );
     }
+}
+
+/// The points whose class differs between the two sweeps.
+fn class_changes(a: &Sweep, b: &Sweep) {
     let classes = |s: &Sweep| {
         let (e, k) = (floats(&s.points, "eta_t"), floats(&s.points, "kappa2"));
         let c = strings(&s.points, "class");
@@ -89,7 +102,7 @@ fn main() {
             .map(|i| ((e[i], k[i]), c[i].clone().unwrap_or_default()))
             .collect::<Vec<_>>()
     };
-    let (ca, cb) = (classes(&a), classes(&b));
+    let (ca, cb) = (classes(a), classes(b));
     let differ: Vec<_> = ca
         .iter()
         .filter_map(|(p, c)| {
@@ -110,37 +123,39 @@ fn main() {
             println!("| {e:.4} | {k:.4} | {x} | {y} |");
         }
     }
-    for s in [&a, &b] {
-        let status = strings(&s.runs, "status");
-        let diag = strings(&s.runs, "diagnosis");
-        let ic = strings(&s.runs, "ic");
-        let (e, k) = (floats(&s.runs, "eta_t"), floats(&s.runs, "kappa2"));
-        let unfinished: Vec<usize> = (0..status.len())
-            .filter(|&i| {
-                matches!(
-                    status[i].as_deref(),
-                    Some("t_max") | Some("step_limit") | Some("saddle")
-                )
-            })
-            .collect();
+}
+
+/// The runs of `s` that did not finish, with their diagnosis.
+fn unfinished_runs(s: &Sweep) {
+    let status = strings(&s.runs, "status");
+    let diag = strings(&s.runs, "diagnosis");
+    let ic = strings(&s.runs, "ic");
+    let (e, k) = (floats(&s.runs, "eta_t"), floats(&s.runs, "kappa2"));
+    let unfinished: Vec<usize> = (0..status.len())
+        .filter(|&i| {
+            matches!(
+                status[i].as_deref(),
+                Some("t_max") | Some("step_limit") | Some("saddle")
+            )
+        })
+        .collect();
+    println!(
+        "\nRuns of `{}` that did not finish: {}\n",
+        s.name,
+        unfinished.len()
+    );
+    if unfinished.is_empty() {
+        return;
+    }
+    println!("| eta_t | kappa2 | IC | diagnosis |");
+    println!("|---|---|---|---|");
+    for i in unfinished {
         println!(
-            "\nRuns of `{}` that did not finish: {}\n",
-            s.name,
-            unfinished.len()
+            "| {:.4} | {:.4} | {} | {} |",
+            e[i],
+            k[i],
+            ic[i].as_deref().unwrap_or("-"),
+            diag[i].as_deref().unwrap_or("(not recorded)")
         );
-        if unfinished.is_empty() {
-            continue;
-        }
-        println!("| eta_t | kappa2 | IC | diagnosis |");
-        println!("|---|---|---|---|");
-        for i in unfinished {
-            println!(
-                "| {:.4} | {:.4} | {} | {} |",
-                e[i],
-                k[i],
-                ic[i].as_deref().unwrap_or("-"),
-                diag[i].as_deref().unwrap_or("(not recorded)")
-            );
-        }
     }
 }
