@@ -2,7 +2,7 @@
 //! their stability (paper Fig. 3b, for the PDE): pseudo-arclength continuation
 //! ([`arclength`]) of the co-moving force balance of one family ([`problem`]), the stability
 //! verdict of every state with the near-neutral rotation mode set aside ([`crate::roots::verdict`]), the
-//! bifurcation points along a branch ([`branch`]), and their continuation in both parameters,
+//! bifurcation points along a branch ([`branch`], located by [`events`]), and their continuation in both parameters,
 //! the PDE's own phase boundaries ([`boundaries`]).
 //!
 //! May use: `numerics`, `model`, `contract`, `reduced`, `roots`. Used by: the sweep crate and
@@ -10,4 +10,5 @@
 pub mod arclength;
 pub mod boundaries;
 pub mod branch;
+pub mod events;
 pub mod problem;

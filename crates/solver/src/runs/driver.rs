@@ -2,17 +2,16 @@
 //! divergence (paper Sect. 3 stop rule, [`crate::contract::stop_rule`]), recording a time series when
 //! asked.
 use crate::contract::ending::{Ending, SteadyMethod};
-use crate::contract::outcome::{RunOutcome, RunStatus, SeriesRow, Unsettled};
+use crate::contract::outcome::{RunOutcome, RunStatus, Unsettled};
 use crate::contract::settings::{ModelKind, SolverSettings};
 use crate::contract::stop_rule::{diverged, SteadyTest};
 use crate::error::SolverError;
 use crate::model::classify::StateClass;
 use crate::model::initial::InitialCondition;
 use crate::model::params::ModelParams;
-use crate::model::state::DropletState;
+use crate::runs::clock::{Clock, Recorder, Step};
 use crate::runs::finding::Diagnosis;
 use crate::runs::finish::{Decision, NewtonFinish};
-use crate::stepping::step_control::PiController;
 use crate::stepping::{comoving_etd::ComovingEtd, paper_fd::PaperFd, Scheme, SchemeKind};
 use std::time::Instant;
 
@@ -253,154 +252,6 @@ impl Default for End {
         }
     }
 }
-
-/// The outcome of one pass of the time loop's stepping.
-enum Step {
-    Taken,
-    /// An adaptive step was refused; try again with the smaller step.
-    Retry,
-    Stop(RunStatus),
-}
-
-/// The time of a run and its steps: fixed (`dt`), or adaptive under the PI controller.
-struct Clock {
-    adaptive: bool,
-    /// A run that has not ended on a stable state by t_max runs on (setting `run_on`).
-    give_up: f64,
-    max_steps: u64,
-    step_cap: u64,
-    /// Times within `slack` of a target count as reaching it (round-off of sums of steps).
-    slack: f64,
-    controller: PiController,
-    h: f64,
-    t: f64,
-    steps: u64,
-    rejected: u64,
-    max_step_error: Option<f64>,
-}
-
-impl Clock {
-    fn new(cfg: &SolverSettings) -> Self {
-        let give_up = cfg.give_up_at();
-        Self {
-            adaptive: cfg.adaptive(),
-            give_up,
-            max_steps: (give_up / cfg.dt).round() as u64,
-            step_cap: crate::contract::limits::adaptive_step_cap(cfg),
-            slack: 1e-9 * cfg.dt,
-            controller: PiController::new(cfg.dt_max),
-            h: cfg.dt,
-            t: 0.0,
-            steps: 0,
-            rejected: 0,
-            max_step_error: None,
-        }
-    }
-
-    /// One step of `scheme`, landing on `next_record` (adaptive steps), or why the run stops.
-    fn step(
-        &mut self,
-        scheme: &mut dyn Scheme,
-        cfg: &SolverSettings,
-        next_record: Option<f64>,
-    ) -> Step {
-        if !self.adaptive {
-            if self.steps >= self.max_steps {
-                return Step::Stop(RunStatus::TMax);
-            }
-            let a = scheme.attempt(cfg.dt, f64::INFINITY);
-            self.steps += 1;
-            self.t = self.steps as f64 * cfg.dt;
-            self.max_step_error = larger(self.max_step_error, a.error);
-            return Step::Taken;
-        }
-        if self.t >= self.give_up - self.slack {
-            return Step::Stop(RunStatus::TMax);
-        }
-        if self.steps >= self.step_cap {
-            return Step::Stop(RunStatus::StepLimit);
-        }
-        let mut h_try = self.h.min(self.give_up - self.t);
-        if let Some(tr) = next_record {
-            h_try = h_try.min(tr - self.t);
-        }
-        let a = scheme.attempt(h_try, cfg.tol);
-        let err = a.error.unwrap_or(0.0) / cfg.tol;
-        if !a.accepted {
-            self.rejected += 1;
-            self.h = self.controller.reject(h_try, err);
-            if self.h < MIN_STEP {
-                return Step::Stop(RunStatus::Diverged);
-            }
-            return Step::Retry;
-        }
-        self.h = self.controller.accept(h_try, err);
-        self.t += h_try;
-        self.steps += 1;
-        self.max_step_error = larger(self.max_step_error, a.error);
-        Step::Taken
-    }
-}
-
-/// The time series of a run, one row every `every` time units (if asked).
-struct Recorder {
-    every: Option<f64>,
-    /// The next recording time.
-    next: Option<f64>,
-    slack: f64,
-    rows: Vec<SeriesRow>,
-}
-
-impl Recorder {
-    fn new(every: Option<f64>, start: &DropletState, slack: f64) -> Self {
-        Self {
-            every,
-            next: every,
-            slack,
-            rows: every.map_or_else(Vec::new, |_| vec![SeriesRow::at(0.0, start)]),
-        }
-    }
-
-    /// Records `st` if `t` reached the next recording time.
-    fn sample(&mut self, t: f64, st: &DropletState) {
-        if let (Some(tr), Some(every)) = (self.next, self.every) {
-            if t >= tr - self.slack {
-                self.rows.push(SeriesRow::at(t, st));
-                self.next = Some(tr + every);
-            }
-        }
-    }
-
-    /// After a leap to `t`: the state there, and the next recording time past it (the series
-    /// skips the leapt times).
-    fn after_leap(&mut self, t: f64, st: &DropletState) {
-        if let (Some(tr), Some(every)) = (self.next, self.every) {
-            self.rows.push(SeriesRow::at(t, st));
-            if tr <= t {
-                self.next = Some(tr + every * (((t - tr) / every).floor() + 1.0));
-            }
-        }
-    }
-
-    /// The series, ending with the final state at `t`.
-    fn finish(mut self, t: f64, st: &DropletState) -> Vec<SeriesRow> {
-        if self.rows.last().is_some_and(|r| r.t < t - self.slack) {
-            self.rows.push(SeriesRow::at(t, st));
-        }
-        self.rows
-    }
-}
-
-fn larger(a: Option<f64>, b: Option<f64>) -> Option<f64> {
-    match (a, b) {
-        (Some(x), Some(y)) => Some(x.max(y)),
-        (x, None) => x,
-        (None, y) => y,
-    }
-}
-
-/// Smallest adaptive step before a run is declared diverged (the error estimate cannot be met).
-const MIN_STEP: f64 = 1e-9;
 
 /// Runs `params` from `ic` with `settings` to the end.
 pub fn simulate(

@@ -5,6 +5,7 @@
 //!
 //! May use: every folder below it (`numerics`, `model`, `stepping`, `contract`, `reduced`,
 //! `roots`). Used by: the sweep crate and the CLI.
+pub mod clock;
 pub mod driver;
 pub mod finding;
 pub mod finish;

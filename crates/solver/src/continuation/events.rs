@@ -1,0 +1,166 @@
+//! The events along a branch, located on it: a fold (SN), a change in the number of unstable
+//! eigenvalues (P, or H for a complex pair), the end of the line, the meeting with another
+//! family; each by bisection on the arclength between two consecutive states.
+use crate::continuation::arclength::{point_at, CurvePoint};
+use crate::continuation::branch::{q_of, BranchEvent, BranchPoint, Stop, Tracer, MAX_DEFORMATION};
+use crate::continuation::problem::{Family, Problem};
+use crate::roots::verdict::Verdict;
+
+impl Tracer<'_> {
+    /// The point between `a` (`g(a) = ga`) and `b`, `a`'s arclength `ds` further (`g = gb`,
+    /// opposite sign), where `g` vanishes: the Illinois variant of regula falsi in arclength.
+    /// Returns it with its precision in the varied parameter (the last bracket's width);
+    /// when no point inside could be corrected, `b` itself with the whole step's width.
+    pub(super) fn locate(
+        &mut self,
+        (a, b): (&CurvePoint, &CurvePoint),
+        ds: f64,
+        (ga, gb): (f64, f64),
+        g: &mut dyn FnMut(&mut Problem, &CurvePoint) -> f64,
+    ) -> (CurvePoint, f64) {
+        let (mut lo, mut hi, mut glo, mut ghi) = (0.0, ds, ga, gb);
+        let (mut q_lo, mut q_hi) = (q_of(a), q_of(b));
+        let mut side = 0i32;
+        let mut best: Option<CurvePoint> = None;
+        let mut exact = false;
+        for _ in 0..60 {
+            let s = if (ghi - glo).abs() > 0.0 {
+                (lo * ghi - hi * glo) / (ghi - glo)
+            } else {
+                0.5 * (lo + hi)
+            };
+            let s = if s > lo && s < hi { s } else { 0.5 * (lo + hi) };
+            let prob = &mut *self.prob;
+            let Some((p, _)) = point_at(&mut |y: &[f64]| prob.residual(y), a, s, &self.opts) else {
+                break;
+            };
+            let gs = g(self.prob, &p);
+            let qs = q_of(&p);
+            best = Some(p);
+            if gs == 0.0 {
+                exact = true;
+                break;
+            }
+            if gs.signum() == glo.signum() {
+                (lo, glo, q_lo) = (s, gs, qs);
+                if side == -1 {
+                    ghi *= 0.5;
+                }
+                side = -1;
+            } else {
+                (hi, ghi, q_hi) = (s, gs, qs);
+                if side == 1 {
+                    glo *= 0.5;
+                }
+                side = 1;
+            }
+            if (hi - lo) < 1e-12 {
+                break;
+            }
+        }
+        let span = self.prob.span.abs();
+        let rounding = span * f64::EPSILON * 4.0;
+        match best {
+            Some(p) if exact => (p, rounding),
+            Some(p) => (p, ((q_hi - q_lo).abs() * span).max(rounding)),
+            None => (b.clone(), ((q_of(b) - q_of(a)).abs() * span).max(rounding)),
+        }
+    }
+
+    /// Where the trace ends by `stop` between `a` and `b` (the last step, of size `ds`): the
+    /// end of the line located exactly, or the meeting with another family as a pitchfork
+    /// event; returns why the branch ends.
+    pub(super) fn finish_at(
+        &mut self,
+        stop: Stop,
+        (a, b): (&CurvePoint, &CurvePoint),
+        ds: f64,
+        out: &mut Vec<BranchPoint>,
+        events: &mut Vec<BranchEvent>,
+    ) -> String {
+        let family = self.prob.family;
+        match stop {
+            Stop::Range(bound) => {
+                let (g0, g1) = (q_of(a) - bound, q_of(b) - bound);
+                let mut g = |_: &mut Problem, p: &CurvePoint| q_of(p) - bound;
+                let (p, _) = self.locate((a, b), ds, (g0, g1), &mut g);
+                // Not when only the step beyond the end could be had.
+                if (q_of(&p) - bound).abs() < 1e-9 {
+                    let v = self.prob.verdict(&p.y);
+                    out.push(self.point(&p.y, v));
+                }
+                "end of the line".to_string()
+            }
+            Stop::Meets => {
+                let Some(y) = self.prob.meeting(&a.y) else {
+                    return "meets another family (not located)".to_string();
+                };
+                let verdict = self.prob.verdict(&y);
+                let pt = self.point(&y, verdict);
+                let other = if family == Family::ID || pt.s < 1e-6 {
+                    "IC"
+                } else {
+                    "ID"
+                };
+                events.push(BranchEvent {
+                    kind: "P",
+                    what: format!("meets {other}"),
+                    point: pt.clone(),
+                    eigenvalue: None,
+                    precision: 0.0,
+                });
+                out.push(pt);
+                format!("meets {other} (pitchfork)")
+            }
+            Stop::Deformation => format!("deformation reached {MAX_DEFORMATION}"),
+        }
+    }
+
+    /// The bifurcation between two consecutive states `a` and `b` (verdicts `va`, `vb`, step
+    /// `ds`), located on the branch: a fold (the tangent's parameter component changes sign)
+    /// or a change in the number of unstable eigenvalues (P, or H for a complex pair).
+    pub(super) fn event_between(
+        &mut self,
+        (a, va): (&CurvePoint, &Verdict),
+        (b, vb): (&CurvePoint, &Verdict),
+        ds: f64,
+    ) -> Option<BranchEvent> {
+        let tq = |p: &CurvePoint| *p.tangent.last().expect("q");
+        if tq(a) != 0.0 && tq(b).signum() != tq(a).signum() {
+            let mut g = |_: &mut Problem, p: &CurvePoint| tq(p);
+            let (p, precision) = self.locate((a, b), ds, (tq(a), tq(b)), &mut g);
+            let verdict = self.prob.verdict(&p.y);
+            let pt = self.point(&p.y, verdict);
+            Some(BranchEvent {
+                kind: "SN",
+                what: "fold".into(),
+                point: pt,
+                eigenvalue: None,
+                precision,
+            })
+        } else if va.unstable != vb.unstable {
+            let idx = va.unstable.min(vb.unstable);
+            let re_at = |v: &Verdict| v.decisive().get(idx).map_or(-1.0, |l| l.re);
+            let (g0, g1) = (re_at(va), re_at(vb));
+            let mut g = |prob: &mut Problem, p: &CurvePoint| re_at(&prob.verdict(&p.y));
+            let (p, precision) = self.locate((a, b), ds, (g0, g1), &mut g);
+            let verdict = self.prob.verdict(&p.y);
+            let lambda = verdict.decisive().get(idx).copied();
+            let complex = lambda.is_some_and(|l| l.im.abs() > 1e-7);
+            let pt = self.point(&p.y, verdict);
+            Some(BranchEvent {
+                kind: if complex { "H" } else { "P" },
+                what: if complex {
+                    "complex pair crosses 0 (Hopf)".into()
+                } else {
+                    "real eigenvalue crosses 0".into()
+                },
+                point: pt,
+                eigenvalue: lambda.map(|l| [l.re, l.im]),
+                precision,
+            })
+        } else {
+            None
+        }
+    }
+}
