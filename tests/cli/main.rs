@@ -1,0 +1,22 @@
+//! End-to-end tests through the `droplet` binary, one file per group of commands (one test
+//! binary): `sweep` (sweep, merge, resume, specs), `simulate`, `ode`, `commands` (bench, help).
+mod commands;
+#[path = "../common/mod.rs"]
+mod common;
+mod ode;
+mod simulate;
+mod sweep;
+
+/// A tiny sweep (coarse grid, N = 32, fixed steps so that it lasts long enough to be
+/// interrupted): seconds, enough for resume and locking tests.
+pub(crate) const TINY: &str = "name: tiny
+grid:
+  eta_t: [0.07, 0.09, 0.11]
+  kappa2: {start: 0.10, stop: 0.14, step: 0.02}
+initial_conditions: [i, iii]
+solver:
+  n: 32
+  dt: 0.05
+  tol: 0
+  t_max: 150
+";
