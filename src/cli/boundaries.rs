@@ -13,10 +13,15 @@ use std::path::PathBuf;
 /// to ~1e-10. Writes DIR/boundaries.parquet (model = pde, and the reduced model's analytic
 /// curves as model = ode) and DIR/boundaries.png/.svg. If DIR holds a sweep, its window is
 /// the default and its phase map is redrawn with the boundaries on it.
+///
+/// With several grid sizes (`--n 192,256,384`) it is a convergence study: the boundaries at
+/// each N go to DIR/n<N>/, and DIR/convergence.parquet gives each curve's shift from the
+/// previous N (the largest distance of its points from the coarser curve, in the plane),
+/// drawn together in DIR/boundaries_by_n.png/.svg.
 #[derive(clap::Args)]
 #[command(
     allow_negative_numbers = true,
-    after_help = "Examples:\n  droplet boundaries --out results/boundaries                  # the Fig. 2a window\n  droplet boundaries --out out/fig2a                           # onto a sweep's phase map\n  droplet boundaries --eta-t 0.07,0.1 --kappa2 0.1,0.17 --n 128 --json"
+    after_help = "Examples:\n  droplet boundaries --out results/boundaries                  # the Fig. 2a window\n  droplet boundaries --out out/fig2a                           # onto a sweep's phase map\n  droplet boundaries --eta-t 0.07,0.1 --kappa2 0.1,0.17 --n 128 --json\n  droplet boundaries --n 128,192,256 --out out/convergence    # how far the grid moves each boundary"
 )]
 pub struct Args {
     /// eta_t window LO,HI (default: the sweep's in --out, else 0.07,0.10).
@@ -25,9 +30,9 @@ pub struct Args {
     /// kappa2 window LO,HI (default: the sweep's in --out, else 0.10,0.17).
     #[arg(long, value_name = "LO,HI", allow_hyphen_values = true)]
     kappa2: Option<String>,
-    /// Grid points per side.
-    #[arg(long, default_value_t = 192)]
-    n: usize,
+    /// Grid points per side, or a list of them (N1,N2,...: a convergence study).
+    #[arg(long, default_value = "192", value_name = "N[,N...]")]
+    n: String,
     /// Points of the ID onset line.
     #[arg(long, default_value_t = 60)]
     samples: usize,
@@ -35,7 +40,8 @@ pub struct Args {
     #[arg(long, default_value = "out/boundaries")]
     out: PathBuf,
     /// Print one JSON object (keys: eta_t, kappa2, n, seconds, curves [{model, curve,
-    /// points, eta_t [..], kappa2 [..]}], files).
+    /// points, eta_t [..], kappa2 [..]}], files; for a list of N: eta_t, kappa2, ns, seconds
+    /// [..], curves [{curve, n, points, shift}], files).
     #[arg(long)]
     json: bool,
 }
@@ -63,19 +69,22 @@ pub fn run(a: Args) -> Result<(), CliError> {
         .as_deref()
         .map(|t| range(t, "kappa2"))
         .transpose()?;
-    super::check_grid(a.n)?;
+    let ns = grid_sizes(&a.n)?;
     if !(2..=10_000).contains(&a.samples) {
         return Err(CliError::usage(format!(
             "invalid --samples {}: from 2 to 10000",
             a.samples
         )));
     }
-    let study = BoundaryStudy::new(&a.out, eta_t, kappa2, a.n, a.samples)?;
+    let study = BoundaryStudy::new(&a.out, eta_t, kappa2, ns[0], a.samples)?;
     super::line::within_limit("eta_t window HI (from the sweep in --out)", study.eta_t.1)?;
     super::line::within_limit("kappa2 window HI (from the sweep in --out)", study.kappa2.1)?;
+    if ns.len() > 1 {
+        return convergence(&study, &ns, a.json);
+    }
     eprintln!(
-        "boundaries in eta_t {:?}, kappa2 {:?} at N = {} (about a minute at N = 192)",
-        study.eta_t, study.kappa2, a.n
+        "boundaries in eta_t {:?}, kappa2 {:?} at N = {} (about 10 s at N = 192)",
+        study.eta_t, study.kappa2, study.n
     );
     let done = study.run()?;
     if let Some((missing, points)) = done.missing.filter(|m| m.0 > 0) {
@@ -98,7 +107,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
             .collect();
         print_json(&serde_json::json!({
             "eta_t": [study.eta_t.0, study.eta_t.1], "kappa2": [study.kappa2.0, study.kappa2.1],
-            "n": a.n, "seconds": done.seconds, "curves": curves, "files": done.files,
+            "n": study.n, "seconds": done.seconds, "curves": curves, "files": done.files,
         }));
     } else {
         for c in &done.curves {
@@ -120,6 +129,67 @@ pub fn run(a: Args) -> Result<(), CliError> {
             outln!("wrote {}", f.display());
         }
         outln!("{:.1} s", done.seconds);
+    }
+    Ok(())
+}
+
+/// `--n N` or `--n N1,N2,...`: each an even integer from 16 to 1024.
+fn grid_sizes(text: &str) -> Result<Vec<usize>, CliError> {
+    let ns = text
+        .split(',')
+        .map(|p| {
+            p.trim().parse::<usize>().map_err(|_| {
+                CliError::usage(format!(
+                    "invalid --n `{text}`: an even integer from 16 to 1024, or a list N1,N2,..."
+                ))
+            })
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    if ns.len() > 8 {
+        return Err(CliError::usage(format!(
+            "invalid --n `{text}`: at most 8 grid sizes"
+        )));
+    }
+    for &n in &ns {
+        super::check_grid(n)?;
+    }
+    Ok(ns)
+}
+
+/// The boundaries at every N of `ns` and their shifts from one N to the next.
+fn convergence(study: &BoundaryStudy, ns: &[usize], json: bool) -> Result<(), CliError> {
+    eprintln!(
+        "boundaries in eta_t {:?}, kappa2 {:?} at N = {ns:?}",
+        study.eta_t, study.kappa2
+    );
+    let done = droplet_sweep::studies::convergence::run(study, ns)?;
+    if json {
+        let curves: Vec<_> = done
+            .curves
+            .iter()
+            .map(|c| serde_json::json!({"curve": c.curve, "n": c.n, "points": c.points, "shift": c.shift}))
+            .collect();
+        print_json(&serde_json::json!({
+            "eta_t": [study.eta_t.0, study.eta_t.1], "kappa2": [study.kappa2.0, study.kappa2.1],
+            "ns": done.ns, "seconds": done.seconds, "curves": curves, "files": done.files,
+        }));
+        return Ok(());
+    }
+    for (n, s) in done.ns.iter().zip(&done.seconds) {
+        outln!("N = {n}: {s:.1} s");
+    }
+    outln!(
+        "{:<40} {:>6} {:>7} shift from the previous N",
+        "curve",
+        "N",
+        "points"
+    );
+    for c in &done.curves {
+        let shift = c.shift.map_or("-".to_string(), |d| format!("{d:.2e}"));
+        outln!("{:<40} {:>6} {:>7} {shift}", c.curve, c.n, c.points);
+    }
+    for f in &done.files {
+        outln!("wrote {}", f.display());
     }
     Ok(())
 }

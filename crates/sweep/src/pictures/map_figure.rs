@@ -27,7 +27,21 @@ pub struct Curve {
     pub points: Vec<(f64, f64)>,
     /// Drawn dashed (the reduced model's boundaries) or solid (the full model's).
     pub dashed: bool,
+    /// Its colour; `None`: the next of [`CURVE_COLOURS`] (solid) or of the lighter ones
+    /// (dashed).
+    pub colour: Option<RGBColor>,
 }
+
+/// The colours of solid curves over a map, in order.
+pub const CURVE_COLOURS: [RGBColor; 7] = [
+    BLACK,
+    RGBColor(90, 90, 90),
+    RGBColor(160, 0, 160),
+    RGBColor(0, 110, 110),
+    RGBColor(200, 90, 0),
+    RGBColor(0, 150, 60),
+    RGBColor(255, 140, 0),
+];
 
 impl Curve {
     /// A boundary curve as drawn: labelled with its model, the reduced model's dashed.
@@ -36,6 +50,7 @@ impl Curve {
             label: format!("{}: {}", c.model.as_str().to_uppercase(), c.name),
             dashed: c.model == droplet_solver::contract::settings::ModelKind::Ode,
             points: c.points.clone(),
+            colour: None,
         }
     }
 }
@@ -192,15 +207,7 @@ pub(crate) fn draw_curves<DB: DrawingBackend>(
 where
     DB::ErrorType: 'static,
 {
-    let styles = [
-        BLACK,
-        RGBColor(90, 90, 90),
-        RGBColor(160, 0, 160),
-        RGBColor(0, 110, 110),
-        RGBColor(200, 90, 0),
-        RGBColor(0, 150, 60),
-        RGBColor(255, 140, 0),
-    ];
+    let styles = CURVE_COLOURS;
     // The reduced model's curves in lighter colours of their own.
     let light = [
         RGBColor(120, 120, 120),
@@ -210,13 +217,14 @@ where
     ];
     let (mut solid, mut dashed) = (0, 0);
     for c in curves {
-        let colour = if c.dashed {
+        let next = if c.dashed {
             dashed += 1;
             light[(dashed - 1) % light.len()]
         } else {
             solid += 1;
             styles[(solid - 1) % styles.len()]
         };
+        let colour = c.colour.unwrap_or(next);
         let style = colour.stroke_width(if c.dashed { 2 } else { 3 });
         let inside: Vec<(f64, f64)> = c
             .points

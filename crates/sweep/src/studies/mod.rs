@@ -1,8 +1,10 @@
 //! Whole studies behind one command each, from a checked request to the files written: the
 //! full model's exact phase boundaries in a window (`boundaries`, `droplet boundaries`) and
-//! branches of steady states followed in one parameter (`continuation`, `droplet continue`).
+//! branches of steady states followed in one parameter (`continuation`, `droplet continue`),
+//! and the boundaries at several grid sizes with their shifts (`convergence`).
 //! Each returns what it computed and the paths it wrote; the CLI only parses and prints.
 //!
 //! May use: `spec`, `store`, `map`, `tables`, `pictures`. Used by: the CLI.
 pub mod boundaries;
 pub mod continuation;
+pub mod convergence;
