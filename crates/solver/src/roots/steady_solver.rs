@@ -180,6 +180,25 @@ impl SteadySolver {
         self.newton_on(MirrorAxis::X, v0, a20, tol)
     }
 
+    /// Newton on all four force balances from `z = (vx, vy, a2, b2)`, no mirror symmetry
+    /// assumed: the root, or the error when Newton does not converge under `opts`.
+    pub fn root_from(
+        &mut self,
+        z: [f64; 4],
+        opts: &NewtonOptions,
+    ) -> Result<[f64; 4], SolverError> {
+        let p = self.params;
+        let sol = newton::solve(
+            |x| {
+                let f = self.forces(x[0], x[1], x[2], x[3]);
+                dynamics::force_balance(&p, [x[0], x[1], x[2], x[3]], &f).to_vec()
+            },
+            &z,
+            opts,
+        )?;
+        Ok([sol.x[0], sol.x[1], sol.x[2], sol.x[3]])
+    }
+
     /// [`Self::newton`] on either mirror axis ([`crate::numerics::newton::solve`]: central differences
     /// of step 1e-6, the shape step capped at 0.2 so that it never jumps past the
     /// small-deformation model, at most 50 iterations).

@@ -59,10 +59,9 @@ use crate::contract::ending::Ending;
 use crate::contract::outcome::Unsettled;
 use crate::contract::settings::SolverSettings;
 use crate::error::SolverError;
-use crate::model::dynamics::force_balance;
 use crate::model::params::ModelParams;
 use crate::model::state::max_distance;
-use crate::numerics::newton::{solve, NewtonOptions};
+use crate::numerics::newton::NewtonOptions;
 use crate::roots::linearisation::Linearization;
 use crate::roots::steady_solver::SteadySolver;
 use crate::roots::verdict::{assess, Verdict};
@@ -146,7 +145,6 @@ impl NewtonFinish {
             self.params.mass,
             "> 0 for the linearisation (an overdamped droplet is finished by the paper's test)",
         )?;
-        let p = self.params;
         self.steady_solver()?;
         // The field, not `self`: `self.assessed` is read below while the solver is in use.
         let solver = self.solver.as_mut().expect("made above");
@@ -158,15 +156,7 @@ impl NewtonFinish {
             fd_step: 1e-6,
             max_step: vec![f64::INFINITY, f64::INFINITY, 0.2, 0.2],
         };
-        let sol = solve(
-            |x| {
-                let f = solver.forces(x[0], x[1], x[2], x[3]);
-                force_balance(&p, [x[0], x[1], x[2], x[3]], &f).to_vec()
-            },
-            &z,
-            &opts,
-        )?;
-        let root = [sol.x[0], sol.x[1], sol.x[2], sol.x[3]];
+        let root = solver.root_from(z, &opts)?;
         // The same root as before (Newton's tolerance is 1e-12; 1e-9 is the same state).
         let known = self
             .assessed

@@ -26,7 +26,7 @@
 
 use crate::error::SweepError;
 use crate::tables::read::{self as tables, RunRow as Row};
-use droplet_solver::numerics::newton::{solve, NewtonOptions};
+use droplet_solver::numerics::newton::NewtonOptions;
 use droplet_solver::roots::linearisation::Linearization;
 use droplet_solver::roots::verdict::{assess, Verdict};
 use droplet_solver::{
@@ -116,24 +116,13 @@ fn class_of(z: &[f64; 4]) -> StateClass {
 /// The verdict of the steady state near `z` at `params`: the root and its eigenvalues, or
 /// `None` when Newton does not converge from `z`.
 fn root_near(solver: &mut SteadySolver, z: [f64; 4]) -> Checked {
-    let p = *solver.params();
     let opts = NewtonOptions {
         tol: 1e-11,
         max_iter: 30,
         fd_step: 1e-6,
         max_step: vec![f64::INFINITY, f64::INFINITY, 0.2, 0.2],
     };
-    let sol = solve(
-        |x| {
-            let f = solver.forces(x[0], x[1], x[2], x[3]);
-            droplet_solver::model::dynamics::force_balance(&p, [x[0], x[1], x[2], x[3]], &f)
-                .to_vec()
-        },
-        &z,
-        &opts,
-    )
-    .ok()?;
-    let root = [sol.x[0], sol.x[1], sol.x[2], sol.x[3]];
+    let root = solver.root_from(z, &opts).ok()?;
     Some((root, assess(&Linearization::at(solver, root), root)))
 }
 
