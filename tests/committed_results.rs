@@ -70,3 +70,45 @@ fn status_and_plot_read_a_committed_map_from_its_tables() {
         "the picture drawn from the tables differs from the committed one"
     );
 }
+
+#[test]
+fn boundaries_onto_a_committed_map_take_its_window_from_its_tables() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tables_only_copy("ode_map", tmp.path());
+    let points = read(&dir.join("points.parquet"));
+    let span = |c: &str| {
+        let v = points.column(c).unwrap().f64().unwrap().clone();
+        let v: Vec<f64> = v.into_no_null_iter().collect();
+        [
+            v.iter().copied().fold(f64::INFINITY, f64::min),
+            v.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+        ]
+    };
+    let out = droplet()
+        .args([
+            "boundaries",
+            "--n",
+            "64",
+            "--samples",
+            "4",
+            "--out",
+            dir.to_str().unwrap(),
+            "--json",
+        ])
+        .output()
+        .unwrap();
+    let r = json(&out);
+    assert_eq!(r["eta_t"], serde_json::json!(span("eta_t")), "{r}");
+    assert_eq!(r["kappa2"], serde_json::json!(span("kappa2")), "{r}");
+    let files: Vec<&str> = r["files"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|f| f.as_str().unwrap())
+        .collect();
+    assert!(files.iter().any(|f| f.ends_with("phase_map.png")), "{r}");
+    let mut unique = files.clone();
+    unique.sort();
+    unique.dedup();
+    assert_eq!(unique.len(), files.len(), "each file named once: {r}");
+}

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Regenerates results/continuation/ and results/boundaries/ (and the boundaries on
-# results/fig2a's phase map). Run from the repository root after `cargo build --release`.
+# results/fig2a-map's phase map). Run from the repository root after `cargo build --release`.
 set -euo pipefail
 d=./target/release/droplet
 out=results/continuation
@@ -15,4 +15,4 @@ done
 # The same at eta_t = 0.085 on the box diagonal (the orientation ID droplets settle on).
 $d continue --eta-t 0.085 --from 0.100 --to 0.170 --axis diagonal --out $out --json > $out/continuation_eta_t_0.085_diagonal.json
 $d boundaries --out results/boundaries --json > results/boundaries/boundaries.json
-$d boundaries --out results/fig2a --json > results/fig2a/boundaries.json
+$d boundaries --out results/fig2a-map --json > results/fig2a-map/boundaries.json

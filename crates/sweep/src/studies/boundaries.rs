@@ -54,7 +54,12 @@ impl BoundaryStudy {
         n: usize,
         samples: usize,
     ) -> Result<Self, SweepError> {
-        let sweep = crate::spec::load_stored(out).ok();
+        // A sweep's directory, or a committed map's (its spec in its tables' metadata).
+        let sweep = crate::spec::load_stored(out).ok().or_else(|| {
+            crate::tables::read::is_tables_only(out)
+                .then(|| crate::tables::read::stored_spec(&out.join(crate::tables::read::POINTS)))
+                .and_then(Result::ok)
+        });
         let span = |v: &[f64]| {
             v.iter()
                 .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| {
@@ -142,7 +147,11 @@ impl BoundaryStudy {
         if self.sweep_spec.is_some() {
             let map = crate::pictures::sweep_pictures::plot(&self.out)?;
             missing = Some((map.missing, map.points));
-            files.extend(map.files);
+            for f in map.files {
+                if !files.contains(&f) {
+                    files.push(f);
+                }
+            }
         }
         Ok(BoundariesWritten {
             curves,
