@@ -32,25 +32,58 @@ struct VsFigure<'a> {
     vlines: &'a [(f64, String)],
 }
 
+/// The quantity a panel draws against the parameter.
+#[derive(Debug, Clone, Copy)]
+enum Quantity {
+    Speed,
+    Deformation,
+}
+
+impl Quantity {
+    fn of_marker(self, m: &Marker) -> f64 {
+        match self {
+            Self::Speed => m.v,
+            Self::Deformation => m.s,
+        }
+    }
+
+    /// Of a line's point `(x, v, s)`.
+    fn of_point(self, p: &(f64, f64, f64)) -> f64 {
+        match self {
+            Self::Speed => p.1,
+            Self::Deformation => p.2,
+        }
+    }
+
+    fn label(self) -> &'static str {
+        match self {
+            Self::Speed => "speed v",
+            Self::Deformation => "deformation s",
+        }
+    }
+}
+
 impl VsFigure<'_> {
-    /// One panel: `v` (`speed`) or `s` against the parameter over `x`, with the lines, the
+    /// One panel: `q` (`v` or `s`) against the parameter over `x`, with the lines, the
     /// markers, the vertical lines and the legend.
     fn draw_panel<DB: DrawingBackend>(
         &self,
         panel: &DrawingArea<DB, Shift>,
-        speed: bool,
+        q: Quantity,
         x: (f64, f64),
     ) -> Result<(), SweepError>
     where
         DB::ErrorType: 'static,
     {
         let (markers, lines) = (self.markers, self.lines);
-        let val = |m: &Marker| if speed { m.v } else { m.s };
-        let lval = |p: &(f64, f64, f64)| if speed { p.1 } else { p.2 };
         let ymax = markers
             .iter()
-            .map(val)
-            .chain(lines.iter().flat_map(|l| l.points.iter().map(lval)))
+            .map(|m| q.of_marker(m))
+            .chain(
+                lines
+                    .iter()
+                    .flat_map(|l| l.points.iter().map(|p| q.of_point(p))),
+            )
             .fold(0.0, f64::max)
             .max(1e-3)
             * 1.08;
@@ -64,7 +97,7 @@ impl VsFigure<'_> {
             .configure_mesh()
             .disable_mesh()
             .x_desc(self.x_label)
-            .y_desc(if speed { "speed v" } else { "deformation s" })
+            .y_desc(q.label())
             .label_style(("sans-serif", 14))
             .axis_desc_style(("sans-serif", 16))
             .x_label_formatter(&|v| format!("{v:.3}"))
@@ -93,7 +126,7 @@ impl VsFigure<'_> {
         keys.sort();
         keys.dedup();
         for key in keys {
-            self.draw_key(&mut chart, key, speed)?;
+            self.draw_key(&mut chart, key, q)?;
         }
         chart
             .configure_series_labels()
@@ -111,18 +144,16 @@ impl VsFigure<'_> {
         &self,
         chart: &mut ChartContext<'_, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
         key: &str,
-        speed: bool,
+        q: Quantity,
     ) -> Result<(), SweepError>
     where
         DB::ErrorType: 'static,
     {
         let (markers, lines) = (self.markers, self.lines);
-        let val = |m: &Marker| if speed { m.v } else { m.s };
-        let lval = |p: &(f64, f64, f64)| if speed { p.1 } else { p.2 };
         let colour = class_colour(key);
         let mut legend_done = false;
         for l in lines.iter().filter(|l| l.key == key) {
-            let pts = l.points.iter().map(|p| (p.0, lval(p)));
+            let pts = l.points.iter().map(|p| (p.0, q.of_point(p)));
             let anno = if l.stable {
                 chart
                     .draw_series(LineSeries::new(pts, colour.stroke_width(3)))
@@ -147,7 +178,7 @@ impl VsFigure<'_> {
                 } else {
                     colour.stroke_width(1)
                 };
-                Circle::new((m.x, val(m)), if m.bold { 3 } else { 2 }, style)
+                Circle::new((m.x, q.of_marker(m)), if m.bold { 3 } else { 2 }, style)
             }))
             .map_err(perr)?;
         if !legend_done {
@@ -180,7 +211,12 @@ impl Figure for VsFigure<'_> {
         let pad = ((x1 - x0) * 0.03).max(1e-6);
         let panels = root.split_evenly((1, 2));
         for (i, panel) in panels.iter().enumerate() {
-            self.draw_panel(panel, i == 0, (x0 - pad, x1 + pad))?;
+            let q = if i == 0 {
+                Quantity::Speed
+            } else {
+                Quantity::Deformation
+            };
+            self.draw_panel(panel, q, (x0 - pad, x1 + pad))?;
         }
         root.present().map_err(perr)?;
         Ok(())
