@@ -1,5 +1,7 @@
 //! End-to-end tests through the `droplet` binary, one file per group of commands (one test
-//! binary): `sweep` (sweep, merge, resume, specs), `simulate`, `ode`, `commands` (bench, help).
+//! binary): `sweep` (sweep, merge, resume, specs), `axes` (sweeps in any parameter), `simulate`,
+//! `ode`, `commands` (bench, help).
+mod axes;
 mod commands;
 #[path = "../common/mod.rs"]
 mod common;

@@ -11,11 +11,12 @@ use std::collections::{BTreeMap, HashMap};
 /// One point of the map.
 #[derive(Debug, Clone, PartialEq)]
 pub struct MapEntry {
-    pub eta_t: f64,
-    pub kappa2: f64,
+    /// Its coordinates in the sweep's plane (`(x, y)`, [`crate::spec::axes::Plane`]).
+    pub x: f64,
+    pub y: f64,
     /// Refinement level (0: the spec's grid).
     pub level: u32,
-    /// Cell size `(d_eta_t, d_kappa2)` of its level.
+    /// Cell size `(dx, dy)` of its level.
     pub cell: (f64, f64),
     pub class: PointClass,
     /// How the run from each initial condition ended (spec order): its class, `diverged` or
@@ -42,6 +43,8 @@ impl MapEntry {
 /// All points of a plan, classified.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PhaseMap {
+    /// The swept parameters.
+    pub plane: crate::spec::axes::Plane,
     pub points: Vec<MapEntry>,
     pub ic_names: Vec<String>,
 }
@@ -68,8 +71,8 @@ impl PhaseMap {
             .iter()
             .enumerate()
             .map(|(i, runs)| MapEntry {
-                eta_t: plan.points[i].0,
-                kappa2: plan.points[i].1,
+                x: plan.points[i].0,
+                y: plan.points[i].1,
                 level: plan.levels[i],
                 cell: plan.cells[i],
                 class: classify_point(runs.iter().flatten().copied()),
@@ -77,6 +80,7 @@ impl PhaseMap {
             })
             .collect();
         Self {
+            plane: plan.plane,
             points,
             ic_names: plan.ic_names.clone(),
         }

@@ -87,12 +87,12 @@ mod tests {
 
     fn lattice(levels: u32) -> Lattice {
         Lattice {
-            eta_t: Axis {
+            x: Axis {
                 start: 0.07,
                 step: 0.01,
                 count: 4,
             },
-            kappa2: Axis {
+            y: Axis {
                 start: 0.1,
                 step: 0.02,
                 count: 3,

@@ -12,10 +12,11 @@ use std::path::{Path, PathBuf};
 /// One point of a phase map.
 #[derive(Debug, Clone)]
 pub struct MapPoint {
-    pub eta_t: f64,
-    pub kappa2: f64,
+    /// Its coordinates in the map's plane.
+    pub x: f64,
+    pub y: f64,
     pub label: String,
-    /// The rectangles `[eta_t0, kappa2_0, eta_t1, kappa2_1]` the point stands for on a
+    /// The rectangles `[x0, y0, x1, y1]` the point stands for on a
     /// refined map ([`crate::spec::lattice::Lattice::tiles`]); empty: a square of the grid spacing.
     pub tiles: Vec<[f64; 4]>,
 }
@@ -67,6 +68,8 @@ pub(crate) fn spacing(v: &mut Vec<f64>) -> f64 {
 /// in a panel on the right.
 struct PhaseMap<'a> {
     title: &'a str,
+    /// The names of the axes `(x, y)`.
+    names: (&'a str, &'a str),
     pts: &'a [MapPoint],
     curves: &'a [Curve],
 }
@@ -86,8 +89,8 @@ impl Figure for PhaseMap<'_> {
         let (pts, curves) = (self.pts, self.curves);
         root.fill(&WHITE).map_err(perr)?;
         let (plot_area, legend_area) = root.split_horizontally(900);
-        let mut xs: Vec<f64> = pts.iter().map(|p| p.eta_t).collect();
-        let mut ys: Vec<f64> = pts.iter().map(|p| p.kappa2).collect();
+        let mut xs: Vec<f64> = pts.iter().map(|p| p.x).collect();
+        let mut ys: Vec<f64> = pts.iter().map(|p| p.y).collect();
         let dx = spacing(&mut xs);
         let dy = spacing(&mut ys);
         let dx = if dx.is_finite() { dx } else { 0.01 };
@@ -108,7 +111,8 @@ impl Figure for PhaseMap<'_> {
                 |(a, b, c, d), r| (a.min(r[0]), b.min(r[1]), c.max(r[2]), d.max(r[3])),
             );
         }
-        let mut chart = plane_chart(&plot_area, self.title, (x0, x1), (y0, y1), false)?;
+        let names = self.names;
+        let mut chart = plane_chart(&plot_area, self.title, names, (x0, x1), (y0, y1), false)?;
         let mut legend = Vec::new();
         for label in ORDER.iter().copied().chain(
             pts.iter()
@@ -134,8 +138,8 @@ impl Figure for PhaseMap<'_> {
                     .draw_series(mine.iter().map(|p| {
                         Rectangle::new(
                             [
-                                (p.eta_t - 0.42 * dx, p.kappa2 - 0.42 * dy),
-                                (p.eta_t + 0.42 * dx, p.kappa2 + 0.42 * dy),
+                                (p.x - 0.42 * dx, p.y - 0.42 * dy),
+                                (p.x + 0.42 * dx, p.y + 0.42 * dy),
                             ],
                             colour.filled(),
                         )
@@ -151,10 +155,12 @@ impl Figure for PhaseMap<'_> {
     }
 }
 
-/// The `(eta_t, kappa2)` plane over `x` and `y` with its axes drawn (and a mesh if `mesh`).
+/// A parameter plane over `x` and `y` with its axes drawn, named `names` (and a mesh if
+/// `mesh`).
 pub(crate) fn plane_chart<'a, DB: DrawingBackend>(
     area: &'a DrawingArea<DB, Shift>,
     title: &str,
+    names: (&str, &str),
     x: (f64, f64),
     y: (f64, f64),
     mesh: bool,
@@ -180,15 +186,30 @@ where
     if !mesh {
         m.disable_mesh();
     }
-    m.x_desc(ETA_T)
-        .y_desc(KAPPA2)
+    let (x_tick, y_tick) = (tick_format(x), tick_format(y));
+    m.x_desc(names.0)
+        .y_desc(names.1)
         .label_style(("sans-serif", 15))
         .axis_desc_style(("sans-serif", 18))
-        .x_label_formatter(&|v| format!("{v:.3}"))
-        .y_label_formatter(&|v| format!("{v:.3}"))
+        .x_label_formatter(&x_tick)
+        .y_label_formatter(&y_tick)
         .draw()
         .map_err(perr)?;
     Ok(chart)
+}
+
+/// Tick labels for an axis over `(lo, hi)`: three decimals on the paper's windows, fewer on
+/// wide ones (none for a grid size), more on very narrow ones.
+fn tick_format((lo, hi): (f64, f64)) -> impl Fn(&f64) -> String {
+    let span = (hi - lo).abs();
+    let decimals = match span {
+        s if s >= 100.0 => 0,
+        s if s >= 10.0 => 1,
+        s if s >= 1.0 => 2,
+        s if s >= 1e-3 => 3,
+        _ => 5,
+    };
+    move |v: &f64| format!("{v:.decimals$}")
 }
 
 /// Draws `curves` (the part inside the window) on a phase-plane chart, adding each to the
@@ -269,7 +290,7 @@ impl Figure for BoundaryFigure<'_> {
         root.fill(&WHITE).map_err(perr)?;
         let (plot_area, legend_area) = root.split_horizontally(900);
         let (x, y) = (self.eta_t, self.kappa2);
-        let mut chart = plane_chart(&plot_area, self.title, x, y, true)?;
+        let mut chart = plane_chart(&plot_area, self.title, (ETA_T, KAPPA2), x, y, true)?;
         let mut legend = Vec::new();
         draw_curves(&mut chart, self.curves, x, y, &mut legend)?;
         draw_legend(&legend_area, &legend)?;
@@ -303,6 +324,7 @@ pub fn phase_map(
     dir: &Path,
     stem: &str,
     title: &str,
+    names: (&str, &str),
     pts: &[MapPoint],
     curves: &[Curve],
 ) -> Result<Vec<PathBuf>, SweepError> {
@@ -311,6 +333,11 @@ pub fn phase_map(
     }
     render(
         &dir.join(format!("{stem}.png")),
-        &PhaseMap { title, pts, curves },
+        &PhaseMap {
+            title,
+            names,
+            pts,
+            curves,
+        },
     )
 }

@@ -6,7 +6,7 @@ use crate::map::phase_map::PhaseMap;
 use crate::pictures::branch_pictures::branch_drawing;
 use crate::pictures::line_figure::{vs_parameter, Marker};
 use crate::pictures::map_figure::{phase_map, Curve, MapPoint};
-use crate::spec::axes::{ETA_T, KAPPA2};
+use crate::spec::axes::Param;
 use crate::spec::SweepSpec;
 use crate::store::run_store::Store;
 use crate::tables::boundaries::NamedCurve;
@@ -55,7 +55,7 @@ pub fn plot(dir: &Path) -> Result<Drawn, SweepError> {
 /// What a sweep's pictures show: each point's label and where each settled run ended.
 #[derive(Debug, Clone, Default)]
 pub struct MapDrawing {
-    /// `(eta_t, kappa2, label)` of every point.
+    /// `(x, y, label)` of every point, in the sweep's plane.
     pub points: Vec<(f64, f64, String)>,
     /// Every run that ended on a stable state.
     pub ends: Vec<RunEnd>,
@@ -64,8 +64,9 @@ pub struct MapDrawing {
 /// Where one settled run ended.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RunEnd {
-    pub eta_t: f64,
-    pub kappa2: f64,
+    /// Its point's coordinates in the sweep's plane.
+    pub x: f64,
+    pub y: f64,
     pub class: String,
     pub v: f64,
     pub s: f64,
@@ -81,17 +82,17 @@ impl MapDrawing {
         let points = map
             .points
             .iter()
-            .map(|p| (p.eta_t, p.kappa2, p.shown_label().to_string()))
+            .map(|p| (p.x, p.y, p.shown_label().to_string()))
             .collect();
         let ends = plan
             .tasks()
             .filter_map(|t| records.get(&t.key).map(|r| (t, r)))
             .filter_map(|(t, r)| {
-                let (eta_t, kappa2) = plan.points[t.point];
+                let (x, y) = plan.points[t.point];
                 let o = &r.outcome;
                 o.class.map(|c| RunEnd {
-                    eta_t,
-                    kappa2,
+                    x,
+                    y,
                     class: c.as_str().to_string(),
                     v: o.v,
                     s: o.s,
@@ -104,16 +105,17 @@ impl MapDrawing {
     /// From a finished map's tables (`points.parquet`, `runs.parquet`).
     pub fn from_tables(dir: &Path) -> Result<Self, SweepError> {
         use crate::tables::read;
-        let points = read::points(&dir.join(read::POINTS))?
-            .into_iter()
-            .map(|p| (p.eta_t, p.kappa2, p.label))
-            .collect();
+        let rows = read::points(&dir.join(read::POINTS))?;
+        let at: std::collections::HashMap<u32, (f64, f64)> =
+            rows.iter().map(|p| (p.point, (p.x, p.y))).collect();
+        let points = rows.into_iter().map(|p| (p.x, p.y, p.label)).collect();
         let ends = read::runs(&dir.join(read::RUNS))?
             .into_iter()
             .filter_map(|r| {
+                let &(x, y) = at.get(&r.point)?;
                 r.class.map(|c| RunEnd {
-                    eta_t: r.params.eta_t,
-                    kappa2: r.params.kappa2,
+                    x,
+                    y,
                     class: c.as_str().to_string(),
                     v: r.v,
                     s: r.s,
@@ -155,13 +157,13 @@ pub fn draw(
     let pts: Vec<MapPoint> = drawing
         .points
         .iter()
-        .map(|(eta_t, kappa2, label)| MapPoint {
-            eta_t: *eta_t,
-            kappa2: *kappa2,
+        .map(|(x, y, label)| MapPoint {
+            x: *x,
+            y: *y,
             label: label.clone(),
             tiles: tiles
                 .as_mut()
-                .and_then(|(l, t)| t.remove(&l.node_of((*eta_t, *kappa2))))
+                .and_then(|(l, t)| t.remove(&l.node_of((*x, *y))))
                 .unwrap_or_default(),
         })
         .collect();
@@ -171,49 +173,59 @@ pub fn draw(
         spec.name,
         spec.initial_conditions.len()
     );
-    // The reduced model's analytic boundaries (Fig. 3a), over both ODE and PDE maps.
-    let coef = Coefficients::new(spec.params.radius, spec.solver.h0);
-    let span = |v: &[f64]| {
-        v.iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
-                (a.min(x), b.max(x))
-            })
-    };
-    let ode = NamedCurve::from_boundaries(
-        ModelKind::Ode,
-        &boundaries(&coef, span(&spec.eta_t), span(&spec.kappa2)),
-    );
-    // The full model's boundaries, if `droplet boundaries` put them here, are kept.
-    let path = dir.join(crate::tables::boundaries::FILE);
-    let pde = crate::tables::boundaries::read(&path, ModelKind::Pde)?;
-    let all: Vec<NamedCurve> = pde.into_iter().chain(ode).collect();
-    crate::tables::boundaries::write(&path, &all, Some(&spec.source), Vec::new())?;
-    let drawn: Vec<Curve> = all.iter().map(Curve::of).collect();
-    let mut files = if spec.eta_t.len() > 1 && spec.kappa2.len() > 1 {
-        phase_map(dir, "phase_map", &title, &pts, &drawn)?
-    } else {
-        Vec::new()
-    };
-    files.push(path);
+    let grid = &spec.grid;
+    let mut files = Vec::new();
+    let mut drawn: Vec<Curve> = Vec::new();
+    if grid.plane().is_paper() {
+        // The reduced model's analytic boundaries (Fig. 3a), over both ODE and PDE maps, and
+        // the full model's, if `droplet boundaries` put them here: both in the paper's plane.
+        let coef = Coefficients::new(spec.params.radius, spec.solver.h0);
+        let y = grid.y.as_ref().expect("the paper's plane has two axes");
+        let ode = NamedCurve::from_boundaries(
+            ModelKind::Ode,
+            &boundaries(&coef, grid.x.span(), y.span()),
+        );
+        let path = dir.join(crate::tables::boundaries::FILE);
+        let pde = crate::tables::boundaries::read(&path, ModelKind::Pde)?;
+        let all: Vec<NamedCurve> = pde.into_iter().chain(ode).collect();
+        crate::tables::boundaries::write(&path, &all, Some(&spec.source), Vec::new())?;
+        drawn = all.iter().map(Curve::of).collect();
+        files.push(path);
+    }
+    let plane_y = grid.y.as_ref().filter(|y| y.values.len() > 1);
+    if let Some(y) = plane_y.filter(|_| grid.x.values.len() > 1) {
+        let names = (grid.x.param.name(), y.param.name());
+        files.splice(
+            0..0,
+            phase_map(dir, "phase_map", &title, names, &pts, &drawn)?,
+        );
+    }
     files.extend(lines(dir, spec, &drawing.ends)?);
     Ok(files)
 }
 
-/// For a 1-D sweep (one axis with one value, Fig. 2b): `bifurcation_lines.png` / `.svg`,
-/// `v` and `s` of every run that ended on a stable state against the swept parameter,
-/// coloured by class, over the full model's branches along the line (PDE spectral sweeps:
-/// [`pde_branches`], solid where stable, dashed where unstable) — the way a physicist
-/// draws Fig. 2b, every run's end on a solid branch.
+/// For a 1-D sweep (one axis, or a second axis of one value; Fig. 2b):
+/// `bifurcation_lines.png` / `.svg`, `v` and `s` of every run that ended on a stable state
+/// against the swept parameter, coloured by class, over the full model's branches along the
+/// line (PDE spectral sweeps: [`pde_branches`], solid where stable, dashed where unstable) —
+/// the way a physicist draws Fig. 2b, every run's end on a solid branch.
 fn lines(dir: &Path, spec: &SweepSpec, ends: &[RunEnd]) -> Result<Vec<PathBuf>, SweepError> {
-    let (along_eta, fixed) = match (spec.eta_t.len(), spec.kappa2.len()) {
-        (n, 1) if n > 1 => (true, format!("{KAPPA2} = {}", spec.kappa2[0])),
-        (1, n) if n > 1 => (false, format!("{ETA_T} = {}", spec.eta_t[0])),
+    let grid = &spec.grid;
+    let (x, y) = (&grid.x, grid.y.as_ref());
+    let (axis, along_x, fixed) = match y {
+        None if x.values.len() > 1 => (x, true, String::new()),
+        Some(y) if x.values.len() > 1 && y.values.len() == 1 => {
+            (x, true, format!(", {} = {}", y.param, y.values[0]))
+        }
+        Some(y) if x.values.len() == 1 && y.values.len() > 1 => {
+            (y, false, format!(", {} = {}", x.param, x.values[0]))
+        }
         _ => return Ok(Vec::new()),
     };
     let mut markers: Vec<Marker> = ends
         .iter()
         .map(|e| Marker {
-            x: if along_eta { e.eta_t } else { e.kappa2 },
+            x: if along_x { e.x } else { e.y },
             v: e.v,
             s: e.s,
             key: e.class.clone(),
@@ -223,8 +235,10 @@ fn lines(dir: &Path, spec: &SweepSpec, ends: &[RunEnd]) -> Result<Vec<PathBuf>, 
     if markers.is_empty() {
         return Ok(Vec::new());
     }
-    let axis = if along_eta { Axis::EtaT } else { Axis::Kappa2 };
-    let (lines, events, vlines) = branch_drawing(&pde_branches(spec, axis), axis);
+    let (lines, events, vlines) = match pde_branches(spec, axis.param) {
+        Some((branches, along)) => branch_drawing(&branches, along),
+        None => Default::default(),
+    };
     markers.extend(events.into_iter().map(|e| Marker { bold: false, ..e }));
     let ic_names: Vec<&str> = spec
         .initial_conditions
@@ -232,7 +246,7 @@ fn lines(dir: &Path, spec: &SweepSpec, ends: &[RunEnd]) -> Result<Vec<PathBuf>, 
         .map(|i| i.name.as_str())
         .collect();
     let title = format!(
-        "{}: {} runs (ICs {}) on the branches, {fixed}",
+        "{}: {} runs (ICs {}) on the branches{fixed}",
         spec.name,
         spec.solver.model.as_str().to_uppercase(),
         ic_names.join(", ")
@@ -241,7 +255,7 @@ fn lines(dir: &Path, spec: &SweepSpec, ends: &[RunEnd]) -> Result<Vec<PathBuf>, 
         dir,
         "bifurcation_lines",
         &title,
-        if along_eta { ETA_T } else { KAPPA2 },
+        axis.param.name(),
         &markers,
         &lines,
         &vlines,
@@ -252,37 +266,36 @@ fn lines(dir: &Path, spec: &SweepSpec, ends: &[RunEnd]) -> Result<Vec<PathBuf>, 
 /// 1-D sweep's line, by continuation at the sweep's grid: empty for the ODE model and the
 /// paper's scheme (their steady states are other equations), and without the families
 /// that have no state on the line.
-fn pde_branches(spec: &SweepSpec, axis: Axis) -> Vec<droplet_solver::continuation::branch::Branch> {
+fn pde_branches(
+    spec: &SweepSpec,
+    param: Param,
+) -> Option<(Vec<droplet_solver::continuation::branch::Branch>, Axis)> {
     use droplet_solver::continuation::{branch::follow, branch::Line, problem::Family};
+    let axis = match param {
+        Param::EtaT => Axis::EtaT,
+        Param::Kappa2 => Axis::Kappa2,
+        _ => return None,
+    };
     if spec.solver.model != droplet_solver::contract::settings::ModelKind::Pde
         || spec.solver.scheme != droplet_solver::stepping::SchemeKind::Spectral
     {
-        return Vec::new();
+        return None;
     }
-    let values = match axis {
-        Axis::EtaT => &spec.eta_t,
-        Axis::Kappa2 => &spec.kappa2,
-    };
-    let (from, to) = values
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
-            (a.min(x), b.max(x))
-        });
-    let base = droplet_solver::model::params::ModelParams {
-        eta_t: spec.eta_t[0],
-        kappa2: spec.kappa2[0],
-        ..spec.params
-    };
+    let (from, to) = spec.grid.axis(param)?.span();
+    let (mut base, mut settings) = (spec.params, spec.solver);
+    spec.grid
+        .plane()
+        .apply(spec.grid.first(), &mut base, &mut settings);
     let line = Line {
         base,
-        n: spec.solver.n,
+        n: settings.n,
         parameter: axis,
         from,
         to,
         max_points: 400,
         opts: Default::default(),
     };
-    [Family::IC, Family::ID, Family::MdMinor, Family::MdMajor]
+    let branches = [Family::IC, Family::ID, Family::MdMinor, Family::MdMajor]
         .iter()
         .filter_map(|f| {
             follow(
@@ -292,5 +305,6 @@ fn pde_branches(spec: &SweepSpec, axis: Axis) -> Vec<droplet_solver::continuatio
             )
             .ok()
         })
-        .collect()
+        .collect();
+    Some((branches, axis))
 }

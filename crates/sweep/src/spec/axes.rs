@@ -1,17 +1,230 @@
-//! The two swept parameters of a phase map, named in one place: spec keys, table columns,
-//! picture axes and messages all take their names from here. A point is `(eta_t, kappa2)`
-//! in this order.
+//! The parameters a sweep may vary, named in one place: spec keys, table columns, picture
+//! axes and messages all take their names from here. A point's coordinates are the values of
+//! the spec's grid axes, in the order the `grid` section gives them ([`Plane`]).
+use droplet_solver::{contract::settings::SolverSettings, model::params::ModelParams};
+use serde::Serialize;
 
-/// Translational friction `eta_t` (the phase map's horizontal axis, Fig. 2a).
+/// Translational friction `eta_t` (the paper's phase map's horizontal axis, Fig. 2a).
 pub const ETA_T: &str = "eta_t";
-/// Mode-2 stiffness `kappa2` (the vertical axis).
+/// Mode-2 stiffness `kappa2` (its vertical axis).
 pub const KAPPA2: &str = "kappa2";
-/// Both, in the order of a point's coordinates.
-pub const AXES: [&str; 2] = [ETA_T, KAPPA2];
+
+/// A parameter a grid axis may sweep: a model parameter (paper Sect. 3) or a solver setting
+/// whose effect on a result is worth measuring (the grid, the tolerance, the largest step,
+/// the time limit).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
+pub enum Param {
+    EtaT,
+    Kappa2,
+    Eta2,
+    Mass,
+    Radius,
+    Sigma,
+    BoxLen,
+    N,
+    Tol,
+    DtMax,
+    TMax,
+}
+
+impl Param {
+    /// Every sweepable parameter, model parameters first.
+    pub const ALL: [Param; 11] = [
+        Param::EtaT,
+        Param::Kappa2,
+        Param::Eta2,
+        Param::Mass,
+        Param::Radius,
+        Param::Sigma,
+        Param::BoxLen,
+        Param::N,
+        Param::Tol,
+        Param::DtMax,
+        Param::TMax,
+    ];
+
+    /// The key: the name in the spec's `params` or `solver` section and the table column.
+    pub fn name(self) -> &'static str {
+        match self {
+            Param::EtaT => ETA_T,
+            Param::Kappa2 => KAPPA2,
+            Param::Eta2 => "eta2",
+            Param::Mass => "mass",
+            Param::Radius => "radius",
+            Param::Sigma => "sigma",
+            Param::BoxLen => "box_len",
+            Param::N => "n",
+            Param::Tol => "tol",
+            Param::DtMax => "dt_max",
+            Param::TMax => "t_max",
+        }
+    }
+
+    /// The parameter of a key.
+    pub fn parse(name: &str) -> Option<Param> {
+        Self::ALL.into_iter().find(|p| p.name() == name)
+    }
+
+    /// Every key, for messages: `eta_t, kappa2, ...`.
+    pub fn names() -> String {
+        Self::ALL.map(Param::name).join(", ")
+    }
+
+    /// A model parameter (set in `params:`), not a solver setting (`solver:`).
+    pub fn is_model(self) -> bool {
+        !matches!(self, Param::N | Param::Tol | Param::DtMax | Param::TMax)
+    }
+
+    /// Whether a value is in the parameter's domain as far as it can be told alone (finite,
+    /// the sign, an integer grid size), and the rule in words. Everything that depends on
+    /// other values (`sigma <= R/4`, the box holding the droplet, `n` even and resolving the
+    /// interface) is the solver's own validation, run on every point of the grid.
+    pub fn admits(self, x: f64) -> (bool, &'static str) {
+        match self {
+            Param::Kappa2 => (x >= 0.0, "finite numbers >= 0"),
+            Param::Mass => (x >= 0.0, "finite numbers >= 0 (0 = overdamped)"),
+            Param::Tol => (x >= 0.0, "finite numbers >= 0 (0 = fixed step)"),
+            Param::N => (
+                x > 0.0 && x.fract() == 0.0 && x <= 4096.0,
+                "even integers from 16 to 4096",
+            ),
+            _ => (x > 0.0, "finite numbers > 0"),
+        }
+    }
+
+    /// Sets the parameter to `x` in `params` or `settings`.
+    pub fn set(self, params: &mut ModelParams, settings: &mut SolverSettings, x: f64) {
+        match self {
+            Param::EtaT => params.eta_t = x,
+            Param::Kappa2 => params.kappa2 = x,
+            Param::Eta2 => params.eta2 = x,
+            Param::Mass => params.mass = x,
+            Param::Radius => params.radius = x,
+            Param::Sigma => params.sigma = x,
+            Param::BoxLen => params.box_len = x,
+            Param::N => settings.n = x as usize,
+            Param::Tol => settings.tol = x,
+            Param::DtMax => settings.dt_max = x,
+            Param::TMax => settings.t_max = x,
+        }
+    }
+
+    /// The parameter's value in `params` or `settings`.
+    pub fn get(self, params: &ModelParams, settings: &SolverSettings) -> f64 {
+        match self {
+            Param::EtaT => params.eta_t,
+            Param::Kappa2 => params.kappa2,
+            Param::Eta2 => params.eta2,
+            Param::Mass => params.mass,
+            Param::Radius => params.radius,
+            Param::Sigma => params.sigma,
+            Param::BoxLen => params.box_len,
+            Param::N => settings.n as f64,
+            Param::Tol => settings.tol,
+            Param::DtMax => settings.dt_max,
+            Param::TMax => settings.t_max,
+        }
+    }
+}
+
+impl std::fmt::Display for Param {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// The plane of a sweep's points: the first grid axis `x` and, in a 2-axis grid, the second
+/// `y`. A point is `(x, y)`; in a 1-axis grid `y` is 0 and means nothing.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub struct Plane {
+    pub x: Param,
+    pub y: Option<Param>,
+}
+
+impl Plane {
+    /// The paper's plane, `(eta_t, kappa2)`.
+    pub const PAPER: Plane = Plane {
+        x: Param::EtaT,
+        y: Some(Param::Kappa2),
+    };
+
+    /// The axes, in order.
+    pub fn params(&self) -> Vec<Param> {
+        std::iter::once(self.x).chain(self.y).collect()
+    }
+
+    /// Sets a point's coordinates in `params` and `settings`.
+    pub fn apply(
+        &self,
+        (x, y): (f64, f64),
+        params: &mut ModelParams,
+        settings: &mut SolverSettings,
+    ) {
+        self.x.set(params, settings, x);
+        if let Some(p) = self.y {
+            p.set(params, settings, y);
+        }
+    }
+
+    /// The point of a run with these parameters and settings.
+    pub fn coords(&self, params: &ModelParams, settings: &SolverSettings) -> (f64, f64) {
+        (
+            self.x.get(params, settings),
+            self.y.map_or(0.0, |p| p.get(params, settings)),
+        )
+    }
+
+    /// Whether this is the paper's plane, where the reduced model's analytic boundaries and
+    /// the full model's exact ones (`droplet boundaries`) are drawn.
+    pub fn is_paper(&self) -> bool {
+        *self == Self::PAPER
+    }
+}
 
 /// Rounds an axis value to 12 decimal places after the point: values on a decimal grid
 /// (`0.07 + 3 * 0.01` is `0.1`), so that equal points in two specs, or on two refinement
 /// levels, get equal run keys.
 pub fn round12(x: f64) -> f64 {
     (x * 1e12).round() / 1e12
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_parameter_is_set_and_read_back_under_its_own_name() {
+        for p in Param::ALL {
+            assert_eq!(Param::parse(p.name()), Some(p));
+            let (mut params, mut settings) = (ModelParams::default(), SolverSettings::default());
+            p.set(&mut params, &mut settings, 64.0);
+            assert_eq!(p.get(&params, &settings), 64.0, "{p}");
+            // Nothing else moved.
+            let others = Param::ALL.into_iter().filter(|&q| q != p);
+            for q in others {
+                let fresh = q.get(&ModelParams::default(), &SolverSettings::default());
+                assert_eq!(q.get(&params, &settings), fresh, "{p} moved {q}");
+            }
+        }
+        assert_eq!(Param::parse("eta_T"), None);
+    }
+
+    #[test]
+    fn a_plane_applies_and_reads_its_coordinates() {
+        let plane = Plane {
+            x: Param::Mass,
+            y: Some(Param::EtaT),
+        };
+        let (mut p, mut s) = (ModelParams::default(), SolverSettings::default());
+        plane.apply((0.3, 0.09), &mut p, &mut s);
+        assert_eq!((p.mass, p.eta_t), (0.3, 0.09));
+        assert_eq!(plane.coords(&p, &s), (0.3, 0.09));
+        assert!(!plane.is_paper() && Plane::PAPER.is_paper());
+        let line = Plane {
+            x: Param::N,
+            y: None,
+        };
+        line.apply((128.0, 5.0), &mut p, &mut s);
+        assert_eq!((s.n, line.coords(&p, &s)), (128, (128.0, 0.0)));
+    }
 }

@@ -2,7 +2,7 @@
 //! typed accessors that fail with the key path, the value and what is allowed, and the spec
 //! key of a solver error's field.
 use crate::error::SpecError;
-use crate::spec::axes::AXES;
+use crate::spec::axes::{Param, Plane};
 use droplet_solver::error::show_number;
 use droplet_solver::error::SolverError;
 use serde_yaml::Value;
@@ -88,6 +88,24 @@ impl Ctx<'_> {
             } => self.err(&key_of(name), value, allowed),
             other => self.err(&["(spec)"], "", other.to_string()),
         })
+    }
+
+    /// As [`Self::checked`], on a point of the grid: a failure of a swept field is reported
+    /// at its axis, `grid.<name>`.
+    pub fn checked_swept(
+        &self,
+        check: Result<(), SolverError>,
+        plane: &Plane,
+    ) -> Result<(), SpecError> {
+        let swept = |name: &str| plane.params().iter().any(|p| p.name() == name);
+        match check {
+            Err(SolverError::InvalidParameter {
+                name,
+                value,
+                allowed,
+            }) if swept(name) => Err(self.err(&["grid", name], show_number(value), allowed)),
+            other => self.checked(other),
+        }
     }
 
     pub fn number(
@@ -183,11 +201,11 @@ pub fn second_key_line(text: &str, start: usize, key: &str) -> Option<usize> {
         .map(|(no, _, _)| no + 1)
 }
 
-/// The spec key of a field named in a [`droplet_solver::error::SolverError::InvalidParameter`].
+/// The spec key of a field named in a [`droplet_solver::error::SolverError::InvalidParameter`]:
+/// `params.<name>` for a model parameter, `solver.<name>` for a setting.
 fn key_of(name: &str) -> [&str; 2] {
-    match name {
-        "eta2" | "radius" | "sigma" | "box_len" | "mass" => ["params", name],
-        n if AXES.contains(&n) => ["grid", name],
+    match Param::parse(name) {
+        Some(p) if p.is_model() => ["params", name],
         _ => ["solver", name],
     }
 }

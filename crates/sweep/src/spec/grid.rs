@@ -1,50 +1,141 @@
-//! The `grid` section: the two swept axes ([`crate::spec::axes`]), each an inclusive
-//! `{start, stop, step}` range or an explicit list.
+//! The `grid` section: one or two swept axes, each any [`Param`] (a model parameter or a
+//! solver setting), as an inclusive `{start, stop, step}` range or an explicit list.
+//!
+//! ```yaml
+//! grid:
+//!   mass: [0.01, 0.03, 0.1, 0.3, 1]                # a list ...
+//!   eta_t: {start: 0.07, stop: 0.10, step: 0.005}  # ... or a range
+//! ```
+//!
+//! The first axis is the picture's horizontal one; `eta_t` and `kappa2` together are always
+//! in the paper's order `(eta_t, kappa2)`, however the file lists them. A swept parameter
+//! may not also be fixed in `params` or `solver`.
 use super::context::{show, Ctx};
 use crate::error::SpecError;
-use crate::spec::axes::{round12, ETA_T, KAPPA2};
+use crate::spec::axes::{round12, Param, Plane};
+use droplet_solver::{contract::settings::SolverSettings, model::params::ModelParams};
+use serde::Serialize;
 use serde_yaml::{Mapping, Value};
 
 /// Most points one axis may have.
 pub const MAX_AXIS_POINTS: usize = 100_000;
 
-/// The `grid` section: `(eta_t, kappa2)` values.
-pub(super) fn parse(ctx: &Ctx, top: &Mapping) -> Result<(Vec<f64>, Vec<f64>), SpecError> {
+/// Most axes a grid may have.
+pub const MAX_AXES: usize = 2;
+
+/// One swept axis.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct GridAxis {
+    pub param: Param,
+    /// The values, in the spec's order (a range: increasing).
+    pub values: Vec<f64>,
+    /// The step of a `{start, stop, step}` range (`None`: a list), which refinement halves.
+    pub step: Option<f64>,
+}
+
+impl GridAxis {
+    /// Smallest and largest value.
+    pub fn span(&self) -> (f64, f64) {
+        self.values
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+                (a.min(x), b.max(x))
+            })
+    }
+}
+
+/// The swept axes: `x` and, in a 2-axis grid, `y`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Grid {
+    pub x: GridAxis,
+    pub y: Option<GridAxis>,
+}
+
+impl Grid {
+    /// The plane of the grid's points.
+    pub fn plane(&self) -> Plane {
+        Plane {
+            x: self.x.param,
+            y: self.y.as_ref().map(|a| a.param),
+        }
+    }
+
+    /// The axes, in order.
+    pub fn axes(&self) -> impl Iterator<Item = &GridAxis> {
+        std::iter::once(&self.x).chain(self.y.as_ref())
+    }
+
+    /// The axis that sweeps `p`, if any.
+    pub fn axis(&self, p: Param) -> Option<&GridAxis> {
+        self.axes().find(|a| a.param == p)
+    }
+
+    /// The first point.
+    pub fn first(&self) -> (f64, f64) {
+        (
+            self.x.values[0],
+            self.y.as_ref().map_or(0.0, |a| a.values[0]),
+        )
+    }
+
+    /// The values along `y` (one value 0 for a 1-axis grid, see [`Plane`]).
+    pub fn y_values(&self) -> Vec<f64> {
+        self.y.as_ref().map_or(vec![0.0], |a| a.values.clone())
+    }
+}
+
+/// The `grid` section.
+pub(super) fn parse(ctx: &Ctx, top: &Mapping) -> Result<Grid, SpecError> {
     let grid_v = top.get("grid").ok_or_else(|| {
         ctx.err(
             &["grid"],
             "missing",
-            format!("a mapping with {ETA_T} and {KAPPA2} axes"),
+            format!(
+                "a mapping of one or two axes, each one of: {}",
+                Param::names()
+            ),
         )
     })?;
-    let grid = ctx.mapping(grid_v, &["grid"], &[ETA_T, KAPPA2])?;
-    let axis = |key: &'static str,
-                lower_ok: fn(f64) -> bool,
-                lower: &str|
-     -> Result<Vec<f64>, SpecError> {
-        let v = grid.get(key).ok_or_else(|| {
-            ctx.err(
-                &["grid", key],
-                "missing",
-                "{start, stop, step} or a list of numbers",
-            )
-        })?;
-        parse_axis(ctx, v, key, lower_ok, lower)
-    };
-    Ok((
-        axis(ETA_T, |x| x > 0.0, "> 0")?,
-        axis(KAPPA2, |x| x >= 0.0, ">= 0")?,
-    ))
+    let names: Vec<&str> = Param::ALL.iter().map(|p| p.name()).collect();
+    let grid = ctx.mapping(grid_v, &["grid"], &names)?;
+    if grid.is_empty() || grid.len() > MAX_AXES {
+        return Err(ctx.err(
+            &["grid"],
+            format!("{} axes", grid.len()),
+            format!(
+                "one or two axes (a line or a plane), each one of: {}",
+                Param::names()
+            ),
+        ));
+    }
+    let mut axes = Vec::with_capacity(grid.len());
+    for (k, v) in grid {
+        let name = k.as_str().unwrap_or("");
+        let param = Param::parse(name).expect("keys were checked against Param::ALL");
+        let (values, step) = parse_axis(ctx, v, param)?;
+        axes.push(GridAxis {
+            param,
+            values,
+            step,
+        });
+    }
+    if axes.len() == 2 && axes[0].param == Param::Kappa2 && axes[1].param == Param::EtaT {
+        axes.swap(0, 1);
+    }
+    let mut axes = axes.into_iter();
+    Ok(Grid {
+        x: axes.next().expect("one axis at least"),
+        y: axes.next(),
+    })
 }
 
-pub(super) fn parse_axis(
-    ctx: &Ctx,
-    v: &Value,
-    key: &'static str,
-    lower_ok: fn(f64) -> bool,
-    lower: &str,
-) -> Result<Vec<f64>, SpecError> {
+/// One axis: a list of distinct values or a `{start, stop, step}` range (and its step), every
+/// value in the parameter's domain ([`Param::admits`]).
+fn parse_axis(ctx: &Ctx, v: &Value, param: Param) -> Result<(Vec<f64>, Option<f64>), SpecError> {
+    let key = param.name();
     let path = ["grid", key];
+    let lower_ok = |x: f64| param.admits(x).0;
+    let lower = param.admits(0.0).1;
     if let Some(seq) = v.as_sequence() {
         if seq.is_empty() {
             return Err(ctx.err(&path, "[]", "a non-empty list"));
@@ -57,13 +148,13 @@ pub(super) fn parse_axis(
         // look-up per value, so a long list is checked in linear time.
         let mut seen = std::collections::HashSet::with_capacity(seq.len());
         for item in seq {
-            let x = ctx.number(item, &path, lower_ok, &format!("finite numbers {lower}"))? + 0.0;
+            let x = ctx.number(item, &path, lower_ok, lower)? + 0.0;
             if !seen.insert(x.to_bits()) {
                 return Err(ctx.err(&path, x, "distinct values"));
             }
             out.push(x);
         }
-        return Ok(out);
+        return Ok((out, None));
     }
     let m = ctx.mapping(v, &path, &["start", "stop", "step"])?;
     let get =
@@ -77,17 +168,21 @@ pub(super) fn parse_axis(
             })?;
             ctx.number(x, &["grid", key, k], ok, allowed)
         };
-    let start = get(
-        "start",
-        &|x| lower_ok(x),
-        &format!("a finite number {lower}"),
-    )?;
+    let start = get("start", &lower_ok, &format!("one of the {lower}"))?;
     let stop = get(
         "stop",
-        &|x| x >= start,
-        &format!("a finite number >= start ({start})"),
+        &|x| x >= start && lower_ok(x),
+        &format!("one of the {lower}, >= start ({start})"),
     )?;
-    let step = get("step", &|x| x > 0.0, "a finite number > 0")?;
+    let step = get(
+        "step",
+        &|x| x > 0.0 && (param != Param::N || x.fract() == 0.0),
+        if param == Param::N {
+            "an integer > 0"
+        } else {
+            "a finite number > 0"
+        },
+    )?;
     let count = ((stop - start) / step + 1e-9).floor() + 1.0;
     if count > MAX_AXIS_POINTS as f64 {
         return Err(ctx.err(
@@ -98,7 +193,69 @@ pub(super) fn parse_axis(
     }
     // Values on a decimal grid: start + i step, rounded to 12 digits so that 0.07 + 3 * 0.01
     // is 0.1 and equal points in two specs get equal run keys.
-    Ok((0..count as usize)
+    let values = (0..count as usize)
         .map(|i| round12(start + i as f64 * step))
-        .collect())
+        .collect();
+    Ok((values, Some(step)))
+}
+
+/// Refuses a swept parameter that the spec also fixes in `params` or `solver`.
+pub(super) fn check_not_fixed(ctx: &Ctx, top: &Mapping, grid: &Grid) -> Result<(), SpecError> {
+    for axis in grid.axes() {
+        let section = if axis.param.is_model() {
+            "params"
+        } else {
+            "solver"
+        };
+        let fixed = top
+            .get(section)
+            .and_then(Value::as_mapping)
+            .is_some_and(|m| m.contains_key(axis.param.name()));
+        if fixed {
+            return Err(ctx.err(
+                &["grid", axis.param.name()],
+                format!("swept here and fixed in {section}.{}", axis.param),
+                format!("a parameter either swept in grid or fixed in {section}, not both"),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Checks the solver's own rules (`ModelParams::validate`, `SolverSettings::validate`,
+/// `limits::check_run`) on the grid's points: every value of each axis with the other axis
+/// at its smallest and largest value (each rule is monotone in each parameter, so these
+/// points bound the grid). A failure is reported at the axis that sweeps the named field.
+pub(super) fn check_points(
+    ctx: &Ctx,
+    grid: &Grid,
+    params: &ModelParams,
+    settings: &SolverSettings,
+) -> Result<(), SpecError> {
+    let plane = grid.plane();
+    let ys = grid.y.as_ref().map_or(vec![0.0], |a| {
+        let (lo, hi) = a.span();
+        vec![lo, hi]
+    });
+    let (x_lo, x_hi) = grid.x.span();
+    let points = grid
+        .x
+        .values
+        .iter()
+        .flat_map(|&x| ys.iter().map(move |&y| (x, y)))
+        .chain(
+            grid.y
+                .iter()
+                .flat_map(|a| a.values.iter().flat_map(move |&y| [(x_lo, y), (x_hi, y)])),
+        );
+    for point in points {
+        let (mut p, mut s) = (*params, *settings);
+        plane.apply(point, &mut p, &mut s);
+        let check = p
+            .validate()
+            .and_then(|()| s.validate())
+            .and_then(|()| droplet_solver::contract::limits::check_run(&p, &s));
+        ctx.checked_swept(check, &plane)?;
+    }
+    Ok(())
 }

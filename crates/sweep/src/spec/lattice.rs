@@ -1,6 +1,6 @@
 //! The point lattice of a sweep: integer coordinates `(i, j)` in units of `step / 2^levels`
 //! from the spec grid's start, so that a point is the same point at every refinement level and
-//! its `(eta_t, kappa2)` (hence its runs' keys) equal a uniform grid's where they coincide.
+//! its coordinates (hence its runs' keys) equal a uniform grid's where they coincide.
 //! Level 0 is the spec's grid; the refinement rule that adds points is [`crate::map::refine`].
 use serde::Serialize;
 use std::collections::{BTreeMap, BTreeSet};
@@ -12,7 +12,7 @@ pub type Node = (u64, u64);
 pub struct Refine {
     /// Levels beyond the spec's grid.
     pub levels: u32,
-    /// Smallest cell side on each axis `(eta_t, kappa2)`.
+    /// Smallest cell side on each axis `(x, y)`.
     pub min_step: (f64, f64),
     /// Also split cells whose corners all share one bistable class (fills bistable bands
     /// to the finest step; by default only their edges are refined).
@@ -30,8 +30,10 @@ pub struct Axis {
 /// The level-0 grid and the refinement settings.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Lattice {
-    pub eta_t: Axis,
-    pub kappa2: Axis,
+    /// The plane's first axis.
+    pub x: Axis,
+    /// Its second.
+    pub y: Axis,
     pub refine: Refine,
 }
 
@@ -46,18 +48,18 @@ impl Lattice {
         self.scale() >> level
     }
 
-    /// The cell size `(d_eta_t, d_kappa2)` of `level`.
+    /// The cell size `(dx, dy)` of `level`.
     pub fn cell_size(&self, level: u32) -> (f64, f64) {
         let f = (1u64 << level) as f64;
-        (self.eta_t.step / f, self.kappa2.step / f)
+        (self.x.step / f, self.y.step / f)
     }
 
-    /// `(eta_t, kappa2)` of a node, on the spec grid's decimal rounding (equal to a uniform
+    /// The coordinates of a node, on the spec grid's decimal rounding (equal to a uniform
     /// grid's value where a uniform grid has the point).
     pub fn coords(&self, (i, j): Node) -> (f64, f64) {
         let s = self.scale() as f64;
         let at = |a: &Axis, k: u64| crate::spec::axes::round12(a.start + (k as f64) * (a.step / s));
-        (at(&self.eta_t, i), at(&self.kappa2, j))
+        (at(&self.x, i), at(&self.y, j))
     }
 
     /// Whether cells of `level` may still be split (their quarters not below `min_step`).
@@ -67,18 +69,18 @@ impl Lattice {
         level < self.refine.levels && de >= me * (1.0 - 1e-9) && dk >= mk * (1.0 - 1e-9)
     }
 
-    /// The points of level 0 (the spec grid), eta_t-major.
+    /// The points of level 0 (the spec grid), x-major.
     pub fn level0(&self) -> Vec<Node> {
         let s = self.scale();
-        (0..self.eta_t.count)
-            .flat_map(|a| (0..self.kappa2.count).map(move |b| (a * s, b * s)))
+        (0..self.x.count)
+            .flat_map(|a| (0..self.y.count).map(move |b| (a * s, b * s)))
             .collect()
     }
 
     /// The cells of level 0, by their lower-left node.
     pub fn cells0(&self) -> Vec<Node> {
         let s = self.scale();
-        let (ne, nk) = (self.eta_t.count, self.kappa2.count);
+        let (ne, nk) = (self.x.count, self.y.count);
         (0..ne.saturating_sub(1))
             .flat_map(|a| (0..nk.saturating_sub(1)).map(move |b| (a * s, b * s)))
             .collect()
@@ -86,15 +88,15 @@ impl Lattice {
 }
 
 impl Lattice {
-    /// The node of a point `(eta_t, kappa2)` of this lattice (the inverse of [`Self::coords`]).
-    pub fn node_of(&self, (eta_t, kappa2): (f64, f64)) -> Node {
+    /// The node of a point `(x, y)` of this lattice (the inverse of [`Self::coords`]).
+    pub fn node_of(&self, (x, y): (f64, f64)) -> Node {
         let s = self.scale() as f64;
         let at = |a: &Axis, x: f64| ((x - a.start) / (a.step / s)).round().max(0.0) as u64;
-        (at(&self.eta_t, eta_t), at(&self.kappa2, kappa2))
+        (at(&self.x, x), at(&self.y, y))
     }
 
     /// The picture of a refined point set: for each point, the rectangles
-    /// `[eta_t0, kappa2_0, eta_t1, kappa2_1]` it stands for. Each cell that was not split (its
+    /// `[x0, y0, x1, y1]` it stands for. Each cell that was not split (its
     /// centre is not a point) is divided into four quarters, each belonging to the corner it
     /// touches, so the map is tiled without gaps or overlaps at every level (a point in the
     /// middle of a coarser neighbour's side has quarters on the finer side only).

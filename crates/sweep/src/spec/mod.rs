@@ -6,13 +6,13 @@
 //! output: out/smoke           # default: out/<name>
 //! model: pde                  # pde (Sect. 3) or ode (reduced model, eqs. 58-59)
 //! params: {eta2: 0.1, radius: 1, sigma: 0.03, box_len: 7, mass: 0.1}   # paper defaults
-//! grid:
+//! grid:                       # one or two axes: any model parameter, or n, tol, dt_max, t_max
 //!   eta_t: {start: 0.07, stop: 0.10, step: 0.01}    # inclusive range ...
 //!   kappa2: [0.11, 0.12]                            # ... or an explicit list
 //! initial_conditions: [i, ii, iii, iv]              # default: the paper's four
 //! solver: {scheme: spectral, n: 192, dt: 0.02, tol: 1.0e-4, dt_max: 0.25, t_max: 2000,
 //!          steady_tol: 1.0e-6, steady_window: 0.1}
-//! refine: {levels: 4, min_step: {eta_t: 1.5e-4, kappa2: 3e-4}}   # optional (ranges only)
+//! refine: {levels: 4, min_step: {eta_t: 1.5e-4, kappa2: 3e-4}}   # optional (two range axes)
 //!                             # tol: adaptive stepping (0 = fixed step dt; spectral only)
 //!                             # ode: dt default 0.05, and h0 (default 0.1436)
 //! ```
@@ -45,7 +45,7 @@ use serde_yaml::Value;
 use std::path::{Path, PathBuf};
 
 pub use context::locate;
-pub use grid::MAX_AXIS_POINTS;
+pub use grid::{Grid, GridAxis, MAX_AXES, MAX_AXIS_POINTS};
 pub use refine::MAX_LEVELS;
 
 /// A validated sweep spec.
@@ -53,10 +53,10 @@ pub use refine::MAX_LEVELS;
 pub struct SweepSpec {
     pub name: String,
     pub output: PathBuf,
-    /// Fixed parameters; `eta_t` and `kappa2` are overwritten per point.
+    /// Fixed parameters; the swept ones are overwritten per point.
     pub params: ModelParams,
-    pub eta_t: Vec<f64>,
-    pub kappa2: Vec<f64>,
+    /// The swept axes.
+    pub grid: Grid,
     pub initial_conditions: Vec<InitialCondition>,
     pub solver: SolverSettings,
     /// Adaptive refinement of the grid (`refine:`), if asked for.
@@ -215,18 +215,19 @@ pub fn parse(text: &str, file: &str, stem: &str) -> Result<SweepSpec, SpecError>
 
     let (name, output, model) = header(&ctx, top, stem)?;
 
-    let params = params::parse(&ctx, top)?;
-    let (eta_t, kappa2) = grid::parse(&ctx, top)?;
+    let grid = grid::parse(&ctx, top)?;
+    grid::check_not_fixed(&ctx, top, &grid)?;
+    let params = params::parse(&ctx, top, &grid)?;
     let initial_conditions = initial::parse(&ctx, top)?;
-    let solver = solver::parse(&ctx, top, model, &params)?;
-    let refine = refine::parse(&ctx, top, &eta_t, &kappa2)?;
+    let solver = solver::parse(&ctx, top, model, &params, &grid)?;
+    grid::check_points(&ctx, &grid, &params, &solver)?;
+    let refine = refine::parse(&ctx, top, &grid)?;
     classify::parse(&ctx, top)?;
     Ok(SweepSpec {
         name,
         output,
         params,
-        eta_t,
-        kappa2,
+        grid,
         initial_conditions,
         solver,
         refine,
@@ -293,8 +294,8 @@ mod tests {
     #[test]
     fn parses_a_good_spec() {
         let s = parse(GOOD, "t.yaml", "t").unwrap();
-        assert_eq!(s.eta_t, vec![0.07, 0.08, 0.09, 0.1]);
-        assert_eq!(s.kappa2, vec![0.11, 0.12]);
+        assert_eq!(s.grid.x.values, vec![0.07, 0.08, 0.09, 0.1]);
+        assert_eq!(s.grid.y.as_ref().unwrap().values, vec![0.11, 0.12]);
         assert_eq!(s.initial_conditions.len(), 4);
         assert_eq!(s.solver.n, 64);
         assert_eq!(s.output, PathBuf::from("out/t"));

@@ -1,25 +1,35 @@
-//! The `params` section: the fixed model parameters (paper defaults where absent), checked by
-//! `ModelParams::validate` (the solver's one source of truth) after the types are read.
+//! The `params` section: the fixed model parameters (paper defaults where absent; `eta_t`
+//! and `kappa2` default to the Fig. 1(c) point 0.085, 0.112 when no axis sweeps them), checked
+//! by `ModelParams::validate` (the solver's one source of truth) after the types are read.
 use super::context::Ctx;
+use super::grid::Grid;
 use crate::error::SpecError;
-use droplet_solver::model::params::ModelParams;
+use droplet_solver::{contract::settings::SolverSettings, model::params::ModelParams};
 use serde_yaml::Mapping;
 
-/// The `params` section.
-pub(super) fn parse(ctx: &Ctx, top: &Mapping) -> Result<ModelParams, SpecError> {
+/// The `params` section, checked at the grid's first point (the swept values are the grid's
+/// to check, [`super::grid::check_points`]).
+pub(super) fn parse(ctx: &Ctx, top: &Mapping, grid: &Grid) -> Result<ModelParams, SpecError> {
     let mut params = ModelParams::default();
     let Some(v) = top.get("params") else {
         return Ok(params);
     };
-    let keys = ["eta2", "radius", "sigma", "box_len", "mass"];
+    let keys = [
+        "eta_t", "kappa2", "eta2", "radius", "sigma", "box_len", "mass",
+    ];
     let m = ctx.mapping(v, &["params"], &keys)?;
     ctx.numbers(m, "params", &keys, |key, val| match key {
+        "eta_t" => params.eta_t = val,
+        "kappa2" => params.kappa2 = val,
         "eta2" => params.eta2 = val,
         "radius" => params.radius = val,
         "sigma" => params.sigma = val,
         "box_len" => params.box_len = val,
         _ => params.mass = val,
     })?;
-    ctx.checked(params.validate())?;
+    let mut at_first = params;
+    grid.plane()
+        .apply(grid.first(), &mut at_first, &mut SolverSettings::default());
+    ctx.checked_swept(at_first.validate(), &grid.plane())?;
     Ok(params)
 }

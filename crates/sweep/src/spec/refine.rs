@@ -7,40 +7,36 @@
 //!   split_bistable: false                   # optional: also fill bistable bands
 //! ```
 //!
-//! Both grid axes must be `{start, stop, step}` ranges: level 0 is that grid, and each level
-//! halves the step where the class changes.
+//! The grid must have two axes, both `{start, stop, step}` ranges: level 0 is that grid, and
+//! each level halves the steps where the class changes. `min_step` is keyed by the axes' names.
 use super::context::{show, Ctx};
+use super::grid::{Grid, GridAxis};
 use crate::error::SpecError;
-use crate::spec::axes::{ETA_T, KAPPA2};
 use crate::spec::lattice::{Axis, Lattice, Refine};
 use serde_yaml::Mapping;
 
 /// Most refinement levels (a finest cell 1/1024 of the grid's).
 pub const MAX_LEVELS: u32 = 10;
 
-/// The grid axis `key` with `values` as the lattice's level-0 axis: a `{start, stop, step}`
-/// range of at least two points (refinement halves its step).
-fn grid_axis(
-    ctx: &Ctx,
-    top: &Mapping,
-    key: &'static str,
-    values: &[f64],
-) -> Result<Axis, SpecError> {
-    let grid = top.get("grid").and_then(|g| g.as_mapping());
-    let step = grid
-        .and_then(|g| g.get(key))
-        .and_then(|a| a.as_mapping())
-        .and_then(|a| a.get("step"))
-        .and_then(|s| s.as_f64());
-    match step {
-        Some(step) if values.len() >= 2 => Ok(Axis {
-            start: values[0],
+/// A grid axis as the lattice's level-0 axis: a `{start, stop, step}` range of at least two
+/// points (refinement halves its step).
+fn lattice_axis(ctx: &Ctx, axis: Option<&GridAxis>) -> Result<Axis, SpecError> {
+    let Some(axis) = axis else {
+        return Err(ctx.err(
+            &["refine"],
+            "a grid of one axis",
+            "a grid of two {start, stop, step} range axes (refinement splits cells of a plane)",
+        ));
+    };
+    match axis.step {
+        Some(step) if axis.values.len() >= 2 => Ok(Axis {
+            start: axis.values[0],
             step,
-            count: values.len() as u64,
+            count: axis.values.len() as u64,
         }),
         _ => Err(ctx.err(
-            &["grid", key],
-            if step.is_some() {
+            &["grid", axis.param.name()],
+            if axis.step.is_some() {
                 "a single point".to_string()
             } else {
                 "a list".to_string()
@@ -50,13 +46,8 @@ fn grid_axis(
     }
 }
 
-/// The `refine` section, if present, on the grid `(eta_t, kappa2)` already parsed.
-pub(super) fn parse(
-    ctx: &Ctx,
-    top: &Mapping,
-    eta_t: &[f64],
-    kappa2: &[f64],
-) -> Result<Option<Lattice>, SpecError> {
+/// The `refine` section, if present, on the grid already parsed.
+pub(super) fn parse(ctx: &Ctx, top: &Mapping, grid: &Grid) -> Result<Option<Lattice>, SpecError> {
     let Some(v) = top.get("refine") else {
         return Ok(None);
     };
@@ -74,24 +65,32 @@ pub(super) fn parse(
                 )
             })? as u32,
     };
+    let x = lattice_axis(ctx, Some(&grid.x))?;
+    let y = lattice_axis(ctx, grid.y.as_ref())?;
+    let names = grid
+        .plane()
+        .params()
+        .iter()
+        .map(|p| p.name())
+        .collect::<Vec<_>>();
     let mut min_step = (0.0, 0.0);
-    if let Some(x) = m.get("min_step") {
-        let ms = ctx.mapping(x, &["refine", "min_step"], &[ETA_T, KAPPA2])?;
-        for (key, slot) in [(ETA_T, &mut min_step.0), (KAPPA2, &mut min_step.1)] {
-            if let Some(y) = ms.get(key) {
-                *slot = ctx.number(y, &["refine", "min_step", key], |s| s > 0.0, "a number > 0")?;
+    if let Some(v) = m.get("min_step") {
+        let ms = ctx.mapping(v, &["refine", "min_step"], &names)?;
+        for (key, slot) in [(names[0], &mut min_step.0), (names[1], &mut min_step.1)] {
+            if let Some(w) = ms.get(key) {
+                *slot = ctx.number(w, &["refine", "min_step", key], |s| s > 0.0, "a number > 0")?;
             }
         }
     }
     let split_bistable = match m.get("split_bistable") {
         None => false,
-        Some(x) => x
+        Some(b) => b
             .as_bool()
-            .ok_or_else(|| ctx.err(&["refine", "split_bistable"], show(x), "true or false"))?,
+            .ok_or_else(|| ctx.err(&["refine", "split_bistable"], show(b), "true or false"))?,
     };
     let lattice = Lattice {
-        eta_t: grid_axis(ctx, top, ETA_T, eta_t)?,
-        kappa2: grid_axis(ctx, top, KAPPA2, kappa2)?,
+        x,
+        y,
         refine: Refine {
             levels,
             min_step,
@@ -101,8 +100,8 @@ pub(super) fn parse(
     // Both sides of a cell are halved together: a min_step above half of either grid step
     // would forbid every split, turning refinement off without a word.
     for (key, grid_step, min) in [
-        (ETA_T, lattice.eta_t.step, min_step.0),
-        (KAPPA2, lattice.kappa2.step, min_step.1),
+        (names[0], lattice.x.step, min_step.0),
+        (names[1], lattice.y.step, min_step.1),
     ] {
         if min > 0.5 * grid_step * (1.0 + 1e-9) {
             return Err(ctx.err(

@@ -3,6 +3,7 @@
 //! `droplet_solver::contract::limits::check_run`, the same checks `droplet simulate` makes, with the
 //! offending field mapped back to its key.
 use super::context::{show, Ctx};
+use super::grid::Grid;
 use crate::error::SpecError;
 use droplet_solver::{
     contract::settings::ModelKind, contract::settings::SolverSettings, model::params::ModelParams,
@@ -74,12 +75,14 @@ fn flags(ctx: &Ctx, m: &Mapping, solver: &mut SolverSettings) -> Result<(), Spec
     Ok(())
 }
 
-/// The `solver` section for `model`, validated against `params`.
+/// The `solver` section for `model`, validated against `params` at the grid's first point
+/// (the swept values are the grid's to check, [`super::grid::check_points`]).
 pub(super) fn parse(
     ctx: &Ctx,
     top: &Mapping,
     model: ModelKind,
     params: &ModelParams,
+    grid: &Grid,
 ) -> Result<SolverSettings, SpecError> {
     let mut solver = match model {
         ModelKind::Pde => SolverSettings::default(),
@@ -124,10 +127,12 @@ pub(super) fn parse(
         })?;
     }
     // Step counts, the droplet resolved by the grid, the explicit scheme's stability limit.
-    ctx.checked(
-        solver
-            .validate()
-            .and_then(|()| droplet_solver::contract::limits::check_run(params, &solver)),
+    let (mut p, mut s) = (*params, solver);
+    grid.plane().apply(grid.first(), &mut p, &mut s);
+    ctx.checked_swept(
+        s.validate()
+            .and_then(|()| droplet_solver::contract::limits::check_run(&p, &s)),
+        &grid.plane(),
     )?;
     Ok(solver)
 }

@@ -1,5 +1,6 @@
 //! Spec -> tasks: every (point, initial condition) pair is one run, keyed by a hash of
 //! everything that determines its result.
+use crate::spec::axes::Plane;
 use crate::spec::lattice::{Lattice, Node};
 use crate::spec::SweepSpec;
 use droplet_solver::{
@@ -12,7 +13,7 @@ use sha2::{Digest, Sha256};
 /// One run of a sweep.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Task {
-    /// Index of the point: `i_eta * n_kappa + i_kappa`.
+    /// Index of the point: `i_x * n_y + i_y` on a uniform grid.
     pub point: usize,
     /// Index of the initial condition in the spec.
     pub ic_index: usize,
@@ -27,11 +28,13 @@ pub struct Task {
 /// not grow with the number of runs.
 #[derive(Debug, Clone)]
 pub struct Plan {
-    /// `(eta_t, kappa2)` of each point.
+    /// The swept parameters.
+    pub plane: Plane,
+    /// `(x, y)` of each point ([`Plane`]).
     pub points: Vec<(f64, f64)>,
     /// Refinement level of each point (0: the spec's grid; [`crate::map::refine`]).
     pub levels: Vec<u32>,
-    /// Cell size `(d_eta_t, d_kappa2)` of each point: the grid step of its level (`NaN` on
+    /// Cell size `(dx, dy)` of each point: the grid step of its level (`NaN` on
     /// an axis given as a list of one value).
     pub cells: Vec<(f64, f64)>,
     pub ic_names: Vec<String>,
@@ -54,20 +57,17 @@ impl Plan {
     /// Run `index` (point-major, initial conditions in spec order), key included.
     pub fn task(&self, index: usize) -> Task {
         let (point, ic_index) = (index / self.ics.len(), index % self.ics.len());
-        let (eta_t, kappa2) = self.points[point];
-        let params = ModelParams {
-            eta_t,
-            kappa2,
-            ..self.params
-        };
+        let (mut params, mut settings) = (self.params, self.settings);
+        self.plane
+            .apply(self.points[point], &mut params, &mut settings);
         let ic = &self.ics[ic_index];
         Task {
             point,
             ic_index,
             ic: ic.clone(),
             params,
-            settings: self.settings,
-            key: run_key(&params, ic, &self.settings),
+            settings,
+            key: run_key(&params, ic, &settings),
         }
     }
 
@@ -86,7 +86,10 @@ pub fn run_count(spec: &SweepSpec) -> u64 {
 
 /// Number of points of the spec's grid, or with `refine:` of its finest lattice.
 fn point_count(spec: &SweepSpec) -> u64 {
-    let (ne, nk) = (spec.eta_t.len() as u64, spec.kappa2.len() as u64);
+    let (ne, nk) = (
+        spec.grid.x.values.len() as u64,
+        spec.grid.y.as_ref().map_or(1, |a| a.values.len() as u64),
+    );
     match &spec.refine {
         None => ne.saturating_mul(nk),
         Some(l) => {
@@ -150,16 +153,19 @@ fn spacing(values: &[f64]) -> f64 {
     }
 }
 
-/// Expands a spec into its points (eta_t-major) and initial conditions; runs are made on
+/// Expands a spec into its points (x-major) and initial conditions; runs are made on
 /// demand. Check [`check_size`] first: the points are allocated here. With `refine:` these
 /// are the points of level 0; [`plan_nodes`] plans the refined point set.
 pub fn plan(spec: &SweepSpec) -> Plan {
+    let ys = spec.grid.y_values();
     let points: Vec<(f64, f64)> = spec
-        .eta_t
+        .grid
+        .x
+        .values
         .iter()
-        .flat_map(|&eta_t| spec.kappa2.iter().map(move |&kappa2| (eta_t, kappa2)))
+        .flat_map(|&x| ys.iter().map(move |&y| (x, y)))
         .collect();
-    let cell = (spacing(&spec.eta_t), spacing(&spec.kappa2));
+    let cell = (spacing(&spec.grid.x.values), spacing(&ys));
     point_set(
         spec,
         points.clone(),
@@ -186,6 +192,7 @@ fn point_set(
     cells: Vec<(f64, f64)>,
 ) -> Plan {
     Plan {
+        plane: spec.grid.plane(),
         points,
         levels,
         cells,
@@ -241,6 +248,27 @@ mod tests {
                 ..
             })
         ));
+    }
+
+    #[test]
+    fn any_axis_sets_its_parameter_and_the_paper_plane_keeps_its_keys() {
+        let parse = |text: &str| crate::spec::parse(text, "t.yaml", "t").unwrap();
+        // The same points written as the paper's plane, its axes in the other order, or one
+        // axis with the other parameter fixed: the same runs, keys included.
+        let paper = plan(&parse("grid:\n  eta_t: [0.08, 0.09]\n  kappa2: [0.12]\n"));
+        let swapped = plan(&parse("grid:\n  kappa2: [0.12]\n  eta_t: [0.08, 0.09]\n"));
+        let line = plan(&parse(
+            "params: {kappa2: 0.12}\ngrid:\n  eta_t: [0.08, 0.09]\n",
+        ));
+        let keys = |p: &Plan| p.tasks().map(|t| t.key).collect::<Vec<_>>();
+        assert_eq!(keys(&paper), keys(&swapped));
+        assert_eq!(keys(&paper), keys(&line));
+        // A solver setting and a model parameter as axes.
+        let p = plan(&parse("grid:\n  n: [64, 128]\n  mass: [0.05]\n"));
+        let t = p.task(p.ic_names.len());
+        assert_eq!((t.settings.n, t.params.mass), (128, 0.05));
+        assert_eq!(t.key, run_key(&t.params, &t.ic, &t.settings));
+        assert_ne!(t.key, p.task(0).key);
     }
 
     #[test]

@@ -5,6 +5,7 @@
 //! same directory is redrawn with them.
 use crate::error::SweepError;
 use crate::pictures::map_figure::{boundary_picture, Curve};
+use crate::spec::axes::Param;
 use crate::tables::boundaries::{self as table, NamedCurve};
 use droplet_solver::contract::settings::{ModelKind, H0_PAPER};
 use droplet_solver::model::params::ModelParams;
@@ -60,22 +61,28 @@ impl BoundaryStudy {
                 .then(|| crate::tables::read::stored_spec(&out.join(crate::tables::read::POINTS)))
                 .and_then(Result::ok)
         });
-        let span = |v: &[f64]| {
-            v.iter()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| {
-                    (lo.min(x), hi.max(x))
-                })
+        if let Some(s) = sweep.as_ref().filter(|s| !s.grid.plane().is_paper()) {
+            let names: Vec<&str> = s.grid.plane().params().iter().map(|p| p.name()).collect();
+            return Err(SweepError::Invalid(format!(
+                "{}: the sweep there is in ({}), and the exact boundaries are computed in the \
+                 paper's plane (eta_t, kappa2); give another --out",
+                out.display(),
+                names.join(", ")
+            )));
+        }
+        let swept = |p: Param| {
+            sweep
+                .as_ref()
+                .and_then(|s| s.grid.axis(p))
+                .filter(|a| a.values.len() > 1)
+                .map(|a| a.span())
         };
-        let eta_t = match (eta_t, &sweep) {
-            (Some(w), _) => w,
-            (None, Some(s)) if s.eta_t.len() > 1 => span(&s.eta_t),
-            _ => FIG2A_WINDOW.0,
-        };
-        let kappa2 = match (kappa2, &sweep) {
-            (Some(w), _) => w,
-            (None, Some(s)) if s.kappa2.len() > 1 => span(&s.kappa2),
-            _ => FIG2A_WINDOW.1,
-        };
+        let eta_t = eta_t
+            .or_else(|| swept(Param::EtaT))
+            .unwrap_or(FIG2A_WINDOW.0);
+        let kappa2 = kappa2
+            .or_else(|| swept(Param::Kappa2))
+            .unwrap_or(FIG2A_WINDOW.1);
         let base = ModelParams {
             eta_t: eta_t.0,
             kappa2: kappa2.0,

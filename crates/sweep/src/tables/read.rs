@@ -40,8 +40,10 @@ pub struct RunRow {
 #[derive(Debug, Clone)]
 pub struct PointRow {
     pub point: u32,
-    pub eta_t: f64,
-    pub kappa2: f64,
+    /// Its coordinates in the sweep's plane ([`crate::spec::axes::Plane`], from the spec in
+    /// the table's metadata; the paper's plane for a table without one).
+    pub x: f64,
+    pub y: f64,
     pub level: u32,
     pub label: String,
     pub settled: bool,
@@ -186,7 +188,13 @@ pub fn runs(path: &Path) -> Result<Vec<RunRow>, SweepError> {
 /// Every point of a points table, in table order.
 pub fn points(path: &Path) -> Result<Vec<PointRow>, SweepError> {
     let df = frame(path)?;
-    let (eta, kappa) = (floats(&df, ETA_T)?, floats(&df, KAPPA2)?);
+    // A table without its spec (edited by another tool) is read in the paper's plane.
+    let plane = stored_spec(path).map_or(crate::spec::axes::Plane::PAPER, |s| s.grid.plane());
+    let eta = floats(&df, plane.x.name())?;
+    let kappa = match plane.y {
+        Some(y) => floats(&df, y.name())?,
+        None => vec![0.0; df.height()],
+    };
     let (point, level, n_runs) = (
         u32s(&df, "point")?,
         u32s_or_zero(&df, "level")?,
@@ -196,8 +204,8 @@ pub fn points(path: &Path) -> Result<Vec<PointRow>, SweepError> {
     Ok((0..df.height())
         .map(|i| PointRow {
             point: point[i],
-            eta_t: eta[i],
-            kappa2: kappa[i],
+            x: eta[i],
+            y: kappa[i],
             level: level[i],
             label: label[i].clone().unwrap_or_default(),
             settled: settled[i],

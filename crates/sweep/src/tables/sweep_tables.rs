@@ -234,26 +234,35 @@ pub fn runs_frame(
     Ok(DataFrame::new(rows.len(), cols)?)
 }
 
-/// The points table: coordinates, refinement level and cell size (the grid step of the
+/// The points table: coordinates (one column per swept parameter), refinement level and cell size (the grid step of the
 /// point's level), point class, the class from each initial condition.
 pub fn points_frame(map: &PhaseMap) -> Result<DataFrame, SweepError> {
     let n = map.points.len();
-    let mut cols = vec![
-        Column::new("point".into(), (0..n as u32).collect::<Vec<u32>>()),
-        f64_col(ETA_T, map.points.iter().map(|p| p.eta_t).collect()),
-        f64_col(KAPPA2, map.points.iter().map(|p| p.kappa2).collect()),
-        Column::new(
-            "level".into(),
-            map.points.iter().map(|p| p.level).collect::<Vec<u32>>(),
-        ),
-        f64_col(
-            &format!("d_{ETA_T}"),
-            map.points.iter().map(|p| p.cell.0).collect(),
-        ),
-        f64_col(
-            &format!("d_{KAPPA2}"),
+    let mut cols = vec![Column::new(
+        "point".into(),
+        (0..n as u32).collect::<Vec<u32>>(),
+    )];
+    // One column per axis, named after its parameter, then the level and the cell's sides.
+    let (x, y) = (map.plane.x.name(), map.plane.y.map(|p| p.name()));
+    cols.push(f64_col(x, map.points.iter().map(|p| p.x).collect()));
+    if let Some(y) = y {
+        cols.push(f64_col(y, map.points.iter().map(|p| p.y).collect()));
+    }
+    cols.push(Column::new(
+        "level".into(),
+        map.points.iter().map(|p| p.level).collect::<Vec<u32>>(),
+    ));
+    cols.push(f64_col(
+        &format!("d_{x}"),
+        map.points.iter().map(|p| p.cell.0).collect(),
+    ));
+    if let Some(y) = y {
+        cols.push(f64_col(
+            &format!("d_{y}"),
             map.points.iter().map(|p| p.cell.1).collect(),
-        ),
+        ));
+    }
+    cols.extend([
         str_col(
             "class",
             map.points.iter().map(|p| p.class.label.clone()).collect(),
@@ -265,7 +274,7 @@ pub fn points_frame(map: &PhaseMap) -> Result<DataFrame, SweepError> {
                 .map(|p| p.class.settled())
                 .collect::<Vec<bool>>(),
         ),
-    ];
+    ]);
     for (i, name) in map.ic_names.iter().enumerate() {
         cols.push(Column::new(
             format!("class_{name}").as_str().into(),
