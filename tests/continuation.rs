@@ -103,6 +103,59 @@ fn boundaries_are_written_and_drawn_over_a_sweeps_map() {
 fn bad_input_exits_2_naming_the_option() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().to_str().unwrap();
+    let line = ["--from", "0.05", "--to", "0.5"];
+    let with_line =
+        |head: &[&'static str]| -> Vec<&'static str> { head.iter().copied().chain(line).collect() };
+    let param_cases: Vec<(Vec<&str>, &str)> = vec![
+        (
+            with_line(&["continue", "--param", "massive"]),
+            "--param massive",
+        ),
+        (
+            with_line(&["continue", "--param", "mass", "--set", "eta_t:0.08"]),
+            "NAME=VALUE",
+        ),
+        (
+            with_line(&["continue", "--param", "mass", "--set", "foo=1"]),
+            "NAME one of",
+        ),
+        (
+            with_line(&["continue", "--param", "mass", "--set", "mass=0.2"]),
+            "varied parameter",
+        ),
+        (
+            with_line(&["continue", "--param", "mass", "--mass", "0.2"]),
+            "--mass",
+        ),
+        (
+            with_line(&[
+                "continue",
+                "--param",
+                "eta2",
+                "--set",
+                "eta_t=0.08,eta_t=0.09",
+            ]),
+            "twice",
+        ),
+        (
+            vec!["continue", "--param", "mass", "--from", "0", "--to", "0.5"],
+            "> 0 along the whole line",
+        ),
+        (
+            vec![
+                "continue", "--param", "sigma", "--from", "0.03", "--to", "0.5",
+            ],
+            "R/4",
+        ),
+    ];
+    for (args, needle) in param_cases {
+        let mut all = args.clone();
+        all.extend(["--out", out]);
+        let o = run(&all);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(needle), "{args:?}: {err}");
+    }
     let cases: [(&[&str], &str); 6] = [
         (
             &[
@@ -220,5 +273,108 @@ fn boundaries_at_several_grid_sizes_give_each_curves_shift_from_the_previous_one
         let o = run(&["boundaries", "--n", bad, "--out", o]);
         assert_eq!(o.status.code(), Some(2), "{bad}");
         assert!(String::from_utf8_lossy(&o.stderr).contains("--n"), "{bad}");
+    }
+}
+
+/// `(at, v, stable)` of every state of a continuation table.
+fn states(path: &std::path::Path) -> Vec<(f64, f64, bool)> {
+    let df = read(path);
+    let f = |c: &str| df.column(c).unwrap().f64().unwrap().clone();
+    let (at, v) = (f("at"), f("v"));
+    let stable = df.column("stable").unwrap().bool().unwrap().clone();
+    (0..df.height())
+        .map(|i| {
+            (
+                at.get(i).unwrap(),
+                v.get(i).unwrap(),
+                stable.get(i).unwrap(),
+            )
+        })
+        .collect()
+}
+
+#[test]
+fn continuation_in_mass_and_eta2_reproduces_the_time_stepper() {
+    // eta2 and m multiply time derivatives only: along either, the MD branch is level in the
+    // state, and a run at any value ends on it (to the Newton finish's 1e-10). N = 128: at
+    // N = 96 the grid's anisotropy turns these runs a few degrees off the x axis.
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().to_str().unwrap();
+    for (param, values) in [("eta2", [0.05, 0.12]), ("mass", [0.1, 0.5])] {
+        let mut branch = Vec::new();
+        {
+            let axis = "x";
+            let j = json(&run(&[
+                "continue",
+                "--param",
+                param,
+                "--set",
+                "eta_t=0.078,kappa2=0.13",
+                "--from",
+                &values[0].to_string(),
+                "--to",
+                &values[1].to_string(),
+                "--branch",
+                "md",
+                "--axis",
+                axis,
+                "--n",
+                "128",
+                "--out",
+                out,
+                "--json",
+            ]));
+            assert_eq!(
+                j["line"],
+                format!(
+                    "eta_t = 0.078, kappa2 = 0.13, {param} from {} to {}",
+                    values[0], values[1]
+                )
+            );
+            let table = j["files"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|f| std::path::PathBuf::from(f.as_str().unwrap()))
+                .find(|f| {
+                    f.extension().is_some_and(|e| e == "parquet")
+                        && !f.to_string_lossy().contains("_events")
+                })
+                .unwrap();
+            branch.extend(states(&table));
+        }
+        for x in values {
+            let s = json(&run(&[
+                "simulate",
+                "--eta-t",
+                "0.078",
+                "--kappa2",
+                "0.13",
+                &format!("--{param}"),
+                &x.to_string(),
+                "--ic",
+                "i",
+                "--n",
+                "128",
+                "--json",
+            ]));
+            assert_eq!(s["class"], "MD", "{param} = {x}: {s}");
+            let v = s["v"].as_f64().unwrap();
+            // The branch state at this value (the branch covers both ends).
+            let (at, vb, stable) = branch
+                .iter()
+                .copied()
+                .filter(|(at, _, _)| (at - x).abs() < 1e-9)
+                .min_by(|a, b| (a.1 - v).abs().total_cmp(&(b.1 - v).abs()))
+                .unwrap_or_else(|| panic!("no state at {param} = {x}"));
+            assert!(
+                (vb - v).abs() < 1e-6,
+                "{param} = {at}: branch v {vb}, run v {v}"
+            );
+            assert!(
+                stable,
+                "{param} = {at}: the run's state is unstable on the branch"
+            );
+        }
     }
 }

@@ -3,7 +3,6 @@
 use super::{print_json, CliError};
 use droplet_solver::continuation::arclength::ArclengthOptions;
 use droplet_solver::continuation::{branch::Line, branch::EVENT_PRECISION, problem::Family};
-use droplet_solver::model::params::ModelParams;
 use droplet_sweep::studies::continuation::{
     ContinuationStudy, ContinuationWritten, ImpreciseEvent, Progress,
 };
@@ -12,33 +11,36 @@ use std::path::PathBuf;
 /// Follow branches of steady states in one parameter, with stability and bifurcations.
 ///
 /// Follow steady states of the full model (field included, N x N spectral grid) as roots of
-/// the co-moving force balance, by pseudo-arclength continuation in eta_t or kappa2 through
-/// folds, with the linear stability of every state (eigenvalues with Re > -1 of the 4 x 4
+/// the co-moving force balance, by pseudo-arclength continuation through folds in any model
+/// parameter (--param, the others fixed by --set; --kappa2 K and --eta-t E are the paper's
+/// lines), with the linear stability of every state (eigenvalues with Re > -1 of the 4 x 4
 /// nonlinear eigenproblem; the near-neutral rotation mode, a box effect, is reported apart
 /// and left out of the verdict). Pitchfork (P), saddle-node (SN) and Hopf (H) points are
 /// located on the branch to ~1e-10 in the parameter. Writes DIR/<stem>.parquet (every state),
 /// DIR/<stem>_events.parquet and DIR/<stem>.png/.svg (solid stable, dashed unstable), with
-/// <stem> = continuation_<fixed parameter>_<value> (+ _diagonal for --axis diagonal).
+/// <stem> = continuation_<fixed parameter>_<value> on the paper's lines,
+/// continuation_<varied>_eta_t_<E>_kappa2_<K>[_<other set parameter>_<value>...] on the others
+/// (+ _diagonal for --axis diagonal).
 #[derive(clap::Args)]
 #[command(
     allow_negative_numbers = true,
-    after_help = "Examples:\n  droplet continue --kappa2 0.13 --from 0.070 --to 0.100 --out results/continuation    # all branches, vary eta_t\n  droplet continue --eta-t 0.085 --from 0.100 --to 0.170 --out results/continuation   # vary kappa2\n  droplet continue --branch md --kappa2 0.13 --from 0.07 --to 0.1 --json             # the MD branch and its fold"
+    after_help = "Examples:\n  droplet continue --kappa2 0.13 --from 0.070 --to 0.100 --out results/continuation    # all branches, vary eta_t\n  droplet continue --eta-t 0.085 --from 0.100 --to 0.170 --out results/continuation   # vary kappa2\n  droplet continue --branch md --kappa2 0.13 --from 0.07 --to 0.1 --json             # the MD branch and its fold\n  droplet continue --param mass --set eta_t=0.078,kappa2=0.13 --from 0.01 --to 1    # in the inertia: stability only"
 )]
 pub struct Args {
     /// Which branch: all, ic, id, md (moving along its minor axis), md-major.
     #[arg(long, default_value = "all")]
     branch: String,
     #[command(flatten)]
-    line: super::line::LineArgs,
+    line: super::param_line::ParamLineArgs,
     /// The mirror axis the states lie on: x (motion along x), or diagonal.
     #[arg(long, default_value = "x")]
     axis: String,
     /// Grid points per side.
     #[arg(long, default_value_t = 192)]
     n: usize,
-    /// Inertia m (> 0: it scales the eigenvalues, not the states).
-    #[arg(long, default_value_t = 0.1)]
-    mass: f64,
+    /// Inertia m (> 0: it scales the eigenvalues, not the states; default 0.1).
+    #[arg(long)]
+    mass: Option<f64>,
     /// Most states per branch and direction.
     #[arg(long, default_value_t = 400)]
     max_points: usize,
@@ -49,8 +51,8 @@ pub struct Args {
     #[arg(long, default_value = "out/continuation")]
     out: PathBuf,
     /// Print one JSON object (keys: line, n, seconds, branches [{branch, mirror, points,
-    /// stable_points, ends}], events [{kind, what, branch, eta_t, kappa2, v, s, eigenvalue,
-    /// precision}], files).
+    /// stable_points, ends}], events [{kind, what, branch, parameter, at, eta_t, kappa2, v, s,
+    /// eigenvalue, precision}], files).
     #[arg(long)]
     json: bool,
 }
@@ -69,7 +71,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
     })?;
     let varied = study.varied();
     if a.json {
-        print_json(&json_summary(&done, a.n));
+        print_json(&json_summary(&done, a.n, varied));
     } else {
         print_text(&study, &done);
     }
@@ -100,17 +102,7 @@ fn study_of(a: &Args) -> Result<ContinuationStudy, CliError> {
             a.ds_max
         )));
     }
-    let (parameter, _, _) = a.line.parameter();
-    let base = a.line.start(ModelParams {
-        mass: a.mass,
-        ..ModelParams::default()
-    })?;
-    if a.mass.is_nan() || a.mass <= 0.0 {
-        return Err(CliError::usage(format!(
-            "invalid --mass {}: a finite number > 0 for the linearisation",
-            a.mass
-        )));
-    }
+    let (parameter, base) = a.line.line(a.mass)?;
     Ok(ContinuationStudy {
         out: a.out.clone(),
         line: Line {
@@ -160,7 +152,7 @@ fn print_text(study: &ContinuationStudy, done: &ContinuationWritten) {
 }
 
 /// The `--json` object: the line, the branches, every event with its precision, the files.
-fn json_summary(done: &ContinuationWritten, n: usize) -> serde_json::Value {
+fn json_summary(done: &ContinuationWritten, n: usize, varied: &str) -> serde_json::Value {
     let events: Vec<_> = done
         .branches
         .iter()
@@ -168,7 +160,8 @@ fn json_summary(done: &ContinuationWritten, n: usize) -> serde_json::Value {
             b.events.iter().map(move |e| {
                 serde_json::json!({
                     "kind": e.kind, "what": e.what, "branch": b.family.as_str(),
-                    "mirror": b.mirror, "eta_t": e.point.eta_t, "kappa2": e.point.kappa2,
+                    "mirror": b.mirror, "parameter": varied, "at": e.point.at,
+                    "eta_t": e.point.eta_t, "kappa2": e.point.kappa2,
                     "v": e.point.v, "s": e.point.s, "eigenvalue": e.eigenvalue,
                     "precision": e.precision,
                 })

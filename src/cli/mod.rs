@@ -16,6 +16,7 @@ mod fit_h0;
 mod line;
 mod merge;
 mod ode;
+mod param_line;
 mod plot;
 mod simulate;
 mod slurm;

@@ -24,9 +24,9 @@ use crate::continuation::arclength::{start, ArclengthOptions, CurvePoint, Steppe
 use crate::continuation::branch::{follow, Line};
 use crate::continuation::problem::Family;
 use crate::error::SolverError;
+use crate::model::param::ModelParam;
 use crate::model::params::ModelParams;
 use crate::numerics::newton::fd_jacobian;
-use crate::reduced::bifurcation::Axis as Parameter;
 use crate::reduced::boundaries::Boundary;
 use crate::roots::linearisation::Linearization;
 use crate::roots::named_state::ic_thresholds;
@@ -194,7 +194,7 @@ fn first_fold(w: &Window, mirror: MirrorAxis, starts: &[f64]) -> Option<(f64, f6
                 ..w.base
             },
             n: w.n,
-            parameter: Parameter::EtaT,
+            parameter: ModelParam::EtaT,
             from: w.eta_t.0,
             to: w.eta_t.1,
             max_points: 400,

@@ -15,8 +15,8 @@ use crate::continuation::arclength::{start, ArclengthOptions, CurvePoint, Steppe
 use crate::continuation::problem::{Family, Problem};
 use crate::error::SolverError;
 use crate::model::classify::StateClass;
+use crate::model::param::ModelParam;
 use crate::model::params::ModelParams;
-use crate::reduced::bifurcation::Axis as Parameter;
 use crate::roots::steady_solver::MirrorAxis;
 use crate::roots::verdict::Verdict;
 use serde::Serialize;
@@ -27,7 +27,9 @@ pub struct Line {
     /// Parameters (the varied one is overwritten).
     pub base: ModelParams,
     pub n: usize,
-    pub parameter: Parameter,
+    /// The varied parameter (any model parameter: `eta2` and `mass` move the eigenvalues
+    /// only, so their branches are level in the state).
+    pub parameter: ModelParam,
     pub from: f64,
     pub to: f64,
     /// Most points per direction.
@@ -38,6 +40,8 @@ pub struct Line {
 /// One state of a branch.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct BranchPoint {
+    /// The varied parameter's value.
+    pub at: f64,
     pub eta_t: f64,
     pub kappa2: f64,
     /// `(vx, vy, a2, b2)`.
@@ -114,12 +118,13 @@ pub(super) struct Tracer<'a> {
 
 impl Tracer<'_> {
     pub(super) fn point(&mut self, y: &[f64], verdict: Verdict) -> BranchPoint {
-        let (eta_t, kappa2) = self.prob.control(*y.last().expect("q"));
+        let p = self.prob.params_at(*y.last().expect("q"));
         let z = self.prob.state(y);
         let (v, s) = (z[0].hypot(z[1]), z[2].hypot(z[3]));
         BranchPoint {
-            eta_t,
-            kappa2,
+            at: self.prob.parameter.get(&p),
+            eta_t: p.eta_t,
+            kappa2: p.kappa2,
             z,
             v,
             s,
@@ -153,10 +158,10 @@ impl Tracer<'_> {
             }
             let prob = &mut *self.prob;
             let Some(step) = stepper.advance(&mut |y: &[f64]| prob.residual(y), &a) else {
-                let (e, k) = self.prob.control(q_of(&a));
+                let at = self.prob.value(q_of(&a));
                 break format!(
-                    "no convergence beyond eta_t = {e:.7}, kappa2 = {k:.7} (step below {:e})",
-                    self.opts.ds_min
+                    "no convergence beyond {} = {at:.7} (step below {:e})",
+                    self.prob.parameter, self.opts.ds_min
                 );
             };
             let b = step.point;

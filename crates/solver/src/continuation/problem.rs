@@ -8,8 +8,8 @@
 //! - MD moving along its minor axis (`c < 0`) or its major axis (`c > 0`): `(v, c)`, speed
 //!   along the axis (two equations).
 use crate::error::SolverError;
+use crate::model::param::ModelParam;
 use crate::model::params::ModelParams;
-use crate::reduced::bifurcation::Axis as Parameter;
 use crate::roots::linearisation::Linearization;
 use crate::roots::steady_solver::{MirrorAxis, SteadySolver};
 use crate::roots::verdict::{assess, Verdict};
@@ -77,7 +77,7 @@ pub struct Problem {
     pub solver: SteadySolver,
     pub family: Family,
     pub mirror: MirrorAxis,
-    pub parameter: Parameter,
+    pub parameter: ModelParam,
     /// Start of the line (`q = 0`).
     pub from: f64,
     /// `to - from` (`q = 1` at `to`).
@@ -90,7 +90,7 @@ impl Problem {
         n: usize,
         family: Family,
         mirror: MirrorAxis,
-        parameter: Parameter,
+        parameter: ModelParam,
         from: f64,
         to: f64,
     ) -> Result<Self, SolverError> {
@@ -114,18 +114,15 @@ impl Problem {
         (value - self.from) / self.span
     }
 
-    /// `(eta_t, kappa2)` at `q`.
-    pub fn control(&self, q: f64) -> (f64, f64) {
-        let p = self.solver.params();
-        match self.parameter {
-            Parameter::EtaT => (self.value(q), p.kappa2),
-            Parameter::Kappa2 => (p.eta_t, self.value(q)),
-        }
+    /// The parameters at `q`.
+    pub fn params_at(&self, q: f64) -> ModelParams {
+        self.parameter.with(self.solver.params(), self.value(q))
     }
 
-    fn set(&mut self, q: f64) {
-        let (e, k) = self.control(q);
-        self.solver.set_control(e, k);
+    /// Moves the solver to `q`; false where the parameters are invalid there (a geometric
+    /// parameter beyond its range), where the residual is NaN and the corrector fails.
+    fn set(&mut self, q: f64) -> bool {
+        self.solver.set_param(self.parameter, self.value(q)).is_ok()
     }
 
     /// Speed along the axis and shape amplitude on it at `y`.
@@ -161,7 +158,9 @@ impl Problem {
 
     /// The force balance at `y` (as many equations as unknowns).
     pub fn residual(&mut self, y: &[f64]) -> Vec<f64> {
-        self.set(*y.last().expect("q"));
+        if !self.set(*y.last().expect("q")) {
+            return vec![f64::NAN; y.len() - 1];
+        }
         let (v, c) = self.speed_and_shape(y);
         match self.family {
             Family::IC => Vec::new(),
@@ -228,7 +227,9 @@ impl Problem {
     /// states and a few fixed seeds; `None` if the family has no state there (that Newton
     /// finds).
     pub fn root_at(&mut self, value: f64) -> Option<Vec<f64>> {
-        self.set(self.q_of(value));
+        if !self.set(self.q_of(value)) {
+            return None;
+        }
         let p = *self.solver.params();
         let coef = crate::reduced::coefficients::Coefficients::new(
             p.radius,

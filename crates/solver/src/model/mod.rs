@@ -9,6 +9,7 @@ pub mod dynamics;
 pub mod forces;
 pub mod grid;
 pub mod initial;
+pub mod param;
 pub mod params;
 pub mod shape;
 pub mod shape_transform;

@@ -116,6 +116,34 @@ impl SteadySolver {
         &self.params
     }
 
+    /// Moves the solver to another value of one parameter: `eta_t`, `kappa2`, `eta2` and
+    /// `mass` are set (they enter the force balance or the eigenvalues only); `radius`,
+    /// `sigma` and `box_len` sample the droplet (and for `box_len` the grid) again. Refused,
+    /// leaving the solver as it was, where the parameters would be invalid.
+    pub fn set_param(
+        &mut self,
+        param: crate::model::param::ModelParam,
+        x: f64,
+    ) -> Result<(), SolverError> {
+        if param.get(&self.params) == x {
+            return Ok(());
+        }
+        let params = param.with(&self.params, x);
+        params.validate()?;
+        if param.is_geometric() {
+            let grid = Grid::new(self.grid.n, params.box_len)?;
+            let shape = ShapeParams {
+                radius: params.radius,
+                sigma: params.sigma,
+            };
+            self.shapes = ShapeTransform::new(&grid, shape);
+            self.grid = grid;
+            self.shape_of = None;
+        }
+        self.params = params;
+        Ok(())
+    }
+
     /// Moves the solver to another `(eta_t, kappa2)`: they enter only the force balance, so
     /// nothing sampled or planned changes (the continuation's parameters).
     pub fn set_control(&mut self, eta_t: f64, kappa2: f64) {

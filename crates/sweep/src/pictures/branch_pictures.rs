@@ -5,6 +5,7 @@ use crate::error::SweepError;
 use crate::pictures::branch_lines::{branch_lines, BranchSample};
 use crate::pictures::line_figure::{vs_parameter, Marker};
 use crate::spec::axes::{ETA_T, KAPPA2};
+use droplet_solver::model::param::ModelParam;
 use droplet_solver::reduced::bifurcation::{Axis, Branch, Event, SteadyPoint};
 use std::path::{Path, PathBuf};
 
@@ -94,32 +95,32 @@ pub fn continuation(
     dir: &Path,
     stem: &str,
     branches: &[droplet_solver::continuation::branch::Branch],
-    axis: Axis,
+    parameter: ModelParam,
     title: &str,
 ) -> Result<Vec<PathBuf>, SweepError> {
-    let (lines, markers, vlines) = branch_drawing(branches, axis);
-    let x_label = match axis {
-        Axis::EtaT => ETA_T,
-        Axis::Kappa2 => KAPPA2,
-    };
-    vs_parameter(dir, stem, title, x_label, &markers, &lines, &vlines)
+    let (lines, markers, vlines) = branch_drawing(branches);
+    vs_parameter(
+        dir,
+        stem,
+        title,
+        parameter.name(),
+        &markers,
+        &lines,
+        &vlines,
+    )
 }
 
 /// The lines (solid stable, dashed unstable), event markers and labelled event positions of
 /// the full model's branches along a line.
 pub(crate) fn branch_drawing(
     branches: &[droplet_solver::continuation::branch::Branch],
-    axis: Axis,
 ) -> (
     Vec<crate::pictures::branch_lines::BranchLine>,
     Vec<Marker>,
     Vec<(f64, String)>,
 ) {
     use crate::pictures::branch_lines::BranchLine;
-    let x_of = |p: &droplet_solver::continuation::branch::BranchPoint| match axis {
-        Axis::EtaT => p.eta_t,
-        Axis::Kappa2 => p.kappa2,
-    };
+    let x_of = |p: &droplet_solver::continuation::branch::BranchPoint| p.at;
     let mut lines: Vec<BranchLine> = Vec::new();
     let mut markers = Vec::new();
     let mut vlines: Vec<(f64, String)> = Vec::new();

@@ -11,7 +11,6 @@ use crate::spec::SweepSpec;
 use crate::store::run_store::Store;
 use crate::tables::boundaries::NamedCurve;
 use droplet_solver::contract::settings::ModelKind;
-use droplet_solver::reduced::bifurcation::Axis;
 use droplet_solver::reduced::boundaries::boundaries;
 use droplet_solver::reduced::coefficients::Coefficients;
 use std::path::{Path, PathBuf};
@@ -236,7 +235,7 @@ fn lines(dir: &Path, spec: &SweepSpec, ends: &[RunEnd]) -> Result<Vec<PathBuf>, 
         return Ok(Vec::new());
     }
     let (lines, events, vlines) = match pde_branches(spec, axis.param) {
-        Some((branches, along)) => branch_drawing(&branches, along),
+        Some(branches) => branch_drawing(&branches),
         None => Default::default(),
     };
     markers.extend(events.into_iter().map(|e| Marker { bold: false, ..e }));
@@ -269,13 +268,9 @@ fn lines(dir: &Path, spec: &SweepSpec, ends: &[RunEnd]) -> Result<Vec<PathBuf>, 
 fn pde_branches(
     spec: &SweepSpec,
     param: Param,
-) -> Option<(Vec<droplet_solver::continuation::branch::Branch>, Axis)> {
+) -> Option<Vec<droplet_solver::continuation::branch::Branch>> {
     use droplet_solver::continuation::{branch::follow, branch::Line, problem::Family};
-    let axis = match param {
-        Param::EtaT => Axis::EtaT,
-        Param::Kappa2 => Axis::Kappa2,
-        _ => return None,
-    };
+    let parameter = param.model()?;
     if spec.solver.model != droplet_solver::contract::settings::ModelKind::Pde
         || spec.solver.scheme != droplet_solver::stepping::SchemeKind::Spectral
     {
@@ -289,7 +284,7 @@ fn pde_branches(
     let line = Line {
         base,
         n: settings.n,
-        parameter: axis,
+        parameter,
         from,
         to,
         max_points: 400,
@@ -306,5 +301,5 @@ fn pde_branches(
             .ok()
         })
         .collect();
-    Some((branches, axis))
+    Some(branches)
 }

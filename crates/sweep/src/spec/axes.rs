@@ -1,7 +1,9 @@
 //! The parameters a sweep may vary, named in one place: spec keys, table columns, picture
 //! axes and messages all take their names from here. A point's coordinates are the values of
 //! the spec's grid axes, in the order the `grid` section gives them ([`Plane`]).
-use droplet_solver::{contract::settings::SolverSettings, model::params::ModelParams};
+use droplet_solver::{
+    contract::settings::SolverSettings, model::param::ModelParam, model::params::ModelParams,
+};
 use serde::Serialize;
 
 /// Translational friction `eta_t` (the paper's phase map's horizontal axis, Fig. 2a).
@@ -72,7 +74,12 @@ impl Param {
 
     /// A model parameter (set in `params:`), not a solver setting (`solver:`).
     pub fn is_model(self) -> bool {
-        !matches!(self, Param::N | Param::Tol | Param::DtMax | Param::TMax)
+        self.model().is_some()
+    }
+
+    /// The model parameter, for a model parameter.
+    pub fn model(self) -> Option<ModelParam> {
+        ModelParam::parse(self.name())
     }
 
     /// Whether a value is in the parameter's domain as far as it can be told alone (finite,

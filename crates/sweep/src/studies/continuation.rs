@@ -5,7 +5,7 @@ use crate::error::SweepError;
 use droplet_solver::continuation::branch::{follow, Branch, BranchPoint, Line, EVENT_PRECISION};
 use droplet_solver::continuation::problem::Family;
 use droplet_solver::error::SolverError;
-use droplet_solver::reduced::bifurcation::Axis;
+use droplet_solver::model::{param::ModelParam, params::ModelParams};
 use droplet_solver::roots::steady_solver::MirrorAxis;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -56,39 +56,65 @@ pub struct ContinuationWritten {
 }
 
 impl ContinuationStudy {
-    /// The fixed parameter's name and value.
-    pub fn fixed(&self) -> (&'static str, f64) {
-        match self.line.parameter {
-            Axis::EtaT => ("kappa2", self.line.base.kappa2),
-            Axis::Kappa2 => ("eta_t", self.line.base.eta_t),
+    /// The fixed parameters that name the line: on the paper's lines the other of `eta_t`
+    /// and `kappa2`; on a line in another parameter `eta_t`, `kappa2` and every other
+    /// parameter that differs from its default.
+    pub fn fixed(&self) -> Vec<(&'static str, f64)> {
+        let (b, varied) = (&self.line.base, self.line.parameter);
+        match varied {
+            ModelParam::EtaT => vec![("kappa2", b.kappa2)],
+            ModelParam::Kappa2 => vec![("eta_t", b.eta_t)],
+            _ => {
+                let default = ModelParams::default();
+                ModelParam::ALL
+                    .into_iter()
+                    .filter(|&p| p != varied)
+                    .filter(|&p| {
+                        matches!(p, ModelParam::EtaT | ModelParam::Kappa2)
+                            || p.get(b) != p.get(&default)
+                    })
+                    .map(|p| (p.name(), p.get(b)))
+                    .collect()
+            }
         }
+    }
+
+    /// The fixed parameters in words: `eta_t = 0.085, kappa2 = 0.13`.
+    fn fixed_text(&self) -> String {
+        let parts: Vec<String> = self
+            .fixed()
+            .iter()
+            .map(|(n, v)| format!("{n} = {v}"))
+            .collect();
+        parts.join(", ")
     }
 
     /// The varied parameter's name.
     pub fn varied(&self) -> &'static str {
-        match self.line.parameter {
-            Axis::EtaT => "eta_t",
-            Axis::Kappa2 => "kappa2",
-        }
+        self.line.parameter.name()
     }
 
     /// The varied parameter's value at `p`.
     pub fn at(&self, p: &BranchPoint) -> f64 {
-        match self.line.parameter {
-            Axis::EtaT => p.eta_t,
-            Axis::Kappa2 => p.kappa2,
-        }
+        p.at
     }
 
-    /// The files' common stem: `continuation_<fixed>_<value>` (+ `_diagonal`), the value to
+    /// The files' common stem: `continuation_<fixed>_<value>` (+ `_diagonal`) on the
+    /// paper's lines, `continuation_<varied>_<fixed>_<value>...` on the others, each value to
     /// ten significant digits (short and stable for any value within the limits).
     pub fn stem(&self) -> String {
-        let (name, value) = self.fixed();
-        let value = format!("{value:.9e}").parse::<f64>().unwrap_or(value);
-        match self.mirror {
-            MirrorAxis::X => format!("continuation_{name}_{value}"),
-            MirrorAxis::Diagonal => format!("continuation_{name}_{value}_diagonal"),
+        let mut parts = vec!["continuation".to_string()];
+        if !matches!(self.line.parameter, ModelParam::EtaT | ModelParam::Kappa2) {
+            parts.push(self.varied().to_string());
         }
+        for (name, value) in self.fixed() {
+            let value = format!("{value:.9e}").parse::<f64>().unwrap_or(value);
+            parts.push(format!("{name}_{value}"));
+        }
+        if self.mirror == MirrorAxis::Diagonal {
+            parts.push("diagonal".into());
+        }
+        parts.join("_")
     }
 
     /// Follows every family, then writes `<stem>.parquet`, `<stem>_events.parquet` and
@@ -119,9 +145,9 @@ impl ContinuationStudy {
             }
         }
         let seconds = started.elapsed().as_secs_f64();
-        let (fixed_name, fixed) = self.fixed();
+        let fixed = self.fixed_text();
         let description = format!(
-            "{fixed_name} = {fixed}, {} from {} to {}",
+            "{fixed}, {} from {} to {}",
             self.varied(),
             self.line.from,
             self.line.to
@@ -140,7 +166,7 @@ impl ContinuationStudy {
             &branches,
             self.line.parameter,
             &format!(
-                "PDE (N = {}), {fixed_name} = {fixed}: solid = stable, dashed = unstable",
+                "PDE (N = {}), {fixed}: solid = stable, dashed = unstable",
                 self.line.n
             ),
         )?;

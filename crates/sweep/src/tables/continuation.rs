@@ -40,6 +40,8 @@ fn state_columns(rows: &[(&Branch, &BranchPoint)]) -> Vec<Column> {
         ),
         f64s(ETA_T, col(&|p| p.eta_t)),
         f64s(KAPPA2, col(&|p| p.kappa2)),
+        // The varied parameter's value (equal to eta_t or kappa2 on the paper's lines).
+        f64s("at", col(&|p| p.at)),
         f64s("vx", col(&|p| p.z[0])),
         f64s("vy", col(&|p| p.z[1])),
         f64s("a2", col(&|p| p.z[2])),
