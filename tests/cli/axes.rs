@@ -123,6 +123,60 @@ fn a_refined_ode_map_in_the_mass_eta_t_plane_is_named_by_its_axes() {
     assert!(String::from_utf8_lossy(&o.stderr).contains("(mass, eta_t)"));
 }
 
+#[test]
+fn a_three_axis_ode_sweep_draws_one_map_per_slice_and_one_with_all() {
+    let dir = tempfile::tempdir().unwrap();
+    let spec = write_spec(
+        dir.path(),
+        "three.yaml",
+        "model: ode\ngrid:\n  mass: [0.02, 0.3]\n  eta_t: {start: 0.07, stop: 0.1, step: 0.01}\n  kappa2: [0.11, 0.15]\ninitial_conditions: [i, iii]\n",
+    );
+    let out = dir.path().join("three");
+    let s = json(&run(&[
+        "sweep",
+        spec.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--json",
+    ]));
+    assert_eq!(s["runs"], 2 * 4 * 2 * 2, "{s}");
+    let points = read(&out.join("points.parquet"));
+    let cols = columns(&points);
+    assert_eq!(&cols[1..4], ["mass", "eta_t", "kappa2"], "{cols:?}");
+    // Slice-major: the first slice's 8 points, then the second's.
+    let kappa = floats(&points, "kappa2");
+    assert!(kappa[..8].iter().all(|&k| k == 0.11) && kappa[8..].iter().all(|&k| k == 0.15));
+    // The runs carry all three coordinates.
+    let runs = read(&out.join("runs.parquet"));
+    let point = runs.column("point").unwrap().u32().unwrap().clone();
+    let (pm, pe) = (floats(&points, "mass"), floats(&points, "eta_t"));
+    let (rm, re, rk) = (
+        floats(&runs, "mass"),
+        floats(&runs, "eta_t"),
+        floats(&runs, "kappa2"),
+    );
+    for i in 0..runs.height() {
+        let p = point.get(i).unwrap() as usize;
+        assert_eq!((rm[i], re[i], rk[i]), (pm[p], pe[p], kappa[p]));
+    }
+    for f in [
+        "phase_map.png",
+        "phase_map.svg",
+        "phase_map_kappa2_0.11.png",
+        "phase_map_kappa2_0.15.svg",
+    ] {
+        assert!(out.join(f).exists(), "{f} missing");
+    }
+    // Status from the store and from the tables alone, and the pictures redrawn.
+    let st = json(&run(&["status", out.to_str().unwrap(), "--json"]));
+    assert_eq!(st["points"].as_u64(), Some(16), "{st}");
+    std::fs::remove_dir_all(out.join("runs")).unwrap();
+    std::fs::remove_file(out.join("phase_map_kappa2_0.15.png")).unwrap();
+    let o = run(&["plot", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(out.join("phase_map_kappa2_0.15.png").exists());
+}
+
 /// A small PDE map in `(mass, kappa2)`: N = 32, fixed steps, seconds.
 const TINY_MASS: &str = "name: tiny-mass
 params: {eta_t: 0.09}
@@ -209,22 +263,22 @@ fn bad_axes_exit_2_naming_the_key() {
             "not both",
         ),
         (
-            "three axes",
-            format!("{good}  kappa2: [0.1]\n"),
-            "grid",
-            "one or two axes",
-        ),
-        (
             "four axes",
             format!("{good}  kappa2: [0.1]\n  eta2: [0.1]\n"),
             "grid",
-            "one or two axes",
+            "one to three axes",
         ),
         (
             "no axis",
             "model: ode\ngrid: {}\n".to_string(),
             "grid",
-            "one or two",
+            "one to three",
+        ),
+        (
+            "refine with three axes",
+            "model: ode\ngrid:\n  mass: {start: 0.1, stop: 0.3, step: 0.1}\n  eta_t: {start: 0.07, stop: 0.09, step: 0.01}\n  kappa2: [0.1, 0.12]\nrefine: {levels: 1}\n".to_string(),
+            "refine",
+            "slice",
         ),
         (
             "non-positive eta2",

@@ -309,14 +309,6 @@ pub fn boundaries(w: &Window) -> Result<Vec<Boundary>, SolverError> {
             points: vec![(th.eta_t.max(e0), th.kappa2_a2), (e1, th.kappa2_a2)],
         },
     ];
-    out.push(Boundary {
-        name: "ID onset of motion (diagonal ID)",
-        points: id_line(w, MirrorAxis::Diagonal, th.kappa2_b2)?,
-    });
-    out.push(Boundary {
-        name: "ID onset of motion (axis ID)",
-        points: id_line(w, MirrorAxis::X, th.kappa2_a2)?,
-    });
     let mid = 0.5 * (k0 + k1);
     let starts = [
         0.13f64.clamp(k0, k1),
@@ -324,13 +316,34 @@ pub fn boundaries(w: &Window) -> Result<Vec<Boundary>, SolverError> {
         k0 + 0.25 * (k1 - k0),
         k0 + 0.75 * (k1 - k0),
     ];
+    // The four continued curves are independent: one thread each (a window at N = 384 takes
+    // the time of its slowest curve, not of all four).
+    type Curve = Result<Vec<(f64, f64)>, SolverError>;
+    let (diag, axis, fold, mc): (Curve, Curve, Curve, Curve) = std::thread::scope(|scope| {
+        let diag = scope.spawn(|| id_line(w, MirrorAxis::Diagonal, th.kappa2_b2));
+        let axis = scope.spawn(|| id_line(w, MirrorAxis::X, th.kappa2_a2));
+        let fold = scope.spawn(|| md_fold_curve(w, MirrorAxis::X, &starts));
+        let mc = mc_line(w, th.eta_t);
+        let join = |h: std::thread::ScopedJoinHandle<'_, Curve>| {
+            h.join().expect("a boundary curve's thread panicked")
+        };
+        (join(diag), join(axis), join(fold), mc)
+    });
+    out.push(Boundary {
+        name: "ID onset of motion (diagonal ID)",
+        points: diag?,
+    });
+    out.push(Boundary {
+        name: "ID onset of motion (axis ID)",
+        points: axis?,
+    });
     out.push(Boundary {
         name: "MD saddle-node (x axis)",
-        points: md_fold_curve(w, MirrorAxis::X, &starts)?,
+        points: fold?,
     });
     out.push(Boundary {
         name: "MC onset, s = 0.01 (x axis)",
-        points: mc_line(w, th.eta_t)?,
+        points: mc?,
     });
     out.retain(|b| !b.points.is_empty());
     Ok(out)

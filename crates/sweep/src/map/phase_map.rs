@@ -11,9 +11,10 @@ use std::collections::{BTreeMap, HashMap};
 /// One point of the map.
 #[derive(Debug, Clone, PartialEq)]
 pub struct MapEntry {
-    /// Its coordinates in the sweep's plane (`(x, y)`, [`crate::spec::axes::Plane`]).
+    /// Its coordinates (`[x, y, z]`, [`crate::spec::axes::Plane`]).
     pub x: f64,
     pub y: f64,
+    pub z: f64,
     /// Refinement level (0: the spec's grid).
     pub level: u32,
     /// Cell size `(dx, dy)` of its level.
@@ -71,8 +72,9 @@ impl PhaseMap {
             .iter()
             .enumerate()
             .map(|(i, runs)| MapEntry {
-                x: plan.points[i].0,
-                y: plan.points[i].1,
+                x: plan.points[i][0],
+                y: plan.points[i][1],
+                z: plan.points[i][2],
                 level: plan.levels[i],
                 cell: plan.cells[i],
                 class: classify_point(runs.iter().flatten().copied()),

@@ -86,73 +86,141 @@ impl Figure for PhaseMap<'_> {
     where
         DB::ErrorType: 'static,
     {
-        let (pts, curves) = (self.pts, self.curves);
         root.fill(&WHITE).map_err(perr)?;
         let (plot_area, legend_area) = root.split_horizontally(900);
-        let mut xs: Vec<f64> = pts.iter().map(|p| p.x).collect();
-        let mut ys: Vec<f64> = pts.iter().map(|p| p.y).collect();
-        let dx = spacing(&mut xs);
-        let dy = spacing(&mut ys);
-        let dx = if dx.is_finite() { dx } else { 0.01 };
-        let dy = if dy.is_finite() { dy } else { 0.01 };
-        let (mut x0, mut x1) = (xs[0] - dx / 2.0, xs[xs.len() - 1] + dx / 2.0);
-        let (mut y0, mut y1) = (ys[0] - dy / 2.0, ys[ys.len() - 1] + dy / 2.0);
-        let tiled = pts.iter().any(|p| !p.tiles.is_empty());
-        if tiled {
-            // A refined map is drawn edge to edge: its extent is the tiles'.
-            let rects = pts.iter().flat_map(|p| &p.tiles);
-            (x0, y0, x1, y1) = rects.fold(
-                (
-                    f64::INFINITY,
-                    f64::INFINITY,
-                    f64::NEG_INFINITY,
-                    f64::NEG_INFINITY,
-                ),
-                |(a, b, c, d), r| (a.min(r[0]), b.min(r[1]), c.max(r[2]), d.max(r[3])),
-            );
-        }
-        let names = self.names;
-        let mut chart = plane_chart(&plot_area, self.title, names, (x0, x1), (y0, y1), false)?;
-        let mut legend = Vec::new();
-        for label in ORDER.iter().copied().chain(
-            pts.iter()
-                .map(|p| p.label.as_str())
-                .filter(|l| !ORDER.contains(l))
-                .collect::<std::collections::BTreeSet<_>>(),
-        ) {
-            let mine: Vec<&MapPoint> = pts.iter().filter(|p| p.label == label).collect();
-            if mine.is_empty() {
-                continue;
-            }
-            let colour = class_colour(label);
-            if tiled {
-                chart
-                    .draw_series(
-                        mine.iter()
-                            .flat_map(|p| &p.tiles)
-                            .map(|r| Rectangle::new([(r[0], r[1]), (r[2], r[3])], colour.filled())),
-                    )
-                    .map_err(perr)?;
-            } else {
-                chart
-                    .draw_series(mine.iter().map(|p| {
-                        Rectangle::new(
-                            [
-                                (p.x - 0.42 * dx, p.y - 0.42 * dy),
-                                (p.x + 0.42 * dx, p.y + 0.42 * dy),
-                            ],
-                            colour.filled(),
-                        )
-                    }))
-                    .map_err(perr)?;
-            }
-            legend.push((format!("{label} ({})", mine.len()), LegendKey::Box(colour)));
-        }
-        draw_curves(&mut chart, curves, (x0, x1), (y0, y1), &mut legend)?;
+        let (classes, curves) =
+            draw_panel(&plot_area, self.title, self.names, self.pts, self.curves)?;
+        let legend: Vec<(String, LegendKey)> = classes
+            .into_iter()
+            .map(|(class, count, key)| (format!("{class} ({count})"), key))
+            .chain(curves)
+            .collect();
         draw_legend(&legend_area, &legend)?;
         root.present().map_err(perr)?;
         Ok(())
     }
+}
+
+/// Several phase maps side by side (the slices of a 3-axis sweep), one legend for all.
+struct SliceMaps<'a> {
+    title: &'a str,
+    names: (&'a str, &'a str),
+    /// Each slice's title and points.
+    slices: &'a [(String, Vec<MapPoint>)],
+}
+
+/// Width of one slice's panel.
+const SLICE_W: u32 = 560;
+
+impl Figure for SliceMaps<'_> {
+    fn size(&self) -> (u32, u32) {
+        (SLICE_W * self.slices.len() as u32 + LEGEND_W, 560)
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: DrawingArea<DB, Shift>) -> Result<(), SweepError>
+    where
+        DB::ErrorType: 'static,
+    {
+        root.fill(&WHITE).map_err(perr)?;
+        let root = root.titled(self.title, ("sans-serif", 22)).map_err(perr)?;
+        let (plots, legend_area) = root.split_horizontally(SLICE_W * self.slices.len() as u32);
+        let panels = plots.split_evenly((1, self.slices.len()));
+        // One entry per class, counted over every slice, in the order first met.
+        let mut classes: Vec<(String, usize, LegendKey)> = Vec::new();
+        for (area, (title, pts)) in panels.iter().zip(self.slices) {
+            for (class, count, key) in draw_panel(area, title, self.names, pts, &[])?.0 {
+                match classes.iter_mut().find(|(c, _, _)| *c == class) {
+                    Some((_, n, _)) => *n += count,
+                    None => classes.push((class, count, key)),
+                }
+            }
+        }
+        classes.sort_by_key(|(c, _, _)| ORDER.iter().position(|o| o == c).unwrap_or(usize::MAX));
+        let legend: Vec<(String, LegendKey)> = classes
+            .into_iter()
+            .map(|(class, count, key)| (format!("{class} ({count})"), key))
+            .collect();
+        draw_legend(&legend_area, &legend)?;
+        root.present().map_err(perr)?;
+        Ok(())
+    }
+}
+
+/// The legend entries of one panel: each class with its count and colour, then each curve.
+type PanelLegend = (Vec<(String, usize, LegendKey)>, Vec<(String, LegendKey)>);
+
+/// Draws one phase map (tiles, curves) into `area`; returns its legend entries.
+fn draw_panel<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    title: &str,
+    names: (&str, &str),
+    pts: &[MapPoint],
+    curves: &[Curve],
+) -> Result<PanelLegend, SweepError>
+where
+    DB::ErrorType: 'static,
+{
+    let mut xs: Vec<f64> = pts.iter().map(|p| p.x).collect();
+    let mut ys: Vec<f64> = pts.iter().map(|p| p.y).collect();
+    let dx = spacing(&mut xs);
+    let dy = spacing(&mut ys);
+    let dx = if dx.is_finite() { dx } else { 0.01 };
+    let dy = if dy.is_finite() { dy } else { 0.01 };
+    let (mut x0, mut x1) = (xs[0] - dx / 2.0, xs[xs.len() - 1] + dx / 2.0);
+    let (mut y0, mut y1) = (ys[0] - dy / 2.0, ys[ys.len() - 1] + dy / 2.0);
+    let tiled = pts.iter().any(|p| !p.tiles.is_empty());
+    if tiled {
+        // A refined map is drawn edge to edge: its extent is the tiles'.
+        let rects = pts.iter().flat_map(|p| &p.tiles);
+        (x0, y0, x1, y1) = rects.fold(
+            (
+                f64::INFINITY,
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+                f64::NEG_INFINITY,
+            ),
+            |(a, b, c, d), r| (a.min(r[0]), b.min(r[1]), c.max(r[2]), d.max(r[3])),
+        );
+    }
+    let mut chart = plane_chart(area, title, names, (x0, x1), (y0, y1), false)?;
+    let mut classes = Vec::new();
+    for label in ORDER.iter().copied().chain(
+        pts.iter()
+            .map(|p| p.label.as_str())
+            .filter(|l| !ORDER.contains(l))
+            .collect::<std::collections::BTreeSet<_>>(),
+    ) {
+        let mine: Vec<&MapPoint> = pts.iter().filter(|p| p.label == label).collect();
+        if mine.is_empty() {
+            continue;
+        }
+        let colour = class_colour(label);
+        if tiled {
+            chart
+                .draw_series(
+                    mine.iter()
+                        .flat_map(|p| &p.tiles)
+                        .map(|r| Rectangle::new([(r[0], r[1]), (r[2], r[3])], colour.filled())),
+                )
+                .map_err(perr)?;
+        } else {
+            chart
+                .draw_series(mine.iter().map(|p| {
+                    Rectangle::new(
+                        [
+                            (p.x - 0.42 * dx, p.y - 0.42 * dy),
+                            (p.x + 0.42 * dx, p.y + 0.42 * dy),
+                        ],
+                        colour.filled(),
+                    )
+                }))
+                .map_err(perr)?;
+        }
+        classes.push((label.to_string(), mine.len(), LegendKey::Box(colour)));
+    }
+    let mut drawn = Vec::new();
+    draw_curves(&mut chart, curves, (x0, x1), (y0, y1), &mut drawn)?;
+    Ok((classes, drawn))
 }
 
 /// A parameter plane over `x` and `y` with its axes drawn, named `names` (and a mesh if
@@ -315,6 +383,28 @@ pub fn boundary_picture(
             curves,
             eta_t,
             kappa2,
+        },
+    )
+}
+
+/// Renders the slices of a 3-axis sweep side by side as `<stem>.png` and `<stem>.svg` in
+/// `dir`: each slice's title and points; returns both paths.
+pub fn slice_maps(
+    dir: &Path,
+    stem: &str,
+    title: &str,
+    names: (&str, &str),
+    slices: &[(String, Vec<MapPoint>)],
+) -> Result<Vec<PathBuf>, SweepError> {
+    if slices.iter().all(|(_, p)| p.is_empty()) {
+        return Err(SweepError::Invalid("no points to draw".into()));
+    }
+    render(
+        &dir.join(format!("{stem}.png")),
+        &SliceMaps {
+            title,
+            names,
+            slices,
         },
     )
 }

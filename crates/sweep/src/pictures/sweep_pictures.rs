@@ -5,8 +5,8 @@ use crate::error::SweepError;
 use crate::map::phase_map::PhaseMap;
 use crate::pictures::branch_pictures::branch_drawing;
 use crate::pictures::line_figure::{vs_parameter, Marker};
-use crate::pictures::map_figure::{phase_map, Curve, MapPoint};
-use crate::spec::axes::Param;
+use crate::pictures::map_figure::{phase_map, slice_maps, Curve, MapPoint};
+use crate::spec::axes::{Param, Point};
 use crate::spec::SweepSpec;
 use crate::store::run_store::Store;
 use crate::tables::boundaries::NamedCurve;
@@ -54,8 +54,8 @@ pub fn plot(dir: &Path) -> Result<Drawn, SweepError> {
 /// What a sweep's pictures show: each point's label and where each settled run ended.
 #[derive(Debug, Clone, Default)]
 pub struct MapDrawing {
-    /// `(x, y, label)` of every point, in the sweep's plane.
-    pub points: Vec<(f64, f64, String)>,
+    /// Every point's coordinates ([`crate::spec::axes::Plane`]) and label.
+    pub points: Vec<(Point, String)>,
     /// Every run that ended on a stable state.
     pub ends: Vec<RunEnd>,
 }
@@ -81,13 +81,13 @@ impl MapDrawing {
         let points = map
             .points
             .iter()
-            .map(|p| (p.x, p.y, p.shown_label().to_string()))
+            .map(|p| ([p.x, p.y, p.z], p.shown_label().to_string()))
             .collect();
         let ends = plan
             .tasks()
             .filter_map(|t| records.get(&t.key).map(|r| (t, r)))
             .filter_map(|(t, r)| {
-                let (x, y) = plan.points[t.point];
+                let [x, y, _] = plan.points[t.point];
                 let o = &r.outcome;
                 o.class.map(|c| RunEnd {
                     x,
@@ -107,7 +107,10 @@ impl MapDrawing {
         let rows = read::points(&dir.join(read::POINTS))?;
         let at: std::collections::HashMap<u32, (f64, f64)> =
             rows.iter().map(|p| (p.point, (p.x, p.y))).collect();
-        let points = rows.into_iter().map(|p| (p.x, p.y, p.label)).collect();
+        let points = rows
+            .into_iter()
+            .map(|p| ([p.x, p.y, p.z], p.label))
+            .collect();
         let ends = read::runs(&dir.join(read::RUNS))?
             .into_iter()
             .filter_map(|r| {
@@ -149,21 +152,24 @@ pub fn draw(
         let nodes = drawing
             .points
             .iter()
-            .map(|&(e, k, _)| lattice.node_of((e, k)))
+            .map(|&([x, y, _], _)| lattice.node_of((x, y)))
             .collect();
         (lattice, lattice.tiles(&nodes))
     });
-    let pts: Vec<MapPoint> = drawing
+    let pts: Vec<(f64, MapPoint)> = drawing
         .points
         .iter()
-        .map(|(x, y, label)| MapPoint {
-            x: *x,
-            y: *y,
-            label: label.clone(),
-            tiles: tiles
-                .as_mut()
-                .and_then(|(l, t)| t.remove(&l.node_of((*x, *y))))
-                .unwrap_or_default(),
+        .map(|&([x, y, z], ref label)| {
+            let point = MapPoint {
+                x,
+                y,
+                label: label.clone(),
+                tiles: tiles
+                    .as_mut()
+                    .and_then(|(l, t)| t.remove(&l.node_of((x, y))))
+                    .unwrap_or_default(),
+            };
+            (z, point)
         })
         .collect();
     let model = spec.solver.model.as_str().to_uppercase();
@@ -194,12 +200,47 @@ pub fn draw(
     let plane_y = grid.y.as_ref().filter(|y| y.values.len() > 1);
     if let Some(y) = plane_y.filter(|_| grid.x.values.len() > 1) {
         let names = (grid.x.param.name(), y.param.name());
-        files.splice(
-            0..0,
-            phase_map(dir, "phase_map", &title, names, &pts, &drawn)?,
-        );
+        let maps = match &grid.z {
+            None => {
+                let pts: Vec<MapPoint> = pts.into_iter().map(|(_, p)| p).collect();
+                phase_map(dir, "phase_map", &title, names, &pts, &drawn)?
+            }
+            Some(z) => slices(dir, &title, names, z, pts)?,
+        };
+        files.splice(0..0, maps);
     }
     files.extend(lines(dir, spec, &drawing.ends)?);
+    Ok(files)
+}
+
+/// The maps of a 3-axis sweep: `phase_map_<z>_<value>.png/.svg` for each value of the slice
+/// axis `z`, and `phase_map.png/.svg` with all of them side by side.
+fn slices(
+    dir: &Path,
+    title: &str,
+    names: (&str, &str),
+    z: &crate::spec::GridAxis,
+    pts: Vec<(f64, MapPoint)>,
+) -> Result<Vec<PathBuf>, SweepError> {
+    let mut panels: Vec<(String, Vec<MapPoint>)> = z
+        .values
+        .iter()
+        .map(|v| (format!("{} = {v}", z.param), Vec::new()))
+        .collect();
+    for (at, p) in pts {
+        if let Some(i) = z.values.iter().position(|&v| v == at) {
+            panels[i].1.push(p);
+        }
+    }
+    let mut files = slice_maps(dir, "phase_map", title, names, &panels)?;
+    for (v, (name, points)) in z.values.iter().zip(&panels) {
+        if points.is_empty() {
+            continue;
+        }
+        let stem = format!("phase_map_{}_{v}", z.param);
+        let one = format!("{title}, {name}");
+        files.extend(phase_map(dir, &stem, &one, names, points, &[])?);
+    }
     Ok(files)
 }
 

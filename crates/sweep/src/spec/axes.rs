@@ -140,45 +140,57 @@ impl std::fmt::Display for Param {
     }
 }
 
-/// The plane of a sweep's points: the first grid axis `x` and, in a 2-axis grid, the second
-/// `y`. A point is `(x, y)`; in a 1-axis grid `y` is 0 and means nothing.
+/// The swept parameters of a sweep: the plane of its maps, the first grid axis `x` and the
+/// second `y`, and in a 3-axis grid the slice axis `z` (one map per value). A point is
+/// `[x, y, z]`; a coordinate without an axis is 0 and means nothing.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 pub struct Plane {
     pub x: Param,
     pub y: Option<Param>,
+    pub z: Option<Param>,
 }
+
+/// A point's coordinates `[x, y, z]` ([`Plane`]).
+pub type Point = [f64; 3];
 
 impl Plane {
     /// The paper's plane, `(eta_t, kappa2)`.
     pub const PAPER: Plane = Plane {
         x: Param::EtaT,
         y: Some(Param::Kappa2),
+        z: None,
     };
 
     /// The axes, in order.
     pub fn params(&self) -> Vec<Param> {
-        std::iter::once(self.x).chain(self.y).collect()
+        std::iter::once(self.x)
+            .chain(self.y)
+            .chain(self.z)
+            .collect()
+    }
+
+    /// The axes with their coordinate's index.
+    fn indexed(&self) -> impl Iterator<Item = (usize, Param)> {
+        [Some(self.x), self.y, self.z]
+            .into_iter()
+            .enumerate()
+            .filter_map(|(i, p)| p.map(|p| (i, p)))
     }
 
     /// Sets a point's coordinates in `params` and `settings`.
-    pub fn apply(
-        &self,
-        (x, y): (f64, f64),
-        params: &mut ModelParams,
-        settings: &mut SolverSettings,
-    ) {
-        self.x.set(params, settings, x);
-        if let Some(p) = self.y {
-            p.set(params, settings, y);
+    pub fn apply(&self, point: Point, params: &mut ModelParams, settings: &mut SolverSettings) {
+        for (i, p) in self.indexed() {
+            p.set(params, settings, point[i]);
         }
     }
 
     /// The point of a run with these parameters and settings.
-    pub fn coords(&self, params: &ModelParams, settings: &SolverSettings) -> (f64, f64) {
-        (
-            self.x.get(params, settings),
-            self.y.map_or(0.0, |p| p.get(params, settings)),
-        )
+    pub fn coords(&self, params: &ModelParams, settings: &SolverSettings) -> Point {
+        let mut out = [0.0; 3];
+        for (i, p) in self.indexed() {
+            out[i] = p.get(params, settings);
+        }
+        out
     }
 
     /// Whether this is the paper's plane, where the reduced model's analytic boundaries and
@@ -221,17 +233,19 @@ mod tests {
         let plane = Plane {
             x: Param::Mass,
             y: Some(Param::EtaT),
+            z: Some(Param::Eta2),
         };
         let (mut p, mut s) = (ModelParams::default(), SolverSettings::default());
-        plane.apply((0.3, 0.09), &mut p, &mut s);
-        assert_eq!((p.mass, p.eta_t), (0.3, 0.09));
-        assert_eq!(plane.coords(&p, &s), (0.3, 0.09));
+        plane.apply([0.3, 0.09, 0.2], &mut p, &mut s);
+        assert_eq!((p.mass, p.eta_t, p.eta2), (0.3, 0.09, 0.2));
+        assert_eq!(plane.coords(&p, &s), [0.3, 0.09, 0.2]);
         assert!(!plane.is_paper() && Plane::PAPER.is_paper());
         let line = Plane {
             x: Param::N,
             y: None,
+            z: None,
         };
-        line.apply((128.0, 5.0), &mut p, &mut s);
-        assert_eq!((s.n, line.coords(&p, &s)), (128, (128.0, 0.0)));
+        line.apply([128.0, 5.0, 7.0], &mut p, &mut s);
+        assert_eq!((s.n, line.coords(&p, &s)), (128, [128.0, 0.0, 0.0]));
     }
 }

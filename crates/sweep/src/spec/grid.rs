@@ -1,5 +1,6 @@
-//! The `grid` section: one or two swept axes, each any [`Param`] (a model parameter or a
-//! solver setting), as an inclusive `{start, stop, step}` range or an explicit list.
+//! The `grid` section: one to three swept axes, each any [`Param`] (a model parameter or a
+//! solver setting), as an inclusive `{start, stop, step}` range or an explicit list. Two
+//! axes are a plane (a phase map); a third is a slice axis (one map per value).
 //!
 //! ```yaml
 //! grid:
@@ -12,7 +13,7 @@
 //! may not also be fixed in `params` or `solver`.
 use super::context::{show, Ctx};
 use crate::error::SpecError;
-use crate::spec::axes::{round12, Param, Plane};
+use crate::spec::axes::{round12, Param, Plane, Point};
 use droplet_solver::{contract::settings::SolverSettings, model::params::ModelParams};
 use serde::Serialize;
 use serde_yaml::{Mapping, Value};
@@ -21,7 +22,7 @@ use serde_yaml::{Mapping, Value};
 pub const MAX_AXIS_POINTS: usize = 100_000;
 
 /// Most axes a grid may have.
-pub const MAX_AXES: usize = 2;
+pub const MAX_AXES: usize = 3;
 
 /// One swept axis.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -44,11 +45,12 @@ impl GridAxis {
     }
 }
 
-/// The swept axes: `x` and, in a 2-axis grid, `y`.
+/// The swept axes: `x`, in a 2- or 3-axis grid `y`, in a 3-axis grid `z` (the slices).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Grid {
     pub x: GridAxis,
     pub y: Option<GridAxis>,
+    pub z: Option<GridAxis>,
 }
 
 impl Grid {
@@ -57,12 +59,15 @@ impl Grid {
         Plane {
             x: self.x.param,
             y: self.y.as_ref().map(|a| a.param),
+            z: self.z.as_ref().map(|a| a.param),
         }
     }
 
     /// The axes, in order.
     pub fn axes(&self) -> impl Iterator<Item = &GridAxis> {
-        std::iter::once(&self.x).chain(self.y.as_ref())
+        std::iter::once(&self.x)
+            .chain(self.y.as_ref())
+            .chain(self.z.as_ref())
     }
 
     /// The axis that sweeps `p`, if any.
@@ -71,16 +76,33 @@ impl Grid {
     }
 
     /// The first point.
-    pub fn first(&self) -> (f64, f64) {
-        (
-            self.x.values[0],
-            self.y.as_ref().map_or(0.0, |a| a.values[0]),
-        )
+    pub fn first(&self) -> Point {
+        let at = |a: &Option<GridAxis>| a.as_ref().map_or(0.0, |a| a.values[0]);
+        [self.x.values[0], at(&self.y), at(&self.z)]
     }
 
-    /// The values along `y` (one value 0 for a 1-axis grid, see [`Plane`]).
+    /// The values along `y` (one value 0 without that axis, see [`Plane`]).
     pub fn y_values(&self) -> Vec<f64> {
         self.y.as_ref().map_or(vec![0.0], |a| a.values.clone())
+    }
+
+    /// The values along `z` (one value 0 without that axis).
+    pub fn z_values(&self) -> Vec<f64> {
+        self.z.as_ref().map_or(vec![0.0], |a| a.values.clone())
+    }
+
+    /// Every point, z-major, then x, then y (a 2-axis grid: x-major, as always).
+    pub fn points(&self) -> Vec<Point> {
+        let (ys, zs) = (self.y_values(), self.z_values());
+        zs.iter()
+            .flat_map(|&z| {
+                let ys = &ys;
+                self.x
+                    .values
+                    .iter()
+                    .flat_map(move |&x| ys.iter().map(move |&y| [x, y, z]))
+            })
+            .collect()
     }
 }
 
@@ -91,7 +113,7 @@ pub(super) fn parse(ctx: &Ctx, top: &Mapping) -> Result<Grid, SpecError> {
             &["grid"],
             "missing",
             format!(
-                "a mapping of one or two axes, each one of: {}",
+                "a mapping of one to three axes, each one of: {}",
                 Param::names()
             ),
         )
@@ -103,7 +125,7 @@ pub(super) fn parse(ctx: &Ctx, top: &Mapping) -> Result<Grid, SpecError> {
             &["grid"],
             format!("{} axes", grid.len()),
             format!(
-                "one or two axes (a line or a plane), each one of: {}",
+                "one to three axes (a line, a plane, or planes in slices of the third), each one of: {}",
                 Param::names()
             ),
         ));
@@ -119,13 +141,14 @@ pub(super) fn parse(ctx: &Ctx, top: &Mapping) -> Result<Grid, SpecError> {
             step,
         });
     }
-    if axes.len() == 2 && axes[0].param == Param::Kappa2 && axes[1].param == Param::EtaT {
+    if axes.len() >= 2 && axes[0].param == Param::Kappa2 && axes[1].param == Param::EtaT {
         axes.swap(0, 1);
     }
     let mut axes = axes.into_iter();
     Ok(Grid {
         x: axes.next().expect("one axis at least"),
         y: axes.next(),
+        z: axes.next(),
     })
 }
 
@@ -223,8 +246,8 @@ pub(super) fn check_not_fixed(ctx: &Ctx, top: &Mapping, grid: &Grid) -> Result<(
 }
 
 /// Checks the solver's own rules (`ModelParams::validate`, `SolverSettings::validate`,
-/// `limits::check_run`) on the grid's points: every value of each axis with the other axis
-/// at its smallest and largest value (each rule is monotone in each parameter, so these
+/// `limits::check_run`) on the grid's points: every value of each axis with the other axes at
+/// their smallest and largest values (each rule is monotone in each parameter, so these
 /// points bound the grid). A failure is reported at the axis that sweeps the named field.
 pub(super) fn check_points(
     ctx: &Ctx,
@@ -233,29 +256,35 @@ pub(super) fn check_points(
     settings: &SolverSettings,
 ) -> Result<(), SpecError> {
     let plane = grid.plane();
-    let ys = grid.y.as_ref().map_or(vec![0.0], |a| {
-        let (lo, hi) = a.span();
-        vec![lo, hi]
-    });
-    let (x_lo, x_hi) = grid.x.span();
-    let points = grid
-        .x
-        .values
+    let axes: Vec<&GridAxis> = grid.axes().collect();
+    let ends: Vec<[f64; 2]> = axes
         .iter()
-        .flat_map(|&x| ys.iter().map(move |&y| (x, y)))
-        .chain(
-            grid.y
-                .iter()
-                .flat_map(|a| a.values.iter().flat_map(move |&y| [(x_lo, y), (x_hi, y)])),
-        );
-    for point in points {
-        let (mut p, mut s) = (*params, *settings);
-        plane.apply(point, &mut p, &mut s);
-        let check = p
-            .validate()
-            .and_then(|()| s.validate())
-            .and_then(|()| droplet_solver::contract::limits::check_run(&p, &s));
-        ctx.checked_swept(check, &plane)?;
+        .map(|a| {
+            let (lo, hi) = a.span();
+            [lo, hi]
+        })
+        .collect();
+    for (i, axis) in axes.iter().enumerate() {
+        for &value in &axis.values {
+            // Every combination of the other axes' ends.
+            for corner in (0..(1usize << axes.len())).filter(|c| (c >> i) & 1 == 0) {
+                let mut point = [0.0; 3];
+                for (j, end) in ends.iter().enumerate() {
+                    point[j] = if j == i {
+                        value
+                    } else {
+                        end[(corner >> j) & 1]
+                    };
+                }
+                let (mut p, mut s) = (*params, *settings);
+                plane.apply(point, &mut p, &mut s);
+                let check = p
+                    .validate()
+                    .and_then(|()| s.validate())
+                    .and_then(|()| droplet_solver::contract::limits::check_run(&p, &s));
+                ctx.checked_swept(check, &plane)?;
+            }
+        }
     }
     Ok(())
 }

@@ -6,7 +6,7 @@
 //! output: out/smoke           # default: out/<name>
 //! model: pde                  # pde (Sect. 3) or ode (reduced model, eqs. 58-59)
 //! params: {eta2: 0.1, radius: 1, sigma: 0.03, box_len: 7, mass: 0.1}   # paper defaults
-//! grid:                       # one or two axes: any model parameter, or n, tol, dt_max, t_max
+//! grid:                       # 1-3 axes: any model parameter, or n, tol, dt_max, t_max
 //!   eta_t: {start: 0.07, stop: 0.10, step: 0.01}    # inclusive range ...
 //!   kappa2: [0.11, 0.12]                            # ... or an explicit list
 //! initial_conditions: [i, ii, iii, iv]              # default: the paper's four

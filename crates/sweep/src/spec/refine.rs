@@ -65,6 +65,14 @@ pub(super) fn parse(ctx: &Ctx, top: &Mapping, grid: &Grid) -> Result<Option<Latt
                 )
             })? as u32,
     };
+    if let Some(z) = &grid.z {
+        return Err(ctx.err(
+            &["refine"],
+            format!("a grid of three axes (slices in {})", z.param),
+            "a grid of two {start, stop, step} range axes: refinement of each slice of a third \
+             axis is not implemented; sweep each slice as its own 2-axis spec",
+        ));
+    }
     let x = lattice_axis(ctx, Some(&grid.x))?;
     let y = lattice_axis(ctx, grid.y.as_ref())?;
     let names = grid

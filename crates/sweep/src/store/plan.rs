@@ -1,6 +1,6 @@
 //! Spec -> tasks: every (point, initial condition) pair is one run, keyed by a hash of
 //! everything that determines its result.
-use crate::spec::axes::Plane;
+use crate::spec::axes::{Plane, Point};
 use crate::spec::lattice::{Lattice, Node};
 use crate::spec::SweepSpec;
 use droplet_solver::{
@@ -30,8 +30,8 @@ pub struct Task {
 pub struct Plan {
     /// The swept parameters.
     pub plane: Plane,
-    /// `(x, y)` of each point ([`Plane`]).
-    pub points: Vec<(f64, f64)>,
+    /// `[x, y, z]` of each point ([`Plane`]).
+    pub points: Vec<Point>,
     /// Refinement level of each point (0: the spec's grid; [`crate::map::refine`]).
     pub levels: Vec<u32>,
     /// Cell size `(dx, dy)` of each point: the grid step of its level (`NaN` on
@@ -86,12 +86,10 @@ pub fn run_count(spec: &SweepSpec) -> u64 {
 
 /// Number of points of the spec's grid, or with `refine:` of its finest lattice.
 fn point_count(spec: &SweepSpec) -> u64 {
-    let (ne, nk) = (
-        spec.grid.x.values.len() as u64,
-        spec.grid.y.as_ref().map_or(1, |a| a.values.len() as u64),
-    );
+    let count = |a: &Option<crate::spec::GridAxis>| a.as_ref().map_or(1, |a| a.values.len() as u64);
+    let (ne, nk) = (spec.grid.x.values.len() as u64, count(&spec.grid.y));
     match &spec.refine {
-        None => ne.saturating_mul(nk),
+        None => ne.saturating_mul(nk).saturating_mul(count(&spec.grid.z)),
         Some(l) => {
             let fine = |n: u64| (n - 1).saturating_mul(1 << l.refine.levels) + 1;
             fine(ne).saturating_mul(fine(nk))
@@ -153,19 +151,12 @@ fn spacing(values: &[f64]) -> f64 {
     }
 }
 
-/// Expands a spec into its points (x-major) and initial conditions; runs are made on
+/// Expands a spec into its points (z-major, then x-major) and initial conditions; runs are made on
 /// demand. Check [`check_size`] first: the points are allocated here. With `refine:` these
 /// are the points of level 0; [`plan_nodes`] plans the refined point set.
 pub fn plan(spec: &SweepSpec) -> Plan {
-    let ys = spec.grid.y_values();
-    let points: Vec<(f64, f64)> = spec
-        .grid
-        .x
-        .values
-        .iter()
-        .flat_map(|&x| ys.iter().map(move |&y| (x, y)))
-        .collect();
-    let cell = (spacing(&spec.grid.x.values), spacing(&ys));
+    let points = spec.grid.points();
+    let cell = (spacing(&spec.grid.x.values), spacing(&spec.grid.y_values()));
     point_set(
         spec,
         points.clone(),
@@ -178,7 +169,13 @@ pub fn plan(spec: &SweepSpec) -> Plan {
 pub fn plan_nodes(spec: &SweepSpec, lattice: &Lattice, nodes: &[(Node, u32)]) -> Plan {
     point_set(
         spec,
-        nodes.iter().map(|&(n, _)| lattice.coords(n)).collect(),
+        nodes
+            .iter()
+            .map(|&(n, _)| {
+                let (x, y) = lattice.coords(n);
+                [x, y, 0.0]
+            })
+            .collect(),
         nodes.iter().map(|&(_, l)| l).collect(),
         nodes.iter().map(|&(_, l)| lattice.cell_size(l)).collect(),
     )
@@ -187,7 +184,7 @@ pub fn plan_nodes(spec: &SweepSpec, lattice: &Lattice, nodes: &[(Node, u32)]) ->
 /// A plan of arbitrary points with the spec's initial conditions, parameters and settings.
 fn point_set(
     spec: &SweepSpec,
-    points: Vec<(f64, f64)>,
+    points: Vec<Point>,
     levels: Vec<u32>,
     cells: Vec<(f64, f64)>,
 ) -> Plan {

@@ -44,6 +44,7 @@ pub struct PointRow {
     /// the table's metadata; the paper's plane for a table without one).
     pub x: f64,
     pub y: f64,
+    pub z: f64,
     pub level: u32,
     pub label: String,
     pub settled: bool,
@@ -191,10 +192,11 @@ pub fn points(path: &Path) -> Result<Vec<PointRow>, SweepError> {
     // A table without its spec (edited by another tool) is read in the paper's plane.
     let plane = stored_spec(path).map_or(crate::spec::axes::Plane::PAPER, |s| s.grid.plane());
     let eta = floats(&df, plane.x.name())?;
-    let kappa = match plane.y {
-        Some(y) => floats(&df, y.name())?,
-        None => vec![0.0; df.height()],
+    let other = |p: Option<crate::spec::axes::Param>| match p {
+        Some(p) => floats(&df, p.name()),
+        None => Ok(vec![0.0; df.height()]),
     };
+    let (kappa, slice) = (other(plane.y)?, other(plane.z)?);
     let (point, level, n_runs) = (
         u32s(&df, "point")?,
         u32s_or_zero(&df, "level")?,
@@ -206,6 +208,7 @@ pub fn points(path: &Path) -> Result<Vec<PointRow>, SweepError> {
             point: point[i],
             x: eta[i],
             y: kappa[i],
+            z: slice[i],
             level: level[i],
             label: label[i].clone().unwrap_or_default(),
             settled: settled[i],

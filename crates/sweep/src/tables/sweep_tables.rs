@@ -248,6 +248,9 @@ pub fn points_frame(map: &PhaseMap) -> Result<DataFrame, SweepError> {
     if let Some(y) = y {
         cols.push(f64_col(y, map.points.iter().map(|p| p.y).collect()));
     }
+    if let Some(z) = map.plane.z {
+        cols.push(f64_col(z.name(), map.points.iter().map(|p| p.z).collect()));
+    }
     cols.push(Column::new(
         "level".into(),
         map.points.iter().map(|p| p.level).collect::<Vec<u32>>(),
