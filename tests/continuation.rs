@@ -378,3 +378,51 @@ fn continuation_in_mass_and_eta2_reproduces_the_time_stepper() {
         }
     }
 }
+
+#[test]
+fn boundaries_in_the_paper_plane_equal_the_committed_ones() {
+    // `results/boundaries` was written by `droplet boundaries --out results/boundaries` (the
+    // Fig. 2a window, N = 192) before sweeps and continuation took any parameter and before
+    // the curves were computed on threads of their own: the same command gives the same
+    // curves.
+    let dir = tempfile::tempdir().unwrap();
+    let o = run(&[
+        "boundaries",
+        "--out",
+        dir.path().to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let rows = |path: &std::path::Path| {
+        let df = read(path);
+        let model = df.column("model").unwrap().str().unwrap().clone();
+        let curve = df.column("curve").unwrap().str().unwrap().clone();
+        let e = df.column("eta_t").unwrap().f64().unwrap().clone();
+        let k = df.column("kappa2").unwrap().f64().unwrap().clone();
+        (0..df.height())
+            .filter(|&i| model.get(i) == Some("pde"))
+            .map(|i| {
+                (
+                    curve.get(i).unwrap().to_string(),
+                    e.get(i).unwrap(),
+                    k.get(i).unwrap(),
+                )
+            })
+            .collect::<Vec<_>>()
+    };
+    let committed = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("results/boundaries/boundaries.parquet");
+    let (want, got) = (
+        rows(&committed),
+        rows(&dir.path().join("boundaries.parquet")),
+    );
+    assert!(want.len() > 50);
+    assert_eq!(want.len(), got.len());
+    for (w, g) in want.iter().zip(&got) {
+        assert_eq!(w.0, g.0);
+        assert!(
+            (w.1 - g.1).abs() < 1e-12 && (w.2 - g.2).abs() < 1e-12,
+            "{w:?} != {g:?}"
+        );
+    }
+}

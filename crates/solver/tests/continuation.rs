@@ -6,7 +6,7 @@ use droplet_solver::continuation::boundaries::{id_onset, mc_line, md_fold_curve,
 use droplet_solver::continuation::{
     branch::follow, branch::Branch, branch::BranchPoint, branch::Line, problem::Family,
 };
-use droplet_solver::reduced::bifurcation::Axis;
+use droplet_solver::model::param::ModelParam;
 use droplet_solver::roots::named_state::ic_thresholds;
 use droplet_solver::roots::steady_solver::{MirrorAxis, SteadySolver};
 use droplet_solver::stepping::{comoving_etd::ComovingEtd, Scheme};
@@ -20,7 +20,7 @@ fn branch(family: Family, kappa2: f64, from: f64, to: f64, n: usize) -> Branch {
     let line = Line {
         base: ModelParams::at(from, kappa2),
         n,
-        parameter: Axis::EtaT,
+        parameter: ModelParam::EtaT,
         from,
         to,
         max_points: 400,

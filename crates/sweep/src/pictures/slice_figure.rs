@@ -74,4 +74,3 @@ pub fn slice_maps(
         },
     )
 }
-
