@@ -27,7 +27,8 @@ pub struct Args {
     /// Initial condition: i, ii, iii, iv (paper Sect. 3), i', ii' (Fig. 2b; also ip, iip), or custom:vx,vy,a2,b2.
     #[arg(long, default_value = "i")]
     ic: String,
-    /// Inertia m (0 = overdamped; 0.1 reproduces the paper's IC/MD bistability).
+    /// Inertia m (0.1 reproduces the paper's IC/MD bistability; 0 = overdamped, with
+    /// --steady test only: its labels cannot be checked for stability).
     #[arg(long, default_value_t = 0.1)]
     mass: f64,
     /// Mode-2 friction eta2.

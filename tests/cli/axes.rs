@@ -293,6 +293,12 @@ fn bad_axes_exit_2_naming_the_key() {
             ">= 0",
         ),
         (
+            "overdamped with the Newton finish",
+            "grid:\n  mass: [0, 0.1]\n".to_string(),
+            "grid.mass",
+            "steady: test",
+        ),
+        (
             "odd n",
             "grid:\n  n: [64, 65]\n".to_string(),
             "grid.n",

@@ -57,17 +57,20 @@ fn the_paper_test_alone_is_kept_and_overdamped_runs_use_it() {
     };
     let out = simulate(&p, &ic, &test).unwrap();
     assert_eq!(out.ended_by, Some(Ending::Test));
-    // No inertia, no linearisation: the Newton finish falls back on the paper's test.
+    // No inertia, no linearisation: the Newton finish is refused, naming the mass (its
+    // labels could not be checked), and the paper's test alone is the overdamped choice.
     let overdamped = ModelParams { mass: 0.0, ..p };
-    let out = simulate(
-        &overdamped,
-        &ic,
-        &SolverSettings {
-            n: 64,
-            ..SolverSettings::default()
-        },
-    )
-    .unwrap();
+    let newton = SolverSettings {
+        n: 64,
+        ..SolverSettings::default()
+    };
+    match simulate(&overdamped, &ic, &newton) {
+        Err(droplet_solver::error::SolverError::InvalidParameter { name, .. }) => {
+            assert_eq!(name, "mass")
+        }
+        other => panic!("expected a refusal naming mass, got {other:?}"),
+    }
+    let out = simulate(&overdamped, &ic, &test).unwrap();
     assert_eq!(out.status, RunStatus::Steady, "{out:?}");
     assert_eq!(out.ended_by, Some(Ending::Test), "{out:?}");
     // The Newton finish needs the spectral scheme.

@@ -57,6 +57,18 @@ pub fn check_run(params: &ModelParams, settings: &SolverSettings) -> Result<(), 
     if settings.model != ModelKind::Pde {
         return Ok(());
     }
+    // A label is the stable state a run ends on, and stability needs the linearisation,
+    // which needs inertia: an overdamped run could only be ended by the paper's test, whose
+    // label is not checked (at m = 0 a run from the paper's ICs rests on the unstable disk
+    // below the onset of motion, held there by their mirror symmetry).
+    require(
+        params.mass > 0.0 || settings.steady != crate::contract::ending::SteadyMethod::Newton,
+        "mass",
+        params.mass,
+        "a finite number > 0 with steady: newton (the stability of the end state needs \
+         inertia); for the overdamped model (m = 0) choose steady: test, the paper's test \
+         alone, whose labels are not checked",
+    )?;
     let dx = params.box_len / settings.n as f64;
     require(
         params.radius >= MIN_RADIUS_CELLS * dx,
