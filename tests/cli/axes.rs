@@ -112,15 +112,28 @@ fn a_refined_ode_map_in_the_mass_eta_t_plane_is_named_by_its_axes() {
     assert!(labels.iter().any(|l| l.contains("MD")), "{labels:?}");
     assert!(labels.iter().any(|l| l.starts_with("IC")), "{labels:?}");
     assert!(out.join("phase_map.png").exists() && out.join("phase_map.svg").exists());
-    // `droplet boundaries` belongs to the paper's plane and says so.
-    let o = run(&["boundaries", "--out", out.to_str().unwrap()]);
-    assert_eq!(
-        o.status.code(),
-        Some(2),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-    assert!(String::from_utf8_lossy(&o.stderr).contains("(mass, eta_t)"));
+    // `droplet boundaries` draws where the paper-plane boundaries cross the sweep's line
+    // kappa2 = 0.13: lines of constant eta_t across the mass axis (mass moves none of them).
+    let o = run(&[
+        "boundaries",
+        "--out",
+        out.to_str().unwrap(),
+        "--n",
+        "96",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let b = read(&out.join("boundaries.parquet"));
+    assert!(b.height() >= 2, "{b}");
+    assert!(floats(&b, "kappa2").iter().all(|&k| k == 0.13), "{b}");
+    let curve = b.column("curve").unwrap().str().unwrap().clone();
+    let model = b.column("model").unwrap().str().unwrap().clone();
+    let eta = floats(&b, "eta_t");
+    let onset = (0..b.height())
+        .find(|&i| curve.get(i) == Some("IC onset of motion") && model.get(i) == Some("pde"))
+        .map(|i| eta[i])
+        .expect("the onset of motion crosses kappa2 = 0.13");
+    assert!((0.074..0.079).contains(&onset), "{onset}");
 }
 
 #[test]
@@ -175,6 +188,16 @@ fn a_three_axis_ode_sweep_draws_one_map_per_slice_and_one_with_all() {
     let o = run(&["plot", out.to_str().unwrap()]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert!(out.join("phase_map_kappa2_0.15.png").exists());
+    // Boundaries are drawn in the paper's plane and in planes of eta2 or mass with eta_t or
+    // kappa2, not over slices.
+    let o = run(&["boundaries", "--out", out.to_str().unwrap()]);
+    assert_eq!(
+        o.status.code(),
+        Some(2),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(String::from_utf8_lossy(&o.stderr).contains("(mass, eta_t, kappa2)"));
 }
 
 /// A small PDE map in `(mass, kappa2)`: N = 32, fixed steps, seconds.

@@ -197,6 +197,8 @@ pub fn draw(
         crate::tables::boundaries::write(&path, &all, Some(&spec.source), Vec::new())?;
         drawn = all.iter().map(Curve::of).collect();
         files.push(path);
+    } else if grid.plane().across_rate().is_some() {
+        drawn = across_lines(dir, spec)?;
     }
     let plane_y = grid.y.as_ref().filter(|y| y.values.len() > 1);
     if let Some(y) = plane_y.filter(|_| grid.x.values.len() > 1) {
@@ -212,6 +214,38 @@ pub fn draw(
     }
     files.extend(lines(dir, spec, &drawing.ends)?);
     Ok(files)
+}
+
+/// A sweep in a plane of a rate-only parameter and `eta_t` or `kappa2`: the boundaries that
+/// `droplet boundaries` put in its directory, each a crossing of the sweep's line
+/// ([`crate::studies::boundaries::Across`]), drawn as lines across the rate-only axis (the
+/// full model's solid, the reduced model's dashed).
+fn across_lines(dir: &Path, spec: &SweepSpec) -> Result<Vec<Curve>, SweepError> {
+    let grid = &spec.grid;
+    let Some((rate, along)) = grid.plane().across_rate() else {
+        return Ok(Vec::new());
+    };
+    let path = dir.join(crate::tables::boundaries::FILE);
+    let (lo, hi) = grid.axis(rate).map_or((0.0, 1.0), |a| a.span());
+    let rate_is_x = grid.x.param == rate;
+    let mut out = Vec::new();
+    for model in [ModelKind::Pde, ModelKind::Ode] {
+        for c in crate::tables::boundaries::read(&path, model)? {
+            for &(e, k) in &c.points {
+                let at = if along == Param::EtaT { e } else { k };
+                let points = if rate_is_x {
+                    vec![(lo, at), (hi, at)]
+                } else {
+                    vec![(at, lo), (at, hi)]
+                };
+                out.push(Curve {
+                    points,
+                    ..Curve::of(&c)
+                });
+            }
+        }
+    }
+    Ok(out)
 }
 
 /// The maps of a 3-axis sweep: `phase_map_<z>_<value>.png/.svg` for each value of the slice

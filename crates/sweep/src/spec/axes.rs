@@ -77,6 +77,12 @@ impl Param {
         self.model().is_some()
     }
 
+    /// A model parameter that multiplies time derivatives only (`eta2`, `mass`; paper eqs.
+    /// 36-39): it moves no steady state and no boundary where a real eigenvalue crosses zero.
+    pub fn rate_only(self) -> bool {
+        matches!(self, Param::Eta2 | Param::Mass)
+    }
+
     /// The model parameter, for a model parameter.
     pub fn model(self) -> Option<ModelParam> {
         ModelParam::parse(self.name())
@@ -191,6 +197,19 @@ impl Plane {
             out[i] = p.get(params, settings);
         }
         out
+    }
+
+    /// A plane of one rate-only parameter ([`Param::rate_only`]) and `eta_t` or `kappa2`: the
+    /// paper's boundaries cross it as lines at fixed values of the latter. `(rate-only axis,
+    /// paper axis)`.
+    pub fn across_rate(&self) -> Option<(Param, Param)> {
+        let (x, y) = (self.x, self.y?);
+        let paper = |p: Param| matches!(p, Param::EtaT | Param::Kappa2);
+        match (self.z, x.rate_only() && paper(y), y.rate_only() && paper(x)) {
+            (None, true, _) => Some((x, y)),
+            (None, _, true) => Some((y, x)),
+            _ => None,
+        }
     }
 
     /// Whether this is the paper's plane, where the reduced model's analytic boundaries and

@@ -13,6 +13,15 @@ use droplet_solver::reduced::coefficients::Coefficients;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+/// Half the width of the paper-plane window around a rate-only sweep's line ([`Across`]):
+/// wide enough that the MD fold is found on a one-parameter line inside it and continued
+/// across the sweep's line.
+const ACROSS_HALF_WIDTH: f64 = 0.01;
+
+/// Least samples of the ID onset lines across a rate-only sweep's line: where they cross it
+/// is interpolated between samples, to about 1e-6 with this many (about 1e-4 with 60).
+const ACROSS_SAMPLES: usize = 600;
+
 /// The paper's Fig. 2a window, the default without a sweep.
 pub const FIG2A_WINDOW: ((f64, f64), (f64, f64)) = ((0.07, 0.10), (0.10, 0.17));
 
@@ -31,6 +40,54 @@ pub struct BoundaryStudy {
     pub samples: usize,
     /// The spec of the sweep in `out`, if there is one (its map is redrawn).
     pub sweep_spec: Option<String>,
+    /// For a sweep in a plane of a rate-only parameter and `eta_t` or `kappa2`: the line of
+    /// the paper's plane it lies on.
+    pub across: Option<Across>,
+}
+
+/// A sweep's line in the paper's plane: the sweep varies `along` (`eta_t` or `kappa2`) and the
+/// rate-only parameter `rate` (`eta2` or `mass`, [`Param::rate_only`]), and fixes the other of
+/// `eta_t`, `kappa2` at `fixed`. The boundaries where a real eigenvalue crosses zero do not
+/// depend on `rate`, so each crosses the sweep's plane as a line at a fixed value of `along`.
+/// (A Hopf point would depend on `rate`; none was found on the continuation lines, and
+/// `droplet continue --param mass` or `--param eta2` looks for them along a branch.)
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Across {
+    pub rate: Param,
+    pub along: Param,
+    pub fixed: f64,
+}
+
+impl Across {
+    /// Where a curve of the paper's plane crosses the line: the values of `along`.
+    pub fn crossings(&self, points: &[(f64, f64)]) -> Vec<f64> {
+        // (along, other) of a point.
+        let split = |&(e, k): &(f64, f64)| match self.along {
+            Param::EtaT => (e, k),
+            _ => (k, e),
+        };
+        let mut out: Vec<f64> = Vec::new();
+        for w in points.windows(2) {
+            let ((a0, o0), (a1, o1)) = (split(&w[0]), split(&w[1]));
+            let (d0, d1) = (o0 - self.fixed, o1 - self.fixed);
+            if o0 == o1 || d0 * d1 > 0.0 {
+                continue;
+            }
+            let at = a0 + (a1 - a0) * d0 / (d0 - d1);
+            if !out.iter().any(|x| (x - at).abs() < 1e-12) {
+                out.push(at);
+            }
+        }
+        out
+    }
+
+    /// A value of `along` as a point of the paper's plane.
+    pub fn point(&self, along: f64) -> (f64, f64) {
+        match self.along {
+            Param::EtaT => (along, self.fixed),
+            _ => (self.fixed, along),
+        }
+    }
 }
 
 /// What a boundaries study computed and wrote.
@@ -61,14 +118,26 @@ impl BoundaryStudy {
                 .then(|| crate::tables::read::stored_spec(&out.join(crate::tables::read::POINTS)))
                 .and_then(Result::ok)
         });
-        if let Some(s) = sweep.as_ref().filter(|s| !s.grid.plane().is_paper()) {
-            let names: Vec<&str> = s.grid.plane().params().iter().map(|p| p.name()).collect();
-            return Err(SweepError::Invalid(format!(
-                "{}: the sweep there is in ({}), and the exact boundaries are computed in the \
-                 paper's plane (eta_t, kappa2); give another --out",
-                out.display(),
-                names.join(", ")
-            )));
+        let across = sweep.as_ref().and_then(|s| {
+            let (rate, along) = s.grid.plane().across_rate()?;
+            let fixed = match along {
+                Param::EtaT => s.params.kappa2,
+                _ => s.params.eta_t,
+            };
+            Some(Across { rate, along, fixed })
+        });
+        if let Some(s) = sweep.as_ref() {
+            let plane = s.grid.plane();
+            if !plane.is_paper() && across.is_none() {
+                let names: Vec<&str> = plane.params().iter().map(|p| p.name()).collect();
+                return Err(SweepError::Invalid(format!(
+                    "{}: the sweep there is in ({}); the exact boundaries are computed in the \
+                     paper's plane (eta_t, kappa2), and drawn over a sweep in that plane or in \
+                     a plane of eta2 or mass with eta_t or kappa2; give another --out",
+                    out.display(),
+                    names.join(", ")
+                )));
+            }
         }
         let swept = |p: Param| {
             sweep
@@ -77,11 +146,22 @@ impl BoundaryStudy {
                 .filter(|a| a.values.len() > 1)
                 .map(|a| a.span())
         };
+        // Across a rate-only plane: a thin window around the sweep's line.
+        let around = |p: Param| {
+            across.filter(|a| a.along != p).map(|a| {
+                (
+                    (a.fixed - ACROSS_HALF_WIDTH).max(0.0),
+                    a.fixed + ACROSS_HALF_WIDTH,
+                )
+            })
+        };
         let eta_t = eta_t
             .or_else(|| swept(Param::EtaT))
+            .or_else(|| around(Param::EtaT))
             .unwrap_or(FIG2A_WINDOW.0);
         let kappa2 = kappa2
             .or_else(|| swept(Param::Kappa2))
+            .or_else(|| around(Param::Kappa2))
             .unwrap_or(FIG2A_WINDOW.1);
         let base = ModelParams {
             eta_t: eta_t.0,
@@ -99,8 +179,13 @@ impl BoundaryStudy {
             base,
             h0: sweep.as_ref().map_or(H0_PAPER, |s| s.solver.h0),
             n,
-            samples,
             sweep_spec: sweep.map(|s| s.source),
+            samples: if across.is_some() {
+                samples.max(ACROSS_SAMPLES)
+            } else {
+                samples
+            },
+            across,
         })
     }
 
@@ -123,10 +208,24 @@ impl BoundaryStudy {
             self.eta_t,
             self.kappa2,
         );
-        let curves: Vec<NamedCurve> = NamedCurve::from_boundaries(ModelKind::Pde, &pde)
+        let mut curves: Vec<NamedCurve> = NamedCurve::from_boundaries(ModelKind::Pde, &pde)
             .into_iter()
             .chain(NamedCurve::from_boundaries(ModelKind::Ode, &ode))
             .collect();
+        if let Some(a) = self.across {
+            // Only where each curve crosses the sweep's line.
+            curves = curves
+                .into_iter()
+                .filter_map(|c| {
+                    let points: Vec<(f64, f64)> = a
+                        .crossings(&c.points)
+                        .into_iter()
+                        .map(|x| a.point(x))
+                        .collect();
+                    (!points.is_empty()).then_some(NamedCurve { points, ..c })
+                })
+                .collect();
+        }
         let path = self.out.join(table::FILE);
         table::write(
             &path,
@@ -141,14 +240,19 @@ impl BoundaryStudy {
             ],
         )?;
         let drawn: Vec<Curve> = curves.iter().map(Curve::of).collect();
-        let mut files = boundary_picture(
-            &self.out,
-            "boundaries",
-            &format!("Phase boundaries: PDE (N = {}) solid, ODE dashed", self.n),
-            &drawn,
-            self.eta_t,
-            self.kappa2,
-        )?;
+        let mut files = if self.across.is_some() {
+            // Crossing points, drawn as lines over the sweep's map below.
+            Vec::new()
+        } else {
+            boundary_picture(
+                &self.out,
+                "boundaries",
+                &format!("Phase boundaries: PDE (N = {}) solid, ODE dashed", self.n),
+                &drawn,
+                self.eta_t,
+                self.kappa2,
+            )?
+        };
         files.push(path);
         let mut missing = None;
         if self.sweep_spec.is_some() {

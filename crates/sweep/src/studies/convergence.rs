@@ -53,6 +53,7 @@ pub fn run(base: &BoundaryStudy, ns: &[usize]) -> Result<ConvergenceWritten, Swe
             out: base.out.join(format!("n{n}")),
             n,
             sweep_spec: None,
+            across: None,
             ..base.clone()
         };
         let done = study.run()?;
