@@ -59,6 +59,30 @@ pub struct Across {
 }
 
 impl Across {
+    /// The line of the sweep `s` (in `out`): `None` in the paper's plane; refused in a plane
+    /// where the boundaries cannot be drawn.
+    fn of(s: &crate::spec::SweepSpec, out: &Path) -> Result<Option<Self>, SweepError> {
+        let plane = s.grid.plane();
+        if plane.is_paper() {
+            return Ok(None);
+        }
+        let Some((rate, along)) = plane.across_rate() else {
+            let names: Vec<&str> = plane.params().iter().map(|p| p.name()).collect();
+            return Err(SweepError::Invalid(format!(
+                "{}: the sweep there is in ({}); the exact boundaries are computed in the \
+                 paper's plane (eta_t, kappa2), and drawn over a sweep in that plane or in a \
+                 plane of eta2 or mass with eta_t or kappa2; give another --out",
+                out.display(),
+                names.join(", ")
+            )));
+        };
+        let fixed = match along {
+            Param::EtaT => s.params.kappa2,
+            _ => s.params.eta_t,
+        };
+        Ok(Some(Self { rate, along, fixed }))
+    }
+
     /// Where a curve of the paper's plane crosses the line: the values of `along`.
     pub fn crossings(&self, points: &[(f64, f64)]) -> Vec<f64> {
         // (along, other) of a point.
@@ -118,27 +142,10 @@ impl BoundaryStudy {
                 .then(|| crate::tables::read::stored_spec(&out.join(crate::tables::read::POINTS)))
                 .and_then(Result::ok)
         });
-        let across = sweep.as_ref().and_then(|s| {
-            let (rate, along) = s.grid.plane().across_rate()?;
-            let fixed = match along {
-                Param::EtaT => s.params.kappa2,
-                _ => s.params.eta_t,
-            };
-            Some(Across { rate, along, fixed })
-        });
-        if let Some(s) = sweep.as_ref() {
-            let plane = s.grid.plane();
-            if !plane.is_paper() && across.is_none() {
-                let names: Vec<&str> = plane.params().iter().map(|p| p.name()).collect();
-                return Err(SweepError::Invalid(format!(
-                    "{}: the sweep there is in ({}); the exact boundaries are computed in the \
-                     paper's plane (eta_t, kappa2), and drawn over a sweep in that plane or in \
-                     a plane of eta2 or mass with eta_t or kappa2; give another --out",
-                    out.display(),
-                    names.join(", ")
-                )));
-            }
-        }
+        let across = match sweep.as_ref() {
+            Some(s) => Across::of(s, out)?,
+            None => None,
+        };
         let swept = |p: Param| {
             sweep
                 .as_ref()
