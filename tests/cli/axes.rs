@@ -200,6 +200,75 @@ fn a_three_axis_ode_sweep_draws_one_map_per_slice_and_one_with_all() {
     assert!(String::from_utf8_lossy(&o.stderr).contains("(mass, eta_t, kappa2)"));
 }
 
+#[test]
+fn a_refined_three_axis_ode_sweep_refines_each_slice_on_its_own_and_resumes_equal() {
+    let dir = tempfile::tempdir().unwrap();
+    let spec = write_spec(
+        dir.path(),
+        "three-r.yaml",
+        "model: ode\ngrid:\n  mass: {start: 0.02, stop: 0.32, step: 0.1}\n  eta_t: {start: 0.07, stop: 0.1, step: 0.01}\n  kappa2: [0.11, 0.15]\ninitial_conditions: [i, iii]\nrefine: {levels: 2}\n",
+    );
+    let out = dir.path().join("r");
+    assert!(sweep(&spec, &out, &[]).status.success());
+    let points = read(&out.join("points.parquet"));
+    let (kappa, level) = (
+        floats(&points, "kappa2"),
+        points.column("level").unwrap().u32().unwrap().clone(),
+    );
+    // Each slice has its 4 x 4 level-0 points, and its own refined ones.
+    for k in [0.11, 0.15] {
+        let mine: Vec<u32> = (0..points.height())
+            .filter(|&i| kappa[i] == k)
+            .map(|i| level.get(i).unwrap())
+            .collect();
+        assert_eq!(mine.iter().filter(|&&l| l == 0).count(), 16, "{k}");
+        assert!(mine.iter().any(|&l| l > 0), "slice {k} was not refined");
+    }
+    // The two slices differ (ID at the top of 0.11 only): each is refined where it changes.
+    let (m, e) = (floats(&points, "mass"), floats(&points, "eta_t"));
+    let refined = |k: f64| {
+        (0..points.height())
+            .filter(|&i| kappa[i] == k && level.get(i).unwrap() > 0)
+            .map(|i| (m[i].to_bits(), e[i].to_bits()))
+            .collect::<std::collections::BTreeSet<_>>()
+    };
+    assert_ne!(refined(0.11), refined(0.15));
+    // A second sweep into its own directory gives equal tables; with half of its runs
+    // removed, a third recomputes exactly those.
+    let again = dir.path().join("again");
+    assert!(sweep(&spec, &again, &[]).status.success());
+    for t in ["runs.parquet", "points.parquet"] {
+        let (a, b) = (
+            table_without_wall(&out.join(t)),
+            table_without_wall(&again.join(t)),
+        );
+        assert!(a.equals_missing(&b), "{t} differs");
+    }
+    let files: Vec<_> = std::fs::read_dir(again.join("runs"))
+        .unwrap()
+        .flatten()
+        .map(|e| e.path())
+        .collect();
+    for f in files.iter().step_by(2) {
+        std::fs::remove_file(f).unwrap();
+    }
+    let done = json(&sweep(&spec, &again, &[]));
+    assert_eq!(
+        done["computed"].as_u64().unwrap() as usize,
+        files.len().div_ceil(2),
+        "{done}"
+    );
+    for t in ["runs.parquet", "points.parquet"] {
+        let (a, b) = (
+            table_without_wall(&out.join(t)),
+            table_without_wall(&again.join(t)),
+        );
+        assert!(a.equals_missing(&b), "{t} differs after the resume");
+    }
+    let st = json(&run(&["status", again.to_str().unwrap(), "--json"]));
+    assert_eq!(st["levels"].as_array().unwrap().len(), 3, "{st}");
+}
+
 /// A small PDE map in `(mass, kappa2)`: N = 32, fixed steps, seconds.
 const TINY_MASS: &str = "name: tiny-mass
 params: {eta_t: 0.09}
@@ -296,12 +365,6 @@ fn bad_axes_exit_2_naming_the_key() {
             "model: ode\ngrid: {}\n".to_string(),
             "grid",
             "one to three",
-        ),
-        (
-            "refine with three axes",
-            "model: ode\ngrid:\n  mass: {start: 0.1, stop: 0.3, step: 0.1}\n  eta_t: {start: 0.07, stop: 0.09, step: 0.01}\n  kappa2: [0.1, 0.12]\nrefine: {levels: 1}\n".to_string(),
-            "refine",
-            "slice",
         ),
         (
             "non-positive eta2",

@@ -21,9 +21,18 @@ fn settled(c: &PointClass, split_bistable: bool) -> bool {
         && c.n_diverged == 0
 }
 
-/// Walks the levels of `spec`'s refinement on `lattice`. At each level `visit(level, plan,
-/// runs)` gets the plan of every point so far and the run indices of this level's points; it
-/// returns whether the walk goes on (those runs are now stored) or stops there. Returns the
+/// One slice's refinement state: its points with their levels, the points known, and the
+/// cells of the current level.
+struct Slice {
+    nodes: Vec<(Node, u32)>,
+    known: BTreeSet<Node>,
+    cells: Vec<Node>,
+}
+
+/// Walks the levels of `spec`'s refinement on `lattice`, each slice of a third axis on its own
+/// (its cells split by its own points' classes). At each level `visit(level, plan, runs)` gets
+/// the plan of every point so far (slice by slice) and the run indices of this level's points;
+/// it returns whether the walk goes on (those runs are now stored) or stops there. Returns the
 /// plan of the last level visited.
 pub fn walk(
     spec: &SweepSpec,
@@ -31,41 +40,64 @@ pub fn walk(
     store: &Store,
     mut visit: impl FnMut(u32, &Plan, &[usize]) -> Result<bool, SweepError>,
 ) -> Result<Plan, SweepError> {
-    let mut nodes: Vec<(Node, u32)> = lattice.level0().into_iter().map(|n| (n, 0)).collect();
-    let mut known: BTreeSet<Node> = nodes.iter().map(|&(n, _)| n).collect();
-    let mut cells = lattice.cells0();
+    let zs = spec.grid.z_values();
+    let mut slices: Vec<Slice> = zs
+        .iter()
+        .map(|_| {
+            let nodes: Vec<(Node, u32)> = lattice.level0().into_iter().map(|n| (n, 0)).collect();
+            Slice {
+                known: nodes.iter().map(|&(n, _)| n).collect(),
+                nodes,
+                cells: lattice.cells0(),
+            }
+        })
+        .collect();
     // The runs of the levels walked so far (each level's are read once).
     let mut records = HashMap::new();
     let mut level = 0;
     loop {
-        let plan = plan_nodes(spec, lattice, &nodes);
+        let all: Vec<(Node, u32, f64)> = slices
+            .iter()
+            .zip(&zs)
+            .flat_map(|(s, &z)| s.nodes.iter().map(move |&(n, l)| (n, l, z)))
+            .collect();
+        let plan = plan_nodes(spec, lattice, &all);
         let per_point = plan.ic_names.len().max(1);
         let runs: Vec<usize> = (0..plan.len())
             .filter(|&i| plan.levels[i / per_point] == level)
             .collect();
-        if !visit(level, &plan, &runs)? || !lattice.splittable(level) || cells.is_empty() {
+        let no_cells = slices.iter().all(|s| s.cells.is_empty());
+        if !visit(level, &plan, &runs)? || !lattice.splittable(level) || no_cells {
             return Ok(plan);
         }
         records.extend(store.load_many(runs.iter().map(|&i| plan.task(i).key)));
         let map = PhaseMap::new(&plan, &records);
-        let verdicts: BTreeMap<Node, Verdict> = nodes
-            .iter()
-            .zip(&map.points)
-            .map(|(&(n, _), e)| {
-                let verdict = Verdict {
-                    label: e.shown_label().to_string(),
-                    settled: e.complete() && settled(&e.class, lattice.refine.split_bistable),
-                };
-                (n, verdict)
-            })
-            .collect();
-        let (added, children) = split(lattice, level, &cells, &verdicts, &known);
-        if children.is_empty() {
+        let mut entries = map.points.iter();
+        let mut grew = false;
+        for slice in &mut slices {
+            let verdicts: BTreeMap<Node, Verdict> = slice
+                .nodes
+                .iter()
+                .zip(entries.by_ref())
+                .map(|(&(n, _), e)| {
+                    let verdict = Verdict {
+                        label: e.shown_label().to_string(),
+                        settled: e.complete() && settled(&e.class, lattice.refine.split_bistable),
+                    };
+                    (n, verdict)
+                })
+                .collect();
+            let (added, children) = split(lattice, level, &slice.cells, &verdicts, &slice.known);
+            grew |= !children.is_empty();
+            slice.known.extend(added.iter().copied());
+            slice
+                .nodes
+                .extend(added.into_iter().map(|n| (n, level + 1)));
+            slice.cells = children;
+        }
+        if !grew {
             return Ok(plan);
         }
-        known.extend(added.iter().copied());
-        nodes.extend(added.into_iter().map(|n| (n, level + 1)));
-        cells = children;
         level += 1;
     }
 }

@@ -8,12 +8,14 @@ use crate::pictures::line_figure::{vs_parameter, Marker};
 use crate::pictures::map_figure::{phase_map, Curve, MapPoint};
 use crate::pictures::slice_figure::slice_maps;
 use crate::spec::axes::{Param, Point};
+use crate::spec::lattice::Node;
 use crate::spec::SweepSpec;
 use crate::store::run_store::Store;
 use crate::tables::boundaries::NamedCurve;
 use droplet_solver::contract::settings::ModelKind;
 use droplet_solver::reduced::boundaries::boundaries;
 use droplet_solver::reduced::coefficients::Coefficients;
+use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::path::{Path, PathBuf};
 
 /// The pictures [`plot`] wrote, and how many of the map's points lack a run.
@@ -148,26 +150,32 @@ pub fn draw(
     spec: &SweepSpec,
     drawing: &MapDrawing,
 ) -> Result<Vec<PathBuf>, SweepError> {
-    // A refined map: each point drawn as the quarters of the unsplit cells it is a corner of.
-    let mut tiles = spec.refine.map(|lattice| {
-        let nodes = drawing
-            .points
-            .iter()
-            .map(|&([x, y, _], _)| lattice.node_of((x, y)))
-            .collect();
-        (lattice, lattice.tiles(&nodes))
-    });
+    // A refined map: each point drawn as the quarters of the unsplit cells it is a corner of,
+    // in its own slice.
+    let mut tiles: HashMap<(u64, Node), Vec<[f64; 4]>> = HashMap::new();
+    if let Some(lattice) = spec.refine {
+        let mut by_slice: BTreeMap<u64, BTreeSet<Node>> = BTreeMap::new();
+        for &([x, y, z], _) in &drawing.points {
+            by_slice
+                .entry(z.to_bits())
+                .or_default()
+                .insert(lattice.node_of((x, y)));
+        }
+        for (z, nodes) in by_slice {
+            tiles.extend(lattice.tiles(&nodes).into_iter().map(|(n, t)| ((z, n), t)));
+        }
+    }
     let pts: Vec<(f64, MapPoint)> = drawing
         .points
         .iter()
         .map(|&([x, y, z], ref label)| {
+            let node = spec.refine.map(|l| l.node_of((x, y)));
             let point = MapPoint {
                 x,
                 y,
                 label: label.clone(),
-                tiles: tiles
-                    .as_mut()
-                    .and_then(|(l, t)| t.remove(&l.node_of((x, y))))
+                tiles: node
+                    .and_then(|n| tiles.remove(&(z.to_bits(), n)))
                     .unwrap_or_default(),
             };
             (z, point)

@@ -7,8 +7,9 @@
 //!   split_bistable: false                   # optional: also fill bistable bands
 //! ```
 //!
-//! The grid must have two axes, both `{start, stop, step}` ranges: level 0 is that grid, and
-//! each level halves the steps where the class changes. `min_step` is keyed by the axes' names.
+//! The grid's first two axes must be `{start, stop, step}` ranges: level 0 is that grid, and
+//! each level halves the steps where the class changes. A third axis (any values) is refined
+//! slice by slice, each slice's cells split by its own points. `min_step` is keyed by the axes' names.
 use super::context::{show, Ctx};
 use super::grid::{Grid, GridAxis};
 use crate::error::SpecError;
@@ -65,14 +66,6 @@ pub(super) fn parse(ctx: &Ctx, top: &Mapping, grid: &Grid) -> Result<Option<Latt
                 )
             })? as u32,
     };
-    if let Some(z) = &grid.z {
-        return Err(ctx.err(
-            &["refine"],
-            format!("a grid of three axes (slices in {})", z.param),
-            "a grid of two {start, stop, step} range axes: refinement of each slice of a third \
-             axis is not implemented; sweep each slice as its own 2-axis spec",
-        ));
-    }
     let x = lattice_axis(ctx, Some(&grid.x))?;
     let y = lattice_axis(ctx, grid.y.as_ref())?;
     let names = grid

@@ -92,7 +92,9 @@ fn point_count(spec: &SweepSpec) -> u64 {
         None => ne.saturating_mul(nk).saturating_mul(count(&spec.grid.z)),
         Some(l) => {
             let fine = |n: u64| (n - 1).saturating_mul(1 << l.refine.levels) + 1;
-            fine(ne).saturating_mul(fine(nk))
+            fine(ne)
+                .saturating_mul(fine(nk))
+                .saturating_mul(count(&spec.grid.z))
         }
     }
 }
@@ -165,19 +167,23 @@ pub fn plan(spec: &SweepSpec) -> Plan {
     )
 }
 
-/// The plan of a refined point set: `nodes` on `lattice`, each with its level.
-pub fn plan_nodes(spec: &SweepSpec, lattice: &Lattice, nodes: &[(Node, u32)]) -> Plan {
+/// The plan of a refined point set: `nodes` on `lattice`, each with its level and the value of
+/// the slice axis `z` it lies in (0 without one).
+pub fn plan_nodes(spec: &SweepSpec, lattice: &Lattice, nodes: &[(Node, u32, f64)]) -> Plan {
     point_set(
         spec,
         nodes
             .iter()
-            .map(|&(n, _)| {
+            .map(|&(n, _, z)| {
                 let (x, y) = lattice.coords(n);
-                [x, y, 0.0]
+                [x, y, z]
             })
             .collect(),
-        nodes.iter().map(|&(_, l)| l).collect(),
-        nodes.iter().map(|&(_, l)| lattice.cell_size(l)).collect(),
+        nodes.iter().map(|&(_, l, _)| l).collect(),
+        nodes
+            .iter()
+            .map(|&(_, l, _)| lattice.cell_size(l))
+            .collect(),
     )
 }
 
