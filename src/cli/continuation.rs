@@ -109,8 +109,8 @@ fn study_of(a: &Args) -> Result<ContinuationStudy, CliError> {
             base,
             n: a.n,
             parameter,
-            from: a.line.from,
-            to: a.line.to,
+            from: a.line.span.from,
+            to: a.line.span.to,
             max_points: a.max_points,
             opts: ArclengthOptions {
                 ds_max: a.ds_max,

@@ -19,12 +19,33 @@ pub struct LineArgs {
     /// Fix kappa2 and vary eta_t.
     #[arg(long, allow_hyphen_values = true)]
     pub kappa2: Option<f64>,
+    #[command(flatten)]
+    pub span: Span,
+}
+
+/// Where a line runs: `--from A --to B`.
+#[derive(clap::Args)]
+pub struct Span {
     /// Start of the varied parameter.
     #[arg(long, allow_hyphen_values = true)]
     pub from: f64,
     /// End of the varied parameter.
     #[arg(long, allow_hyphen_values = true)]
     pub to: f64,
+}
+
+impl Span {
+    /// Refuses a line that does not run forward between two finite numbers.
+    pub fn check(&self) -> Result<(), CliError> {
+        if self.from.is_finite() && self.to.is_finite() && self.from < self.to {
+            return Ok(());
+        }
+        Err(CliError::usage(format!(
+            "invalid line --from {} --to {}: two finite numbers with from < to",
+            show_number(self.from),
+            show_number(self.to)
+        )))
+    }
 }
 
 impl LineArgs {
@@ -48,16 +69,11 @@ impl LineArgs {
     /// `base` at the line's start, after checking that the line runs forward and that both
     /// of its ends are valid parameters.
     pub fn start(&self, base: ModelParams) -> Result<ModelParams, CliError> {
-        if !(self.from.is_finite() && self.to.is_finite() && self.from < self.to) {
-            return Err(CliError::usage(format!(
-                "invalid line --from {} --to {}: two finite numbers with from < to",
-                self.from, self.to
-            )));
-        }
+        self.span.check()?;
         let (axis, fixed_name, fixed) = self.parameter();
         let varied = self.varied();
         within_limit(&format!("--{}", fixed_name.replace('_', "-")), fixed)?;
-        within_limit(&format!("--to (the line's {varied})"), self.to)?;
+        within_limit(&format!("--to (the line's {varied})"), self.span.to)?;
         let at = |x: f64| match axis {
             Axis::EtaT => ModelParams {
                 eta_t: x,
@@ -70,8 +86,8 @@ impl LineArgs {
                 ..base
             },
         };
-        at(self.to).validate()?;
-        let start = at(self.from);
+        at(self.span.to).validate()?;
+        let start = at(self.span.from);
         start.validate()?;
         Ok(start)
     }

@@ -139,7 +139,7 @@ fn bifurcation(
     let (axis, fixed_name, fixed) = line.parameter();
     let x_label = line.varied();
     let fixed_label = format!("{fixed_name} = {fixed}");
-    let (from, to) = (line.from, line.to);
+    let (from, to) = (line.span.from, line.span.to);
     let base = line.start(params)?;
     droplet_sweep::store::atomic::create_output_dir(out)?;
     let c = Coefficients::new(radius, h0);

@@ -23,12 +23,8 @@ pub struct ParamLineArgs {
     /// The paper's line: fix kappa2 and vary eta_t (= --param eta_t --set kappa2=K).
     #[arg(long, allow_hyphen_values = true)]
     pub kappa2: Option<f64>,
-    /// Start of the varied parameter.
-    #[arg(long, allow_hyphen_values = true)]
-    pub from: f64,
-    /// End of the varied parameter.
-    #[arg(long, allow_hyphen_values = true)]
-    pub to: f64,
+    #[command(flatten)]
+    pub span: super::line::Span,
 }
 
 impl ParamLineArgs {
@@ -84,7 +80,7 @@ impl ParamLineArgs {
             ));
         }
         self.check_ends(varied, &base)?;
-        Ok((varied, varied.with(&base, self.from)))
+        Ok((varied, varied.with(&base, self.span.from)))
     }
 
     /// `--set` as (parameter, value) pairs.
@@ -116,21 +112,15 @@ impl ParamLineArgs {
 
     /// The line runs forward, its ends are valid parameters, and `m > 0` on it.
     fn check_ends(&self, varied: ModelParam, base: &ModelParams) -> Result<(), CliError> {
-        if !(self.from.is_finite() && self.to.is_finite() && self.from < self.to) {
-            return Err(CliError::usage(format!(
-                "invalid line --from {} --to {}: two finite numbers with from < to",
-                show_number(self.from),
-                show_number(self.to)
-            )));
-        }
+        self.span.check()?;
         if matches!(varied, ModelParam::EtaT | ModelParam::Kappa2) {
-            within_limit(&format!("--to (the line's {varied})"), self.to)?;
+            within_limit(&format!("--to (the line's {varied})"), self.span.to)?;
         }
-        for end in [self.from, self.to] {
+        for end in [self.span.from, self.span.to] {
             varied.with(base, end).validate()?;
         }
         let mass_low = if varied == ModelParam::Mass {
-            self.from
+            self.span.from
         } else {
             base.mass
         };

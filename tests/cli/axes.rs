@@ -17,6 +17,17 @@ fn columns(df: &polars::prelude::DataFrame) -> Vec<String> {
         .collect()
 }
 
+/// `droplet sweep SPEC --out OUT --json`, pictures included: its JSON.
+fn sweep_with_pictures(spec: &std::path::Path, out: &std::path::Path) -> serde_json::Value {
+    json(&run(&[
+        "sweep",
+        spec.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--json",
+    ]))
+}
+
 #[test]
 fn a_one_axis_ode_sweep_in_mass_has_a_mass_column_and_draws_lines() {
     let dir = tempfile::tempdir().unwrap();
@@ -26,13 +37,7 @@ fn a_one_axis_ode_sweep_in_mass_has_a_mass_column_and_draws_lines() {
         "model: ode\nparams: {eta_t: 0.08, kappa2: 0.13}\ngrid:\n  mass: [0.02, 0.05, 0.1, 0.3]\n",
     );
     let out = dir.path().join("m");
-    let s = json(&run(&[
-        "sweep",
-        spec.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--json",
-    ]));
+    let s = sweep_with_pictures(&spec, &out);
     assert_eq!(s["runs"], 4 * 4, "{s}");
     let points = read(&out.join("points.parquet"));
     let cols = columns(&points);
@@ -77,13 +82,7 @@ fn a_refined_ode_map_in_the_mass_eta_t_plane_is_named_by_its_axes() {
         "model: ode\nparams: {kappa2: 0.13}\ngrid:\n  mass: {start: 0.05, stop: 0.45, step: 0.1}\n  eta_t: {start: 0.07, stop: 0.1, step: 0.005}\nrefine: {levels: 2, min_step: {eta_t: 0.002}}\n",
     );
     let out = dir.path().join("me");
-    json(&run(&[
-        "sweep",
-        spec.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--json",
-    ]));
+    sweep_with_pictures(&spec, &out);
     let points = read(&out.join("points.parquet"));
     let cols = columns(&points);
     for want in ["mass", "eta_t", "d_mass", "d_eta_t", "level"] {
@@ -145,13 +144,7 @@ fn a_three_axis_ode_sweep_draws_one_map_per_slice_and_one_with_all() {
         "model: ode\ngrid:\n  mass: [0.02, 0.3]\n  eta_t: {start: 0.07, stop: 0.1, step: 0.01}\n  kappa2: [0.11, 0.15]\ninitial_conditions: [i, iii]\n",
     );
     let out = dir.path().join("three");
-    let s = json(&run(&[
-        "sweep",
-        spec.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--json",
-    ]));
+    let s = sweep_with_pictures(&spec, &out);
     assert_eq!(s["runs"], 2 * 4 * 2 * 2, "{s}");
     let points = read(&out.join("points.parquet"));
     let cols = columns(&points);
@@ -269,24 +262,18 @@ fn a_refined_three_axis_ode_sweep_refines_each_slice_on_its_own_and_resumes_equa
     assert_eq!(st["levels"].as_array().unwrap().len(), 3, "{st}");
 }
 
-/// A small PDE map in `(mass, kappa2)`: N = 32, fixed steps, seconds.
-const TINY_MASS: &str = "name: tiny-mass
-params: {eta_t: 0.09}
-grid:
-  mass: [0.05, 0.2]
-  kappa2: {start: 0.10, stop: 0.14, step: 0.02}
-initial_conditions: [i, iii]
-solver:
-  n: 32
-  dt: 0.05
-  tol: 0
-  t_max: 150
-";
+/// A small PDE map in `(mass, kappa2)`: the CLI tests' TINY (N = 32, fixed steps, seconds)
+/// with `mass` for `eta_t`.
+fn tiny_mass() -> String {
+    crate::TINY
+        .replace("name: tiny\n", "name: tiny-mass\nparams: {eta_t: 0.09}\n")
+        .replace("  eta_t: [0.07, 0.09, 0.11]\n", "  mass: [0.05, 0.2]\n")
+}
 
 #[test]
 fn a_pde_mass_kappa2_sweep_resumes_after_kills_and_shards_give_equal_tables() {
     let dir = tempfile::tempdir().unwrap();
-    let spec = write_spec(dir.path(), "tm.yaml", TINY_MASS);
+    let spec = write_spec(dir.path(), "tm.yaml", &tiny_mass());
     let single = dir.path().join("single");
     let started = std::time::Instant::now();
     let o = sweep(&spec, &single, &[]);

@@ -240,7 +240,7 @@ fn across_lines(dir: &Path, spec: &SweepSpec) -> Result<Vec<Curve>, SweepError> 
     for model in [ModelKind::Pde, ModelKind::Ode] {
         for c in crate::tables::boundaries::read(&path, model)? {
             for &(e, k) in &c.points {
-                let at = if along == Param::EtaT { e } else { k };
+                let at = if along == Param::ETA_T { e } else { k };
                 let points = if rate_is_x {
                     vec![(lo, at), (hi, at)]
                 } else {

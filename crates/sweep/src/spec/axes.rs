@@ -11,18 +11,12 @@ pub const ETA_T: &str = "eta_t";
 /// Mode-2 stiffness `kappa2` (its vertical axis).
 pub const KAPPA2: &str = "kappa2";
 
-/// A parameter a grid axis may sweep: a model parameter (paper Sect. 3) or a solver setting
-/// whose effect on a result is worth measuring (the grid, the tolerance, the largest step,
-/// the time limit).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
+/// A parameter a grid axis may sweep: a model parameter (paper Sect. 3, the solver's
+/// [`ModelParam`]) or a solver setting whose effect on a result is worth measuring (the grid,
+/// the tolerance, the largest step, the time limit).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Param {
-    EtaT,
-    Kappa2,
-    Eta2,
-    Mass,
-    Radius,
-    Sigma,
-    BoxLen,
+    Model(ModelParam),
     N,
     Tol,
     DtMax,
@@ -30,15 +24,20 @@ pub enum Param {
 }
 
 impl Param {
+    pub const ETA_T: Param = Param::Model(ModelParam::EtaT);
+    pub const KAPPA2: Param = Param::Model(ModelParam::Kappa2);
+    pub const ETA2: Param = Param::Model(ModelParam::Eta2);
+    pub const MASS: Param = Param::Model(ModelParam::Mass);
+
     /// Every sweepable parameter, model parameters first.
     pub const ALL: [Param; 11] = [
-        Param::EtaT,
-        Param::Kappa2,
-        Param::Eta2,
-        Param::Mass,
-        Param::Radius,
-        Param::Sigma,
-        Param::BoxLen,
+        Param::ETA_T,
+        Param::KAPPA2,
+        Param::ETA2,
+        Param::MASS,
+        Param::Model(ModelParam::Radius),
+        Param::Model(ModelParam::Sigma),
+        Param::Model(ModelParam::BoxLen),
         Param::N,
         Param::Tol,
         Param::DtMax,
@@ -48,13 +47,7 @@ impl Param {
     /// The key: the name in the spec's `params` or `solver` section and the table column.
     pub fn name(self) -> &'static str {
         match self {
-            Param::EtaT => ETA_T,
-            Param::Kappa2 => KAPPA2,
-            Param::Eta2 => "eta2",
-            Param::Mass => "mass",
-            Param::Radius => "radius",
-            Param::Sigma => "sigma",
-            Param::BoxLen => "box_len",
+            Param::Model(m) => m.name(),
             Param::N => "n",
             Param::Tol => "tol",
             Param::DtMax => "dt_max",
@@ -80,12 +73,15 @@ impl Param {
     /// A model parameter that multiplies time derivatives only (`eta2`, `mass`; paper eqs.
     /// 36-39): it moves no steady state and no boundary where a real eigenvalue crosses zero.
     pub fn rate_only(self) -> bool {
-        matches!(self, Param::Eta2 | Param::Mass)
+        matches!(self, Param::ETA2 | Param::MASS)
     }
 
     /// The model parameter, for a model parameter.
     pub fn model(self) -> Option<ModelParam> {
-        ModelParam::parse(self.name())
+        match self {
+            Param::Model(m) => Some(m),
+            _ => None,
+        }
     }
 
     /// Whether a value is in the parameter's domain as far as it can be told alone (finite,
@@ -94,8 +90,8 @@ impl Param {
     /// interface) is the solver's own validation, run on every point of the grid.
     pub fn admits(self, x: f64) -> (bool, &'static str) {
         match self {
-            Param::Kappa2 => (x >= 0.0, "finite numbers >= 0"),
-            Param::Mass => (x >= 0.0, "finite numbers >= 0 (0 = overdamped)"),
+            Param::KAPPA2 => (x >= 0.0, "finite numbers >= 0"),
+            Param::MASS => (x >= 0.0, "finite numbers >= 0 (0 = overdamped)"),
             Param::Tol => (x >= 0.0, "finite numbers >= 0 (0 = fixed step)"),
             Param::N => (
                 x > 0.0 && x.fract() == 0.0 && x <= 4096.0,
@@ -108,13 +104,7 @@ impl Param {
     /// Sets the parameter to `x` in `params` or `settings`.
     pub fn set(self, params: &mut ModelParams, settings: &mut SolverSettings, x: f64) {
         match self {
-            Param::EtaT => params.eta_t = x,
-            Param::Kappa2 => params.kappa2 = x,
-            Param::Eta2 => params.eta2 = x,
-            Param::Mass => params.mass = x,
-            Param::Radius => params.radius = x,
-            Param::Sigma => params.sigma = x,
-            Param::BoxLen => params.box_len = x,
+            Param::Model(m) => m.set(params, x),
             Param::N => settings.n = x as usize,
             Param::Tol => settings.tol = x,
             Param::DtMax => settings.dt_max = x,
@@ -125,18 +115,19 @@ impl Param {
     /// The parameter's value in `params` or `settings`.
     pub fn get(self, params: &ModelParams, settings: &SolverSettings) -> f64 {
         match self {
-            Param::EtaT => params.eta_t,
-            Param::Kappa2 => params.kappa2,
-            Param::Eta2 => params.eta2,
-            Param::Mass => params.mass,
-            Param::Radius => params.radius,
-            Param::Sigma => params.sigma,
-            Param::BoxLen => params.box_len,
+            Param::Model(m) => m.get(params),
             Param::N => settings.n as f64,
             Param::Tol => settings.tol,
             Param::DtMax => settings.dt_max,
             Param::TMax => settings.t_max,
         }
+    }
+}
+
+/// A parameter is written (in a stored spec's JSON, in `--json`) as its key.
+impl Serialize for Param {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.serialize_str(self.name())
     }
 }
 
@@ -162,8 +153,8 @@ pub type Point = [f64; 3];
 impl Plane {
     /// The paper's plane, `(eta_t, kappa2)`.
     pub const PAPER: Plane = Plane {
-        x: Param::EtaT,
-        y: Some(Param::Kappa2),
+        x: Param::ETA_T,
+        y: Some(Param::KAPPA2),
         z: None,
     };
 
@@ -204,7 +195,7 @@ impl Plane {
     /// paper axis)`.
     pub fn across_rate(&self) -> Option<(Param, Param)> {
         let (x, y) = (self.x, self.y?);
-        let paper = |p: Param| matches!(p, Param::EtaT | Param::Kappa2);
+        let paper = |p: Param| matches!(p, Param::ETA_T | Param::KAPPA2);
         match (self.z, x.rate_only() && paper(y), y.rate_only() && paper(x)) {
             (None, true, _) => Some((x, y)),
             (None, _, true) => Some((y, x)),
@@ -250,9 +241,9 @@ mod tests {
     #[test]
     fn a_plane_applies_and_reads_its_coordinates() {
         let plane = Plane {
-            x: Param::Mass,
-            y: Some(Param::EtaT),
-            z: Some(Param::Eta2),
+            x: Param::MASS,
+            y: Some(Param::ETA_T),
+            z: Some(Param::ETA2),
         };
         let (mut p, mut s) = (ModelParams::default(), SolverSettings::default());
         plane.apply([0.3, 0.09, 0.2], &mut p, &mut s);

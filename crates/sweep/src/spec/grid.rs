@@ -141,7 +141,7 @@ pub(super) fn parse(ctx: &Ctx, top: &Mapping) -> Result<Grid, SpecError> {
             step,
         });
     }
-    if axes.len() >= 2 && axes[0].param == Param::Kappa2 && axes[1].param == Param::EtaT {
+    if axes.len() >= 2 && axes[0].param == Param::KAPPA2 && axes[1].param == Param::ETA_T {
         axes.swap(0, 1);
     }
     let mut axes = axes.into_iter();

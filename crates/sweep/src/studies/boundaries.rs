@@ -77,7 +77,7 @@ impl Across {
             )));
         };
         let fixed = match along {
-            Param::EtaT => s.params.kappa2,
+            Param::ETA_T => s.params.kappa2,
             _ => s.params.eta_t,
         };
         Ok(Some(Self { rate, along, fixed }))
@@ -87,7 +87,7 @@ impl Across {
     pub fn crossings(&self, points: &[(f64, f64)]) -> Vec<f64> {
         // (along, other) of a point.
         let split = |&(e, k): &(f64, f64)| match self.along {
-            Param::EtaT => (e, k),
+            Param::ETA_T => (e, k),
             _ => (k, e),
         };
         let mut out: Vec<f64> = Vec::new();
@@ -108,7 +108,7 @@ impl Across {
     /// A value of `along` as a point of the paper's plane.
     pub fn point(&self, along: f64) -> (f64, f64) {
         match self.along {
-            Param::EtaT => (along, self.fixed),
+            Param::ETA_T => (along, self.fixed),
             _ => (self.fixed, along),
         }
     }
@@ -163,12 +163,12 @@ impl BoundaryStudy {
             })
         };
         let eta_t = eta_t
-            .or_else(|| swept(Param::EtaT))
-            .or_else(|| around(Param::EtaT))
+            .or_else(|| swept(Param::ETA_T))
+            .or_else(|| around(Param::ETA_T))
             .unwrap_or(FIG2A_WINDOW.0);
         let kappa2 = kappa2
-            .or_else(|| swept(Param::Kappa2))
-            .or_else(|| around(Param::Kappa2))
+            .or_else(|| swept(Param::KAPPA2))
+            .or_else(|| around(Param::KAPPA2))
             .unwrap_or(FIG2A_WINDOW.1);
         let base = ModelParams {
             eta_t: eta_t.0,
