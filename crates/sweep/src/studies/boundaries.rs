@@ -157,7 +157,7 @@ impl BoundaryStudy {
         let around = |p: Param| {
             across.filter(|a| a.along != p).map(|a| {
                 (
-                    (a.fixed - ACROSS_HALF_WIDTH).max(0.0),
+                    (a.fixed - ACROSS_HALF_WIDTH).max(0.5 * a.fixed),
                     a.fixed + ACROSS_HALF_WIDTH,
                 )
             })
