@@ -12,7 +12,11 @@ use std::path::PathBuf;
 /// bistable bands (two-parameter continuation of the fold). Each point solves its equations
 /// to ~1e-10. Writes DIR/boundaries.parquet (model = pde, and the reduced model's analytic
 /// curves as model = ode) and DIR/boundaries.png/.svg. If DIR holds a sweep, its window is
-/// the default and its phase map is redrawn with the boundaries on it.
+/// the default and its phase map is redrawn with the boundaries on it. Over a sweep in a plane
+/// of eta_t or kappa2 with eta2, mass, radius, sigma or box_len, the boundaries are where the
+/// paper-plane ones cross the sweep's line, in the sweep's plane: lines across eta2 or mass
+/// (they move no boundary), and curves sampled at the sweep's values of a geometric parameter
+/// (the paper-plane boundaries computed again at each).
 ///
 /// With several grid sizes (`--n 192,256,384`) it is a convergence study: the boundaries at
 /// each N go to DIR/n<N>/, and DIR/convergence.parquet gives each curve's shift from the
@@ -21,7 +25,7 @@ use std::path::PathBuf;
 #[derive(clap::Args)]
 #[command(
     allow_negative_numbers = true,
-    after_help = "Examples:\n  droplet boundaries --out results/boundaries                  # the Fig. 2a window\n  droplet boundaries --out out/fig2a                           # onto a sweep's phase map\n  droplet boundaries --eta-t 0.07,0.1 --kappa2 0.1,0.17 --n 128 --json\n  droplet boundaries --n 128,192,256 --out out/convergence    # how far the grid moves each boundary"
+    after_help = "Examples:\n  droplet boundaries --out results/boundaries                  # the Fig. 2a window\n  droplet boundaries --out out/fig2a                           # onto a sweep's phase map\n  droplet boundaries --out results/mass-eta_t                   # over a (mass, eta_t) map\n  droplet boundaries --eta-t 0.07,0.1 --kappa2 0.1,0.17 --n 128 --json\n  droplet boundaries --n 128,192,256 --out out/convergence    # how far the grid moves each boundary"
 )]
 pub struct Args {
     /// eta_t window LO,HI (default: the sweep's in --out, else 0.07,0.10).
@@ -39,9 +43,9 @@ pub struct Args {
     /// Output directory (a sweep's directory redraws its phase map).
     #[arg(long, default_value = "out/boundaries")]
     out: PathBuf,
-    /// Print one JSON object (keys: eta_t, kappa2, n, seconds, curves [{model, curve,
-    /// points, eta_t [..], kappa2 [..]}], files; for a list of N: eta_t, kappa2, ns, seconds
-    /// [..], curves [{curve, n, points, shift}], files).
+    /// Print one JSON object (keys: eta_t, kappa2 (the window), plane [x, y], n, seconds,
+    /// curves [{model, curve, points, <x> [..], <y> [..]}], files; for a list of N: eta_t,
+    /// kappa2, ns, seconds [..], curves [{curve, n, points, shift}], files).
     #[arg(long)]
     json: bool,
 }
@@ -80,6 +84,14 @@ pub fn run(a: Args) -> Result<(), CliError> {
     super::line::within_limit("eta_t window HI (from the sweep in --out)", study.eta_t.1)?;
     super::line::within_limit("kappa2 window HI (from the sweep in --out)", study.kappa2.1)?;
     if ns.len() > 1 {
+        if study.across.is_some() {
+            return Err(CliError::usage(format!(
+                "invalid --n {}: a convergence study is made in the paper's plane, and the sweep \
+                 in {} is in another; give another --out",
+                a.n,
+                a.out.display()
+            )));
+        }
         return convergence(&study, &ns, a.json);
     }
     eprintln!(
@@ -93,28 +105,45 @@ pub fn run(a: Args) -> Result<(), CliError> {
             super::plot::missing_message(missing, points, &a.out)
         );
     }
-    if a.json {
+    report(&study, &done, a.json);
+    Ok(())
+}
+
+/// Prints what a study computed: one JSON object, or a line per curve and the files.
+fn report(
+    study: &BoundaryStudy,
+    done: &droplet_sweep::studies::boundaries::BoundariesWritten,
+    json: bool,
+) {
+    // The curves' coordinates: the paper's plane's, or the sweep's plane's in --out.
+    let (xn, yn) = study
+        .across
+        .as_ref()
+        .map_or(("eta_t", "kappa2"), |c| c.names());
+    if json {
         let curves: Vec<_> = done
             .curves
             .iter()
             .map(|c| {
-                serde_json::json!({
+                let mut o = serde_json::json!({
                     "model": c.model.as_str(), "curve": c.name, "points": c.points.len(),
-                    "eta_t": c.points.iter().map(|p| p.0).collect::<Vec<_>>(),
-                    "kappa2": c.points.iter().map(|p| p.1).collect::<Vec<_>>(),
-                })
+                });
+                o[xn] = serde_json::json!(c.points.iter().map(|p| p.0).collect::<Vec<_>>());
+                o[yn] = serde_json::json!(c.points.iter().map(|p| p.1).collect::<Vec<_>>());
+                o
             })
             .collect();
         print_json(&serde_json::json!({
             "eta_t": [study.eta_t.0, study.eta_t.1], "kappa2": [study.kappa2.0, study.kappa2.1],
-            "n": study.n, "seconds": done.seconds, "curves": curves, "files": done.files,
+            "plane": [xn, yn], "n": study.n, "seconds": done.seconds, "curves": curves,
+            "files": done.files,
         }));
     } else {
         for c in &done.curves {
             let model = c.model.as_str().to_uppercase();
             match (c.points.first(), c.points.last()) {
                 (Some(first), Some(last)) => outln!(
-                    "{model}: {:<40} {:>4} points, from ({:.7}, {:.7}) to ({:.7}, {:.7})",
+                    "{model}: {:<40} {:>4} points in ({xn}, {yn}), from ({:.7}, {:.7}) to ({:.7}, {:.7})",
                     c.name,
                     c.points.len(),
                     first.0,
@@ -130,7 +159,6 @@ pub fn run(a: Args) -> Result<(), CliError> {
         }
         outln!("{:.1} s", done.seconds);
     }
-    Ok(())
 }
 
 /// `--n N` or `--n N1,N2,...`: each an even integer from 16 to 1024.

@@ -112,7 +112,8 @@ fn a_refined_ode_map_in_the_mass_eta_t_plane_is_named_by_its_axes() {
     assert!(labels.iter().any(|l| l.starts_with("IC")), "{labels:?}");
     assert!(out.join("phase_map.png").exists() && out.join("phase_map.svg").exists());
     // `droplet boundaries` draws where the paper-plane boundaries cross the sweep's line
-    // kappa2 = 0.13: lines of constant eta_t across the mass axis (mass moves none of them).
+    // kappa2 = 0.13: lines of constant eta_t across the mass axis (mass moves none of them),
+    // in the sweep's own coordinates.
     let o = run(&[
         "boundaries",
         "--out",
@@ -122,17 +123,75 @@ fn a_refined_ode_map_in_the_mass_eta_t_plane_is_named_by_its_axes() {
         "--json",
     ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let b = read(&out.join("boundaries.parquet"));
-    assert!(b.height() >= 2, "{b}");
-    assert!(floats(&b, "kappa2").iter().all(|&k| k == 0.13), "{b}");
+    let (onset, mass) = onset_of_motion(&out.join("boundaries.parquet"), "mass");
+    assert!((0.074..0.079).contains(&onset[0]), "{onset:?}");
+    assert_eq!(onset[0], onset[1]);
+    assert_eq!(mass, vec![0.05, 0.45]);
+}
+
+/// The full model's onset of motion in a boundaries table over a sweep in (`other`, eta_t):
+/// its `eta_t` and `other` values.
+fn onset_of_motion(path: &std::path::Path, other: &str) -> (Vec<f64>, Vec<f64>) {
+    let b = read(path);
     let curve = b.column("curve").unwrap().str().unwrap().clone();
     let model = b.column("model").unwrap().str().unwrap().clone();
-    let eta = floats(&b, "eta_t");
-    let onset = (0..b.height())
-        .find(|&i| curve.get(i) == Some("IC onset of motion") && model.get(i) == Some("pde"))
-        .map(|i| eta[i])
-        .expect("the onset of motion crosses kappa2 = 0.13");
-    assert!((0.074..0.079).contains(&onset), "{onset}");
+    let (eta, o) = (floats(&b, "eta_t"), floats(&b, other));
+    (0..b.height())
+        .filter(|&i| curve.get(i) == Some("IC onset of motion") && model.get(i) == Some("pde"))
+        .map(|i| (eta[i], o[i]))
+        .unzip()
+}
+
+#[test]
+fn boundaries_over_a_radius_eta_t_sweep_are_sampled_at_its_radii() {
+    // Radius moves the states: the paper-plane boundaries are computed again at each of the
+    // sweep's radii, and at R = 1 they are the paper plane's own.
+    let dir = tempfile::tempdir().unwrap();
+    let spec = write_spec(
+        dir.path(),
+        "re.yaml",
+        "model: ode\nparams: {kappa2: 0.13}\ngrid:\n  radius: [0.95, 1.0, 1.05]\n  eta_t: [0.07, 0.08, 0.09]\ninitial_conditions: [i]\n",
+    );
+    let out = dir.path().join("re");
+    sweep_with_pictures(&spec, &out);
+    let b = json(&run(&[
+        "boundaries",
+        "--out",
+        out.to_str().unwrap(),
+        "--n",
+        "96",
+        "--json",
+    ]));
+    assert_eq!(b["plane"], serde_json::json!(["radius", "eta_t"]), "{b}");
+    let (onset, radius) = onset_of_motion(&out.join("boundaries.parquet"), "radius");
+    assert_eq!(radius, vec![0.95, 1.0, 1.05]);
+    assert!(onset[0] < onset[1] && onset[1] < onset[2], "{onset:?}");
+    let paper = dir.path().join("paper");
+    let p = json(&run(&[
+        "boundaries",
+        "--out",
+        paper.to_str().unwrap(),
+        "--eta-t",
+        "0.07,0.09",
+        "--kappa2",
+        "0.12,0.14",
+        "--n",
+        "96",
+        "--json",
+    ]));
+    let at_one = p["curves"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|c| c["curve"] == "IC onset of motion" && c["model"] == "pde")
+        .map(|c| c["eta_t"][0].as_f64().unwrap())
+        .unwrap();
+    assert!(
+        (onset[1] - at_one).abs() < 1e-12,
+        "{} vs {at_one}",
+        onset[1]
+    );
+    assert!(out.join("phase_map.png").exists());
 }
 
 #[test]

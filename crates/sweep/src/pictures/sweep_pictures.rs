@@ -205,8 +205,8 @@ pub fn draw(
         crate::tables::boundaries::write(&path, &all, Some(&spec.source), Vec::new())?;
         drawn = all.iter().map(Curve::of).collect();
         files.push(path);
-    } else if grid.plane().across_rate().is_some() {
-        drawn = across_lines(dir, spec)?;
+    } else if let Some(y) = &grid.y {
+        drawn = plane_boundaries(dir, (grid.x.param.name(), y.param.name()))?;
     }
     let plane_y = grid.y.as_ref().filter(|y| y.values.len() > 1);
     if let Some(y) = plane_y.filter(|_| grid.x.values.len() > 1) {
@@ -224,34 +224,15 @@ pub fn draw(
     Ok(files)
 }
 
-/// A sweep in a plane of a rate-only parameter and `eta_t` or `kappa2`: the boundaries that
-/// `droplet boundaries` put in its directory, each a crossing of the sweep's line
-/// ([`crate::studies::boundaries::Across`]), drawn as lines across the rate-only axis (the
-/// full model's solid, the reduced model's dashed).
-fn across_lines(dir: &Path, spec: &SweepSpec) -> Result<Vec<Curve>, SweepError> {
-    let grid = &spec.grid;
-    let Some((rate, along)) = grid.plane().across_rate() else {
-        return Ok(Vec::new());
-    };
+/// A sweep outside the paper's plane: the boundaries `droplet boundaries` put in its
+/// directory in its own plane ([`crate::studies::across`]), the full model's solid and the
+/// reduced model's dashed.
+fn plane_boundaries(dir: &Path, names: (&str, &str)) -> Result<Vec<Curve>, SweepError> {
     let path = dir.join(crate::tables::boundaries::FILE);
-    let (lo, hi) = grid.axis(rate).map_or((0.0, 1.0), |a| a.span());
-    let rate_is_x = grid.x.param == rate;
     let mut out = Vec::new();
     for model in [ModelKind::Pde, ModelKind::Ode] {
-        for c in crate::tables::boundaries::read(&path, model)? {
-            for &(e, k) in &c.points {
-                let at = if along == Param::ETA_T { e } else { k };
-                let points = if rate_is_x {
-                    vec![(lo, at), (hi, at)]
-                } else {
-                    vec![(at, lo), (at, hi)]
-                };
-                out.push(Curve {
-                    points,
-                    ..Curve::of(&c)
-                });
-            }
-        }
+        let curves = crate::tables::boundaries::read_in(&path, names, model)?;
+        out.extend(curves.iter().map(Curve::of));
     }
     Ok(out)
 }

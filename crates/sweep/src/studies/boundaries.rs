@@ -5,7 +5,8 @@
 //! same directory is redrawn with them.
 use crate::error::SweepError;
 use crate::pictures::map_figure::{boundary_picture, Curve};
-use crate::spec::axes::Param;
+use crate::spec::axes::{Param, ETA_T, KAPPA2};
+use crate::studies::across::Across;
 use crate::tables::boundaries::{self as table, NamedCurve};
 use droplet_solver::contract::settings::{ModelKind, H0_PAPER};
 use droplet_solver::model::params::ModelParams;
@@ -18,9 +19,10 @@ use std::time::Instant;
 /// across the sweep's line.
 const ACROSS_HALF_WIDTH: f64 = 0.01;
 
-/// Least samples of the ID onset lines across a rate-only sweep's line: where they cross it
-/// is interpolated between samples, to about 1e-6 with this many (about 1e-4 with 60).
-const ACROSS_SAMPLES: usize = 600;
+/// Least samples of the ID onset lines across a sweep's line: where they cross it is
+/// interpolated between samples, to about 1e-6 with 600 (about 1e-4 with 60). Across a
+/// geometric axis the lines are computed once per sweep value, so with fewer.
+const ACROSS_SAMPLES: (usize, usize) = (600, 200);
 
 /// The paper's Fig. 2a window, the default without a sweep.
 pub const FIG2A_WINDOW: ((f64, f64), (f64, f64)) = ((0.07, 0.10), (0.10, 0.17));
@@ -40,78 +42,9 @@ pub struct BoundaryStudy {
     pub samples: usize,
     /// The spec of the sweep in `out`, if there is one (its map is redrawn).
     pub sweep_spec: Option<String>,
-    /// For a sweep in a plane of a rate-only parameter and `eta_t` or `kappa2`: the line of
-    /// the paper's plane it lies on.
+    /// For a sweep outside the paper's plane: how its plane meets the paper's
+    /// ([`crate::studies::across`]).
     pub across: Option<Across>,
-}
-
-/// A sweep's line in the paper's plane: the sweep varies `along` (`eta_t` or `kappa2`) and the
-/// rate-only parameter `rate` (`eta2` or `mass`, [`Param::rate_only`]), and fixes the other of
-/// `eta_t`, `kappa2` at `fixed`. The boundaries where a real eigenvalue crosses zero do not
-/// depend on `rate`, so each crosses the sweep's plane as a line at a fixed value of `along`.
-/// (A Hopf point would depend on `rate`; none was found on the continuation lines, and
-/// `droplet continue --param mass` or `--param eta2` looks for them along a branch.)
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Across {
-    pub rate: Param,
-    pub along: Param,
-    pub fixed: f64,
-}
-
-impl Across {
-    /// The line of the sweep `s` (in `out`): `None` in the paper's plane; refused in a plane
-    /// where the boundaries cannot be drawn.
-    fn of(s: &crate::spec::SweepSpec, out: &Path) -> Result<Option<Self>, SweepError> {
-        let plane = s.grid.plane();
-        if plane.is_paper() {
-            return Ok(None);
-        }
-        let Some((rate, along)) = plane.across_rate() else {
-            let names: Vec<&str> = plane.params().iter().map(|p| p.name()).collect();
-            return Err(SweepError::Invalid(format!(
-                "{}: the sweep there is in ({}); the exact boundaries are computed in the \
-                 paper's plane (eta_t, kappa2), and drawn over a sweep in that plane or in a \
-                 plane of eta2 or mass with eta_t or kappa2; give another --out",
-                out.display(),
-                names.join(", ")
-            )));
-        };
-        let fixed = match along {
-            Param::ETA_T => s.params.kappa2,
-            _ => s.params.eta_t,
-        };
-        Ok(Some(Self { rate, along, fixed }))
-    }
-
-    /// Where a curve of the paper's plane crosses the line: the values of `along`.
-    pub fn crossings(&self, points: &[(f64, f64)]) -> Vec<f64> {
-        // (along, other) of a point.
-        let split = |&(e, k): &(f64, f64)| match self.along {
-            Param::ETA_T => (e, k),
-            _ => (k, e),
-        };
-        let mut out: Vec<f64> = Vec::new();
-        for w in points.windows(2) {
-            let ((a0, o0), (a1, o1)) = (split(&w[0]), split(&w[1]));
-            let (d0, d1) = (o0 - self.fixed, o1 - self.fixed);
-            if o0 == o1 || d0 * d1 > 0.0 {
-                continue;
-            }
-            let at = a0 + (a1 - a0) * d0 / (d0 - d1);
-            if !out.iter().any(|x| (x - at).abs() < 1e-12) {
-                out.push(at);
-            }
-        }
-        out
-    }
-
-    /// A value of `along` as a point of the paper's plane.
-    pub fn point(&self, along: f64) -> (f64, f64) {
-        match self.along {
-            Param::ETA_T => (along, self.fixed),
-            _ => (self.fixed, along),
-        }
-    }
 }
 
 /// What a boundaries study computed and wrote.
@@ -155,7 +88,7 @@ impl BoundaryStudy {
         };
         // Across a rate-only plane: a thin window around the sweep's line.
         let around = |p: Param| {
-            across.filter(|a| a.along != p).map(|a| {
+            across.as_ref().filter(|a| a.along != p).map(|a| {
                 (
                     (a.fixed - ACROSS_HALF_WIDTH).max(0.5 * a.fixed),
                     a.fixed + ACROSS_HALF_WIDTH,
@@ -187,13 +120,35 @@ impl BoundaryStudy {
             h0: sweep.as_ref().map_or(H0_PAPER, |s| s.solver.h0),
             n,
             sweep_spec: sweep.map(|s| s.source),
-            samples: if across.is_some() {
-                samples.max(ACROSS_SAMPLES)
-            } else {
-                samples
+            samples: match &across {
+                Some(a) if a.other.rate_only() => samples.max(ACROSS_SAMPLES.0),
+                Some(_) => samples.max(ACROSS_SAMPLES.1),
+                None => samples,
             },
             across,
         })
+    }
+
+    /// The full model's boundaries (`pde`) and the reduced model's (`ode`) in the window, at
+    /// the parameters `base`.
+    fn curves_at(&self, base: &ModelParams) -> Result<Vec<NamedCurve>, SweepError> {
+        let window = droplet_solver::continuation::boundaries::Window {
+            base: *base,
+            n: self.n,
+            eta_t: self.eta_t,
+            kappa2: self.kappa2,
+            id_samples: self.samples,
+        };
+        let pde = droplet_solver::continuation::boundaries::boundaries(&window)?;
+        let ode = droplet_solver::reduced::boundaries::boundaries(
+            &Coefficients::new(base.radius, self.h0),
+            self.eta_t,
+            self.kappa2,
+        );
+        Ok(NamedCurve::from_boundaries(ModelKind::Pde, &pde)
+            .into_iter()
+            .chain(NamedCurve::from_boundaries(ModelKind::Ode, &ode))
+            .collect())
     }
 
     /// Computes the boundaries and writes `boundaries.parquet` and `boundaries.png/.svg`
@@ -201,41 +156,16 @@ impl BoundaryStudy {
     pub fn run(&self) -> Result<BoundariesWritten, SweepError> {
         crate::store::atomic::create_output_dir(&self.out)?;
         let started = Instant::now();
-        let window = droplet_solver::continuation::boundaries::Window {
-            base: self.base,
-            n: self.n,
-            eta_t: self.eta_t,
-            kappa2: self.kappa2,
-            id_samples: self.samples,
+        let curves = match &self.across {
+            None => self.curves_at(&self.base)?,
+            Some(a) => a.plane_curves(&self.base, |b| self.curves_at(b))?,
         };
-        let pde = droplet_solver::continuation::boundaries::boundaries(&window)?;
         let seconds = started.elapsed().as_secs_f64();
-        let ode = droplet_solver::reduced::boundaries::boundaries(
-            &Coefficients::new(self.base.radius, self.h0),
-            self.eta_t,
-            self.kappa2,
-        );
-        let mut curves: Vec<NamedCurve> = NamedCurve::from_boundaries(ModelKind::Pde, &pde)
-            .into_iter()
-            .chain(NamedCurve::from_boundaries(ModelKind::Ode, &ode))
-            .collect();
-        if let Some(a) = self.across {
-            // Only where each curve crosses the sweep's line.
-            curves = curves
-                .into_iter()
-                .filter_map(|c| {
-                    let points: Vec<(f64, f64)> = a
-                        .crossings(&c.points)
-                        .into_iter()
-                        .map(|x| a.point(x))
-                        .collect();
-                    (!points.is_empty()).then_some(NamedCurve { points, ..c })
-                })
-                .collect();
-        }
         let path = self.out.join(table::FILE);
-        table::write(
+        let names = self.across.as_ref().map_or((ETA_T, KAPPA2), |a| a.names());
+        table::write_in(
             &path,
+            names,
             &curves,
             self.sweep_spec.as_deref(),
             vec![

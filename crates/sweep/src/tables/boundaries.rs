@@ -1,5 +1,7 @@
 //! `boundaries.parquet`: phase boundaries as a long table (`model` = `pde` / `ode`, `curve`,
-//! `eta_t`, `kappa2`, points in order along each curve). The reduced model's are analytic
+//! the plane's two coordinates, points in order along each curve): `eta_t`, `kappa2` in the
+//! paper's plane, the sweep's axes over a sweep in another plane
+//! ([`crate::studies::across`]). The reduced model's are analytic
 //! (Fig. 3a); the full model's come from `droplet boundaries` (continuation of the
 //! bifurcation points). A sweep's `droplet plot` rewrites the ODE rows and keeps the PDE rows.
 use crate::error::SweepError;
@@ -18,7 +20,8 @@ pub struct NamedCurve {
     /// The full model (`pde`, from continuation) or the reduced one (`ode`, analytic).
     pub model: ModelKind,
     pub name: String,
-    /// `(eta_t, kappa2)` in order along the curve.
+    /// The plane's `(x, y)` (`(eta_t, kappa2)` in the paper's plane) in order along the
+    /// curve.
     pub points: Vec<(f64, f64)>,
 }
 
@@ -38,9 +41,21 @@ impl NamedCurve {
     }
 }
 
-/// Writes `curves` to `path`, with the sweep's spec (if any) and `extra` in the metadata.
+/// Writes curves of the paper's plane to `path`, with the sweep's spec (if any) and `extra` in
+/// the metadata.
 pub fn write(
     path: &Path,
+    curves: &[NamedCurve],
+    spec: Option<&str>,
+    extra: Vec<(String, String)>,
+) -> Result<(), SweepError> {
+    write_in(path, (ETA_T, KAPPA2), curves, spec, extra)
+}
+
+/// As [`write`], for curves in the plane whose axes are named `names`.
+pub fn write_in(
+    path: &Path,
+    names: (&str, &str),
     curves: &[NamedCurve],
     spec: Option<&str>,
     extra: Vec<(String, String)>,
@@ -63,11 +78,11 @@ pub fn write(
                 rows.iter().map(|(c, _)| c.name.clone()).collect::<Vec<_>>(),
             ),
             Column::new(
-                ETA_T.into(),
+                names.0.into(),
                 rows.iter().map(|(_, p)| p.0).collect::<Vec<_>>(),
             ),
             Column::new(
-                KAPPA2.into(),
+                names.1.into(),
                 rows.iter().map(|(_, p)| p.1).collect::<Vec<_>>(),
             ),
         ],
@@ -77,21 +92,30 @@ pub fn write(
     write_parquet(&mut df, path, meta)
 }
 
-/// The curves of `model` stored in `path` (none if the file does not exist or predates the
-/// `model` column).
+/// The curves of `model` in the paper's plane stored in `path` (none if the file does not
+/// exist, predates the `model` column, or holds another plane's curves).
 pub fn read(path: &Path, model: ModelKind) -> Result<Vec<NamedCurve>, SweepError> {
+    read_in(path, (ETA_T, KAPPA2), model)
+}
+
+/// As [`read`], for curves in the plane whose axes are named `axes`.
+pub fn read_in(
+    path: &Path,
+    axes: (&str, &str),
+    model: ModelKind,
+) -> Result<Vec<NamedCurve>, SweepError> {
     if !path.exists() {
         return Ok(Vec::new());
     }
     let file = std::fs::File::open(path).map_err(|e| SweepError::io(path, e))?;
     let df = ParquetReader::new(file).finish()?;
-    if df.column("model").is_err() {
+    if df.column("model").is_err() || df.column(axes.0).is_err() || df.column(axes.1).is_err() {
         return Ok(Vec::new());
     }
     let models = df.column("model")?.str()?.clone();
     let names = df.column("curve")?.str()?.clone();
-    let eta = df.column(ETA_T)?.f64()?.clone();
-    let kappa = df.column(KAPPA2)?.f64()?.clone();
+    let eta = df.column(axes.0)?.f64()?.clone();
+    let kappa = df.column(axes.1)?.f64()?.clone();
     let mut out: Vec<NamedCurve> = Vec::new();
     for i in 0..df.height() {
         if models.get(i) != Some(model.as_str()) {

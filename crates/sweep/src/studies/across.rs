@@ -1,0 +1,165 @@
+//! The full model's boundaries over a sweep outside the paper's plane: a plane of `eta_t` or
+//! `kappa2` (the parameter the sweep varies *along* the paper's plane, the other of the two
+//! fixed) with one more model parameter, the *other* axis.
+//!
+//! - **A rate-only other axis** (`eta2`, `mass`; [`Param::rate_only`]) multiplies time
+//!   derivatives only: it moves no steady state and no boundary where a real eigenvalue
+//!   crosses zero. Each paper-plane boundary is computed once, where it crosses the sweep's
+//!   line, and drawn as a line across the other axis. (A Hopf point would depend on it; none
+//!   was found on the continuation lines, and `droplet continue --param mass` or `--param
+//!   eta2` looks for one along a branch.)
+//! - **A geometric other axis** (`radius`, `sigma`, `box_len`) moves the states. The paper-plane
+//!   boundaries are computed again at each of the sweep's values of it, and where each crosses
+//!   the line becomes a point of its curve in the sweep's plane: every point a solution, the
+//!   curve sampled at the sweep's values.
+//!
+//! Other planes (two non-paper parameters, a solver setting, a slice axis) are refused.
+use crate::error::SweepError;
+use crate::spec::axes::Param;
+use crate::spec::SweepSpec;
+use crate::tables::boundaries::NamedCurve;
+use droplet_solver::model::params::ModelParams;
+use std::collections::BTreeMap;
+use std::path::Path;
+
+/// A sweep's plane seen from the paper's plane.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Across {
+    /// The sweep's other axis.
+    pub other: Param,
+    /// The paper parameter the sweep varies (`eta_t` or `kappa2`).
+    pub along: Param,
+    /// The value of the paper parameter the sweep fixes (the other of `eta_t`, `kappa2`).
+    pub fixed: f64,
+    /// Whether the other axis is the plane's `x`.
+    pub other_is_x: bool,
+    /// The other axis's smallest and largest value.
+    pub span: (f64, f64),
+    /// Where the paper-plane boundaries are computed: the sweep's values of a geometric axis,
+    /// sorted; the middle value of a rate-only one (any value gives the same boundaries; the
+    /// smallest mass makes the eigenvalue solves slow: 26 s at m = 0.01 against 4.8 s at
+    /// m = 0.21 for results/mass-eta_t).
+    pub samples: Vec<f64>,
+}
+
+impl Across {
+    /// The view of the sweep `s` (in `out`): `None` in the paper's plane; refused in a plane
+    /// where the boundaries cannot be drawn.
+    pub fn of(s: &SweepSpec, out: &Path) -> Result<Option<Self>, SweepError> {
+        let plane = s.grid.plane();
+        if plane.is_paper() {
+            return Ok(None);
+        }
+        let paper = |p: Param| matches!(p, Param::ETA_T | Param::KAPPA2);
+        let geometric = |p: Param| p.model().is_some_and(|m| m.is_geometric());
+        let usable = |p: Param| p.rate_only() || geometric(p);
+        let pair = match (plane.y, plane.z) {
+            (Some(y), None) if paper(y) && usable(plane.x) => Some((plane.x, y, true)),
+            (Some(y), None) if paper(plane.x) && usable(y) => Some((y, plane.x, false)),
+            _ => None,
+        };
+        let Some((other, along, other_is_x)) = pair else {
+            let names: Vec<&str> = plane.params().iter().map(|p| p.name()).collect();
+            return Err(SweepError::Invalid(format!(
+                "{}: the sweep there is in ({}); the exact boundaries are drawn in the paper's \
+                 plane (eta_t, kappa2) and in a plane of eta_t or kappa2 with one of eta2, \
+                 mass, radius, sigma, box_len; give another --out",
+                out.display(),
+                names.join(", ")
+            )));
+        };
+        let axis = s.grid.axis(other).expect("a plane's axis is a grid axis");
+        let mut samples = axis.values.clone();
+        samples.sort_by(f64::total_cmp);
+        samples.dedup();
+        if other.rate_only() {
+            // Any value gives the same boundaries: the middle one.
+            samples = vec![samples[samples.len() / 2]];
+        }
+        Ok(Some(Self {
+            other,
+            along,
+            fixed: match along {
+                Param::ETA_T => s.params.kappa2,
+                _ => s.params.eta_t,
+            },
+            other_is_x,
+            span: axis.span(),
+            samples,
+        }))
+    }
+
+    /// Where a curve of the paper's plane crosses the line: the values of `along`, in order.
+    pub fn crossings(&self, points: &[(f64, f64)]) -> Vec<f64> {
+        // (along, other) of a point.
+        let split = |&(e, k): &(f64, f64)| match self.along {
+            Param::ETA_T => (e, k),
+            _ => (k, e),
+        };
+        let mut out: Vec<f64> = Vec::new();
+        for w in points.windows(2) {
+            let ((a0, o0), (a1, o1)) = (split(&w[0]), split(&w[1]));
+            let (d0, d1) = (o0 - self.fixed, o1 - self.fixed);
+            if o0 == o1 || d0 * d1 > 0.0 {
+                continue;
+            }
+            let at = a0 + (a1 - a0) * d0 / (d0 - d1);
+            if !out.iter().any(|x| (x - at).abs() < 1e-12) {
+                out.push(at);
+            }
+        }
+        out.sort_by(f64::total_cmp);
+        out
+    }
+
+    /// The names of the sweep's plane's axes `(x, y)`.
+    pub fn names(&self) -> (&'static str, &'static str) {
+        if self.other_is_x {
+            (self.other.name(), self.along.name())
+        } else {
+            (self.along.name(), self.other.name())
+        }
+    }
+
+    /// A point of the sweep's plane from a value of the other axis and one of `along`.
+    fn point(&self, other: f64, along: f64) -> (f64, f64) {
+        if self.other_is_x {
+            (other, along)
+        } else {
+            (along, other)
+        }
+    }
+
+    /// The boundaries in the sweep's plane. `curves_at(base)` computes the paper-plane
+    /// curves with the other axis at its value in `base`; it is called once per sample.
+    pub fn plane_curves(
+        &self,
+        base: &ModelParams,
+        mut curves_at: impl FnMut(&ModelParams) -> Result<Vec<NamedCurve>, SweepError>,
+    ) -> Result<Vec<NamedCurve>, SweepError> {
+        let model = self.other.model().expect("a model parameter");
+        // Each curve's k-th crossing, by (model, name, k): its points across the samples.
+        let mut joined: BTreeMap<(String, String, usize), NamedCurve> = BTreeMap::new();
+        for &g in &self.samples {
+            for c in curves_at(&model.with(base, g))? {
+                for (k, at) in self.crossings(&c.points).into_iter().enumerate() {
+                    let key = (c.model.as_str().to_string(), c.name.clone(), k);
+                    let points = if self.other.rate_only() {
+                        vec![self.point(self.span.0, at), self.point(self.span.1, at)]
+                    } else {
+                        vec![self.point(g, at)]
+                    };
+                    joined
+                        .entry(key)
+                        .or_insert_with(|| NamedCurve {
+                            points: Vec::new(),
+                            ..c.clone()
+                        })
+                        .points
+                        .extend(points);
+                }
+            }
+        }
+        Ok(joined.into_values().collect())
+    }
+}
