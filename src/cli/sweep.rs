@@ -6,13 +6,14 @@ use std::path::PathBuf;
 
 /// Run a sweep from a YAML spec: every point from every initial condition, resumable.
 ///
-/// Run a sweep over (eta_t, kappa2) from a YAML spec: every point from every initial
-/// condition, in parallel. Finished runs are stored at once under OUT/runs/, so re-running the
+/// Run a sweep from a YAML spec over one to three of its parameters (the paper's (eta_t,
+/// kappa2), or any of eta_t, kappa2, eta2, mass, radius, sigma, box_len, n, tol, dt_max,
+/// t_max): every point from every initial condition, in parallel. Finished runs are stored at once under OUT/runs/, so re-running the
 /// same command after an interruption continues where it stopped; then writes
 /// OUT/runs.parquet, OUT/points.parquet and OUT/phase_map.png (+ .svg).
 #[derive(clap::Args)]
 #[command(
-    after_help = "Examples:\n  droplet sweep sweeps/smoke.yaml                 # CI smoke sweep, ~8 s on 2 cores\n  droplet sweep sweeps/fig2a.yaml                 # the paper's Fig. 2(a) grid, 377 points (check the rate: droplet status)\n  droplet sweep sweeps/fig2a-map.yaml             # refined where the class changes (docs/sweeps.md)\n  droplet sweep sweeps/smoke.yaml --out /tmp/s    # same spec, another directory\n\nSpec keys: name, output, model (pde | ode), params {eta2, radius, sigma, box_len, mass},\ngrid {eta_t, kappa2} (each {start, stop, step} or a list), initial_conditions, solver {scheme,\nn, dt, tol, dt_max, t_max, steady_tol, steady_window, steady, landing, run_on, h0, ...},\nrefine {levels, min_step, split_bistable}. See sweeps/*.yaml and docs/sweeps.md.\n\nSharded: each shard runs `--shard I/N` into the same OUT, then `droplet merge OUT`; a spec with\nrefine: is sharded level by level (`--shard I/N --level L`, L = 0, 1, ... in order).\n\nA stored run that cannot be used (truncated, not a record, or not matching its key) is moved to\nOUT/corrupt/ with a warning and recomputed. Exit codes: 0 done, 1 failure while working, 2 bad\ninput (spec, arguments, output directory, a sweep already running there)."
+    after_help = "Examples:\n  droplet sweep sweeps/smoke.yaml                 # CI smoke sweep, ~8 s on 2 cores\n  droplet sweep sweeps/fig2a.yaml                 # the paper's Fig. 2(a) grid, 377 points (check the rate: droplet status)\n  droplet sweep sweeps/fig2a-map.yaml             # refined where the class changes (docs/sweeps.md)\n  droplet sweep sweeps/smoke.yaml --out /tmp/s    # same spec, another directory\n  droplet sweep sweeps/mass-eta_t.yaml            # the inertia against eta_t (any parameter on an axis)\n\nSpec keys: name, output, model (pde | ode), params {eta_t, kappa2, eta2, radius, sigma, box_len,\nmass} (those not swept), grid {1-3 axes: any of those or n, tol, dt_max, t_max; each\n{start, stop, step} or a list; a third axis gives one map per value}, initial_conditions, solver {scheme,\nn, dt, tol, dt_max, t_max, steady_tol, steady_window, steady, landing, run_on, h0, ...},\nrefine {levels, min_step, split_bistable}. See sweeps/*.yaml and docs/sweeps.md.\n\nSharded: each shard runs `--shard I/N` into the same OUT, then `droplet merge OUT`; a spec with\nrefine: is sharded level by level (`--shard I/N --level L`, L = 0, 1, ... in order).\n\nA stored run that cannot be used (truncated, not a record, or not matching its key) is moved to\nOUT/corrupt/ with a warning and recomputed. Exit codes: 0 done, 1 failure while working, 2 bad\ninput (spec, arguments, output directory, a sweep already running there)."
 )]
 pub struct Args {
     /// The YAML spec.
