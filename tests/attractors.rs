@@ -160,8 +160,22 @@ const UNSETTLED: &[(&str, u64)] = &[("fig2a-map", 13)];
 fn every_committed_map_passes_the_audit() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("results");
     let mut audited = Vec::new();
-    for entry in std::fs::read_dir(&root).unwrap() {
-        let dir = entry.unwrap().path();
+    // Every map under results/, one or two folders deep (results/convergence-n/sweep).
+    let folders = |d: &Path| -> Vec<std::path::PathBuf> {
+        let mut v: Vec<_> = std::fs::read_dir(d)
+            .unwrap()
+            .flatten()
+            .map(|e| e.path())
+            .filter(|p| p.is_dir())
+            .collect();
+        v.sort();
+        v
+    };
+    let dirs: Vec<_> = folders(&root)
+        .into_iter()
+        .flat_map(|d| std::iter::once(d.clone()).chain(folders(&d)))
+        .collect();
+    for dir in dirs {
         if !dir.join("runs.parquet").exists() {
             continue;
         }
@@ -195,4 +209,8 @@ fn every_committed_map_passes_the_audit() {
         audited.push(name);
     }
     assert!(audited.len() >= 3, "{audited:?}");
+    assert!(
+        audited.iter().any(|n| n == "sweep"),
+        "results/convergence-n/sweep: {audited:?}"
+    );
 }
