@@ -181,28 +181,6 @@ impl Plane {
         }
     }
 
-    /// The point of a run with these parameters and settings.
-    pub fn coords(&self, params: &ModelParams, settings: &SolverSettings) -> Point {
-        let mut out = [0.0; 3];
-        for (i, p) in self.indexed() {
-            out[i] = p.get(params, settings);
-        }
-        out
-    }
-
-    /// A plane of one rate-only parameter ([`Param::rate_only`]) and `eta_t` or `kappa2`: the
-    /// paper's boundaries cross it as lines at fixed values of the latter. `(rate-only axis,
-    /// paper axis)`.
-    pub fn across_rate(&self) -> Option<(Param, Param)> {
-        let (x, y) = (self.x, self.y?);
-        let paper = |p: Param| matches!(p, Param::ETA_T | Param::KAPPA2);
-        match (self.z, x.rate_only() && paper(y), y.rate_only() && paper(x)) {
-            (None, true, _) => Some((x, y)),
-            (None, _, true) => Some((y, x)),
-            _ => None,
-        }
-    }
-
     /// Whether this is the paper's plane, where the reduced model's analytic boundaries and
     /// the full model's exact ones (`droplet boundaries`) are drawn.
     pub fn is_paper(&self) -> bool {
@@ -239,7 +217,7 @@ mod tests {
     }
 
     #[test]
-    fn a_plane_applies_and_reads_its_coordinates() {
+    fn a_plane_applies_its_coordinates() {
         let plane = Plane {
             x: Param::MASS,
             y: Some(Param::ETA_T),
@@ -248,7 +226,6 @@ mod tests {
         let (mut p, mut s) = (ModelParams::default(), SolverSettings::default());
         plane.apply([0.3, 0.09, 0.2], &mut p, &mut s);
         assert_eq!((p.mass, p.eta_t, p.eta2), (0.3, 0.09, 0.2));
-        assert_eq!(plane.coords(&p, &s), [0.3, 0.09, 0.2]);
         assert!(!plane.is_paper() && Plane::PAPER.is_paper());
         let line = Plane {
             x: Param::N,
@@ -256,6 +233,10 @@ mod tests {
             z: None,
         };
         line.apply([128.0, 5.0, 7.0], &mut p, &mut s);
-        assert_eq!((s.n, line.coords(&p, &s)), (128, [128.0, 0.0, 0.0]));
+        // The coordinates without an axis are not applied.
+        assert_eq!(
+            (s.n, p.eta_t, p.kappa2),
+            (128, 0.09, ModelParams::default().kappa2)
+        );
     }
 }

@@ -248,7 +248,9 @@ pub(super) fn check_not_fixed(ctx: &Ctx, top: &Mapping, grid: &Grid) -> Result<(
 /// Checks the solver's own rules (`ModelParams::validate`, `SolverSettings::validate`,
 /// `limits::check_run`) on the grid's points: every value of each axis with the other axes at
 /// their smallest and largest values (each rule is monotone in each parameter, so these
-/// points bound the grid). A failure is reported at the axis that sweeps the named field.
+/// points bound the grid). This is the one range check of the `params` and `solver`
+/// sections too: a failure is reported at the axis that sweeps the named field, else at its key
+/// in `params` or `solver`.
 pub(super) fn check_points(
     ctx: &Ctx,
     grid: &Grid,

@@ -1,15 +1,14 @@
 //! The `params` section: the fixed model parameters (paper defaults where absent; `eta_t`
-//! and `kappa2` default to the Fig. 1(c) point 0.085, 0.112 when no axis sweeps them), checked
-//! by `ModelParams::validate` (the solver's one source of truth) after the types are read.
+//! and `kappa2` default to the Fig. 1(c) point 0.085, 0.112 when no axis sweeps them). Only the
+//! types are read here; the ranges are checked by `ModelParams::validate` (the solver's one
+//! source of truth) at the grid's points, [`super::grid::check_points`].
 use super::context::Ctx;
-use super::grid::Grid;
 use crate::error::SpecError;
-use droplet_solver::{contract::settings::SolverSettings, model::params::ModelParams};
+use droplet_solver::model::params::ModelParams;
 use serde_yaml::Mapping;
 
-/// The `params` section, checked at the grid's first point (the swept values are the grid's
-/// to check, [`super::grid::check_points`]).
-pub(super) fn parse(ctx: &Ctx, top: &Mapping, grid: &Grid) -> Result<ModelParams, SpecError> {
+/// The `params` section.
+pub(super) fn parse(ctx: &Ctx, top: &Mapping) -> Result<ModelParams, SpecError> {
     let mut params = ModelParams::default();
     let Some(v) = top.get("params") else {
         return Ok(params);
@@ -27,9 +26,5 @@ pub(super) fn parse(ctx: &Ctx, top: &Mapping, grid: &Grid) -> Result<ModelParams
         "box_len" => params.box_len = val,
         _ => params.mass = val,
     })?;
-    let mut at_first = params;
-    grid.plane()
-        .apply(grid.first(), &mut at_first, &mut SolverSettings::default());
-    ctx.checked_swept(at_first.validate(), &grid.plane())?;
     Ok(params)
 }

@@ -1,13 +1,12 @@
 //! The `solver` section: the types are read here (a scheme name, an integer `n`, finite
 //! numbers); every range and consistency check is `SolverSettings::validate` and
-//! `droplet_solver::contract::limits::check_run`, the same checks `droplet simulate` makes, with the
-//! offending field mapped back to its key.
+//! `droplet_solver::contract::limits::check_run`, the same checks `droplet simulate` makes, run
+//! at the grid's points ([`super::grid::check_points`]) with the offending field mapped back to
+//! its key.
 use super::context::{show, Ctx};
-use super::grid::Grid;
 use crate::error::SpecError;
 use droplet_solver::{
-    contract::settings::ModelKind, contract::settings::SolverSettings, model::params::ModelParams,
-    stepping::SchemeKind,
+    contract::settings::ModelKind, contract::settings::SolverSettings, stepping::SchemeKind,
 };
 use serde_yaml::Mapping;
 
@@ -75,14 +74,11 @@ fn flags(ctx: &Ctx, m: &Mapping, solver: &mut SolverSettings) -> Result<(), Spec
     Ok(())
 }
 
-/// The `solver` section for `model`, validated against `params` at the grid's first point
-/// (the swept values are the grid's to check, [`super::grid::check_points`]).
+/// The `solver` section for `model` (its types; the ranges are checked at the grid's points).
 pub(super) fn parse(
     ctx: &Ctx,
     top: &Mapping,
     model: ModelKind,
-    params: &ModelParams,
-    grid: &Grid,
 ) -> Result<SolverSettings, SpecError> {
     let mut solver = match model {
         ModelKind::Pde => SolverSettings::default(),
@@ -126,13 +122,5 @@ pub(super) fn parse(
             _ => solver.h0 = val,
         })?;
     }
-    // Step counts, the droplet resolved by the grid, the explicit scheme's stability limit.
-    let (mut p, mut s) = (*params, solver);
-    grid.plane().apply(grid.first(), &mut p, &mut s);
-    ctx.checked_swept(
-        s.validate()
-            .and_then(|()| droplet_solver::contract::limits::check_run(&p, &s)),
-        &grid.plane(),
-    )?;
     Ok(solver)
 }
