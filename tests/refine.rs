@@ -48,23 +48,15 @@ fn points(dir: &Path) -> Vec<Point> {
         .collect()
 }
 
-/// Distance from `p` to a polyline, in units of the finest cell `(de, dk)` on each axis.
+/// Distance from `p` to a polyline, in units of the finest cell `(de, dk)` on each axis (a
+/// line of fewer than two points is nowhere near).
 fn distance(p: (f64, f64), line: &[(f64, f64)], (de, dk): (f64, f64)) -> f64 {
+    if line.len() < 2 {
+        return f64::INFINITY;
+    }
     let scaled = |q: (f64, f64)| (q.0 / de, q.1 / dk);
-    let p = scaled(p);
-    line.windows(2)
-        .map(|w| {
-            let (a, b) = (scaled(w[0]), scaled(w[1]));
-            let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-            let len2 = dx * dx + dy * dy;
-            let t = if len2 > 0.0 {
-                (((p.0 - a.0) * dx + (p.1 - a.1) * dy) / len2).clamp(0.0, 1.0)
-            } else {
-                0.0
-            };
-            (p.0 - a.0 - t * dx).hypot(p.1 - a.1 - t * dy)
-        })
-        .fold(f64::INFINITY, f64::min)
+    let line: Vec<(f64, f64)> = line.iter().map(|&q| scaled(q)).collect();
+    droplet_sweep::studies::convergence::distance_to_polyline(scaled(p), &line)
 }
 
 #[test]

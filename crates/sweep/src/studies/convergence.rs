@@ -98,7 +98,17 @@ pub fn shift(fine: &[(f64, f64)], coarse: &[(f64, f64)]) -> Option<f64> {
     if fine.is_empty() || coarse.is_empty() {
         return None;
     }
-    let to_segment = |p: (f64, f64), a: (f64, f64), b: (f64, f64)| {
+    Some(
+        fine.iter()
+            .map(|&p| distance_to_polyline(p, coarse))
+            .fold(0.0, f64::max),
+    )
+}
+
+/// The distance from `p` to the polyline `line` (to its one point if it has one; infinite if
+/// it has none).
+pub fn distance_to_polyline(p: (f64, f64), line: &[(f64, f64)]) -> f64 {
+    let to_segment = |a: (f64, f64), b: (f64, f64)| {
         let (dx, dy) = (b.0 - a.0, b.1 - a.1);
         let len2 = dx * dx + dy * dy;
         let t = if len2 > 0.0 {
@@ -108,16 +118,14 @@ pub fn shift(fine: &[(f64, f64)], coarse: &[(f64, f64)]) -> Option<f64> {
         };
         (p.0 - a.0 - t * dx).hypot(p.1 - a.1 - t * dy)
     };
-    let to_curve = |p: (f64, f64)| {
-        if coarse.len() == 1 {
-            return to_segment(p, coarse[0], coarse[0]);
-        }
-        coarse
+    match line {
+        [] => f64::INFINITY,
+        [a] => to_segment(*a, *a),
+        _ => line
             .windows(2)
-            .map(|w| to_segment(p, w[0], w[1]))
-            .fold(f64::INFINITY, f64::min)
-    };
-    Some(fine.iter().map(|&p| to_curve(p)).fold(0.0, f64::max))
+            .map(|w| to_segment(w[0], w[1]))
+            .fold(f64::INFINITY, f64::min),
+    }
 }
 
 /// `convergence.parquet`: one row per curve and `N`, with the window in the metadata.
