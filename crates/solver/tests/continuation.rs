@@ -2,7 +2,9 @@
 //! and its response to small perturbations, the one-parameter fold against the
 //! two-parameter fold curve, and the branches' meeting points against the exact thresholds.
 use droplet_solver::continuation::arclength::ArclengthOptions;
-use droplet_solver::continuation::boundaries::{id_onset, mc_line, md_fold_curve, Window};
+use droplet_solver::continuation::boundaries::{id_onset, mc_line, Window};
+use droplet_solver::continuation::fold_curve::md_fold_curve;
+use droplet_solver::continuation::plane::PlaneAxis;
 use droplet_solver::continuation::{
     branch::follow, branch::Branch, branch::BranchPoint, branch::Line, problem::Family,
 };
@@ -156,14 +158,12 @@ fn the_fold_curve_passes_through_the_one_parameter_folds() {
     // N = 128: coarser grids distort the shape thresholds by their anisotropy (the a2 and b2
     // onsets split by 0.015 at N = 64), and with them the fold curve's ends.
     let n = 128;
-    let w = Window {
-        base: ModelParams::at(0.07, 0.1),
-        n,
-        eta_t: (0.07, 0.1),
-        kappa2: (0.1, 0.17),
-        id_samples: 2,
-    };
-    let curve = md_fold_curve(&w, MirrorAxis::X, &[0.13]).unwrap();
+    let window = (
+        PlaneAxis::new(ModelParam::EtaT, (0.07, 0.1)),
+        PlaneAxis::new(ModelParam::Kappa2, (0.1, 0.17)),
+    );
+    let base = ModelParams::at(0.07, 0.1);
+    let curve = md_fold_curve(&base, n, MirrorAxis::X, window, &[0.13]).unwrap();
     assert!(curve.len() > 10, "{curve:?}");
     for &(eta_t, kappa2) in [curve[curve.len() / 4], curve[curve.len() / 2]].iter() {
         let b = branch(Family::MdMinor, kappa2, 0.07, 0.1, n);

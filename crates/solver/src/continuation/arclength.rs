@@ -142,6 +142,31 @@ pub fn start(
     })
 }
 
+/// The last point of the curve between `from` (where `ok` holds) and the point `ds` further
+/// (where it does not): bisection in arclength to `ds / 2^20`. Where a corrector fails the
+/// point counts as not `ok`; `from` itself when none further is.
+pub fn last_where(
+    f: &mut impl FnMut(&[f64]) -> Vec<f64>,
+    from: &CurvePoint,
+    ds: f64,
+    ok: &mut impl FnMut(&[f64]) -> bool,
+    opts: &ArclengthOptions,
+) -> CurvePoint {
+    let (mut lo, mut hi) = (0.0, ds);
+    let mut best = from.clone();
+    for _ in 0..20 {
+        let s = 0.5 * (lo + hi);
+        match point_at(f, from, s, opts) {
+            Some((p, _)) if ok(&p.y) => {
+                lo = s;
+                best = p;
+            }
+            _ => hi = s,
+        }
+    }
+    best
+}
+
 /// Walks along the curve one accepted step at a time, adapting the step length.
 pub struct Stepper {
     pub opts: ArclengthOptions,

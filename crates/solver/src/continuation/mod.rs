@@ -3,7 +3,9 @@
 //! ([`arclength`]) of the co-moving force balance of one family ([`problem`]), the stability
 //! verdict of every state with the near-neutral rotation mode set aside ([`crate::roots::verdict`]), the
 //! bifurcation points along a branch ([`branch`], located by [`events`]), and their continuation in both parameters,
-//! the PDE's own phase boundaries ([`boundaries`]).
+//! the PDE's own phase boundaries: in the paper's plane ([`boundaries`]) and in a plane of any
+//! two model parameters ([`plane`]), traced as zero sets ([`level_set`]) or continued
+//! ([`fold_curve`]).
 //!
 //! May use: `numerics`, `model`, `contract`, `reduced`, `roots`. Used by: the sweep crate and
 //! the CLI (`droplet continue`, `droplet boundaries`).
@@ -11,4 +13,8 @@ pub mod arclength;
 pub mod boundaries;
 pub mod branch;
 pub mod events;
+pub mod fold_curve;
+pub mod level_set;
+pub mod plane;
+pub mod polyline;
 pub mod problem;

@@ -50,6 +50,32 @@ pub fn check_series(t_max: f64, every: f64) -> Result<(), SolverError> {
     )
 }
 
+/// Checks that a grid of `n` points per side resolves the droplet of `params`: its radius at
+/// least [`MIN_RADIUS_CELLS`] cells, its interface at least [`MIN_SIGMA_CELLS`] of a cell
+/// (every PDE computation: runs, steady states, continuation, boundaries).
+pub fn check_resolved(params: &ModelParams, n: usize) -> Result<(), SolverError> {
+    let dx = params.box_len / n as f64;
+    require(
+        params.radius >= MIN_RADIUS_CELLS * dx,
+        "radius",
+        params.radius,
+        format!(
+            "at least {MIN_RADIUS_CELLS} grid cells (dx = L/N = {dx:.4}, so >= {:.4}): the droplet must span several cells; raise n",
+            MIN_RADIUS_CELLS * dx
+        ),
+    )?;
+    require(
+        params.sigma >= MIN_SIGMA_CELLS * dx,
+        "sigma",
+        params.sigma,
+        format!(
+            "at least {MIN_SIGMA_CELLS} of a grid cell (dx = L/N = {dx:.4}, so >= {:.5}): a thinner interface is not resolved; raise n",
+            MIN_SIGMA_CELLS * dx
+        ),
+    )?;
+    Ok(())
+}
+
 /// Checks that `settings` can resolve and integrate the droplet of `params` (PDE runs; the
 /// ODE model has no grid).
 pub fn check_run(params: &ModelParams, settings: &SolverSettings) -> Result<(), SolverError> {
@@ -69,25 +95,8 @@ pub fn check_run(params: &ModelParams, settings: &SolverSettings) -> Result<(), 
          inertia); for the overdamped model (m = 0) choose steady: test, the paper's test \
          alone, whose labels are not checked",
     )?;
+    check_resolved(params, settings.n)?;
     let dx = params.box_len / settings.n as f64;
-    require(
-        params.radius >= MIN_RADIUS_CELLS * dx,
-        "radius",
-        params.radius,
-        format!(
-            "at least {MIN_RADIUS_CELLS} grid cells (dx = L/N = {dx:.4}, so >= {:.4}): the droplet must span several cells; raise n",
-            MIN_RADIUS_CELLS * dx
-        ),
-    )?;
-    require(
-        params.sigma >= MIN_SIGMA_CELLS * dx,
-        "sigma",
-        params.sigma,
-        format!(
-            "at least {MIN_SIGMA_CELLS} of a grid cell (dx = L/N = {dx:.4}, so >= {:.5}): a thinner interface is not resolved; raise n",
-            MIN_SIGMA_CELLS * dx
-        ),
-    )?;
     if settings.scheme == SchemeKind::PaperFd {
         let limit = paper_fd_max_dt(dx);
         require(

@@ -1,7 +1,8 @@
 //! General numerics with no knowledge of the droplet: modified Bessel functions, the row-pruned
-//! 2-D real FFT and Newton's method for small dense systems.
+//! 2-D real FFT, Newton's method for small dense systems and a bracketed scalar root.
 //!
 //! May use: nothing of this crate but `error`. Used by every other folder.
 pub mod bessel;
+pub mod bracket;
 pub mod fft2;
 pub mod newton;

@@ -59,6 +59,7 @@ impl SteadySolver {
     pub fn new(params: ModelParams, n: usize) -> Result<Self, SolverError> {
         params.validate()?;
         let grid = Grid::new(n, params.box_len)?;
+        crate::contract::limits::check_resolved(&params, n)?;
         let shape = ShapeParams {
             radius: params.radius,
             sigma: params.sigma,
@@ -119,7 +120,8 @@ impl SteadySolver {
     /// Moves the solver to another value of one parameter: `eta_t`, `kappa2`, `eta2` and
     /// `mass` are set (they enter the force balance or the eigenvalues only); `radius`,
     /// `sigma` and `box_len` sample the droplet (and for `box_len` the grid) again. Refused,
-    /// leaving the solver as it was, where the parameters would be invalid.
+    /// leaving the solver as it was, where the parameters would be invalid or the grid would
+    /// not resolve the droplet ([`crate::contract::limits::check_resolved`]).
     pub fn set_param(
         &mut self,
         param: crate::model::param::ModelParam,
@@ -132,6 +134,7 @@ impl SteadySolver {
         params.validate()?;
         if param.is_geometric() {
             let grid = Grid::new(self.grid.n, params.box_len)?;
+            crate::contract::limits::check_resolved(&params, self.grid.n)?;
             let shape = ShapeParams {
                 radius: params.radius,
                 sigma: params.sigma,
