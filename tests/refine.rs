@@ -56,7 +56,7 @@ fn distance(p: (f64, f64), line: &[(f64, f64)], (de, dk): (f64, f64)) -> f64 {
     }
     let scaled = |q: (f64, f64)| (q.0 / de, q.1 / dk);
     let line: Vec<(f64, f64)> = line.iter().map(|&q| scaled(q)).collect();
-    droplet_sweep::studies::convergence::distance_to_polyline(scaled(p), &line)
+    droplet_solver::continuation::polyline::distance_to_polyline(scaled(p), &line)
 }
 
 #[test]

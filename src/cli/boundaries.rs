@@ -84,7 +84,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
     super::line::within_limit("eta_t window HI (from the sweep in --out)", study.eta_t.1)?;
     super::line::within_limit("kappa2 window HI (from the sweep in --out)", study.kappa2.1)?;
     if ns.len() > 1 {
-        if study.across.is_some() {
+        if !study.in_paper_plane() {
             return Err(CliError::usage(format!(
                 "invalid --n {}: a convergence study is made in the paper's plane, and the sweep \
                  in {} is in another; give another --out",
@@ -95,8 +95,9 @@ pub fn run(a: Args) -> Result<(), CliError> {
         return convergence(&study, &ns, a.json);
     }
     eprintln!(
-        "boundaries in eta_t {:?}, kappa2 {:?} at N = {} (about 10 s at N = 192)",
-        study.eta_t, study.kappa2, study.n
+        "boundaries in {} at N = {} (about 10 s at N = 192 in the paper's plane)",
+        study.window(),
+        study.n
     );
     let done = study.run()?;
     if let Some((missing, points)) = done.missing.filter(|m| m.0 > 0) {
@@ -116,10 +117,7 @@ fn report(
     json: bool,
 ) {
     // The curves' coordinates: the paper's plane's, or the sweep's plane's in --out.
-    let (xn, yn) = study
-        .across
-        .as_ref()
-        .map_or(("eta_t", "kappa2"), |c| c.names());
+    let (xn, yn) = study.plane_names();
     if json {
         let curves: Vec<_> = done
             .curves

@@ -85,29 +85,7 @@ impl ParamLineArgs {
 
     /// `--set` as (parameter, value) pairs.
     fn settings(&self) -> Result<Vec<(ModelParam, f64)>, CliError> {
-        let Some(text) = &self.set else {
-            return Ok(Vec::new());
-        };
-        let mut out: Vec<(ModelParam, f64)> = Vec::new();
-        for item in text.split(',').map(str::trim).filter(|s| !s.is_empty()) {
-            let bad = |why: String| CliError::usage(format!("invalid --set {item}: {why}"));
-            let (name, value) = item
-                .split_once('=')
-                .ok_or_else(|| bad("NAME=VALUE, e.g. eta_t=0.085".into()))?;
-            let p = ModelParam::parse(name.trim())
-                .ok_or_else(|| bad(format!("NAME one of {}", ModelParam::names())))?;
-            let x: f64 = value
-                .trim()
-                .parse()
-                .ok()
-                .filter(|x: &f64| x.is_finite())
-                .ok_or_else(|| bad("VALUE a finite number".into()))?;
-            if out.iter().any(|(q, _)| *q == p) {
-                return Err(bad(format!("{p} given twice")));
-            }
-            out.push((p, x));
-        }
-        Ok(out)
+        self.set.as_deref().map_or(Ok(Vec::new()), parse_set)
     }
 
     /// The line runs forward, its ends are valid parameters, and `m > 0` on it.
@@ -133,4 +111,29 @@ impl ParamLineArgs {
         }
         Ok(())
     }
+}
+
+/// `--set NAME=VALUE[,NAME=VALUE...]` as (parameter, value) pairs: each name a model
+/// parameter, given once, each value a finite number (its range is checked where it is used).
+pub fn parse_set(text: &str) -> Result<Vec<(ModelParam, f64)>, CliError> {
+    let mut out: Vec<(ModelParam, f64)> = Vec::new();
+    for item in text.split(',').map(str::trim).filter(|s| !s.is_empty()) {
+        let bad = |why: String| CliError::usage(format!("invalid --set {item}: {why}"));
+        let (name, value) = item
+            .split_once('=')
+            .ok_or_else(|| bad("NAME=VALUE, e.g. eta_t=0.085".into()))?;
+        let p = ModelParam::parse(name.trim())
+            .ok_or_else(|| bad(format!("NAME one of {}", ModelParam::names())))?;
+        let x: f64 = value
+            .trim()
+            .parse()
+            .ok()
+            .filter(|x: &f64| x.is_finite())
+            .ok_or_else(|| bad("VALUE a finite number".into()))?;
+        if out.iter().any(|(q, _)| *q == p) {
+            return Err(bad(format!("{p} given twice")));
+        }
+        out.push((p, x));
+    }
+    Ok(out)
 }

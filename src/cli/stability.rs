@@ -1,5 +1,7 @@
 //! `droplet stability`: one named steady state as a root, and its leading eigenvalues.
+use super::param_line::parse_set;
 use super::{print_json, CliError};
+use droplet_solver::model::param::ModelParam;
 use droplet_solver::model::params::ModelParams;
 use droplet_solver::roots::named_state::{find, ic_thresholds, IcThresholds, StateKind};
 use serde::Serialize;
@@ -19,7 +21,7 @@ use serde::Serialize;
 #[derive(clap::Args)]
 #[command(
     allow_negative_numbers = true,
-    after_help = "Examples:\n  droplet stability --eta-t 0.085 --kappa2 0.13 --state ic          # stable resting disk\n  droplet stability --eta-t 0.0763 --kappa2 0.16 --state ic --json  # just past the onset of motion: unstable\n  droplet stability --eta-t 0.085 --kappa2 0.112 --state md         # Fig. 1c, moving along its minor axis\n  droplet stability --eta-t 0.085 --kappa2 0.116 --state id --axis diagonal"
+    after_help = "Examples:\n  droplet stability --eta-t 0.085 --kappa2 0.13 --state ic          # stable resting disk\n  droplet stability --eta-t 0.0763 --kappa2 0.16 --state ic --json  # just past the onset of motion: unstable\n  droplet stability --eta-t 0.085 --kappa2 0.112 --state md         # Fig. 1c, moving along its minor axis\n  droplet stability --eta-t 0.085 --kappa2 0.116 --state id --axis diagonal\n  droplet stability --eta-t 0.078 --kappa2 0.13 --state ic --set radius=1.05,sigma=0.025"
 )]
 pub struct Args {
     /// Translational friction eta_t (> 0).
@@ -43,8 +45,12 @@ pub struct Args {
     /// Inertia m (> 0 here).
     #[arg(long, default_value_t = 0.1)]
     mass: f64,
-    /// Print one JSON object (keys: state, axis, eta_t, kappa2, n, vx, vy, a2, b2, v, s,
-    /// residual, eigenvalues [{re, im}], rotation (the rotation mode's eigenvalue or null),
+    /// Other model parameters: NAME=VALUE[,NAME=VALUE...] of eta2, radius, sigma, box_len
+    /// (default: eta2 0.1, R 1, sigma 0.03, box_len 7), e.g. radius=1.02,sigma=0.025.
+    #[arg(long, value_name = "NAME=VALUE,...")]
+    set: Option<String>,
+    /// Print one JSON object (keys: state, axis, eta_t, kappa2, n, params {eta_t, kappa2,
+    /// eta2, mass, radius, sigma, box_len}, vx, vy, a2, b2, v, s, residual, eigenvalues [{re, im}], rotation (the rotation mode's eigenvalue or null),
     /// unstable (rotation excluded), stable, ic_thresholds {eta_t, kappa2_a2,
     /// kappa2_b2} for the resting disk, else null).
     #[arg(long)]
@@ -64,6 +70,7 @@ struct Report {
     eta_t: f64,
     kappa2: f64,
     n: usize,
+    params: ModelParams,
     vx: f64,
     vy: f64,
     a2: f64,
@@ -84,12 +91,21 @@ struct Report {
 pub fn run(a: Args) -> Result<(), CliError> {
     let axis = super::mirror_axis(&a.axis)?;
     let seed = seed_of(a.seed.as_deref())?;
-    let params = ModelParams {
+    let mut params = ModelParams {
         eta_t: a.eta_t,
         kappa2: a.kappa2,
         mass: a.mass,
         ..ModelParams::default()
     };
+    for (p, x) in a.set.as_deref().map_or(Ok(Vec::new()), parse_set)? {
+        if matches!(p, ModelParam::EtaT | ModelParam::Kappa2 | ModelParam::Mass) {
+            return Err(CliError::usage(format!(
+                "invalid --set {p}={x}: {p} has its own option (--{})",
+                p.name().replace('_', "-")
+            )));
+        }
+        p.set(&mut params, x);
+    }
     params.validate()?;
     super::check_grid(a.n)?;
     let st = find(&params, a.n, a.state, axis, seed).map_err(|e| match e {
@@ -108,6 +124,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
         eta_t: a.eta_t,
         kappa2: a.kappa2,
         n: a.n,
+        params,
         vx,
         vy,
         a2,

@@ -142,10 +142,42 @@ fn onset_of_motion(path: &std::path::Path, other: &str) -> (Vec<f64>, Vec<f64>) 
         .unzip()
 }
 
+/// The points of the full model's curve `name` in a boundaries table, in the plane `(x, y)`.
+fn pde_curve(path: &std::path::Path, name: &str, (x, y): (&str, &str)) -> Vec<(f64, f64)> {
+    let b = read(path);
+    let curve = b.column("curve").unwrap().str().unwrap().clone();
+    let model = b.column("model").unwrap().str().unwrap().clone();
+    let (xs, ys) = (floats(&b, x), floats(&b, y));
+    (0..b.height())
+        .filter(|&i| curve.get(i) == Some(name) && model.get(i) == Some("pde"))
+        .map(|i| (xs[i], ys[i]))
+        .collect()
+}
+
+/// The resting disk's onset of motion at a point, from `droplet stability` (an independent
+/// computation: one linearisation, no tracing).
+fn disk_onset(eta_t: f64, kappa2: f64, set: &str, n: &str) -> f64 {
+    let s = json(&run(&[
+        "stability",
+        "--eta-t",
+        &eta_t.to_string(),
+        "--kappa2",
+        &kappa2.to_string(),
+        "--state",
+        "ic",
+        "--set",
+        set,
+        "--n",
+        n,
+        "--json",
+    ]));
+    s["ic_thresholds"]["eta_t"].as_f64().unwrap()
+}
+
 #[test]
-fn boundaries_over_a_radius_eta_t_sweep_are_sampled_at_its_radii() {
-    // Radius moves the states: the paper-plane boundaries are computed again at each of the
-    // sweep's radii, and at R = 1 they are the paper plane's own.
+fn boundaries_over_a_radius_eta_t_sweep_are_continued_in_the_pair() {
+    // Radius moves the states: the curves are continued in (radius, eta_t) itself. At R = 1
+    // the onset of motion is the paper plane's; at every point it is the disk's threshold.
     let dir = tempfile::tempdir().unwrap();
     let spec = write_spec(
         dir.path(),
@@ -163,9 +195,17 @@ fn boundaries_over_a_radius_eta_t_sweep_are_sampled_at_its_radii() {
         "--json",
     ]));
     assert_eq!(b["plane"], serde_json::json!(["radius", "eta_t"]), "{b}");
-    let (onset, radius) = onset_of_motion(&out.join("boundaries.parquet"), "radius");
-    assert_eq!(radius, vec![0.95, 1.0, 1.05]);
-    assert!(onset[0] < onset[1] && onset[1] < onset[2], "{onset:?}");
+    let table = out.join("boundaries.parquet");
+    let onset = pde_curve(&table, "IC onset of motion", ("radius", "eta_t"));
+    assert!(onset.len() > 5, "{onset:?}");
+    // Across the window from radius 0.95 to 1.05, the threshold growing with the radius.
+    let first = onset.first().unwrap();
+    let last = onset.last().unwrap();
+    assert!(
+        (first.0 - 0.95).abs() < 1e-9 && (last.0 - 1.05).abs() < 1e-9,
+        "{onset:?}"
+    );
+    assert!(onset.windows(2).all(|w| w[1].1 > w[0].1), "{onset:?}");
     let paper = dir.path().join("paper");
     let p = json(&run(&[
         "boundaries",
@@ -186,12 +226,105 @@ fn boundaries_over_a_radius_eta_t_sweep_are_sampled_at_its_radii() {
         .find(|c| c["curve"] == "IC onset of motion" && c["model"] == "pde")
         .map(|c| c["eta_t"][0].as_f64().unwrap())
         .unwrap();
-    assert!(
-        (onset[1] - at_one).abs() < 1e-12,
-        "{} vs {at_one}",
-        onset[1]
-    );
+    let w = onset
+        .windows(2)
+        .find(|w| w[0].0 <= 1.0 && w[1].0 >= 1.0)
+        .unwrap();
+    let crossing = w[0].1 + (w[1].1 - w[0].1) * (1.0 - w[0].0) / (w[1].0 - w[0].0);
+    assert!((crossing - at_one).abs() < 1e-6, "{crossing} vs {at_one}");
+    let (r, e) = onset[onset.len() / 2];
+    let th = disk_onset(e, 0.13, &format!("radius={r}"), "96");
+    assert!((th - e).abs() < 1e-8, "{th} vs {e} at R = {r}");
+    // The reduced model's curves are where its boundaries cross the line at each radius.
+    let b = read(&table);
+    let model = b.column("model").unwrap().str().unwrap().clone();
+    assert!((0..b.height()).any(|i| model.get(i) == Some("ode")));
     assert!(out.join("phase_map.png").exists());
+}
+
+#[test]
+fn boundaries_in_a_plane_of_two_non_paper_parameters_are_continued_in_it() {
+    // (radius, sigma) at eta_t = 0.077, kappa2 = 0.13: the disk starts to move where its
+    // threshold reaches 0.077 (R near 1.02), and the MD fold crosses the window too.
+    let dir = tempfile::tempdir().unwrap();
+    let spec = write_spec(
+        dir.path(),
+        "rs.yaml",
+        "model: ode\nparams: {eta_t: 0.077, kappa2: 0.13}\ngrid:\n  radius: [0.95, 1.0, 1.05]\n  sigma: [0.03, 0.04, 0.05]\ninitial_conditions: [i]\n",
+    );
+    let out = dir.path().join("rs");
+    sweep_with_pictures(&spec, &out);
+    let b = json(&run(&[
+        "boundaries",
+        "--out",
+        out.to_str().unwrap(),
+        "--n",
+        "128",
+        "--json",
+    ]));
+    assert_eq!(b["plane"], serde_json::json!(["radius", "sigma"]), "{b}");
+    let names: Vec<&str> = b["curves"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|c| c["curve"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        names,
+        ["IC onset of motion", "MD saddle-node (x axis)"],
+        "{b}"
+    );
+    let table = out.join("boundaries.parquet");
+    let onset = pde_curve(&table, "IC onset of motion", ("radius", "sigma"));
+    // From the bottom edge to the top one.
+    let (first, last) = (onset[0], *onset.last().unwrap());
+    assert!(
+        (first.1 - 0.03).abs() < 1e-9 && (last.1 - 0.05).abs() < 1e-9,
+        "{onset:?}"
+    );
+    // Each of three points is where the disk's own threshold is 0.077.
+    for &(r, s) in [first, onset[onset.len() / 2], last].iter() {
+        let th = disk_onset(0.077, 0.13, &format!("radius={r},sigma={s}"), "128");
+        assert!((th - 0.077).abs() < 1e-8, "{th} at R = {r}, sigma = {s}");
+    }
+    let fold = pde_curve(&table, "MD saddle-node (x axis)", ("radius", "sigma"));
+    assert!(
+        fold.len() > 5 && fold.iter().all(|p| p.0 < first.0),
+        "{fold:?}"
+    );
+    // A point of it is where the MD branch followed in eta_t at that (radius, sigma) folds.
+    let (r, s) = fold[fold.len() / 2];
+    let c = json(&run(&[
+        "continue",
+        "--param",
+        "eta_t",
+        "--from",
+        "0.07",
+        "--to",
+        "0.09",
+        "--set",
+        &format!("kappa2=0.13,radius={r},sigma={s}"),
+        "--branch",
+        "md",
+        "--n",
+        "128",
+        "--json",
+    ]));
+    let sn = c["events"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|e| e["kind"] == "SN")
+        .unwrap_or_else(|| panic!("no fold: {c}"));
+    let at = sn["at"].as_f64().unwrap();
+    assert!(
+        (at - 0.077).abs() < 1e-6,
+        "fold at eta_t = {at}, R = {r}, sigma = {s}"
+    );
+    // No reduced-model curve: it has no sigma.
+    let t = read(&table);
+    let model = t.column("model").unwrap().str().unwrap().clone();
+    assert!((0..t.height()).all(|i| model.get(i) == Some("pde")));
 }
 
 #[test]
@@ -240,8 +373,7 @@ fn a_three_axis_ode_sweep_draws_one_map_per_slice_and_one_with_all() {
     let o = run(&["plot", out.to_str().unwrap()]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert!(out.join("phase_map_kappa2_0.15.png").exists());
-    // Boundaries are drawn in the paper's plane and in planes of eta2 or mass with eta_t or
-    // kappa2, not over slices.
+    // Boundaries are drawn in planes of two parameters, not over slices.
     let o = run(&["boundaries", "--out", out.to_str().unwrap()]);
     assert_eq!(
         o.status.code(),

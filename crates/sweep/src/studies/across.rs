@@ -1,19 +1,23 @@
-//! The full model's boundaries over a sweep outside the paper's plane: a plane of `eta_t` or
-//! `kappa2` (the parameter the sweep varies *along* the paper's plane, the other of the two
-//! fixed) with one more model parameter, the *other* axis.
+//! The full model's boundaries over a sweep outside the paper's plane, as crossings of the
+//! paper-plane curves: a plane of `eta_t` or `kappa2` (the parameter the sweep varies *along*
+//! the paper's plane, the other of the two fixed) with one more parameter, the *other* axis.
 //!
-//! - **A rate-only other axis** (`eta2`, `mass`; [`Param::rate_only`]) multiplies time
-//!   derivatives only: it moves no steady state and no boundary where a real eigenvalue
-//!   crosses zero. Each paper-plane boundary is computed once, where it crosses the sweep's
-//!   line, and drawn as a line across the other axis. (A Hopf point would depend on it; none
-//!   was found on the continuation lines, and `droplet continue --param mass` or `--param
-//!   eta2` looks for one along a branch.)
-//! - **A geometric other axis** (`radius`, `sigma`, `box_len`) moves the states. The paper-plane
-//!   boundaries are computed again at each of the sweep's values of it, and where each crosses
-//!   the line becomes a point of its curve in the sweep's plane: every point a solution, the
-//!   curve sampled at the sweep's values.
+//! - **An other axis that moves no steady state**: the rate-only model parameters (`eta2`,
+//!   `mass`; [`Param::rate_only`]) multiply time derivatives only, and the time-stepping
+//!   settings (`tol`, `dt_max`, `t_max`) do not enter the steady equations. No boundary where a
+//!   real eigenvalue crosses zero moves. Each paper-plane boundary is computed once, where it
+//!   crosses the sweep's line, and drawn as a line across the other axis. (A Hopf point would
+//!   depend on a rate-only parameter; none was found on the continuation lines, and `droplet
+//!   continue --param mass` or `--param eta2` looks for one along a branch.)
+//! - **The grid `n`**: the paper-plane boundaries are computed again at each of the sweep's
+//!   values of it, and where each crosses the line becomes a point of its curve: how far the
+//!   grid moves each boundary, in the sweep's plane.
+//! - **A geometric other axis** (`radius`, `sigma`, `box_len`): the full model's curves are
+//!   continued in the pair ([`crate::studies::pair`]); the reduced model's are sampled here,
+//!   computed again at each of the sweep's values.
 //!
-//! Other planes (two non-paper parameters, a solver setting, a slice axis) are refused.
+//! Other planes (a solver setting with a non-paper parameter, two settings, a slice axis) are
+//! refused.
 use crate::error::SweepError;
 use crate::spec::axes::Param;
 use crate::spec::SweepSpec;
@@ -35,8 +39,9 @@ pub struct Across {
     pub other_is_x: bool,
     /// The other axis's smallest and largest value.
     pub span: (f64, f64),
-    /// Where the paper-plane boundaries are computed: the sweep's values of a geometric axis,
-    /// sorted; the middle value of a rate-only one (any value gives the same boundaries; the
+    /// Where the paper-plane boundaries are computed: the sweep's values of `n` or of a
+    /// geometric axis, sorted; the middle value of an axis that moves nothing (any value gives
+    /// the same boundaries; the
     /// smallest mass makes the eigenvalue solves slow: 26 s at m = 0.01 against 4.8 s at
     /// m = 0.21 for results/mass-eta_t).
     pub samples: Vec<f64>,
@@ -51,19 +56,17 @@ impl Across {
             return Ok(None);
         }
         let paper = |p: Param| matches!(p, Param::ETA_T | Param::KAPPA2);
-        let geometric = |p: Param| p.model().is_some_and(|m| m.is_geometric());
-        let usable = |p: Param| p.rate_only() || geometric(p);
         let pair = match (plane.y, plane.z) {
-            (Some(y), None) if paper(y) && usable(plane.x) => Some((plane.x, y, true)),
-            (Some(y), None) if paper(plane.x) && usable(y) => Some((y, plane.x, false)),
+            (Some(y), None) if paper(y) && !paper(plane.x) => Some((plane.x, y, true)),
+            (Some(y), None) if paper(plane.x) && !paper(y) => Some((y, plane.x, false)),
             _ => None,
         };
         let Some((other, along, other_is_x)) = pair else {
             let names: Vec<&str> = plane.params().iter().map(|p| p.name()).collect();
             return Err(SweepError::Invalid(format!(
-                "{}: the sweep there is in ({}); the exact boundaries are drawn in the paper's \
-                 plane (eta_t, kappa2) and in a plane of eta_t or kappa2 with one of eta2, \
-                 mass, radius, sigma, box_len; give another --out",
+                "{}: the sweep there is in ({}); the exact boundaries are drawn in a plane of \
+                 two of eta_t, kappa2, eta2, mass, radius, sigma, box_len, or of eta_t or \
+                 kappa2 with one of n, tol, dt_max, t_max; give another --out",
                 out.display(),
                 names.join(", ")
             )));
@@ -72,7 +75,7 @@ impl Across {
         let mut samples = axis.values.clone();
         samples.sort_by(f64::total_cmp);
         samples.dedup();
-        if other.rate_only() {
+        if Self::moves_nothing(other) {
             // Any value gives the same boundaries: the middle one.
             samples = vec![samples[samples.len() / 2]];
         }
@@ -87,6 +90,11 @@ impl Across {
             span: axis.span(),
             samples,
         }))
+    }
+
+    /// Whether `p` moves no steady state: its boundaries are lines across it.
+    pub fn moves_nothing(p: Param) -> bool {
+        p.rate_only() || matches!(p, Param::Tol | Param::DtMax | Param::TMax)
     }
 
     /// Where a curve of the paper's plane crosses the line: the values of `along`, in order.
@@ -130,21 +138,28 @@ impl Across {
         }
     }
 
-    /// The boundaries in the sweep's plane. `curves_at(base)` computes the paper-plane
-    /// curves with the other axis at its value in `base`; it is called once per sample.
+    /// The boundaries in the sweep's plane. `curves_at(base, n)` computes the paper-plane
+    /// curves with the other axis at its value in `base` (or, for the grid, at `n`); it is
+    /// called once per sample (`base`, `n` themselves for an axis that moves nothing).
     pub fn plane_curves(
         &self,
         base: &ModelParams,
-        mut curves_at: impl FnMut(&ModelParams) -> Result<Vec<NamedCurve>, SweepError>,
+        n: usize,
+        mut curves_at: impl FnMut(&ModelParams, usize) -> Result<Vec<NamedCurve>, SweepError>,
     ) -> Result<Vec<NamedCurve>, SweepError> {
-        let model = self.other.model().expect("a model parameter");
+        let lines = Self::moves_nothing(self.other);
         // Each curve's k-th crossing, by (model, name, k): its points across the samples.
         let mut joined: BTreeMap<(String, String, usize), NamedCurve> = BTreeMap::new();
         for &g in &self.samples {
-            for c in curves_at(&model.with(base, g))? {
+            let (at_base, at_n) = match self.other {
+                _ if lines => (*base, n),
+                Param::N => (*base, g as usize),
+                p => (p.model().expect("a model parameter").with(base, g), n),
+            };
+            for c in curves_at(&at_base, at_n)? {
                 for (k, at) in self.crossings(&c.points).into_iter().enumerate() {
                     let key = (c.model.as_str().to_string(), c.name.clone(), k);
-                    let points = if self.other.rate_only() {
+                    let points = if lines {
                         vec![self.point(self.span.0, at), self.point(self.span.1, at)]
                     } else {
                         vec![self.point(g, at)]

@@ -7,6 +7,7 @@ use crate::error::SweepError;
 use crate::pictures::map_figure::{boundary_picture, Curve};
 use crate::spec::axes::{Param, ETA_T, KAPPA2};
 use crate::studies::across::Across;
+use crate::studies::pair::Pair;
 use crate::tables::boundaries::{self as table, NamedCurve};
 use droplet_solver::contract::settings::{ModelKind, H0_PAPER};
 use droplet_solver::model::params::ModelParams;
@@ -45,6 +46,10 @@ pub struct BoundaryStudy {
     /// For a sweep outside the paper's plane: how its plane meets the paper's
     /// ([`crate::studies::across`]).
     pub across: Option<Across>,
+    /// For a sweep in a plane of two model parameters that crossings do not give: the window
+    /// its curves are continued in ([`crate::studies::pair`]; the reduced model's curves are
+    /// then `across`'s crossings, where there is one).
+    pub pair: Option<Pair>,
 }
 
 /// What a boundaries study computed and wrote.
@@ -75,7 +80,13 @@ impl BoundaryStudy {
                 .then(|| crate::tables::read::stored_spec(&out.join(crate::tables::read::POINTS)))
                 .and_then(Result::ok)
         });
+        let pair = match sweep.as_ref() {
+            Some(s) => Pair::of(s, out)?,
+            None => None,
+        };
         let across = match sweep.as_ref() {
+            // Two non-paper parameters have no crossings: the pair alone.
+            Some(s) if pair.is_some() => Across::of(s, out).ok().flatten(),
             Some(s) => Across::of(s, out)?,
             None => None,
         };
@@ -103,12 +114,17 @@ impl BoundaryStudy {
             .or_else(|| swept(Param::KAPPA2))
             .or_else(|| around(Param::KAPPA2))
             .unwrap_or(FIG2A_WINDOW.1);
-        let base = ModelParams {
-            eta_t: eta_t.0,
-            kappa2: kappa2.0,
-            ..sweep
-                .as_ref()
-                .map_or_else(ModelParams::default, |s| s.params)
+        let spec_params = sweep
+            .as_ref()
+            .map_or_else(ModelParams::default, |s| s.params);
+        let base = match pair {
+            // The pair's window sets its own axes; the others are the spec's.
+            Some(_) => spec_params,
+            None => ModelParams {
+                eta_t: eta_t.0,
+                kappa2: kappa2.0,
+                ..spec_params
+            },
         };
         base.validate()
             .map_err(|e| SweepError::Invalid(e.to_string()))?;
@@ -121,34 +137,68 @@ impl BoundaryStudy {
             n,
             sweep_spec: sweep.map(|s| s.source),
             samples: match &across {
-                Some(a) if a.other.rate_only() => samples.max(ACROSS_SAMPLES.0),
+                Some(a) if Across::moves_nothing(a.other) => samples.max(ACROSS_SAMPLES.0),
                 Some(_) => samples.max(ACROSS_SAMPLES.1),
                 None => samples,
             },
             across,
+            pair,
         })
     }
 
-    /// The full model's boundaries (`pde`) and the reduced model's (`ode`) in the window, at
-    /// the parameters `base`.
-    fn curves_at(&self, base: &ModelParams) -> Result<Vec<NamedCurve>, SweepError> {
+    /// The names of the plane the curves are drawn in: the paper's, or the sweep's in `out`.
+    pub fn plane_names(&self) -> (&'static str, &'static str) {
+        match (&self.pair, &self.across) {
+            (Some(p), _) => p.names(),
+            (None, Some(a)) => a.names(),
+            (None, None) => (ETA_T, KAPPA2),
+        }
+    }
+
+    /// Whether the curves are drawn in the paper's plane.
+    pub fn in_paper_plane(&self) -> bool {
+        self.pair.is_none() && self.across.is_none()
+    }
+
+    /// The window, in words (for messages and the table's metadata).
+    pub fn window(&self) -> String {
+        match &self.pair {
+            Some(p) => format!(
+                "{} {:?}, {} {:?}",
+                p.x.param.name(),
+                p.x.range,
+                p.y.param.name(),
+                p.y.range
+            ),
+            None => format!("eta_t {:?}, kappa2 {:?}", self.eta_t, self.kappa2),
+        }
+    }
+
+    /// The full model's boundaries (`pde`, at grid size `n`) and the reduced model's (`ode`)
+    /// in the paper-plane window, at the parameters `base`.
+    fn curves_at(&self, base: &ModelParams, n: usize) -> Result<Vec<NamedCurve>, SweepError> {
         let window = droplet_solver::continuation::boundaries::Window {
             base: *base,
-            n: self.n,
+            n,
             eta_t: self.eta_t,
             kappa2: self.kappa2,
             id_samples: self.samples,
         };
         let pde = droplet_solver::continuation::boundaries::boundaries(&window)?;
+        Ok(NamedCurve::from_boundaries(ModelKind::Pde, &pde)
+            .into_iter()
+            .chain(self.ode_curves_at(base))
+            .collect())
+    }
+
+    /// The reduced model's boundaries in the paper-plane window, at the parameters `base`.
+    fn ode_curves_at(&self, base: &ModelParams) -> Vec<NamedCurve> {
         let ode = droplet_solver::reduced::boundaries::boundaries(
             &Coefficients::new(base.radius, self.h0),
             self.eta_t,
             self.kappa2,
         );
-        Ok(NamedCurve::from_boundaries(ModelKind::Pde, &pde)
-            .into_iter()
-            .chain(NamedCurve::from_boundaries(ModelKind::Ode, &ode))
-            .collect())
+        NamedCurve::from_boundaries(ModelKind::Ode, &ode)
     }
 
     /// Computes the boundaries and writes `boundaries.parquet` and `boundaries.png/.svg`
@@ -156,13 +206,22 @@ impl BoundaryStudy {
     pub fn run(&self) -> Result<BoundariesWritten, SweepError> {
         crate::store::atomic::create_output_dir(&self.out)?;
         let started = Instant::now();
-        let curves = match &self.across {
-            None => self.curves_at(&self.base)?,
-            Some(a) => a.plane_curves(&self.base, |b| self.curves_at(b))?,
+        let curves = match (&self.pair, &self.across) {
+            (Some(p), across) => {
+                let mut curves = p.curves(&self.base, self.n)?;
+                if let Some(a) = across {
+                    curves.extend(
+                        a.plane_curves(&self.base, self.n, |b, _| Ok(self.ode_curves_at(b)))?,
+                    );
+                }
+                curves
+            }
+            (None, None) => self.curves_at(&self.base, self.n)?,
+            (None, Some(a)) => a.plane_curves(&self.base, self.n, |b, n| self.curves_at(b, n))?,
         };
         let seconds = started.elapsed().as_secs_f64();
         let path = self.out.join(table::FILE);
-        let names = self.across.as_ref().map_or((ETA_T, KAPPA2), |a| a.names());
+        let names = self.plane_names();
         table::write_in(
             &path,
             names,
@@ -170,15 +229,12 @@ impl BoundaryStudy {
             self.sweep_spec.as_deref(),
             vec![
                 ("n".into(), self.n.to_string()),
-                (
-                    "window".into(),
-                    format!("eta_t {:?}, kappa2 {:?}", self.eta_t, self.kappa2),
-                ),
+                ("window".into(), self.window()),
             ],
         )?;
         let drawn: Vec<Curve> = curves.iter().map(Curve::of).collect();
-        let mut files = if self.across.is_some() {
-            // Crossing points, drawn as lines over the sweep's map below.
+        let mut files = if !self.in_paper_plane() {
+            // In the sweep's plane: drawn over its map below.
             Vec::new()
         } else {
             boundary_picture(

@@ -10,6 +10,7 @@ use crate::pictures::map_figure::{boundary_picture, Curve, CURVE_COLOURS};
 use crate::studies::boundaries::BoundaryStudy;
 use crate::tables::boundaries::NamedCurve;
 use crate::tables::sweep_tables::{metadata, write_parquet};
+use droplet_solver::continuation::polyline::distance_to_polyline;
 use droplet_solver::contract::settings::ModelKind;
 use polars::prelude::*;
 use std::path::PathBuf;
@@ -54,6 +55,7 @@ pub fn run(base: &BoundaryStudy, ns: &[usize]) -> Result<ConvergenceWritten, Swe
             n,
             sweep_spec: None,
             across: None,
+            pair: None,
             ..base.clone()
         };
         let done = study.run()?;
@@ -103,29 +105,6 @@ pub fn shift(fine: &[(f64, f64)], coarse: &[(f64, f64)]) -> Option<f64> {
             .map(|&p| distance_to_polyline(p, coarse))
             .fold(0.0, f64::max),
     )
-}
-
-/// The distance from `p` to the polyline `line` (to its one point if it has one; infinite if
-/// it has none).
-pub fn distance_to_polyline(p: (f64, f64), line: &[(f64, f64)]) -> f64 {
-    let to_segment = |a: (f64, f64), b: (f64, f64)| {
-        let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-        let len2 = dx * dx + dy * dy;
-        let t = if len2 > 0.0 {
-            (((p.0 - a.0) * dx + (p.1 - a.1) * dy) / len2).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        (p.0 - a.0 - t * dx).hypot(p.1 - a.1 - t * dy)
-    };
-    match line {
-        [] => f64::INFINITY,
-        [a] => to_segment(*a, *a),
-        _ => line
-            .windows(2)
-            .map(|w| to_segment(w[0], w[1]))
-            .fold(f64::INFINITY, f64::min),
-    }
 }
 
 /// `convergence.parquet`: one row per curve and `N`, with the window in the metadata.

@@ -1,6 +1,7 @@
 //! Whole studies behind one command each, from a checked request to the files written: the
 //! full model's exact phase boundaries in a window (`boundaries`, `droplet boundaries`; over a
-//! sweep outside the paper's plane, `across`) and
+//! sweep outside the paper's plane, `across` (crossings of the paper's curves) or `pair`
+//! (continued in any two model parameters)) and
 //! branches of steady states followed in one parameter (`continuation`, `droplet continue`),
 //! and the boundaries at several grid sizes with their shifts (`convergence`).
 //! Each returns what it computed and the paths it wrote; the CLI only parses and prints.
@@ -10,3 +11,4 @@ pub mod across;
 pub mod boundaries;
 pub mod continuation;
 pub mod convergence;
+pub mod pair;

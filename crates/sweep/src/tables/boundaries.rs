@@ -26,16 +26,27 @@ pub struct NamedCurve {
 }
 
 impl NamedCurve {
+    /// The curves of one model, named by their boundary; a boundary in several pieces gets
+    /// `name (2)`, `name (3)`, ... for the second and later.
     pub fn from_boundaries(
         model: ModelKind,
         curves: &[droplet_solver::reduced::boundaries::Boundary],
     ) -> Vec<Self> {
+        // A condition whose zero set has several pieces: "name", "name (2)", ...
+        let mut seen: Vec<&str> = Vec::new();
         curves
             .iter()
-            .map(|c| Self {
-                model,
-                name: c.name.to_string(),
-                points: c.points.clone(),
+            .map(|c| {
+                seen.push(c.name);
+                let k = seen.iter().filter(|n| **n == c.name).count();
+                Self {
+                    model,
+                    name: match k {
+                        1 => c.name.to_string(),
+                        _ => format!("{} ({k})", c.name),
+                    },
+                    points: c.points.clone(),
+                }
             })
             .collect()
     }
