@@ -1,9 +1,10 @@
-//! `droplet boundaries`: the full model's phase boundaries in the (eta_t, kappa2) plane.
+//! `droplet boundaries`: the full model's phase boundaries in the (eta_t, kappa2) plane, or
+//! in the plane of a sweep in --out.
 use super::{print_json, CliError};
 use droplet_sweep::studies::boundaries::BoundaryStudy;
 use std::path::PathBuf;
 
-/// Compute the full model's exact phase boundaries in the (eta_t, kappa2) plane.
+/// Compute the full model's exact phase boundaries, in (eta_t, kappa2) or in a sweep's plane.
 ///
 /// Compute the full model's phase boundaries (N x N spectral grid, field included) from its
 /// bifurcation points instead of from runs on a grid: the resting disk's onsets of motion and
@@ -12,11 +13,12 @@ use std::path::PathBuf;
 /// bistable bands (two-parameter continuation of the fold). Each point solves its equations
 /// to ~1e-10. Writes DIR/boundaries.parquet (model = pde, and the reduced model's analytic
 /// curves as model = ode) and DIR/boundaries.png/.svg. If DIR holds a sweep, its window is
-/// the default and its phase map is redrawn with the boundaries on it. Over a sweep in a plane
-/// of eta_t or kappa2 with eta2, mass, radius, sigma or box_len, the boundaries are where the
-/// paper-plane ones cross the sweep's line, in the sweep's plane: lines across eta2 or mass
-/// (they move no boundary), and curves sampled at the sweep's values of a geometric parameter
-/// (the paper-plane boundaries computed again at each).
+/// the default and its phase map is redrawn with the boundaries on it, in the sweep's plane:
+/// in any plane of two model parameters (eta_t, kappa2, eta2, mass, radius, sigma, box_len)
+/// each curve is continued in that pair over the window the sweep spans, the other
+/// parameters the spec's (the onsets traced as zero sets of their eigenvalue, the MD fold and
+/// the MC onset continued); over eta2 or mass with eta_t or kappa2, and over tol, dt_max or
+/// t_max, they are lines (those move no boundary); over n they are computed at each N.
 ///
 /// With several grid sizes (`--n 192,256,384`) it is a convergence study: the boundaries at
 /// each N go to DIR/n<N>/, and DIR/convergence.parquet gives each curve's shift from the
@@ -25,7 +27,7 @@ use std::path::PathBuf;
 #[derive(clap::Args)]
 #[command(
     allow_negative_numbers = true,
-    after_help = "Examples:\n  droplet boundaries --out results/boundaries                  # the Fig. 2a window\n  droplet boundaries --out out/fig2a                           # onto a sweep's phase map\n  droplet boundaries --out results/mass-eta_t                   # over a (mass, eta_t) map\n  droplet boundaries --eta-t 0.07,0.1 --kappa2 0.1,0.17 --n 128 --json\n  droplet boundaries --n 128,192,256 --out out/convergence    # how far the grid moves each boundary"
+    after_help = "Examples:\n  droplet boundaries --out results/boundaries                  # the Fig. 2a window\n  droplet boundaries --out out/fig2a                           # onto a sweep's phase map\n  droplet boundaries --out results/mass-eta_t                   # over a (mass, eta_t) map\n  droplet boundaries --out out/radius-sigma --n 128            # continued in (radius, sigma)\n  droplet boundaries --eta-t 0.07,0.1 --kappa2 0.1,0.17 --n 128 --json\n  droplet boundaries --n 128,192,256 --out out/convergence    # how far the grid moves each boundary"
 )]
 pub struct Args {
     /// eta_t window LO,HI (default: the sweep's in --out, else 0.07,0.10).
@@ -95,9 +97,9 @@ pub fn run(a: Args) -> Result<(), CliError> {
         return convergence(&study, &ns, a.json);
     }
     eprintln!(
-        "boundaries in {} at N = {} (about 10 s at N = 192 in the paper's plane)",
+        "boundaries in {} at {} (about 10 s at N = 192 in the paper's plane)",
         study.window(),
-        study.n
+        study.grid_words()
     );
     let done = study.run()?;
     if let Some((missing, points)) = done.missing.filter(|m| m.0 > 0) {

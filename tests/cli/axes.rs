@@ -328,6 +328,38 @@ fn boundaries_in_a_plane_of_two_non_paper_parameters_are_continued_in_it() {
 }
 
 #[test]
+fn boundaries_over_an_n_eta_t_sweep_are_recomputed_at_each_n() {
+    // The grid moves the boundaries a little: each is computed again at each of the sweep's
+    // N, and the onset of motion at each N is the disk's own threshold there.
+    let dir = tempfile::tempdir().unwrap();
+    let spec = write_spec(
+        dir.path(),
+        "ne.yaml",
+        "model: ode\nparams: {kappa2: 0.13}\ngrid:\n  n: [96, 128]\n  eta_t: [0.07, 0.08, 0.09]\ninitial_conditions: [i]\n",
+    );
+    let out = dir.path().join("ne");
+    sweep_with_pictures(&spec, &out);
+    let b = json(&run(&[
+        "boundaries",
+        "--out",
+        out.to_str().unwrap(),
+        "--json",
+    ]));
+    assert_eq!(b["plane"], serde_json::json!(["n", "eta_t"]), "{b}");
+    let onset = pde_curve(
+        &out.join("boundaries.parquet"),
+        "IC onset of motion",
+        ("n", "eta_t"),
+    );
+    assert_eq!(onset.iter().map(|p| p.0).collect::<Vec<_>>(), [96.0, 128.0]);
+    for &(n, e) in &onset {
+        let th = disk_onset(0.08, 0.13, "radius=1", &n.to_string());
+        assert!((th - e).abs() < 1e-9, "N = {n}: {e} vs {th}");
+    }
+    assert_ne!(onset[0].1, onset[1].1);
+}
+
+#[test]
 fn a_three_axis_ode_sweep_draws_one_map_per_slice_and_one_with_all() {
     let dir = tempfile::tempdir().unwrap();
     let spec = write_spec(

@@ -160,6 +160,17 @@ impl BoundaryStudy {
         self.pair.is_none() && self.across.is_none()
     }
 
+    /// The grid sizes the full model's curves are computed at, in words.
+    pub fn grid_words(&self) -> String {
+        match &self.across {
+            Some(a) if a.other == Param::N => {
+                let ns: Vec<String> = a.samples.iter().map(|n| n.to_string()).collect();
+                format!("N = {} (the sweep's)", ns.join(", "))
+            }
+            _ => format!("N = {}", self.n),
+        }
+    }
+
     /// The window, in words (for messages and the table's metadata).
     pub fn window(&self) -> String {
         match &self.pair {
