@@ -154,6 +154,13 @@ fn report(
                 _ => outln!("{model}: {:<40} none in this window", c.name),
             }
         }
+        if !done
+            .curves
+            .iter()
+            .any(|c| c.model == droplet_solver::contract::settings::ModelKind::Pde)
+        {
+            outln!("PDE: no boundary crosses this window (in a plane of eta2 and mass none can)");
+        }
         for f in &done.files {
             outln!("wrote {}", f.display());
         }
