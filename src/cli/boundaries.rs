@@ -4,7 +4,7 @@ use super::{print_json, CliError};
 use droplet_sweep::studies::boundaries::BoundaryStudy;
 use std::path::PathBuf;
 
-/// Compute the full model's exact phase boundaries, in (eta_t, kappa2) or in a sweep's plane.
+/// Compute the full model's exact phase boundaries, in the paper's plane or a sweep's
 ///
 /// Compute the full model's phase boundaries (N x N spectral grid, field included) from its
 /// bifurcation points instead of from runs on a grid: the resting disk's onsets of motion and

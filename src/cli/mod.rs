@@ -23,6 +23,7 @@ mod slurm;
 mod stability;
 mod status;
 mod sweep;
+mod truncation;
 
 use clap::{Parser, Subcommand};
 
@@ -50,6 +51,7 @@ enum Command {
     Stability(stability::Args),
     Continue(continuation::Args),
     Boundaries(boundaries::Args),
+    Truncation(truncation::Args),
 }
 
 /// Exit codes: 0 success, 1 failure while working, 2 bad input.
@@ -69,6 +71,7 @@ pub fn main() -> i32 {
         Command::Stability(a) => stability::run(a),
         Command::Continue(a) => continuation::run(a),
         Command::Boundaries(a) => boundaries::run(a),
+        Command::Truncation(a) => truncation::run(a),
     };
     match result {
         Ok(()) => 0,

@@ -1,6 +1,6 @@
 //! End-to-end tests through the `droplet` binary, one file per group of commands (one test
 //! binary): `sweep` (sweep, merge, resume, specs), `axes` (sweeps in any parameter), `simulate`,
-//! `ode`, `commands` (bench, help).
+//! `ode`, `commands` (bench, help), `truncation` (the K-mode model).
 mod axes;
 mod commands;
 #[path = "../common/mod.rs"]
@@ -8,6 +8,7 @@ mod common;
 mod ode;
 mod simulate;
 mod sweep;
+mod truncation;
 
 /// A tiny sweep (coarse grid, N = 32, fixed steps so that it lasts long enough to be
 /// interrupted): seconds, enough for resume and locking tests.

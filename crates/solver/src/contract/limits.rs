@@ -76,6 +76,34 @@ pub fn check_resolved(params: &ModelParams, n: usize) -> Result<(), SolverError>
     Ok(())
 }
 
+/// Most shape modes of the `K`-mode model.
+pub const MAX_MODES: usize = 16;
+/// Least grid cells along half a wavelength of the highest mode on the boundary, `pi R / K`.
+pub const MIN_MODE_CELLS: f64 = 4.0;
+
+/// Checks a number of shape modes `K` (modes `2..=K`): from 2 to [`MAX_MODES`], and resolved by
+/// the grid: half a wavelength of mode `K` along the boundary, `pi R / K`, at least
+/// [`MIN_MODE_CELLS`] cells (`K <= pi R N / (4 L)`: 7 at the paper's R = 1, L = 7 and N = 64, 21 at N = 192).
+pub fn check_modes(params: &ModelParams, n: usize, k_max: usize) -> Result<(), SolverError> {
+    require(
+        (2..=MAX_MODES).contains(&k_max),
+        "modes",
+        k_max as f64,
+        format!("an integer from 2 (the paper's a2, b2) to {MAX_MODES}"),
+    )?;
+    let dx = params.box_len / n as f64;
+    let most = (std::f64::consts::PI * params.radius / (MIN_MODE_CELLS * dx)).floor();
+    require(
+        k_max as f64 <= most,
+        "modes",
+        k_max as f64,
+        format!(
+            "at most {most} at N = {n} (half a wavelength of the highest mode on the boundary, \
+             pi R / K, must span {MIN_MODE_CELLS} grid cells of dx = L/N = {dx:.4}); raise n"
+        ),
+    )
+}
+
 /// Checks that `settings` can resolve and integrate the droplet of `params` (PDE runs; the
 /// ODE model has no grid).
 pub fn check_run(params: &ModelParams, settings: &SolverSettings) -> Result<(), SolverError> {
@@ -115,6 +143,16 @@ pub fn check_run(params: &ModelParams, settings: &SolverSettings) -> Result<(), 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn modes_from_two_to_what_the_grid_resolves() {
+        let p = ModelParams::default();
+        assert!(check_modes(&p, 192, 2).is_ok() && check_modes(&p, 192, MAX_MODES).is_ok());
+        for (n, k) in [(192, 1), (192, 0), (192, MAX_MODES + 1), (64, 8), (32, 4)] {
+            assert!(check_modes(&p, n, k).is_err(), "N = {n}, K = {k}");
+        }
+        assert!(check_modes(&p, 64, 7).is_ok());
+    }
 
     fn name_of(e: SolverError) -> &'static str {
         match e {

@@ -1,7 +1,8 @@
 //! The droplet model of the paper (Sect. 2-3): its parameters, the mechanical state
 //! `(r_c, v, a2, b2)`, the initial conditions, the grid of the co-moving frame, the smoothed
 //! indicator and its transforms, the driving forces (eqs. 35-37), the equations of motion
-//! (eqs. 36-39 with the inertia `m`) and the classes IC / ID / MD / MC of a steady state.
+//! (eqs. 36-39 with the inertia `m`) and the classes IC / ID / MD / MC of a steady state; the
+//! general shape with modes `k = 2..K` and its fields `w_k` (`modes`).
 //!
 //! May use: `numerics`. Used by every folder above it.
 pub mod classify;
@@ -9,6 +10,7 @@ pub mod dynamics;
 pub mod forces;
 pub mod grid;
 pub mod initial;
+pub mod modes;
 pub mod param;
 pub mod params;
 pub mod shape;

@@ -1,4 +1,5 @@
-//! Steady states as roots: the exact co-moving steady solver, the linearisation about a root
+//! Steady states as roots: the exact co-moving steady solver (and its `K`-mode form,
+//! `mode_solver`), the linearisation about a root
 //! (field included, docs/numerics.md "Stability"), the stability verdict with the rotation mode
 //! set aside, the named states of the paper (IC, ID, MD on a mirror axis of the box) and the
 //! Appendix E fit of `h0`.
@@ -7,6 +8,7 @@
 //! `continuation`.
 pub mod h0_fit;
 pub mod linearisation;
+pub mod mode_solver;
 pub mod named_state;
 pub mod steady_solver;
 pub mod verdict;

@@ -296,6 +296,8 @@ where
 /// Phase boundaries alone in the `(eta_t, kappa2)` window (`droplet boundaries`).
 struct BoundaryFigure<'a> {
     title: &'a str,
+    /// The axes' names.
+    names: (&'a str, &'a str),
     curves: &'a [Curve],
     eta_t: (f64, f64),
     kappa2: (f64, f64),
@@ -313,7 +315,7 @@ impl Figure for BoundaryFigure<'_> {
         root.fill(&WHITE).map_err(perr)?;
         let (plot_area, legend_area) = root.split_horizontally(900);
         let (x, y) = (self.eta_t, self.kappa2);
-        let mut chart = plane_chart(&plot_area, self.title, (ETA_T, KAPPA2), x, y, true)?;
+        let mut chart = plane_chart(&plot_area, self.title, self.names, x, y, true)?;
         let mut legend = Vec::new();
         draw_curves(&mut chart, self.curves, x, y, &mut legend)?;
         draw_legend(&legend_area, &legend)?;
@@ -335,9 +337,31 @@ pub fn boundary_picture(
         &dir.join(format!("{stem}.png")),
         &BoundaryFigure {
             title,
+            names: (ETA_T, KAPPA2),
             curves,
             eta_t,
             kappa2,
+        },
+    )
+}
+
+/// Renders `<stem>.png` and `.svg` in `dir`: droplet outlines `curves` in the droplet's frame
+/// `(x, y)` (centre at 0, radius about 1), at about equal scales; returns both paths.
+pub fn outline_picture(
+    dir: &Path,
+    stem: &str,
+    title: &str,
+    curves: &[Curve],
+) -> Result<Vec<PathBuf>, SweepError> {
+    render(
+        &dir.join(format!("{stem}.png")),
+        &BoundaryFigure {
+            title,
+            names: ("x", "y"),
+            curves,
+            // The plot area is about 900 x 760 pixels.
+            eta_t: (-1.78, 1.78),
+            kappa2: (-1.5, 1.5),
         },
     )
 }

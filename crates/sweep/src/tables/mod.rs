@@ -12,3 +12,4 @@ pub mod h0;
 pub mod read;
 pub mod series;
 pub mod sweep_tables;
+pub mod truncation;

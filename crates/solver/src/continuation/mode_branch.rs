@@ -1,0 +1,179 @@
+//! The MD branch of the `K`-mode model ([`crate::roots::mode_solver`]) on the x axis (motion
+//! along x, `b_k = 0`), followed in `eta_t` or `kappa2` by pseudo-arclength continuation of
+//! `(v, a_2..a_K, q)`, and its fold (the saddle-node that bounds the bistable bands): where
+//! the tangent's `q` component changes sign, located by bisection in arclength. Stability is
+//! not computed here (the `K`-mode eigenproblem is not built yet): the fold is where a real
+//! eigenvalue crosses zero whatever the others do.
+use crate::continuation::arclength::{point_at, start, ArclengthOptions, CurvePoint, Stepper};
+use crate::error::SolverError;
+use crate::model::param::ModelParam;
+use crate::model::params::ModelParams;
+use crate::roots::mode_solver::{ModeSolver, ModeState};
+
+/// A line in `eta_t` or `kappa2` for the `K`-mode MD branch.
+#[derive(Debug, Clone)]
+pub struct ModeLine {
+    /// The parameters at the line's start (`parameter` = `from`).
+    pub base: ModelParams,
+    pub n: usize,
+    /// Modes `2..=k_max`.
+    pub k_max: usize,
+    /// `EtaT` or `Kappa2`.
+    pub parameter: ModelParam,
+    pub from: f64,
+    pub to: f64,
+}
+
+/// The fold of a `K`-mode MD branch.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct ModeFold {
+    /// The parameter's value there.
+    pub at: f64,
+    pub v: f64,
+    /// `a_k` for `k = 2..=K`.
+    pub a: Vec<f64>,
+}
+
+/// The MD state of the `k_max`-mode model at the solver's parameters, moving along +x: the
+/// 2-mode model's ([`crate::roots::named_state::find`], from the reduced model's states),
+/// then one mode at a time, each from `a_k = 0`.
+pub fn md_state(solver: &mut ModeSolver, k_max: usize) -> Result<ModeState, SolverError> {
+    let two = crate::roots::named_state::find(
+        solver.params(),
+        solver.n(),
+        crate::roots::named_state::StateKind::MD,
+        crate::roots::steady_solver::MirrorAxis::X,
+        None,
+    )?;
+    let mut guess = vec![two.z[0], two.z[2]];
+    let mut st = solver.newton_x(&guess, 1e-11)?;
+    for _ in 3..=k_max {
+        guess = std::iter::once(st.v)
+            .chain(st.a.iter().copied())
+            .chain([0.0])
+            .collect();
+        st = solver.newton_x(&guess, 1e-11)?;
+    }
+    Ok(st)
+}
+
+/// Follows the MD branch from `line.from` towards `line.to` ([`md_state`] there) and returns
+/// its first fold, if it has one before the line's end or the branch's meeting with the
+/// resting state (`v -> 0`).
+pub fn md_fold(line: &ModeLine) -> Result<Option<ModeFold>, SolverError> {
+    let mut solver = ModeSolver::new(line.base, line.n)?;
+    let st = md_state(&mut solver, line.k_max)?;
+    let span = line.to - line.from;
+    let base = line.base;
+    let parameter = line.parameter;
+    let mut f = |y: &[f64]| {
+        let q = *y.last().expect("q");
+        let p = parameter.with(&base, line.from + q * span);
+        solver.set_control(p.eta_t, p.kappa2);
+        solver.residual_x(&y[..y.len() - 1])
+    };
+    let y0: Vec<f64> = std::iter::once(st.v)
+        .chain(st.a.iter().copied())
+        .chain([0.0])
+        .collect();
+    let opts = ArclengthOptions {
+        ds_max: 0.02,
+        ..ArclengthOptions::default()
+    };
+    let mut prev = vec![0.0; y0.len()];
+    *prev.last_mut().expect("q") = 1.0;
+    let Some(mut p) = start(&mut f, &y0, &prev, &opts) else {
+        return Ok(None);
+    };
+    let q_of = |p: &CurvePoint| *p.tangent.last().expect("q");
+    let mut stepper = Stepper::new(opts.clone());
+    for _ in 0..2000 {
+        let Some(step) = stepper.advance(&mut f, &p) else {
+            return Ok(None);
+        };
+        let y = &step.point.y;
+        let q = *y.last().expect("q");
+        if !(0.0..=1.0).contains(&q) || y[0] < 1e-3 {
+            return Ok(None);
+        }
+        if q_of(&step.point) * q_of(&p) < 0.0 {
+            // Bisect in arclength on the sign of the tangent's q component.
+            let (mut lo, mut hi) = (0.0, step.ds);
+            let mut best = step.point.clone();
+            for _ in 0..50 {
+                let s = 0.5 * (lo + hi);
+                let Some((c, _)) = point_at(&mut f, &p, s, &opts) else {
+                    break;
+                };
+                if q_of(&c) * q_of(&p) > 0.0 {
+                    lo = s;
+                } else {
+                    hi = s;
+                }
+                best = c;
+                if hi - lo < 1e-13 {
+                    break;
+                }
+            }
+            let y = &best.y;
+            let k = y.len() - 1;
+            return Ok(Some(ModeFold {
+                at: line.from + y[k] * span,
+                v: y[0],
+                a: y[1..k].to_vec(),
+            }));
+        }
+        p = step.point;
+    }
+    Ok(None)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::continuation::branch::{follow, Line};
+    use crate::continuation::problem::Family;
+    use crate::roots::steady_solver::MirrorAxis;
+
+    #[test]
+    fn with_two_modes_the_fold_is_the_two_mode_branchs() {
+        // kappa2 = 0.13, eta_t from 0.07: the 2-mode branch folds at 0.0792728 (N = 192;
+        // docs/continuation.md); at N = 96 both computations against each other.
+        let n = 96;
+        let base = ModelParams::at(0.07, 0.13);
+        let line = ModeLine {
+            base,
+            n,
+            k_max: 2,
+            parameter: ModelParam::EtaT,
+            from: 0.07,
+            to: 0.1,
+        };
+        let fold = md_fold(&line).unwrap().expect("a fold");
+        let branch = follow(
+            &Line {
+                base,
+                n,
+                parameter: ModelParam::EtaT,
+                from: 0.07,
+                to: 0.1,
+                max_points: 400,
+                opts: ArclengthOptions::default(),
+            },
+            Family::MdMinor,
+            MirrorAxis::X,
+        )
+        .unwrap();
+        let sn = branch.events.iter().find(|e| e.kind == "SN").unwrap();
+        assert!(
+            (fold.at - sn.point.at).abs() < 1e-7,
+            "{fold:?} vs {}",
+            sn.point.at
+        );
+        assert!(
+            (fold.v - sn.point.z[0]).abs() < 1e-4,
+            "{fold:?} vs {:?}",
+            sn.point.z
+        );
+    }
+}

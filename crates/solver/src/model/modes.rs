@@ -1,0 +1,179 @@
+//! The paper's general droplet shape with modes `k = 2..K` (eq. for `f(theta)` in Sect. 2):
+//! `f(theta) = R [1 + sum_k (a_k cos k theta + b_k sin k theta)]`, its smoothed indicator
+//! `Theta = (1 + tanh(-(r - f) / sigma)) / 2` (the same profile as eq. 31 for `K = 2`), and the
+//! incompressible fields `w_k^(a)`, `w_k^(b)` (eqs. wka, wkb) that move the boundary along one
+//! mode: `w_k^(a) = grad[(R^2 / k) (r / R)^k cos k theta] = R^(2-k) (Re z^(k-1), -Im z^(k-1))`,
+//! `w_k^(b) = R^(2-k) (Im z^(k-1), Re z^(k-1))` with `z = x + i y`.
+use crate::model::shape::{ShapeParams, BAND_Q};
+
+/// Shape amplitudes `a_k`, `b_k` for `k = 2..=K` (`a[k - 2]`, `b[k - 2]`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Modes {
+    pub a: Vec<f64>,
+    pub b: Vec<f64>,
+}
+
+/// `(Re, Im)` of `(x + i y)^p`.
+fn power(x: f64, y: f64, p: usize) -> (f64, f64) {
+    let (mut re, mut im) = (1.0, 0.0);
+    for _ in 0..p {
+        (re, im) = (re * x - im * y, re * y + im * x);
+    }
+    (re, im)
+}
+
+impl Modes {
+    /// The circle with modes up to `k_max` (at least 2).
+    pub fn circle(k_max: usize) -> Self {
+        let m = k_max.max(2) - 1;
+        Self {
+            a: vec![0.0; m],
+            b: vec![0.0; m],
+        }
+    }
+
+    /// The largest mode `K`.
+    pub fn k_max(&self) -> usize {
+        self.a.len() + 1
+    }
+
+    /// `sum_k (|a_k| + |b_k|)`: the largest relative change of the radius.
+    fn reach(&self) -> f64 {
+        self.a.iter().chain(&self.b).map(|c| c.abs()).sum()
+    }
+
+    /// The total deformation `sqrt(sum_k a_k^2 + b_k^2)`.
+    pub fn deformation(&self) -> f64 {
+        self.a
+            .iter()
+            .chain(&self.b)
+            .map(|c| c * c)
+            .sum::<f64>()
+            .sqrt()
+    }
+
+    /// `sum_k (a_k cos k theta + b_k sin k theta)` for `(cos theta, sin theta) = (c, s)`.
+    fn relative(&self, c: f64, s: f64) -> f64 {
+        let (mut ck, mut sk) = (c, s);
+        let mut sum = 0.0;
+        for (a, b) in self.a.iter().zip(&self.b) {
+            (ck, sk) = (ck * c - sk * s, sk * c + ck * s);
+            sum += a * ck + b * sk;
+        }
+        sum
+    }
+
+    /// The boundary radius `f(theta)` for `(cos theta, sin theta) = (c, s)`.
+    pub fn boundary(&self, shape: &ShapeParams, c: f64, s: f64) -> f64 {
+        shape.radius * (1.0 + self.relative(c, s))
+    }
+
+    /// Radius outside of which `Theta = 0`.
+    pub fn outer_radius(&self, shape: &ShapeParams) -> f64 {
+        shape.radius * (1.0 + self.reach()) + BAND_Q * shape.sigma
+    }
+
+    /// Radius inside of which `Theta = 1` (0 when the band reaches the centre).
+    pub fn inner_radius(&self, shape: &ShapeParams) -> f64 {
+        (shape.radius * (1.0 - self.reach()) - BAND_Q * shape.sigma).max(0.0)
+    }
+
+    /// `Theta` at offset `(x, y)` from the droplet centre.
+    pub fn theta(&self, shape: &ShapeParams, x: f64, y: f64) -> f64 {
+        let r = x.hypot(y);
+        if r == 0.0 {
+            return 1.0;
+        }
+        let f = self.boundary(shape, x / r, y / r);
+        let q = (r - f) / shape.sigma;
+        if q >= BAND_Q {
+            0.0
+        } else if q <= -BAND_Q {
+            1.0
+        } else {
+            let e = (-2.0 * q.abs()).exp();
+            if q >= 0.0 {
+                e / (1.0 + e)
+            } else {
+                1.0 / (1.0 + e)
+            }
+        }
+    }
+}
+
+/// `w_k^(a)` and `w_k^(b)` at `(x, y)` (relative to the centre) for a droplet of radius `r0`.
+pub fn w_fields(k: usize, r0: f64, x: f64, y: f64) -> ([f64; 2], [f64; 2]) {
+    let (re, im) = power(x, y, k - 1);
+    let scale = r0.powi(2 - k as i32);
+    ([scale * re, -scale * im], [scale * im, scale * re])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const SHAPE: ShapeParams = ShapeParams {
+        radius: 1.0,
+        sigma: 0.03,
+    };
+
+    #[test]
+    fn two_modes_are_the_paper_plane_shape() {
+        let m = Modes {
+            a: vec![0.12],
+            b: vec![-0.05],
+        };
+        for (x, y) in [(0.3, 0.9), (-1.05, 0.2), (0.7, -0.74), (0.0, 1.1)] {
+            let t = m.theta(&SHAPE, x, y);
+            let t2 = SHAPE.theta(0.12, -0.05, x, y);
+            assert!((t - t2).abs() < 1e-14, "{t} vs {t2} at ({x}, {y})");
+        }
+    }
+
+    #[test]
+    fn w_fields_are_divergence_free_and_move_the_boundary_along_their_mode() {
+        let h = 1e-5;
+        for k in 2..=6 {
+            for (x, y) in [(0.3, 0.9), (-1.05, 0.2), (0.7, -0.74)] {
+                for pick in [0, 1] {
+                    let w = |x: f64, y: f64| {
+                        let (a, b) = w_fields(k, 1.3, x, y);
+                        [a, b][pick]
+                    };
+                    let div = (w(x + h, y)[0] - w(x - h, y)[0] + w(x, y + h)[1] - w(x, y - h)[1])
+                        / (2.0 * h);
+                    assert!(div.abs() < 1e-8, "k = {k}: div {div}");
+                }
+            }
+            // On the circle r = R, w . e_r = R cos k theta (a) and R sin k theta (b):
+            // the boundary's radial displacement of a unit a_k (b_k).
+            let r0 = 1.3;
+            for th in [0.1f64, 1.0, 2.5, 4.0] {
+                let (c, s) = (th.cos(), th.sin());
+                let (wa, wb) = w_fields(k, r0, r0 * c, r0 * s);
+                let kf = k as f64;
+                assert!((wa[0] * c + wa[1] * s - r0 * (kf * th).cos()).abs() < 1e-12);
+                assert!((wb[0] * c + wb[1] * s - r0 * (kf * th).sin()).abs() < 1e-12);
+            }
+        }
+        // k = 2 is the paper's w_2 (eq. 39): (x, -y) and (y, x).
+        let (a, b) = w_fields(2, 1.0, 0.4, -0.7);
+        assert_eq!((a, b), ([0.4, 0.7], [-0.7, 0.4]));
+    }
+
+    #[test]
+    fn rotating_by_pi_over_k_flips_a_k() {
+        // f(theta - pi / k) with a_k is f(theta) with -a_k.
+        let k = 3;
+        let mut m = Modes::circle(4);
+        m.a[k - 2] = 0.1;
+        let mut flipped = m.clone();
+        flipped.a[k - 2] = -0.1;
+        let rot = std::f64::consts::PI / k as f64;
+        for th in [0.2f64, 1.3, 3.0, 5.5] {
+            let f = m.boundary(&SHAPE, (th - rot).cos(), (th - rot).sin());
+            let g = flipped.boundary(&SHAPE, th.cos(), th.sin());
+            assert!((f - g).abs() < 1e-14, "{f} vs {g}");
+        }
+    }
+}

@@ -1,0 +1,129 @@
+//! `droplet truncation`: how far the paper's 2-mode truncation moves its results, from the
+//! general model with shape modes `k = 2..K` (`droplet_solver::roots::mode_solver`), for
+//! each `K` asked:
+//! - the MD state at the paper's Fig. 1c point (`eta_t` = 0.085, `kappa2` = 0.112): `v`, the
+//!   paper's `s` (mode 2), the total deformation and every `a_k`;
+//! - the resting disk's onsets at `kappa2` = 0.13: of motion, and of each mode's deformation;
+//! - the MD branch along `eta_t` at `kappa2` = 0.13 and its fold, the right edge of the IC/MD
+//!   bistable band (its left edge is the onset of motion);
+//!
+//! each with the time it took, as `truncation.parquet`, a picture of the Fig. 1c droplet's
+//! outline for each `K`, and the rows returned for the CLI.
+use crate::error::SweepError;
+use crate::pictures::map_figure::{outline_picture, Curve};
+use crate::tables::truncation::TruncationRow;
+use droplet_solver::continuation::mode_branch::{md_fold, md_state, ModeLine};
+use droplet_solver::model::modes::Modes;
+use droplet_solver::model::param::ModelParam;
+use droplet_solver::model::params::ModelParams;
+use droplet_solver::model::shape::ShapeParams;
+use droplet_solver::roots::mode_solver::ModeSolver;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// The paper's Fig. 1c point `(eta_t, kappa2)`.
+pub const FIG1C: (f64, f64) = (0.085, 0.112);
+/// The `kappa2` of the bistable band's line (Fig. 3b iv) and its `eta_t` range.
+pub const BAND_LINE: (f64, (f64, f64)) = (0.13, (0.07, 0.10));
+
+/// What `droplet truncation` computed and wrote.
+#[derive(Debug, Clone)]
+pub struct TruncationWritten {
+    pub rows: Vec<TruncationRow>,
+    pub files: Vec<PathBuf>,
+}
+
+/// Computes one row.
+fn row(k_max: usize, n: usize, base: &ModelParams) -> Result<TruncationRow, SweepError> {
+    let started = Instant::now();
+    let at = ModelParams {
+        eta_t: FIG1C.0,
+        kappa2: FIG1C.1,
+        ..*base
+    };
+    let mut solver = ModeSolver::new(at, n)?;
+    let fig1c = md_state(&mut solver, k_max)?;
+    let fig1c_seconds = started.elapsed().as_secs_f64();
+    let deformation = Modes {
+        a: fig1c.a.clone(),
+        b: vec![0.0; fig1c.a.len()],
+    }
+    .deformation();
+    let started = Instant::now();
+    let (kappa2, (from, to)) = BAND_LINE;
+    let line_base = ModelParams {
+        eta_t: from,
+        kappa2,
+        ..*base
+    };
+    let mut disk_solver = ModeSolver::new(line_base, n)?;
+    let disk = disk_solver.disk_thresholds(k_max);
+    let fold = md_fold(&ModeLine {
+        base: line_base,
+        n,
+        k_max,
+        parameter: ModelParam::EtaT,
+        from,
+        to,
+    })?;
+    Ok(TruncationRow {
+        k_max,
+        fig1c,
+        deformation,
+        fig1c_seconds,
+        disk,
+        fold,
+        fold_seconds: started.elapsed().as_secs_f64(),
+    })
+}
+
+/// Runs the study for each `K` of `modes` at grid size `n` (the other parameters the
+/// defaults) and writes `truncation.parquet` and `truncation.png/.svg` into `out`.
+pub fn run(out: &Path, modes: &[usize], n: usize) -> Result<TruncationWritten, SweepError> {
+    let base = ModelParams::default();
+    for &k in modes {
+        droplet_solver::contract::limits::check_modes(&base, n, k)?;
+    }
+    crate::store::atomic::create_output_dir(out)?;
+    let rows = modes
+        .iter()
+        .map(|&k| row(k, n, &base))
+        .collect::<Result<Vec<_>, _>>()?;
+    let mut files = vec![crate::tables::truncation::write(out, &rows, n)?];
+    let shape = ShapeParams {
+        radius: base.radius,
+        sigma: base.sigma,
+    };
+    let curves: Vec<Curve> = rows
+        .iter()
+        .map(|r| {
+            let m = Modes {
+                a: r.fig1c.a.clone(),
+                b: vec![0.0; r.fig1c.a.len()],
+            };
+            let points = (0..=360)
+                .map(|i| {
+                    let th = (i as f64).to_radians();
+                    let f = m.boundary(&shape, th.cos(), th.sin());
+                    (f * th.cos(), f * th.sin())
+                })
+                .collect();
+            Curve {
+                label: format!("K = {}: v = {:.4}", r.k_max, r.fig1c.v),
+                points,
+                dashed: false,
+                colour: None,
+            }
+        })
+        .collect();
+    files.extend(outline_picture(
+        out,
+        "truncation",
+        &format!(
+            "MD droplet at Fig. 1c (eta_t {}, kappa2 {}), moving along +x; N = {n}",
+            FIG1C.0, FIG1C.1
+        ),
+        &curves,
+    )?);
+    Ok(TruncationWritten { rows, files })
+}

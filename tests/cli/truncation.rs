@@ -1,0 +1,108 @@
+//! `droplet truncation`: the K-mode model's results against the 2-mode commands
+//! (`stability`, `continue`) at K = 2, and what the third mode changes.
+use crate::common::{json, run};
+
+#[test]
+fn two_modes_are_the_two_mode_commands_and_a_third_changes_the_moving_state() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("trunc");
+    let t = json(&run(&[
+        "truncation",
+        "--modes",
+        "2,3",
+        "--n",
+        "96",
+        "--json",
+        "--out",
+        out.to_str().unwrap(),
+    ]));
+    let rows = t["rows"].as_array().unwrap();
+    assert_eq!(rows.len(), 2, "{t}");
+    let (two, three) = (&rows[0], &rows[1]);
+    let f = |r: &serde_json::Value, k: &str| r[k].as_f64().unwrap();
+    // K = 2: the 2-mode model's MD state, onset of motion and fold, by other code paths.
+    let md = json(&run(&[
+        "stability",
+        "--eta-t",
+        "0.085",
+        "--kappa2",
+        "0.112",
+        "--state",
+        "md",
+        "--n",
+        "96",
+        "--json",
+    ]));
+    assert!((f(two, "v") - f(&md, "v")).abs() < 1e-8, "{two} {md}");
+    assert!((f(two, "s") - f(&md, "s")).abs() < 1e-8, "{two} {md}");
+    let ic = json(&run(&[
+        "stability",
+        "--eta-t",
+        "0.085",
+        "--kappa2",
+        "0.13",
+        "--state",
+        "ic",
+        "--n",
+        "96",
+        "--json",
+    ]));
+    let onset = ic["ic_thresholds"]["eta_t"].as_f64().unwrap();
+    assert!(
+        (f(two, "onset_eta_t") - onset).abs() < 1e-7,
+        "{two} {onset}"
+    );
+    let c = json(&run(&[
+        "continue", "--branch", "md", "--kappa2", "0.13", "--from", "0.07", "--to", "0.1", "--n",
+        "96", "--json",
+    ]));
+    let sn = c["events"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|e| e["kind"] == "SN")
+        .unwrap();
+    assert!(
+        (f(two, "fold_eta_t") - f(sn, "at")).abs() < 1e-7,
+        "{two} {sn}"
+    );
+    // K = 3: a front-back asymmetric droplet (a3 != 0 on its axis of motion), another speed,
+    // and the fold moved.
+    let a3 = three["a"][1].as_f64().unwrap();
+    assert!(a3.abs() > 1e-2, "{three}");
+    assert!((f(three, "v") - f(two, "v")).abs() > 1e-2, "{three}");
+    assert!(
+        (f(three, "fold_eta_t") - f(two, "fold_eta_t")).abs() > 1e-4,
+        "{three}"
+    );
+    for file in ["truncation.parquet", "truncation.png", "truncation.svg"] {
+        assert!(out.join(file).exists(), "{file}");
+    }
+}
+
+#[test]
+fn bad_modes_exit_2_naming_the_key() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("t");
+    for (modes, n, says) in [
+        ("1", "96", "modes"),
+        ("0", "96", "modes"),
+        ("2,2", "96", "--modes"),
+        ("2,x", "96", "--modes"),
+        ("17", "192", "modes"),
+        ("8", "64", "at most 7 at N = 64"),
+    ] {
+        let o = run(&[
+            "truncation",
+            "--modes",
+            modes,
+            "--n",
+            n,
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "--modes {modes}: {err}");
+        assert!(err.contains(says), "--modes {modes}: {err}");
+    }
+}
