@@ -490,4 +490,51 @@ mod tests {
             .unwrap();
         assert!((back.v + three.v).abs() < 1e-9 && (back.a[1] + three.a[1]).abs() < 1e-9);
     }
+
+    #[test]
+    fn the_three_mode_state_continues_the_two_mode_one() {
+        // Mode 3's stiffness scaled by lam from 1000 (a3 ~ 0: the 2-mode state) down to 1:
+        // Newton from each state to the next follows one branch, with no fold on the way, to
+        // the 3-mode root Newton finds directly (not another root).
+        let mut s = ModeSolver::new(ModelParams::at(0.085, 0.112), 96).unwrap();
+        let two = s.newton_x(&[0.59, -0.27], 1e-11).unwrap();
+        let direct = s.newton_x(&[two.v, two.a[0], 0.0], 1e-11).unwrap();
+        let k3 = s.kappa(3);
+        let opts = NewtonOptions {
+            tol: 1e-11,
+            max_iter: 40,
+            fd_step: 1e-7,
+            max_step: vec![0.05; 3],
+        };
+        let mut y = vec![two.v, two.a[0], 0.0];
+        let mut last_v = f64::INFINITY;
+        // 1000 down to 4 geometrically, then to 1 in steps of 0.05 (v falls steeply there:
+        // from 0.53 at lam = 3 to 0.27 at 1, at N = 192).
+        let lams = (0..12)
+            .map(|i| 1000f64.powf(1.0 - i as f64 / 12.0) * 4f64.powf(i as f64 / 12.0))
+            .chain((0..=60).map(|i| 4.0 - 0.05 * i as f64));
+        for lam in lams {
+            let sol = newton::solve(
+                |u| {
+                    let mut r = s.residual_x(u);
+                    r[2] -= (lam - 1.0) * k3 * u[2];
+                    r
+                },
+                &y,
+                &opts,
+            )
+            .unwrap();
+            // The speed falls steadily as mode 3 softens.
+            assert!(
+                sol.x[0] < last_v && (sol.x[0] - y[0]).abs() < 0.05,
+                "{lam}: {sol:?}"
+            );
+            last_v = sol.x[0];
+            y = sol.x;
+        }
+        assert!(
+            (y[0] - direct.v).abs() < 1e-7 && (y[2] - direct.a[1]).abs() < 1e-7,
+            "{y:?} {direct:?}"
+        );
+    }
 }
