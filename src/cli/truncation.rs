@@ -12,9 +12,13 @@ use std::path::PathBuf;
 /// point (eta_t 0.085, kappa2 0.112: v, the paper's s = |a2|, the total deformation, every
 /// a_k; a droplet moving along +x has a_k on the x axis only); the resting disk's onset of
 /// motion at kappa2 = 0.13; the MD branch along eta_t at kappa2 = 0.13 and its fold, the right
-/// edge of the IC/MD bistable band. Stability is not computed for K > 2 (the fold is where a
-/// real eigenvalue crosses zero). Writes DIR/truncation.parquet (one row per K) and
-/// DIR/truncation.png/.svg (the Fig. 1c droplet's outline for each K).
+/// edge of the IC/MD bistable band; and the phase boundaries of the Fig. 2a window for the
+/// states on the x axis (the onsets of motion and of the axis deformation, ID's onset of
+/// motion, the MD fold curve). Stability is not computed for K > 2 (a fold or an onset is where
+/// a real eigenvalue crosses zero). Writes DIR/truncation.parquet (one row per K),
+/// DIR/truncation_boundaries.parquet (curves named `K = k: <boundary>`), DIR/truncation.png/.svg
+/// (the Fig. 1c droplet's outline for each K) and DIR/truncation_boundaries.png/.svg (the
+/// boundaries for every K over each other). About 25 s per K at N = 192 (60 s for K = 6).
 #[derive(clap::Args)]
 #[command(
     after_help = "Examples:\n  droplet truncation --out results/truncation                 # K = 2, 3, 4, 6 at N = 192\n  droplet truncation --modes 2,3 --n 96 --json --out out/trunc"
@@ -33,7 +37,7 @@ pub struct Args {
     out: PathBuf,
     /// Print one JSON object (keys: n, fig1c [eta_t, kappa2], band_kappa2, rows [{k_max,
     /// v, s, deformation, a [a2..aK], fig1c_seconds, onset_eta_t, fold_eta_t, fold_v,
-    /// band_width, fold_seconds}], files).
+    /// band_width, fold_seconds, boundaries_seconds}], files).
     #[arg(long)]
     json: bool,
 }
@@ -65,7 +69,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
         droplet_solver::contract::limits::check_modes(&base, a.n, k)?;
     }
     eprintln!(
-        "truncation: K = {ks:?} at N = {} (about 1 s per K at N = 192)",
+        "truncation: K = {ks:?} at N = {} (about 25 s per K at N = 192)",
         a.n
     );
     let done = run_study(&a.out, &ks, a.n)?;
@@ -82,6 +86,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
                     "fold_v": r.fold.as_ref().map(|f| f.v),
                     "band_width": r.fold.as_ref().map(|f| f.at - r.disk.eta_t),
                     "fold_seconds": r.fold_seconds,
+                    "boundaries_seconds": r.boundaries_seconds,
                 })
             })
             .collect();

@@ -5,7 +5,7 @@ use crate::common::{table_without_wall, write_spec};
 use std::process::Stdio;
 
 /// The column `name` of a table as floats.
-fn floats(df: &polars::prelude::DataFrame, name: &str) -> Vec<f64> {
+pub(crate) fn floats(df: &polars::prelude::DataFrame, name: &str) -> Vec<f64> {
     let c = df.column(name).unwrap().f64().unwrap().clone();
     (0..c.len()).map(|i| c.get(i).unwrap()).collect()
 }

@@ -1,6 +1,7 @@
 //! `droplet truncation`: the K-mode model's results against the 2-mode commands
 //! (`stability`, `continue`) at K = 2, and what the third mode changes.
-use crate::common::{json, run};
+use crate::axes::floats;
+use crate::common::{json, read, run};
 
 #[test]
 fn two_modes_are_the_two_mode_commands_and_a_third_changes_the_moving_state() {
@@ -75,8 +76,35 @@ fn two_modes_are_the_two_mode_commands_and_a_third_changes_the_moving_state() {
         (f(three, "fold_eta_t") - f(two, "fold_eta_t")).abs() > 1e-4,
         "{three}"
     );
-    for file in ["truncation.parquet", "truncation.png", "truncation.svg"] {
+    for file in [
+        "truncation.parquet",
+        "truncation.png",
+        "truncation.svg",
+        "truncation_boundaries.parquet",
+        "truncation_boundaries.png",
+    ] {
         assert!(out.join(file).exists(), "{file}");
+    }
+    // Each K's fold curve, continued in (eta_t, kappa2), crosses kappa2 = 0.13 where the branch
+    // followed in eta_t folds (two computations).
+    let b = read(&out.join("truncation_boundaries.parquet"));
+    let curve = b.column("curve").unwrap().str().unwrap().clone();
+    let (e, k) = (floats(&b, "eta_t"), floats(&b, "kappa2"));
+    for row in rows {
+        let name = format!("K = {}: MD saddle-node (x axis)", row["k_max"]);
+        let pts: Vec<(f64, f64)> = (0..b.height())
+            .filter(|&i| curve.get(i) == Some(name.as_str()))
+            .map(|i| (e[i], k[i]))
+            .collect();
+        let w = pts
+            .windows(2)
+            .find(|w| (w[0].1 - 0.13) * (w[1].1 - 0.13) <= 0.0)
+            .unwrap_or_else(|| panic!("{name}: {pts:?}"));
+        let at = w[0].0 + (w[1].0 - w[0].0) * (0.13 - w[0].1) / (w[1].1 - w[0].1);
+        assert!(
+            (at - f(row, "fold_eta_t")).abs() < 2e-5,
+            "{name}: {at} vs {row}"
+        );
     }
 }
 

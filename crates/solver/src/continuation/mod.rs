@@ -5,7 +5,8 @@
 //! bifurcation points along a branch ([`branch`], located by [`events`]), and their continuation in both parameters,
 //! the PDE's own phase boundaries: in the paper's plane ([`boundaries`]) and in a plane of any
 //! two model parameters ([`plane`]), traced as zero sets ([`level_set`]) or continued
-//! ([`fold_curve`]); the MD branch of the `K`-mode model and its fold ([`mode_branch`]).
+//! ([`fold_curve`]); the MD branch of the `K`-mode model and its fold ([`mode_branch`]) and its boundaries
+//! ([`mode_boundaries`]).
 //!
 //! May use: `numerics`, `model`, `contract`, `reduced`, `roots`. Used by: the sweep crate and
 //! the CLI (`droplet continue`, `droplet boundaries`).
@@ -15,6 +16,7 @@ pub mod branch;
 pub mod events;
 pub mod fold_curve;
 pub mod level_set;
+pub mod mode_boundaries;
 pub mod mode_branch;
 pub mod plane;
 pub mod polyline;

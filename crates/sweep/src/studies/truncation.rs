@@ -6,13 +6,20 @@
 //! - the resting disk's onsets at `kappa2` = 0.13: of motion, and of each mode's deformation;
 //! - the MD branch along `eta_t` at `kappa2` = 0.13 and its fold, the right edge of the IC/MD
 //!   bistable band (its left edge is the onset of motion);
+//! - the phase boundaries of the Fig. 2a window for the states on the x axis
+//!   (`droplet_solver::continuation::mode_boundaries`: the onsets, ID's onset of motion, the MD
+//!   fold curve), drawn for every `K` over each other;
 //!
 //! each with the time it took, as `truncation.parquet`, a picture of the Fig. 1c droplet's
 //! outline for each `K`, and the rows returned for the CLI.
 use crate::error::SweepError;
-use crate::pictures::map_figure::{outline_picture, Curve};
+use crate::pictures::map_figure::{boundary_picture, outline_picture, Curve, CURVE_COLOURS};
+use crate::studies::boundaries::FIG2A_WINDOW;
+use crate::tables::boundaries::NamedCurve;
 use crate::tables::truncation::TruncationRow;
+use droplet_solver::continuation::mode_boundaries::{mode_boundaries, ModeWindow};
 use droplet_solver::continuation::mode_branch::{md_fold, md_state, ModeLine};
+use droplet_solver::contract::settings::ModelKind;
 use droplet_solver::model::modes::Modes;
 use droplet_solver::model::param::ModelParam;
 use droplet_solver::model::params::ModelParams;
@@ -33,8 +40,12 @@ pub struct TruncationWritten {
     pub files: Vec<PathBuf>,
 }
 
-/// Computes one row.
-fn row(k_max: usize, n: usize, base: &ModelParams) -> Result<TruncationRow, SweepError> {
+/// Computes one row, and the boundaries of the Fig. 2a window with `k_max` modes.
+fn row(
+    k_max: usize,
+    n: usize,
+    base: &ModelParams,
+) -> Result<(TruncationRow, Vec<NamedCurve>), SweepError> {
     let started = Instant::now();
     let at = ModelParams {
         eta_t: FIG1C.0,
@@ -66,15 +77,42 @@ fn row(k_max: usize, n: usize, base: &ModelParams) -> Result<TruncationRow, Swee
         from,
         to,
     })?;
-    Ok(TruncationRow {
+    let fold_seconds = started.elapsed().as_secs_f64();
+    let started = Instant::now();
+    let (eta_t, kappa2) = FIG2A_WINDOW;
+    let window = ModeWindow {
+        base: ModelParams {
+            eta_t: eta_t.0,
+            kappa2: kappa2.0,
+            ..*base
+        },
+        n,
         k_max,
-        fig1c,
-        deformation,
-        fig1c_seconds,
-        disk,
-        fold,
-        fold_seconds: started.elapsed().as_secs_f64(),
-    })
+        eta_t,
+        kappa2,
+        id_samples: 30,
+    };
+    let curves = mode_boundaries(&window)?
+        .into_iter()
+        .map(|b| NamedCurve {
+            model: ModelKind::Pde,
+            name: format!("K = {k_max}: {}", b.name),
+            points: b.points,
+        })
+        .collect();
+    Ok((
+        TruncationRow {
+            k_max,
+            fig1c,
+            deformation,
+            fig1c_seconds,
+            disk,
+            fold,
+            fold_seconds,
+            boundaries_seconds: started.elapsed().as_secs_f64(),
+        },
+        curves,
+    ))
 }
 
 /// Runs the study for each `K` of `modes` at grid size `n` (the other parameters the
@@ -85,11 +123,48 @@ pub fn run(out: &Path, modes: &[usize], n: usize) -> Result<TruncationWritten, S
         droplet_solver::contract::limits::check_modes(&base, n, k)?;
     }
     crate::store::atomic::create_output_dir(out)?;
-    let rows = modes
-        .iter()
-        .map(|&k| row(k, n, &base))
-        .collect::<Result<Vec<_>, _>>()?;
+    let mut rows = Vec::new();
+    let mut boundaries: Vec<NamedCurve> = Vec::new();
+    for &k in modes {
+        let (r, curves) = row(k, n, &base)?;
+        rows.push(r);
+        boundaries.extend(curves);
+    }
     let mut files = vec![crate::tables::truncation::write(out, &rows, n)?];
+    let path = out.join("truncation_boundaries.parquet");
+    crate::tables::boundaries::write(
+        &path,
+        &boundaries,
+        None,
+        vec![
+            ("n".into(), n.to_string()),
+            ("modes".into(), format!("{modes:?}")),
+        ],
+    )?;
+    files.push(path);
+    // One colour per K, in the order given.
+    let colour_of = |name: &str| {
+        modes
+            .iter()
+            .position(|k| name.starts_with(&format!("K = {k}:")))
+            .map(|i| CURVE_COLOURS[i % CURVE_COLOURS.len()])
+    };
+    let drawn: Vec<Curve> = boundaries
+        .iter()
+        .map(|c| Curve {
+            colour: colour_of(&c.name),
+            dashed: c.name.contains("ID onset"),
+            ..Curve::of(c)
+        })
+        .collect();
+    files.extend(boundary_picture(
+        out,
+        "truncation_boundaries",
+        &format!("Phase boundaries with shape modes 2..K (x-axis states), N = {n}"),
+        &drawn,
+        FIG2A_WINDOW.0,
+        FIG2A_WINDOW.1,
+    )?);
     let shape = ShapeParams {
         radius: base.radius,
         sigma: base.sigma,

@@ -2,7 +2,8 @@
 //! [`crate::studies::truncation`]): the Fig. 1c MD state (`v`, the paper's `s = |a2|`, the
 //! total deformation, `a2 .. aKmax`, null beyond a row's `K`), the resting disk's onset of
 //! motion at `kappa2` = 0.13, the MD fold there (`eta_t`, `v`), the IC/MD band's width, and
-//! the seconds each took.
+//! the seconds each took (the boundaries of the Fig. 2a window for each `K` are in
+//! `truncation_boundaries.parquet`, curves named `K = k: <boundary>`).
 use crate::error::SweepError;
 use crate::tables::sweep_tables::{metadata, write_parquet};
 use droplet_solver::continuation::mode_branch::ModeFold;
@@ -25,6 +26,8 @@ pub struct TruncationRow {
     /// The MD fold on the band line, if found.
     pub fold: Option<ModeFold>,
     pub fold_seconds: f64,
+    /// The phase boundaries in the Fig. 2a window (`truncation_boundaries.parquet`).
+    pub boundaries_seconds: f64,
 }
 
 /// The file's name in a directory.
@@ -62,6 +65,7 @@ pub fn write(dir: &Path, rows: &[TruncationRow], n: usize) -> Result<PathBuf, Sw
         ),
         Column::new("fig1c_seconds".into(), f(&|r| r.fig1c_seconds)),
         Column::new("fold_seconds".into(), f(&|r| r.fold_seconds)),
+        Column::new("boundaries_seconds".into(), f(&|r| r.boundaries_seconds)),
     ]);
     let mut df = DataFrame::new(rows.len(), columns)?;
     let mut meta = metadata(None);

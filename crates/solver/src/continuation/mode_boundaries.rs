@@ -1,0 +1,330 @@
+//! The phase boundaries of the `K`-mode model in a window of `(eta_t, kappa2)`, for the states
+//! on the x axis ([`crate::roots::mode_solver`]: motion along x, `b_k = 0`), each point a
+//! solution of its equations:
+//!
+//! - **IC onset of motion**: the disk's drift threshold with the odd modes it couples to in
+//!   the box ([`ModeSolver::disk_thresholds`]), at the window's bottom and top.
+//! - **IC onset of deformation (a2, axis)**: the disk's mode-2 threshold (modes decouple at
+//!   the circle but for the box's weak `k +- 4` coupling, left out).
+//! - **ID onset of motion (axis ID)**: the resting deformed state elongated along y (`v = 0`,
+//!   its odd modes 0 by the mirror `x -> -x`) solved by Newton at each `kappa2`, and the `eta_t`
+//!   at which its drift along x, its minor axis (the speed and the odd modes), has a zero
+//!   eigenvalue: a Schur complement of the `lambda = 0` Jacobian, as for the disk.
+//! - **MD saddle-node (x axis)**: pseudo-arclength continuation in `(v, a_2..a_K, qe, qk)` of
+//!   `R = 0, det dR/d(v, a) = 0`, started from the fold of the MD branch at the middle
+//!   `kappa2` ([`crate::continuation::mode_branch`]).
+//!
+//! The diagonal versions (`b_k`) and the MC onset are the 2-mode model's only so far.
+use crate::continuation::arclength::{start, ArclengthOptions, Stepper};
+use crate::continuation::mode_branch::{md_fold, ModeLine};
+use crate::error::SolverError;
+use crate::model::param::ModelParam;
+use crate::model::params::ModelParams;
+use crate::numerics::newton::{self, fd_jacobian, lu_solve, NewtonOptions};
+use crate::reduced::boundaries::Boundary;
+use crate::roots::mode_solver::ModeSolver;
+
+/// The window and resolution of [`mode_boundaries`].
+#[derive(Debug, Clone)]
+pub struct ModeWindow {
+    /// The other parameters (`eta_t`, `kappa2` are varied).
+    pub base: ModelParams,
+    pub n: usize,
+    /// Modes `2..=k_max`.
+    pub k_max: usize,
+    pub eta_t: (f64, f64),
+    pub kappa2: (f64, f64),
+    /// Samples of the ID onset line in `kappa2`.
+    pub id_samples: usize,
+}
+
+/// The determinant of a square matrix (LU with partial pivoting).
+fn det(mut a: Vec<Vec<f64>>) -> f64 {
+    let n = a.len();
+    let mut d = 1.0;
+    for c in 0..n {
+        let p = (c..n)
+            .max_by(|&i, &j| a[i][c].abs().total_cmp(&a[j][c].abs()))
+            .expect("rows");
+        if a[p][c] == 0.0 {
+            return 0.0;
+        }
+        if p != c {
+            a.swap(p, c);
+            d = -d;
+        }
+        d *= a[c][c];
+        for r in c + 1..n {
+            let f = a[r][c] / a[c][c];
+            for k in c..n {
+                a[r][k] -= f * a[c][k];
+            }
+        }
+    }
+    d
+}
+
+/// The `eta_t` at which the drift sector of the `lambda = 0` Jacobian `c` (taken with
+/// `eta_t = 0`; unknowns `(v, a_2..a_K)`) has a zero eigenvalue: `c00 - c0^T C_oo^-1 c0` over
+/// the odd modes `o`, whose rows already hold `-kappa_k`.
+fn drift_threshold(c: &[Vec<f64>]) -> f64 {
+    let k_max = c.len();
+    let odd: Vec<usize> = (3..=k_max).filter(|k| k % 2 == 1).map(|k| k - 1).collect();
+    let mut eta = c[0][0];
+    if !odd.is_empty() {
+        let block: Vec<Vec<f64>> = odd
+            .iter()
+            .map(|&i| odd.iter().map(|&j| c[i][j]).collect())
+            .collect();
+        let col: Vec<f64> = odd.iter().map(|&i| c[i][0]).collect();
+        if let Some(x) = lu_solve(block, &col) {
+            eta -= odd.iter().zip(&x).map(|(&j, xj)| c[0][j] * xj).sum::<f64>();
+        }
+    }
+    eta
+}
+
+/// The ID onset of motion at each of `w.id_samples` values of `kappa2` from the window's
+/// bottom up to where ID meets the disk (the mode-2 onset `top`), from the first `kappa2`
+/// where ID is found (with mode 2 alone, then adding one mode at a time) to where Newton
+/// loses it.
+fn id_line(w: &ModeWindow, top: f64) -> Result<Vec<(f64, f64)>, SolverError> {
+    let mut solver = ModeSolver::new(w.base, w.n)?;
+    let k_max = w.k_max;
+    let (lo, hi) = (w.kappa2.0, top.min(w.kappa2.1));
+    let m = w.id_samples.max(2);
+    let opts = |unknowns: usize| NewtonOptions {
+        tol: 1e-12,
+        max_iter: 40,
+        fd_step: 1e-7,
+        max_step: vec![0.05; unknowns],
+    };
+    // The shape balance at rest for `a_2..a_(len+1)`.
+    let solve = |solver: &mut ModeSolver, seed: &[f64]| {
+        newton::solve(
+            |a| {
+                let y: Vec<f64> = std::iter::once(0.0).chain(a.iter().copied()).collect();
+                solver.residual_x(&y)[1..].to_vec()
+            },
+            seed,
+            &opts(seed.len()),
+        )
+        .ok()
+        .map(|sol| sol.x)
+        .filter(|x| x[0].abs() > 1e-4)
+    };
+    let mut shape: Option<Vec<f64>> = None;
+    let mut pts = Vec::new();
+    for i in 0..m {
+        // Denser towards the IC end, where ID's amplitude goes like a square root.
+        let t = i as f64 / (m - 1) as f64;
+        let k = hi - (hi - lo) * (1.0 - t).powi(2) * 0.999_999 - 1e-9;
+        let k = if i == 0 { lo } else { k.max(lo) };
+        solver.set_control(0.0, k);
+        let next = match &shape {
+            Some(s) => solve(&mut solver, s),
+            // ID elongated along y (a2 < 0): it starts to move along x, its minor axis, which
+            // the x-axis states describe (the one elongated along x is its quarter turn).
+            None => solve(&mut solver, &[-0.3]).and_then(|two| {
+                (3..=k_max).try_fold(two, |s, _| {
+                    let seed: Vec<f64> = s.iter().copied().chain([0.0]).collect();
+                    solve(&mut solver, &seed)
+                })
+            }),
+        };
+        match next {
+            Some(s) => shape = Some(s),
+            None if shape.is_some() => break,
+            None => continue,
+        }
+        let y0: Vec<f64> = std::iter::once(0.0)
+            .chain(shape.iter().flatten().copied())
+            .collect();
+        let c = fd_jacobian(&mut |y: &[f64]| solver.residual_x(y), &y0, 1e-6);
+        pts.push((drift_threshold(&c), k));
+    }
+    Ok(pts)
+}
+
+/// The MD fold curve: continued both ways from the fold on the middle `kappa2`.
+fn fold_curve(w: &ModeWindow) -> Result<Vec<(f64, f64)>, SolverError> {
+    let mid = 0.5 * (w.kappa2.0 + w.kappa2.1);
+    let line = ModeLine {
+        base: ModelParams {
+            eta_t: w.eta_t.0,
+            kappa2: mid,
+            ..w.base
+        },
+        n: w.n,
+        k_max: w.k_max,
+        parameter: ModelParam::EtaT,
+        from: w.eta_t.0,
+        to: w.eta_t.1,
+    };
+    let Some(fold) = md_fold(&line)? else {
+        return Ok(Vec::new());
+    };
+    let mut solver = ModeSolver::new(w.base, w.n)?;
+    let k_max = w.k_max;
+    let (e, k) = (w.eta_t, w.kappa2);
+    let control = |y: &[f64]| {
+        (
+            e.0 + y[k_max] * (e.1 - e.0),
+            k.0 + y[k_max + 1] * (k.1 - k.0),
+        )
+    };
+    let det_scale = std::cell::Cell::new(1.0);
+    let mut f = |y: &[f64]| -> Vec<f64> {
+        let (eta, kap) = control(y);
+        solver.set_control(eta, kap);
+        let state = &y[..k_max];
+        let mut r = solver.residual_x(state);
+        let j = fd_jacobian(&mut |x: &[f64]| solver.residual_x(x), state, 1e-6);
+        r.push(det(j) / det_scale.get());
+        r
+    };
+    let y0: Vec<f64> = std::iter::once(fold.v)
+        .chain(fold.a.iter().copied())
+        .chain([(fold.at - e.0) / (e.1 - e.0), (mid - k.0) / (k.1 - k.0)])
+        .collect();
+    let j0 = fd_jacobian(&mut |y: &[f64]| f(y), &y0, 1e-5);
+    // Scale det by its own gradient (its size varies with K by orders of magnitude).
+    let grad: f64 = j0[k_max].iter().map(|g| g * g).sum::<f64>().sqrt();
+    if grad > 0.0 {
+        det_scale.set(grad);
+    }
+    let opts = ArclengthOptions {
+        tol: 1e-9,
+        fd_step: 1e-5,
+        ds: 0.01,
+        ds_max: 0.04,
+        max_iter: 10,
+        ..ArclengthOptions::default()
+    };
+    let mut halves = Vec::new();
+    for sign in [-1.0, 1.0] {
+        let mut prev = vec![0.0; y0.len()];
+        *prev.last_mut().expect("qk") = sign;
+        let Some(mut p) = start(&mut f, &y0, &prev, &opts) else {
+            continue;
+        };
+        let mut stepper = Stepper::new(opts.clone());
+        let mut pts = vec![control(&p.y)];
+        for _ in 0..400 {
+            let Some(step) = stepper.advance(&mut f, &p) else {
+                break;
+            };
+            let y = &step.point.y;
+            let inside = (0.0..=1.0).contains(&y[k_max]) && (0.0..=1.0).contains(&y[k_max + 1]);
+            pts.push(control(y));
+            if !inside || y[0] < 1e-3 {
+                break;
+            }
+            p = step.point;
+        }
+        halves.push(pts);
+    }
+    let mut out: Vec<(f64, f64)> = Vec::new();
+    if let Some(back) = halves.first() {
+        out.extend(back.iter().rev());
+    }
+    if let Some(fwd) = halves.get(1) {
+        out.extend(fwd.iter().skip(1));
+    }
+    Ok(out)
+}
+
+/// The `K`-mode model's boundaries in the window (see the module doc), named like the
+/// 2-mode model's.
+pub fn mode_boundaries(w: &ModeWindow) -> Result<Vec<Boundary>, SolverError> {
+    crate::contract::limits::check_modes(&w.base, w.n, w.k_max)?;
+    let (e0, e1) = w.eta_t;
+    let (k0, k1) = w.kappa2;
+    let mut disk = ModeSolver::new(
+        ModelParams {
+            kappa2: k0,
+            ..w.base
+        },
+        w.n,
+    )?;
+    let low = disk.disk_thresholds(w.k_max);
+    disk.set_control(w.base.eta_t, k1);
+    let high = disk.disk_thresholds(w.k_max);
+    let shape_onset = low.kappa2[0];
+    type Curve = Result<Vec<(f64, f64)>, SolverError>;
+    let (id, fold): (Curve, Curve) = std::thread::scope(|scope| {
+        let id = scope.spawn(|| id_line(w, shape_onset));
+        let fold = fold_curve(w);
+        (id.join().expect("the ID line's thread panicked"), fold)
+    });
+    let mut out = vec![
+        Boundary {
+            name: "IC onset of motion",
+            points: vec![(low.eta_t, shape_onset.max(k0)), (high.eta_t, k1)],
+        },
+        Boundary {
+            name: "IC onset of deformation (a2, axis)",
+            points: vec![(low.eta_t.max(e0), shape_onset), (e1, shape_onset)],
+        },
+        Boundary {
+            name: "ID onset of motion (axis ID)",
+            points: id?,
+        },
+        Boundary {
+            name: "MD saddle-node (x axis)",
+            points: fold?,
+        },
+    ];
+    out.retain(|b| b.points.len() > 1);
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::continuation::boundaries::{boundaries, Window};
+    use crate::continuation::polyline::distance_to_polyline;
+
+    #[test]
+    fn with_two_modes_they_are_the_two_mode_boundaries() {
+        let (e, k) = ((0.07, 0.1), (0.1, 0.17));
+        let base = ModelParams::at(0.07, 0.1);
+        let n = 96;
+        let mine = mode_boundaries(&ModeWindow {
+            base,
+            n,
+            k_max: 2,
+            eta_t: e,
+            kappa2: k,
+            id_samples: 30,
+        })
+        .unwrap();
+        let two = boundaries(&Window {
+            base,
+            n,
+            eta_t: e,
+            kappa2: k,
+            id_samples: 30,
+        })
+        .unwrap();
+        let scaled = |p: (f64, f64)| ((p.0 - e.0) / (e.1 - e.0), (p.1 - k.0) / (k.1 - k.0));
+        assert_eq!(mine.len(), 4, "{mine:?}");
+        for b in &mine {
+            let other = two.iter().find(|c| c.name == b.name).expect(b.name);
+            if b.name == "IC onset of motion" {
+                // The 2-mode line starts at the higher (diagonal) deformation onset, which the
+                // x-axis states do not have: its eta_t only.
+                let off = (b.points[0].0 - other.points[0].0).abs();
+                assert!(off < 1e-7, "{b:?} vs {other:?}");
+                continue;
+            }
+            let line: Vec<(f64, f64)> = other.points.iter().map(|&p| scaled(p)).collect();
+            let worst = b
+                .points
+                .iter()
+                .map(|&p| distance_to_polyline(scaled(p), &line))
+                .fold(0.0f64, f64::max);
+            assert!(worst < 1e-4, "{}: {worst:e}", b.name);
+        }
+    }
+}
