@@ -38,30 +38,10 @@ pub struct ModeWindow {
     pub id_samples: usize,
 }
 
-/// The determinant of a square matrix (LU with partial pivoting).
-fn det(mut a: Vec<Vec<f64>>) -> f64 {
+/// The determinant of a square matrix (nalgebra's LU).
+fn det(a: Vec<Vec<f64>>) -> f64 {
     let n = a.len();
-    let mut d = 1.0;
-    for c in 0..n {
-        let p = (c..n)
-            .max_by(|&i, &j| a[i][c].abs().total_cmp(&a[j][c].abs()))
-            .expect("rows");
-        if a[p][c] == 0.0 {
-            return 0.0;
-        }
-        if p != c {
-            a.swap(p, c);
-            d = -d;
-        }
-        d *= a[c][c];
-        for r in c + 1..n {
-            let f = a[r][c] / a[c][c];
-            for k in c..n {
-                a[r][k] -= f * a[c][k];
-            }
-        }
-    }
-    d
+    nalgebra::DMatrix::from_fn(n, n, |i, j| a[i][j]).determinant()
 }
 
 /// The `eta_t` at which the drift sector of the `lambda = 0` Jacobian `c` (taken with
