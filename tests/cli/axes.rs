@@ -154,6 +154,35 @@ fn pde_curve(path: &std::path::Path, name: &str, (x, y): (&str, &str)) -> Vec<(f
         .collect()
 }
 
+/// A one-IC ODE sweep `name` of `body` (its `params` and `grid`) in `dir`, then `droplet
+/// boundaries` over it at grid size `n`: the sweep's directory and the JSON, whose plane must be
+/// `plane`.
+fn boundaries_over(
+    dir: &std::path::Path,
+    name: &str,
+    body: &str,
+    n: &str,
+    plane: (&str, &str),
+) -> (std::path::PathBuf, serde_json::Value) {
+    let spec = write_spec(
+        dir,
+        &format!("{name}.yaml"),
+        &format!("model: ode\n{body}initial_conditions: [i]\n"),
+    );
+    let out = dir.join(name);
+    sweep_with_pictures(&spec, &out);
+    let b = json(&run(&[
+        "boundaries",
+        "--out",
+        out.to_str().unwrap(),
+        "--n",
+        n,
+        "--json",
+    ]));
+    assert_eq!(b["plane"], serde_json::json!([plane.0, plane.1]), "{b}");
+    (out, b)
+}
+
 /// The resting disk's onset of motion at a point, from `droplet stability` (an independent
 /// computation: one linearisation, no tracing).
 fn disk_onset(eta_t: f64, kappa2: f64, set: &str, n: &str) -> f64 {
@@ -179,22 +208,13 @@ fn boundaries_over_a_radius_eta_t_sweep_are_continued_in_the_pair() {
     // Radius moves the states: the curves are continued in (radius, eta_t) itself. At R = 1
     // the onset of motion is the paper plane's; at every point it is the disk's threshold.
     let dir = tempfile::tempdir().unwrap();
-    let spec = write_spec(
+    let (out, _) = boundaries_over(
         dir.path(),
-        "re.yaml",
-        "model: ode\nparams: {kappa2: 0.13}\ngrid:\n  radius: [0.95, 1.0, 1.05]\n  eta_t: [0.07, 0.08, 0.09]\ninitial_conditions: [i]\n",
-    );
-    let out = dir.path().join("re");
-    sweep_with_pictures(&spec, &out);
-    let b = json(&run(&[
-        "boundaries",
-        "--out",
-        out.to_str().unwrap(),
-        "--n",
+        "re",
+        "params: {kappa2: 0.13}\ngrid:\n  radius: [0.95, 1.0, 1.05]\n  eta_t: [0.07, 0.08, 0.09]\n",
         "96",
-        "--json",
-    ]));
-    assert_eq!(b["plane"], serde_json::json!(["radius", "eta_t"]), "{b}");
+        ("radius", "eta_t"),
+    );
     let table = out.join("boundaries.parquet");
     let onset = pde_curve(&table, "IC onset of motion", ("radius", "eta_t"));
     assert!(onset.len() > 5, "{onset:?}");
@@ -247,22 +267,13 @@ fn boundaries_in_a_plane_of_two_non_paper_parameters_are_continued_in_it() {
     // (radius, sigma) at eta_t = 0.077, kappa2 = 0.13: the disk starts to move where its
     // threshold reaches 0.077 (R near 1.02), and the MD fold crosses the window too.
     let dir = tempfile::tempdir().unwrap();
-    let spec = write_spec(
+    let (out, b) = boundaries_over(
         dir.path(),
-        "rs.yaml",
-        "model: ode\nparams: {eta_t: 0.077, kappa2: 0.13}\ngrid:\n  radius: [0.95, 1.0, 1.05]\n  sigma: [0.03, 0.04, 0.05]\ninitial_conditions: [i]\n",
-    );
-    let out = dir.path().join("rs");
-    sweep_with_pictures(&spec, &out);
-    let b = json(&run(&[
-        "boundaries",
-        "--out",
-        out.to_str().unwrap(),
-        "--n",
+        "rs",
+        "params: {eta_t: 0.077, kappa2: 0.13}\ngrid:\n  radius: [0.95, 1.0, 1.05]\n  sigma: [0.03, 0.04, 0.05]\n",
         "128",
-        "--json",
-    ]));
-    assert_eq!(b["plane"], serde_json::json!(["radius", "sigma"]), "{b}");
+        ("radius", "sigma"),
+    );
     let names: Vec<&str> = b["curves"]
         .as_array()
         .unwrap()

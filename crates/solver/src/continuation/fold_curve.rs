@@ -4,7 +4,7 @@
 //! started from a fold located on a one-parameter MD branch followed in `x` at a fixed `y`. It
 //! ends where it leaves the window or where `v -> 0` (the fold reaches the onset of motion:
 //! there the pitchfork changes from sub- to supercritical).
-use crate::continuation::arclength::{start, ArclengthOptions, CurvePoint, Stepper};
+use crate::continuation::arclength::{start, ArclengthOptions, Stepper};
 use crate::continuation::branch::{follow, Branch, Line};
 use crate::continuation::plane::PlaneAxis;
 use crate::continuation::problem::Family;
@@ -119,6 +119,58 @@ pub fn md_fold_curve(
     fold_curve_from(base, n, mirror, (x, y), first)
 }
 
+/// The corrector and step settings of a fold curve's continuation.
+pub fn fold_options() -> ArclengthOptions {
+    ArclengthOptions {
+        // det dR/d(v, c) comes from central differences (relative noise ~1e-10), so the
+        // corrector stops at 1e-9; the folds it finds agree with the one-parameter
+        // location by tangent to 1e-15 (measured).
+        tol: 1e-9,
+        fd_step: 1e-5,
+        ds: 0.01,
+        ds_max: 0.04,
+        max_iter: 10,
+        ..ArclengthOptions::default()
+    }
+}
+
+/// Follows the curve `f = 0` (unknowns `(v, shape.., qx, qy)`, the last two the window's
+/// scaled parameters) both ways from `y0` (first towards decreasing `qy`), each way until it
+/// leaves the window or `v` falls below 1e-3 (that point kept) or after 400 steps: the points
+/// of each way, from `y0` on.
+pub fn fold_walk(
+    f: &mut impl FnMut(&[f64]) -> Vec<f64>,
+    y0: &[f64],
+    opts: &ArclengthOptions,
+) -> Vec<Vec<Vec<f64>>> {
+    let (qx, qy) = (y0.len() - 2, y0.len() - 1);
+    let mut halves = Vec::new();
+    for sign in [-1.0, 1.0] {
+        let mut prev = vec![0.0; y0.len()];
+        prev[qy] = sign;
+        let Some(mut p) = start(f, y0, &prev, opts) else {
+            continue;
+        };
+        let mut stepper = Stepper::new(opts.clone());
+        let mut pts = vec![p.y.clone()];
+        for _ in 0..400 {
+            let Some(step) = stepper.advance(f, &p) else {
+                break;
+            };
+            let y = &step.point.y;
+            let inside = (0.0..=1.0).contains(&y[qx]) && (0.0..=1.0).contains(&y[qy]);
+            if !inside || y[0] < 1e-3 {
+                pts.push(step.point.y);
+                break;
+            }
+            p = step.point;
+            pts.push(p.y.clone());
+        }
+        halves.push(pts);
+    }
+    halves
+}
+
 /// The MD saddle-node curve through the fold `(v, c, x, y)`, continued both ways.
 pub fn fold_curve_from(
     base: &ModelParams,
@@ -141,41 +193,9 @@ pub fn fold_curve_from(
     let j = sys.jac(&y0);
     let size = j.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
     sys.det_scale = size * size;
-    let opts = ArclengthOptions {
-        // det dR/d(v, c) comes from central differences (relative noise ~1e-10), so the
-        // corrector stops at 1e-9; the folds it finds agree with the one-parameter
-        // location by tangent to 1e-15 (measured).
-        tol: 1e-9,
-        fd_step: 1e-5,
-        ds: 0.01,
-        ds_max: 0.04,
-        max_iter: 10,
-        ..ArclengthOptions::default()
-    };
-    let mut halves = Vec::new();
-    for sign in [-1.0, 1.0] {
-        let prev = [0.0, 0.0, 0.0, sign];
-        let Some(mut p) = start(&mut |y: &[f64]| sys.residual(y), &y0, &prev, &opts) else {
-            continue;
-        };
-        let mut stepper = Stepper::new(opts.clone());
-        let mut pts = vec![p.clone()];
-        for _ in 0..400 {
-            let Some(step) = stepper.advance(&mut |y: &[f64]| sys.residual(y), &p) else {
-                break;
-            };
-            let y = &step.point.y;
-            let inside = (0.0..=1.0).contains(&y[2]) && (0.0..=1.0).contains(&y[3]);
-            if !inside || y[0] < 1e-3 {
-                pts.push(step.point);
-                break;
-            }
-            p = step.point;
-            pts.push(p.clone());
-        }
-        halves.push(pts);
-    }
-    let to_plane = |p: &CurvePoint| sys.control(&p.y);
+    let opts = fold_options();
+    let halves = fold_walk(&mut |y: &[f64]| sys.residual(y), &y0, &opts);
+    let to_plane = |y: &Vec<f64>| sys.control(y);
     let mut out: Vec<(f64, f64)> = Vec::new();
     if let Some(back) = halves.first() {
         out.extend(back.iter().rev().map(to_plane));

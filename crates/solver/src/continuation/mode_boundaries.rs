@@ -15,14 +15,14 @@
 //!   `kappa2` ([`crate::continuation::mode_branch`]).
 //!
 //! The diagonal versions (`b_k`) and the MC onset are the 2-mode model's only so far.
-use crate::continuation::arclength::{start, ArclengthOptions, Stepper};
+use crate::continuation::fold_curve::{fold_options, fold_walk};
 use crate::continuation::mode_branch::{md_fold, ModeLine};
 use crate::error::SolverError;
 use crate::model::param::ModelParam;
 use crate::model::params::ModelParams;
-use crate::numerics::newton::{self, fd_jacobian, lu_solve, NewtonOptions};
+use crate::numerics::newton::{self, fd_jacobian, NewtonOptions};
 use crate::reduced::boundaries::Boundary;
-use crate::roots::mode_solver::ModeSolver;
+use crate::roots::mode_solver::{drift_threshold, ModeSolver};
 
 /// The window and resolution of [`mode_boundaries`].
 #[derive(Debug, Clone)]
@@ -42,26 +42,6 @@ pub struct ModeWindow {
 fn det(a: Vec<Vec<f64>>) -> f64 {
     let n = a.len();
     nalgebra::DMatrix::from_fn(n, n, |i, j| a[i][j]).determinant()
-}
-
-/// The `eta_t` at which the drift sector of the `lambda = 0` Jacobian `c` (taken with
-/// `eta_t = 0`; unknowns `(v, a_2..a_K)`) has a zero eigenvalue: `c00 - c0^T C_oo^-1 c0` over
-/// the odd modes `o`, whose rows already hold `-kappa_k`.
-fn drift_threshold(c: &[Vec<f64>]) -> f64 {
-    let k_max = c.len();
-    let odd: Vec<usize> = (3..=k_max).filter(|k| k % 2 == 1).map(|k| k - 1).collect();
-    let mut eta = c[0][0];
-    if !odd.is_empty() {
-        let block: Vec<Vec<f64>> = odd
-            .iter()
-            .map(|&i| odd.iter().map(|&j| c[i][j]).collect())
-            .collect();
-        let col: Vec<f64> = odd.iter().map(|&i| c[i][0]).collect();
-        if let Some(x) = lu_solve(block, &col) {
-            eta -= odd.iter().zip(&x).map(|(&j, xj)| c[0][j] * xj).sum::<f64>();
-        }
-    }
-    eta
 }
 
 /// The ID onset of motion at each of `w.id_samples` values of `kappa2` from the window's
@@ -173,43 +153,13 @@ fn fold_curve(w: &ModeWindow) -> Result<Vec<(f64, f64)>, SolverError> {
     if grad > 0.0 {
         det_scale.set(grad);
     }
-    let opts = ArclengthOptions {
-        tol: 1e-9,
-        fd_step: 1e-5,
-        ds: 0.01,
-        ds_max: 0.04,
-        max_iter: 10,
-        ..ArclengthOptions::default()
-    };
-    let mut halves = Vec::new();
-    for sign in [-1.0, 1.0] {
-        let mut prev = vec![0.0; y0.len()];
-        *prev.last_mut().expect("qk") = sign;
-        let Some(mut p) = start(&mut f, &y0, &prev, &opts) else {
-            continue;
-        };
-        let mut stepper = Stepper::new(opts.clone());
-        let mut pts = vec![control(&p.y)];
-        for _ in 0..400 {
-            let Some(step) = stepper.advance(&mut f, &p) else {
-                break;
-            };
-            let y = &step.point.y;
-            let inside = (0.0..=1.0).contains(&y[k_max]) && (0.0..=1.0).contains(&y[k_max + 1]);
-            pts.push(control(y));
-            if !inside || y[0] < 1e-3 {
-                break;
-            }
-            p = step.point;
-        }
-        halves.push(pts);
-    }
+    let halves = fold_walk(&mut f, &y0, &fold_options());
     let mut out: Vec<(f64, f64)> = Vec::new();
     if let Some(back) = halves.first() {
-        out.extend(back.iter().rev());
+        out.extend(back.iter().rev().map(|y| control(y)));
     }
     if let Some(fwd) = halves.get(1) {
-        out.extend(fwd.iter().skip(1));
+        out.extend(fwd.iter().skip(1).map(|y| control(y)));
     }
     Ok(out)
 }

@@ -4,7 +4,7 @@
 //! incompressible fields `w_k^(a)`, `w_k^(b)` (eqs. wka, wkb) that move the boundary along one
 //! mode: `w_k^(a) = grad[(R^2 / k) (r / R)^k cos k theta] = R^(2-k) (Re z^(k-1), -Im z^(k-1))`,
 //! `w_k^(b) = R^(2-k) (Im z^(k-1), Re z^(k-1))` with `z = x + i y`.
-use crate::model::shape::{ShapeParams, BAND_Q};
+use crate::model::shape::{profile, ShapeParams, BAND_Q};
 
 /// Shape amplitudes `a_k`, `b_k` for `k = 2..=K` (`a[k - 2]`, `b[k - 2]`).
 #[derive(Debug, Clone, PartialEq)]
@@ -84,20 +84,7 @@ impl Modes {
         if r == 0.0 {
             return 1.0;
         }
-        let f = self.boundary(shape, x / r, y / r);
-        let q = (r - f) / shape.sigma;
-        if q >= BAND_Q {
-            0.0
-        } else if q <= -BAND_Q {
-            1.0
-        } else {
-            let e = (-2.0 * q.abs()).exp();
-            if q >= 0.0 {
-                e / (1.0 + e)
-            } else {
-                1.0 / (1.0 + e)
-            }
-        }
+        profile((r - self.boundary(shape, x / r, y / r)) / shape.sigma)
     }
 }
 

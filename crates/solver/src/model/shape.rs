@@ -47,19 +47,25 @@ impl ShapeParams {
         let inv_r2 = 1.0 / r2;
         let r = r2.sqrt();
         let f = self.radius * (1.0 + (a2 * (x * x - y * y) + b2 * 2.0 * x * y) * inv_r2);
-        let q = (r - f) / self.sigma;
-        if q >= BAND_Q {
-            0.0
-        } else if q <= -BAND_Q {
-            1.0
+        profile((r - f) / self.sigma)
+    }
+}
+
+/// The interface profile `(1 - tanh q) / 2` of eq. 31, `q = (r - f) / sigma`: exactly 0 or 1
+/// beyond `|q| = BAND_Q`.
+#[inline(always)]
+pub fn profile(q: f64) -> f64 {
+    if q >= BAND_Q {
+        0.0
+    } else if q <= -BAND_Q {
+        1.0
+    } else {
+        // (1 - tanh q) / 2 from one exponential, without cancellation for either sign.
+        let e = (-2.0 * q.abs()).exp();
+        if q >= 0.0 {
+            e / (1.0 + e)
         } else {
-            // (1 - tanh q) / 2 from one exponential, without cancellation for either sign.
-            let e = (-2.0 * q.abs()).exp();
-            if q >= 0.0 {
-                e / (1.0 + e)
-            } else {
-                1.0 / (1.0 + e)
-            }
+            1.0 / (1.0 + e)
         }
     }
 }

@@ -49,6 +49,29 @@ pub struct ModeThresholds {
     pub kappa2: Vec<f64>,
 }
 
+/// The `eta_t` at which the drift along x of a resting state has a zero eigenvalue, from the
+/// `lambda = 0` Jacobian `c` of [`ModeSolver::residual_x`] taken there with `eta_t = 0`
+/// (unknowns `(v, a_2..a_K)`): the drift couples only to the odd modes (the mirror `x -> -x`),
+/// so the threshold is the Schur complement `c00 - c0^T C_oo^-1 c0` over them. (At rest
+/// `c0` vanishes, no shape feeling a net force, and it is `c00`; the complement keeps it
+/// right wherever it is used.)
+pub fn drift_threshold(c: &[Vec<f64>]) -> f64 {
+    let k_max = c.len();
+    let odd: Vec<usize> = (3..=k_max).filter(|k| k % 2 == 1).map(|k| k - 1).collect();
+    let mut eta = c[0][0];
+    if !odd.is_empty() {
+        let block: Vec<Vec<f64>> = odd
+            .iter()
+            .map(|&i| odd.iter().map(|&j| c[i][j]).collect())
+            .collect();
+        let col: Vec<f64> = odd.iter().map(|&i| c[i][0]).collect();
+        if let Some(x) = newton::lu_solve(block, &col) {
+            eta -= odd.iter().zip(&x).map(|(&j, xj)| c[0][j] * xj).sum::<f64>();
+        }
+    }
+    eta
+}
+
 /// The analytic onset of the mode-`k` deformation of a resting disk of radius `r` with a sharp
 /// interface on the unbounded plane: `kappa_k^c = r^2 [I_1(r) K_1(r) - I_k(r) K_k(r)]` (from
 /// the steady field of a disk perturbed along mode `k`, docs/model.md); in `kappa2`,
@@ -233,46 +256,25 @@ impl ModeSolver {
         sum
     }
 
-    /// The `lambda = 0` Jacobian of [`Self::residual_x`] at the resting disk with `eta_t` and
-    /// `kappa2` set to 0: the field's feedback `C` alone, unknowns `(v, a_2..a_K)`.
-    pub fn disk_feedback(&mut self, k_max: usize) -> Vec<Vec<f64>> {
-        let (eta_t, kappa2) = (self.params.eta_t, self.params.kappa2);
-        self.set_control(0.0, 0.0);
+    /// The `lambda = 0` Jacobian of [`Self::residual_x`] at the resting disk with `eta_t` set
+    /// to 0 (the field's feedback on the speed, the stiffness on the shape), unknowns
+    /// `(v, a_2..a_K)`.
+    pub fn disk_jacobian(&mut self, k_max: usize) -> Vec<Vec<f64>> {
+        let eta_t = self.params.eta_t;
+        self.params.eta_t = 0.0;
         let j = newton::fd_jacobian(&mut |y: &[f64]| self.residual_x(y), &vec![0.0; k_max], 1e-5);
-        self.set_control(eta_t, kappa2);
+        self.params.eta_t = eta_t;
         j
     }
 
     /// The resting disk's thresholds with modes up to `k_max` (see [`ModeThresholds`]).
     pub fn disk_thresholds(&mut self, k_max: usize) -> ModeThresholds {
-        let c = self.disk_feedback(k_max);
-        // The drift couples to the odd modes only (mirror x -> -x); the box's quarter-turn
-        // leaves k = 3, 5, 7, ... (k = 1 mod 4 or 3 mod 4: all odd k).
-        let odd: Vec<usize> = (3..=k_max).filter(|k| k % 2 == 1).map(|k| k - 1).collect();
+        let c = self.disk_jacobian(k_max);
         let kappa2 = self.params.kappa2;
-        let mut eta = c[0][0];
-        if !odd.is_empty() {
-            // Schur complement: eta_c = C00 - c0^T (C_oo - diag kappa_k)^-1 c0.
-            let block: Vec<Vec<f64>> = odd
-                .iter()
-                .map(|&i| {
-                    odd.iter()
-                        .map(|&j| {
-                            let k = (i + 1) as f64;
-                            c[i][j] - if i == j { k * k / 4.0 * kappa2 } else { 0.0 }
-                        })
-                        .collect()
-                })
-                .collect();
-            let col: Vec<f64> = odd.iter().map(|&i| c[i][0]).collect();
-            if let Some(x) = newton::lu_solve(block, &col) {
-                eta -= odd.iter().zip(&x).map(|(&j, xj)| c[0][j] * xj).sum::<f64>();
-            }
-        }
         ModeThresholds {
-            eta_t: eta,
+            eta_t: drift_threshold(&c),
             kappa2: (2..=k_max)
-                .map(|k| 4.0 / (k * k) as f64 * c[k - 1][k - 1])
+                .map(|k| 4.0 / (k * k) as f64 * c[k - 1][k - 1] + kappa2)
                 .collect(),
         }
     }
