@@ -10,15 +10,15 @@ use std::path::PathBuf;
 /// 2..K, each with its own force G_k and stiffness kappa_k = (k^2/4) kappa2, N x N spectral
 /// grid, field included) for each K of --modes and reports: the MD state at the paper's Fig. 1c
 /// point (eta_t 0.085, kappa2 0.112: v, the paper's s = |a2|, the total deformation, every
-/// a_k; a droplet moving along +x has a_k on the x axis only); the resting disk's onset of
+/// a_k, and its stability from the 2K x 2K eigenproblem with the field, the rotation mode set
+/// aside; a droplet moving along +x has a_k on the x axis only); the resting disk's onset of
 /// motion at kappa2 = 0.13; the MD branch along eta_t at kappa2 = 0.13 and its fold, the right
 /// edge of the IC/MD bistable band; and the phase boundaries of the Fig. 2a window for the
 /// states on the x axis (the onsets of motion and of the axis deformation, ID's onset of
-/// motion, the MD fold curve). Stability is not computed for K > 2 (a fold or an onset is where
-/// a real eigenvalue crosses zero). Writes DIR/truncation.parquet (one row per K),
-/// DIR/truncation_boundaries.parquet (curves named `K = k: <boundary>`), DIR/truncation.png/.svg
+/// motion, the MD fold curve; a fold or an onset is where a real eigenvalue crosses zero).
+/// Writes DIR/truncation.parquet (one row per K), DIR/truncation_boundaries.parquet (curves named `K = k: <boundary>`), DIR/truncation.png/.svg
 /// (the Fig. 1c droplet's outline for each K) and DIR/truncation_boundaries.png/.svg (the
-/// boundaries for every K over each other). About 25 s per K at N = 192 (60 s for K = 6).
+/// boundaries for every K over each other). About 25 s per K at N = 192 (100 s for K = 6).
 #[derive(clap::Args)]
 #[command(
     after_help = "Examples:\n  droplet truncation --out results/truncation                 # K = 2, 3, 4, 6 at N = 192\n  droplet truncation --modes 2,3 --n 96 --json --out out/trunc"
@@ -36,7 +36,8 @@ pub struct Args {
     #[arg(long, default_value = "out/truncation")]
     out: PathBuf,
     /// Print one JSON object (keys: n, fig1c [eta_t, kappa2], band_kappa2, rows [{k_max,
-    /// v, s, deformation, a [a2..aK], fig1c_seconds, onset_eta_t, fold_eta_t, fold_v,
+    /// v, s, deformation, a [a2..aK], stable, leading (largest real part but the rotation
+    /// mode), eigenvalues [[re, im]], rotation, fig1c_seconds, onset_eta_t, fold_eta_t, fold_v,
     /// band_width, fold_seconds, boundaries_seconds}], files).
     #[arg(long)]
     json: bool,
@@ -81,6 +82,9 @@ pub fn run(a: Args) -> Result<(), CliError> {
                 serde_json::json!({
                     "k_max": r.k_max, "v": r.fig1c.v, "s": r.fig1c.a[0].abs(),
                     "deformation": r.deformation, "a": r.fig1c.a,
+                    "stable": r.fig1c_verdict.stable(), "leading": r.fig1c_verdict.leading(),
+                    "eigenvalues": r.fig1c_verdict.eigenvalues,
+                    "rotation": r.fig1c_verdict.rotation,
                     "fig1c_seconds": r.fig1c_seconds, "onset_eta_t": r.disk.eta_t,
                     "fold_eta_t": r.fold.as_ref().map(|f| f.at),
                     "fold_v": r.fold.as_ref().map(|f| f.v),
@@ -96,9 +100,10 @@ pub fn run(a: Args) -> Result<(), CliError> {
         }));
     } else {
         outln!(
-            "{:>3} {:>9} {:>9} {:>9} {:>11} {:>11} {:>11}",
+            "{:>3} {:>9} {:>7} {:>9} {:>9} {:>11} {:>11} {:>11}",
             "K",
             "v(1c)",
+            "stable",
             "s(1c)",
             "a3(1c)",
             "onset",
@@ -108,9 +113,10 @@ pub fn run(a: Args) -> Result<(), CliError> {
         for r in &done.rows {
             let fold = r.fold.as_ref().map_or(f64::NAN, |f| f.at);
             outln!(
-                "{:>3} {:>9.6} {:>9.6} {:>9.6} {:>11.7} {:>11.7} {:>11.7}",
+                "{:>3} {:>9.6} {:>7} {:>9.6} {:>9.6} {:>11.7} {:>11.7} {:>11.7}",
                 r.k_max,
                 r.fig1c.v,
+                r.fig1c_verdict.stable(),
                 r.fig1c.a[0].abs(),
                 r.fig1c.a.get(1).copied().unwrap_or(0.0),
                 r.disk.eta_t,

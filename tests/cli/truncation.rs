@@ -36,6 +36,21 @@ fn two_modes_are_the_two_mode_commands_and_a_third_changes_the_moving_state() {
     ]));
     assert!((f(two, "v") - f(&md, "v")).abs() < 1e-8, "{two} {md}");
     assert!((f(two, "s") - f(&md, "s")).abs() < 1e-8, "{two} {md}");
+    // ... with its stability: the same eigenvalues from the 2K x 2K problem.
+    assert_eq!(two["stable"], md["stable"], "{two} {md}");
+    for (a, b) in two["eigenvalues"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .zip(md["eigenvalues"].as_array().unwrap())
+    {
+        assert!(
+            (a[0].as_f64().unwrap() - f(b, "re")).abs() < 1e-7,
+            "{two} {md}"
+        );
+    }
+    // The 3-mode state is stable too (the rotation mode aside).
+    assert_eq!(three["stable"], true, "{three}");
     let ic = json(&run(&[
         "stability",
         "--eta-t",

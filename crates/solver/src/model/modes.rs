@@ -32,6 +32,15 @@ impl Modes {
         }
     }
 
+    /// The shape of a state `z = (vx, vy, a_2..a_K, b_2..b_K)`.
+    pub fn of_state(z: &[f64]) -> Self {
+        let m = (z.len() - 2) / 2;
+        Self {
+            a: z[2..2 + m].to_vec(),
+            b: z[2 + m..2 + 2 * m].to_vec(),
+        }
+    }
+
     /// The largest mode `K`.
     pub fn k_max(&self) -> usize {
         self.a.len() + 1

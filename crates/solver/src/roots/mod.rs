@@ -8,6 +8,7 @@
 //! `continuation`.
 pub mod h0_fit;
 pub mod linearisation;
+pub mod mode_linearisation;
 pub mod mode_solver;
 pub mod named_state;
 pub mod steady_solver;

@@ -158,8 +158,8 @@ impl ModeSolver {
         (c - w, c + w)
     }
 
-    /// The forces of the steady field of the droplet `m` moving at `(vx, vy)`.
-    pub fn forces(&mut self, vx: f64, vy: f64, m: &Modes) -> ModeForces {
+    /// Samples `Theta` of `m` into the rows `lo..=hi` (returned) of the grid buffer; the area.
+    pub(crate) fn sample(&mut self, m: &Modes) -> (f64, usize, usize) {
         let n = self.grid.n;
         let shape = self.shape();
         let (lo, hi) = self.span(m);
@@ -182,26 +182,41 @@ impl ModeSolver {
                 count += *t;
             }
         }
-        let area = count * self.grid.dx * self.grid.dx;
+        (count * self.grid.dx * self.grid.dx, lo, hi)
+    }
+
+    /// The source `Theta / A` of `m` as a normalised half spectrum (`[kx][ky]`, like the
+    /// field's), leaving `Theta` sampled.
+    pub(crate) fn source(&mut self, m: &Modes) -> (Vec<Complex64>, f64) {
+        let n = self.grid.n;
+        let (area, lo, hi) = self.sample(m);
         self.real[lo * n..(hi + 1) * n].copy_from_slice(&self.theta[lo * n..(hi + 1) * n]);
         self.fft.forward(&mut self.real, &mut self.spec, lo, hi);
         let norm = 1.0 / (area * (n * n) as f64);
-        // u_hat, then i kx u_hat and i ky u_hat (spectral derivatives, Nyquist zeroed).
+        (self.spec.iter().map(|c| c * norm).collect(), area)
+    }
+
+    /// The gradient of the real field with the normalised half spectrum `u` on the rows
+    /// `lo..=hi` (spectral derivatives, Nyquist mode zeroed).
+    pub(crate) fn gradient(&mut self, u: &[Complex64], lo: usize, hi: usize) {
+        let n = self.grid.n;
         for jx in 0..=n / 2 {
-            let (kx, kxd) = (self.grid.kx[jx], self.grid.kx_d[jx]);
+            let kxd = self.grid.kx_d[jx];
             for jy in 0..n {
-                let (ky, kyd) = (self.grid.ky[jy], self.grid.ky_d[jy]);
-                let denom = Complex64::new(1.0 + kx * kx + ky * ky, -(kxd * vx + kyd * vy));
+                let kyd = self.grid.ky_d[jy];
                 let i = jx * n + jy;
-                let u = self.spec[i] * norm / denom;
-                self.u_spec[i] = u;
-                self.dx_spec[i] = Complex64::new(-u.im * kxd, u.re * kxd);
-                self.dy_spec[i] = Complex64::new(-u.im * kyd, u.re * kyd);
+                self.dx_spec[i] = Complex64::new(-u[i].im * kxd, u[i].re * kxd);
+                self.dy_spec[i] = Complex64::new(-u[i].im * kyd, u[i].re * kyd);
             }
         }
         self.fft.inverse(&mut self.dx_spec, &mut self.ux, lo, hi);
         self.fft.inverse(&mut self.dy_spec, &mut self.uy, lo, hi);
-        let k_max = m.k_max();
+    }
+
+    /// The forces `-Int grad u Theta` and `-Int w_k . grad u Theta` of the last
+    /// [`Self::gradient`] on the last [`Self::sample`]d shape (`k_max` modes, rows `lo..=hi`).
+    pub(crate) fn sums(&self, k_max: usize, lo: usize, hi: usize, area: f64) -> ModeForces {
+        let n = self.grid.n;
         let mut f = ModeForces {
             fx: 0.0,
             fy: 0.0,
@@ -209,7 +224,7 @@ impl ModeSolver {
             gb: vec![0.0; k_max - 1],
             area,
         };
-        let r0 = shape.radius;
+        let r0 = self.params.radius;
         for iy in lo..=hi {
             let y = self.grid.coord(iy);
             for ix in lo..=hi {
@@ -236,6 +251,66 @@ impl ModeSolver {
             *g *= da;
         }
         f
+    }
+
+    /// `-(1 + k^2) + i k.v` for every stored mode: the co-moving field operator `D`.
+    pub(crate) fn operator(&self, vx: f64, vy: f64) -> Vec<Complex64> {
+        let n = self.grid.n;
+        let mut d = Vec::with_capacity(self.grid.spectral_len());
+        for jx in 0..=n / 2 {
+            let (kx, kxd) = (self.grid.kx[jx], self.grid.kx_d[jx]);
+            for jy in 0..n {
+                let (ky, kyd) = (self.grid.ky[jy], self.grid.ky_d[jy]);
+                d.push(Complex64::new(
+                    -(1.0 + kx * kx + ky * ky),
+                    kxd * vx + kyd * vy,
+                ));
+            }
+        }
+        d
+    }
+
+    /// The forces of the steady field of the droplet `m` moving at `(vx, vy)`.
+    pub fn forces(&mut self, vx: f64, vy: f64, m: &Modes) -> ModeForces {
+        let (source, area) = self.source(m);
+        let (lo, hi) = self.span(m);
+        // u_hat = source / (1 + k^2 - i k.v) = -source / D.
+        let d = self.operator(vx, vy);
+        for ((u, s), d) in self.u_spec.iter_mut().zip(&source).zip(&d) {
+            *u = -s / d;
+        }
+        let u = std::mem::take(&mut self.u_spec);
+        self.gradient(&u, lo, hi);
+        self.u_spec = u;
+        self.sums(m.k_max(), lo, hi, area)
+    }
+
+    /// The last steady field's normalised half spectrum.
+    pub(crate) fn field_spectrum(&self) -> &[Complex64] {
+        &self.u_spec
+    }
+
+    /// The grid.
+    pub(crate) fn grid(&self) -> &Grid {
+        &self.grid
+    }
+
+    /// The force balance of the state `z = (vx, vy, a_2..a_K, b_2..b_K)` (`K = z.len() / 2`):
+    /// `-eta_t v + F`, `G_k^(a) - kappa_k a_k`, `G_k^(b) - kappa_k b_k`, in that order.
+    pub fn residual(&mut self, z: &[f64]) -> Vec<f64> {
+        let m = Modes::of_state(z);
+        let f = self.forces(z[0], z[1], &m);
+        let mut r = vec![
+            -self.params.eta_t * z[0] + f.fx,
+            -self.params.eta_t * z[1] + f.fy,
+        ];
+        for (j, (g, a)) in f.ga.iter().zip(&m.a).enumerate() {
+            r.push(g - self.kappa(j + 2) * a);
+        }
+        for (j, (g, b)) in f.gb.iter().zip(&m.b).enumerate() {
+            r.push(g - self.kappa(j + 2) * b);
+        }
+        r
     }
 
     /// The last field of [`Self::forces`] at `(x, y)` relative to the droplet's centre, summed

@@ -2,7 +2,8 @@
 //! general model with shape modes `k = 2..K` (`droplet_solver::roots::mode_solver`), for
 //! each `K` asked:
 //! - the MD state at the paper's Fig. 1c point (`eta_t` = 0.085, `kappa2` = 0.112): `v`, the
-//!   paper's `s` (mode 2), the total deformation and every `a_k`;
+//!   paper's `s` (mode 2), the total deformation, every `a_k`, and its stability (the `2K x 2K`
+//!   eigenproblem, `droplet_solver::roots::mode_linearisation`);
 //! - the resting disk's onsets at `kappa2` = 0.13: of motion, and of each mode's deformation;
 //! - the MD branch along `eta_t` at `kappa2` = 0.13 and its fold, the right edge of the IC/MD
 //!   bistable band (its left edge is the onset of motion);
@@ -24,6 +25,7 @@ use droplet_solver::model::modes::Modes;
 use droplet_solver::model::param::ModelParam;
 use droplet_solver::model::params::ModelParams;
 use droplet_solver::model::shape::ShapeParams;
+use droplet_solver::roots::mode_linearisation::ModeLinearization;
 use droplet_solver::roots::mode_solver::ModeSolver;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -54,6 +56,10 @@ fn row(
     };
     let mut solver = ModeSolver::new(at, n)?;
     let fig1c = md_state(&mut solver, k_max)?;
+    let mut z = vec![fig1c.v, 0.0];
+    z.extend(fig1c.a.iter().copied());
+    z.extend(std::iter::repeat_n(0.0, k_max - 1));
+    let fig1c_verdict = ModeLinearization::at(&mut solver, &z).verdict(&mut solver);
     let fig1c_seconds = started.elapsed().as_secs_f64();
     let deformation = Modes {
         a: fig1c.a.clone(),
@@ -104,6 +110,7 @@ fn row(
         TruncationRow {
             k_max,
             fig1c,
+            fig1c_verdict,
             deformation,
             fig1c_seconds,
             disk,

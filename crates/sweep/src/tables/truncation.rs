@@ -1,12 +1,14 @@
 //! `truncation.parquet`: one row per number of shape modes `K` (`droplet truncation`,
 //! [`crate::studies::truncation`]): the Fig. 1c MD state (`v`, the paper's `s = |a2|`, the
-//! total deformation, `a2 .. aKmax`, null beyond a row's `K`), the resting disk's onset of
+//! total deformation, whether it is stable, its largest eigenvalue's real part and its rotation
+//! mode's, `a2 .. aKmax`, null beyond a row's `K`), the resting disk's onset of
 //! motion at `kappa2` = 0.13, the MD fold there (`eta_t`, `v`), the IC/MD band's width, and
 //! the seconds each took (the boundaries of the Fig. 2a window for each `K` are in
 //! `truncation_boundaries.parquet`, curves named `K = k: <boundary>`).
 use crate::error::SweepError;
 use crate::tables::sweep_tables::{metadata, write_parquet};
 use droplet_solver::continuation::mode_branch::ModeFold;
+use droplet_solver::roots::mode_linearisation::ModeVerdict;
 use droplet_solver::roots::mode_solver::{ModeState, ModeThresholds};
 use polars::prelude::*;
 use std::path::{Path, PathBuf};
@@ -18,6 +20,8 @@ pub struct TruncationRow {
     pub k_max: usize,
     /// The MD state at Fig. 1c.
     pub fig1c: ModeState,
+    /// Its stability, the rotation mode set aside.
+    pub fig1c_verdict: ModeVerdict,
     /// `sqrt(sum a_k^2)` there.
     pub deformation: f64,
     pub fig1c_seconds: f64,
@@ -48,6 +52,14 @@ pub fn write(dir: &Path, rows: &[TruncationRow], n: usize) -> Result<PathBuf, Sw
         Column::new("v_fig1c".into(), f(&|r| r.fig1c.v)),
         Column::new("s_fig1c".into(), f(&|r| r.fig1c.a[0].abs())),
         Column::new("deformation_fig1c".into(), f(&|r| r.deformation)),
+        Column::new(
+            "stable_fig1c".into(),
+            rows.iter()
+                .map(|r| r.fig1c_verdict.stable())
+                .collect::<Vec<_>>(),
+        ),
+        Column::new("leading_fig1c".into(), f(&|r| r.fig1c_verdict.leading())),
+        Column::new("rotation_fig1c".into(), opt(&|r| r.fig1c_verdict.rotation)),
     ];
     for k in 2..=k_top {
         columns.push(Column::new(
