@@ -16,11 +16,11 @@
 //!
 //! The diagonal versions (`b_k`) and the MC onset are the 2-mode model's only so far.
 use crate::continuation::fold_curve::{fold_options, fold_walk};
-use crate::continuation::mode_branch::{md_fold, ModeLine};
+use crate::continuation::mode_branch::{id_state, md_fold, rest_shape, ModeLine};
 use crate::error::SolverError;
 use crate::model::param::ModelParam;
 use crate::model::params::ModelParams;
-use crate::numerics::newton::{self, fd_jacobian, NewtonOptions};
+use crate::numerics::newton::fd_jacobian;
 use crate::reduced::boundaries::Boundary;
 use crate::roots::mode_solver::{drift_threshold, ModeSolver};
 
@@ -53,26 +53,6 @@ fn id_line(w: &ModeWindow, top: f64) -> Result<Vec<(f64, f64)>, SolverError> {
     let k_max = w.k_max;
     let (lo, hi) = (w.kappa2.0, top.min(w.kappa2.1));
     let m = w.id_samples.max(2);
-    let opts = |unknowns: usize| NewtonOptions {
-        tol: 1e-12,
-        max_iter: 40,
-        fd_step: 1e-7,
-        max_step: vec![0.05; unknowns],
-    };
-    // The shape balance at rest for `a_2..a_(len+1)`.
-    let solve = |solver: &mut ModeSolver, seed: &[f64]| {
-        newton::solve(
-            |a| {
-                let y: Vec<f64> = std::iter::once(0.0).chain(a.iter().copied()).collect();
-                solver.residual_x(&y)[1..].to_vec()
-            },
-            seed,
-            &opts(seed.len()),
-        )
-        .ok()
-        .map(|sol| sol.x)
-        .filter(|x| x[0].abs() > 1e-4)
-    };
     let mut shape: Option<Vec<f64>> = None;
     let mut pts = Vec::new();
     for i in 0..m {
@@ -82,15 +62,10 @@ fn id_line(w: &ModeWindow, top: f64) -> Result<Vec<(f64, f64)>, SolverError> {
         let k = if i == 0 { lo } else { k.max(lo) };
         solver.set_control(0.0, k);
         let next = match &shape {
-            Some(s) => solve(&mut solver, s),
+            Some(s) => rest_shape(&mut solver, s),
             // ID elongated along y (a2 < 0): it starts to move along x, its minor axis, which
             // the x-axis states describe (the one elongated along x is its quarter turn).
-            None => solve(&mut solver, &[-0.3]).and_then(|two| {
-                (3..=k_max).try_fold(two, |s, _| {
-                    let seed: Vec<f64> = s.iter().copied().chain([0.0]).collect();
-                    solve(&mut solver, &seed)
-                })
-            }),
+            None => id_state(&mut solver, k_max, -0.3),
         };
         match next {
             Some(s) => shape = Some(s),

@@ -57,6 +57,38 @@ pub fn md_state(solver: &mut ModeSolver, k_max: usize) -> Result<ModeState, Solv
     Ok(st)
 }
 
+/// The shape `a_2..a_(len+1)` of a resting state (`v = 0`, `b_k = 0`) by Newton on the shape
+/// balance from `seed`; `None` where Newton fails or lands on the disk (`|a2| <= 1e-4`).
+pub fn rest_shape(solver: &mut ModeSolver, seed: &[f64]) -> Option<Vec<f64>> {
+    let opts = crate::numerics::newton::NewtonOptions {
+        tol: 1e-12,
+        max_iter: 40,
+        fd_step: 1e-7,
+        max_step: vec![0.05; seed.len()],
+    };
+    crate::numerics::newton::solve(
+        |a| {
+            let y: Vec<f64> = std::iter::once(0.0).chain(a.iter().copied()).collect();
+            solver.residual_x(&y)[1..].to_vec()
+        },
+        seed,
+        &opts,
+    )
+    .ok()
+    .map(|sol| sol.x)
+    .filter(|x| x[0].abs() > 1e-4)
+}
+
+/// The resting deformed state (ID) of the `k_max`-mode model on the x axis, `a_2..a_K`: with
+/// mode 2 alone from `a2 = seed` (> 0: elongated along x), then one mode at a time from 0.
+pub fn id_state(solver: &mut ModeSolver, k_max: usize, seed: f64) -> Option<Vec<f64>> {
+    let two = rest_shape(solver, &[seed])?;
+    (3..=k_max).try_fold(two, |s, _| {
+        let next: Vec<f64> = s.iter().copied().chain([0.0]).collect();
+        rest_shape(solver, &next)
+    })
+}
+
 /// Follows the MD branch from `line.from` towards `line.to` ([`md_state`] there) and returns
 /// its first fold, if it has one before the line's end or the branch's meeting with the
 /// resting state (`v -> 0`).
