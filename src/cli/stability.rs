@@ -3,6 +3,7 @@ use super::param_line::parse_set;
 use super::{print_json, CliError};
 use droplet_solver::model::param::ModelParam;
 use droplet_solver::model::params::ModelParams;
+use droplet_solver::roots::mode_solver::ModeThresholds;
 use droplet_solver::roots::named_state::{find, ic_thresholds, IcThresholds, StateKind};
 use serde::Serialize;
 
@@ -21,7 +22,7 @@ use serde::Serialize;
 #[derive(clap::Args)]
 #[command(
     allow_negative_numbers = true,
-    after_help = "Examples:\n  droplet stability --eta-t 0.085 --kappa2 0.13 --state ic          # stable resting disk\n  droplet stability --eta-t 0.0763 --kappa2 0.16 --state ic --json  # just past the onset of motion: unstable\n  droplet stability --eta-t 0.085 --kappa2 0.112 --state md         # Fig. 1c, moving along its minor axis\n  droplet stability --eta-t 0.085 --kappa2 0.116 --state id --axis diagonal\n  droplet stability --eta-t 0.078 --kappa2 0.13 --state ic --set radius=1.05,sigma=0.025"
+    after_help = "Examples:\n  droplet stability --eta-t 0.085 --kappa2 0.13 --state ic          # stable resting disk\n  droplet stability --eta-t 0.0763 --kappa2 0.16 --state ic --json  # just past the onset of motion: unstable\n  droplet stability --eta-t 0.085 --kappa2 0.112 --state md         # Fig. 1c, moving along its minor axis\n  droplet stability --eta-t 0.085 --kappa2 0.116 --state id --axis diagonal\n  droplet stability --eta-t 0.078 --kappa2 0.13 --state ic --set radius=1.05,sigma=0.025\n  droplet stability --eta-t 0.085 --kappa2 0.112 --state md --modes 4   # with shape modes 2..4"
 )]
 pub struct Args {
     /// Translational friction eta_t (> 0).
@@ -45,14 +46,22 @@ pub struct Args {
     /// Inertia m (> 0 here).
     #[arg(long, default_value_t = 0.1)]
     mass: f64,
+    /// Shape modes 2..K (the paper's general model; default 2, the paper's). With K > 2 the
+    /// states on the x axis (motion along x, shapes symmetric about it), started from the
+    /// 2-mode state with one mode added at a time; from 2 to 16 and at most pi R N / (4 L).
+    #[arg(long, default_value_t = 2)]
+    modes: usize,
     /// Other model parameters: NAME=VALUE[,NAME=VALUE...] of eta2, radius, sigma, box_len
     /// (default: eta2 0.1, R 1, sigma 0.03, box_len 7), e.g. radius=1.02,sigma=0.025.
     #[arg(long, value_name = "NAME=VALUE,...")]
     set: Option<String>,
-    /// Print one JSON object (keys: state, axis, eta_t, kappa2, n, params {eta_t, kappa2,
-    /// eta2, mass, radius, sigma, box_len}, vx, vy, a2, b2, v, s, residual, eigenvalues [{re, im}], rotation (the rotation mode's eigenvalue or null),
-    /// unstable (rotation excluded), stable, ic_thresholds {eta_t, kappa2_a2,
-    /// kappa2_b2} for the resting disk, else null).
+    /// Print one JSON object (keys: state, axis, eta_t, kappa2, n, modes, params {eta_t,
+    /// kappa2, eta2, mass, radius, sigma, box_len}, vx, vy, a2, b2, a_k [a2..aK], b_k
+    /// [b2..bK], v, s (the paper's, mode 2), residual, eigenvalues [{re, im}], rotation (the
+    /// rotation mode's eigenvalue or null), unstable (rotation excluded), stable,
+    /// ic_thresholds {eta_t, kappa2_a2, kappa2_b2} for the resting disk with 2 modes, else
+    /// null, mode_thresholds {eta_t, kappa2 [k = 2..K]} for the resting disk with K > 2, else
+    /// null).
     #[arg(long)]
     json: bool,
 }
@@ -70,11 +79,14 @@ struct Report {
     eta_t: f64,
     kappa2: f64,
     n: usize,
+    modes: usize,
     params: ModelParams,
     vx: f64,
     vy: f64,
     a2: f64,
     b2: f64,
+    a_k: Vec<f64>,
+    b_k: Vec<f64>,
     v: f64,
     s: f64,
     residual: f64,
@@ -86,6 +98,8 @@ struct Report {
     stable: bool,
     /// For the resting disk: where it loses stability (independent of the point).
     ic_thresholds: Option<IcThresholds>,
+    /// For the resting disk with K > 2 modes.
+    mode_thresholds: Option<ModeThresholds>,
 }
 
 pub fn run(a: Args) -> Result<(), CliError> {
@@ -108,6 +122,9 @@ pub fn run(a: Args) -> Result<(), CliError> {
     }
     params.validate()?;
     super::check_grid(a.n)?;
+    if a.modes != 2 {
+        return with_modes(&a, axis, seed, params);
+    }
     let st = find(&params, a.n, a.state, axis, seed).map_err(|e| match e {
         droplet_solver::error::SolverError::NewtonFailed { .. }
         | droplet_solver::error::SolverError::RestingRoot { .. } => CliError {
@@ -124,11 +141,14 @@ pub fn run(a: Args) -> Result<(), CliError> {
         eta_t: a.eta_t,
         kappa2: a.kappa2,
         n: a.n,
+        modes: 2,
         params,
         vx,
         vy,
         a2,
         b2,
+        a_k: vec![a2],
+        b_k: vec![b2],
         v: vx.hypot(vy),
         s: a2.hypot(b2),
         residual: st.residual,
@@ -142,6 +162,99 @@ pub fn run(a: Args) -> Result<(), CliError> {
         stable: unstable == 0,
         ic_thresholds: match a.state {
             StateKind::IC => Some(ic_thresholds(&params, a.n)?),
+            _ => None,
+        },
+        mode_thresholds: None,
+    };
+    if a.json {
+        print_json(&report);
+    } else {
+        print_text(&report);
+    }
+    Ok(())
+}
+
+/// `--modes K` with K > 2: the state on the x axis of the K-mode model and its stability.
+fn with_modes(
+    a: &Args,
+    axis: droplet_solver::roots::steady_solver::MirrorAxis,
+    seed: Option<(f64, f64)>,
+    params: ModelParams,
+) -> Result<(), CliError> {
+    use droplet_solver::continuation::mode_branch::{ic_state, id_state, md_state};
+    use droplet_solver::roots::mode_linearisation::ModeLinearization;
+    use droplet_solver::roots::mode_solver::ModeSolver;
+    droplet_solver::contract::limits::check_modes(&params, a.n, a.modes)?;
+    if axis != droplet_solver::roots::steady_solver::MirrorAxis::X {
+        return Err(CliError::usage(format!(
+            "invalid --axis {} with --modes {}: the K-mode states are those on the x axis",
+            a.axis, a.modes
+        )));
+    }
+    if seed.is_some() {
+        return Err(CliError::usage(format!(
+            "invalid --seed with --modes {}: the K-mode state starts from the 2-mode one",
+            a.modes
+        )));
+    }
+    if params.mass <= 0.0 {
+        return Err(CliError::usage(
+            "invalid --mass: > 0 for the eigenvalues".to_string(),
+        ));
+    }
+    let k = a.modes;
+    let mut solver = ModeSolver::new(params, a.n)?;
+    let lost = |what: &str| CliError {
+        message: format!("Newton lost the {what} state with {k} modes at this point"),
+        code: 1,
+    };
+    let (v, shape) = match a.state {
+        StateKind::IC => (0.0, ic_state(&mut solver, k).ok_or_else(|| lost("IC"))?),
+        StateKind::ID => (
+            0.0,
+            id_state(&mut solver, k, 0.3).ok_or_else(|| lost("ID"))?,
+        ),
+        StateKind::MD => {
+            let st = md_state(&mut solver, k).map_err(|_| lost("MD"))?;
+            (st.v, st.a)
+        }
+    };
+    let mut z = vec![v, 0.0];
+    z.extend(shape.iter().copied());
+    z.extend(std::iter::repeat_n(0.0, k - 1));
+    let residual = solver
+        .residual(&z)
+        .iter()
+        .fold(0.0f64, |m, r| m.max(r.abs()));
+    let verdict = ModeLinearization::at(&mut solver, &z).verdict(&mut solver);
+    let report = Report {
+        state: a.state,
+        axis: a.axis.clone(),
+        eta_t: a.eta_t,
+        kappa2: a.kappa2,
+        n: a.n,
+        modes: k,
+        params,
+        vx: v,
+        vy: 0.0,
+        a2: shape[0],
+        b2: 0.0,
+        a_k: shape.clone(),
+        b_k: vec![0.0; k - 1],
+        v: v.abs(),
+        s: shape[0].abs(),
+        residual,
+        eigenvalues: verdict
+            .eigenvalues
+            .iter()
+            .map(|l| Eigen { re: l[0], im: l[1] })
+            .collect(),
+        rotation: verdict.rotation,
+        unstable: verdict.unstable,
+        stable: verdict.stable(),
+        ic_thresholds: None,
+        mode_thresholds: match a.state {
+            StateKind::IC => Some(solver.disk_thresholds(k)),
             _ => None,
         },
     };
@@ -179,6 +292,28 @@ fn print_text(report: &Report) {
     );
     for l in &report.eigenvalues {
         outln!("  eigenvalue {:+.6} {:+.6}i", l.re, l.im);
+    }
+    if report.modes > 2 {
+        let amps: Vec<String> = report
+            .a_k
+            .iter()
+            .enumerate()
+            .map(|(i, a)| format!("a{} {a:.6}", i + 2))
+            .collect();
+        outln!("  shape with {} modes: {}", report.modes, amps.join(", "));
+    }
+    if let Some(th) = &report.mode_thresholds {
+        let ks: Vec<String> = th
+            .kappa2
+            .iter()
+            .enumerate()
+            .map(|(i, k)| format!("a{} for kappa2 < {k:.7}", i + 2))
+            .collect();
+        outln!(
+            "resting disk: moves for eta_t < {:.9}; deforms {}",
+            th.eta_t,
+            ks.join(", ")
+        );
     }
     if let Some(th) = &report.ic_thresholds {
         outln!(

@@ -149,3 +149,79 @@ fn bad_modes_exit_2_naming_the_key() {
         assert!(err.contains(says), "--modes {modes}: {err}");
     }
 }
+
+#[test]
+fn stability_with_modes_gives_the_k_mode_state_and_its_verdict() {
+    // The Fig. 1c state with modes 2..3, as `droplet truncation` finds it, and stable.
+    let s = json(&run(&[
+        "stability",
+        "--eta-t",
+        "0.085",
+        "--kappa2",
+        "0.112",
+        "--state",
+        "md",
+        "--modes",
+        "3",
+        "--n",
+        "96",
+        "--json",
+    ]));
+    assert_eq!(s["modes"], 3, "{s}");
+    let a = s["a_k"].as_array().unwrap();
+    assert_eq!(a.len(), 2, "{s}");
+    assert!(a[1].as_f64().unwrap().abs() > 1e-2, "{s}");
+    assert_eq!(s["stable"], true, "{s}");
+    assert!(s["rotation"].is_f64(), "{s}");
+    // The resting disk: round but for the box's square symmetry (a4 small), with each
+    // mode's onset.
+    let ic = json(&run(&[
+        "stability",
+        "--eta-t",
+        "0.085",
+        "--kappa2",
+        "0.13",
+        "--state",
+        "ic",
+        "--modes",
+        "4",
+        "--n",
+        "96",
+        "--json",
+    ]));
+    let a4 = ic["a_k"][2].as_f64().unwrap();
+    assert!(a4.abs() > 0.0 && a4.abs() < 2e-3, "{ic}");
+    assert_eq!(
+        ic["mode_thresholds"]["kappa2"].as_array().unwrap().len(),
+        3,
+        "{ic}"
+    );
+    // The 2-mode report names its one mode the same way.
+    let two = json(&run(&[
+        "stability",
+        "--eta-t",
+        "0.085",
+        "--kappa2",
+        "0.112",
+        "--state",
+        "md",
+        "--n",
+        "96",
+        "--json",
+    ]));
+    assert_eq!(two["modes"], 2, "{two}");
+    assert_eq!(two["a_k"][0], two["a2"], "{two}");
+    for (args, says) in [
+        (vec!["--modes", "3", "--axis", "diagonal"], "--axis"),
+        (vec!["--modes", "3", "--seed", "0.5,-0.2"], "--seed"),
+        (vec!["--modes", "1"], "modes"),
+        (vec!["--modes", "8", "--n", "64"], "modes"),
+    ] {
+        let mut all = vec!["stability", "--eta-t", "0.085", "--kappa2", "0.112"];
+        all.extend(args.iter().copied());
+        let o = run(&all);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(says), "{args:?}: {err}");
+    }
+}
