@@ -225,3 +225,50 @@ fn stability_with_modes_gives_the_k_mode_state_and_its_verdict() {
         assert!(err.contains(says), "{args:?}: {err}");
     }
 }
+
+#[test]
+fn boundaries_with_modes_draw_the_k_mode_curves_in_the_papers_plane() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("b3");
+    let b = json(&run(&[
+        "boundaries",
+        "--modes",
+        "3",
+        "--n",
+        "64",
+        "--samples",
+        "10",
+        "--out",
+        out.to_str().unwrap(),
+        "--json",
+    ]));
+    let pde: Vec<&str> = b["curves"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|c| c["model"] == "pde")
+        .map(|c| c["curve"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        pde,
+        [
+            "IC onset of motion",
+            "IC onset of deformation (a2, axis)",
+            "ID onset of motion (axis ID)",
+            "MD saddle-node (x axis)"
+        ],
+        "{b}"
+    );
+    assert!(out.join("boundaries.png").exists());
+    for (args, says) in [
+        (vec!["--modes", "1"], "modes"),
+        (vec!["--modes", "3", "--n", "64,96"], "--modes 3"),
+    ] {
+        let mut all = vec!["boundaries", "--out", out.to_str().unwrap()];
+        all.extend(args.iter().copied());
+        let o = run(&all);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(says), "{args:?}: {err}");
+    }
+}

@@ -46,6 +46,10 @@ pub struct BoundaryStudy {
     /// For a sweep outside the paper's plane: how its plane meets the paper's
     /// ([`crate::studies::across`]).
     pub across: Option<Across>,
+    /// Shape modes `2..=modes` (the paper's general model; 2 is the paper's). With more, the
+    /// full model's curves are those of the states on the x axis
+    /// (`droplet_solver::continuation::mode_boundaries`), in the paper's plane only.
+    pub modes: usize,
     /// For a sweep in a plane of two model parameters that crossings do not give: the window
     /// its curves are continued in ([`crate::studies::pair`]; the reduced model's curves are
     /// then `across`'s crossings, where there is one).
@@ -143,7 +147,23 @@ impl BoundaryStudy {
             },
             across,
             pair,
+            modes: 2,
         })
+    }
+
+    /// The same study with shape modes `2..=modes`: refused outside the paper's plane and
+    /// where the grid does not resolve the modes.
+    pub fn with_modes(self, modes: usize) -> Result<Self, SweepError> {
+        droplet_solver::contract::limits::check_modes(&self.base, self.n, modes)
+            .map_err(|e| SweepError::Invalid(e.to_string()))?;
+        if modes > 2 && !self.in_paper_plane() {
+            return Err(SweepError::Invalid(format!(
+                "{}: with --modes {modes} the boundaries are drawn in the paper's plane \
+                 (eta_t, kappa2) only; the sweep there is in another",
+                self.out.display()
+            )));
+        }
+        Ok(Self { modes, ..self })
     }
 
     /// The names of the plane the curves are drawn in: the paper's, or the sweep's in `out`.
@@ -195,7 +215,20 @@ impl BoundaryStudy {
             kappa2: self.kappa2,
             id_samples: self.samples,
         };
-        let pde = droplet_solver::continuation::boundaries::boundaries(&window)?;
+        let pde = if self.modes > 2 {
+            droplet_solver::continuation::mode_boundaries::mode_boundaries(
+                &droplet_solver::continuation::mode_boundaries::ModeWindow {
+                    base: *base,
+                    n,
+                    k_max: self.modes,
+                    eta_t: self.eta_t,
+                    kappa2: self.kappa2,
+                    id_samples: self.samples,
+                },
+            )?
+        } else {
+            droplet_solver::continuation::boundaries::boundaries(&window)?
+        };
         Ok(NamedCurve::from_boundaries(ModelKind::Pde, &pde)
             .into_iter()
             .chain(self.ode_curves_at(base))
@@ -241,6 +274,7 @@ impl BoundaryStudy {
             vec![
                 ("n".into(), self.n.to_string()),
                 ("window".into(), self.window()),
+                ("modes".into(), self.modes.to_string()),
             ],
         )?;
         let drawn: Vec<Curve> = curves.iter().map(Curve::of).collect();
@@ -251,7 +285,13 @@ impl BoundaryStudy {
             boundary_picture(
                 &self.out,
                 "boundaries",
-                &format!("Phase boundaries: PDE (N = {}) solid, ODE dashed", self.n),
+                &match self.modes {
+                    2 => format!("Phase boundaries: PDE (N = {}) solid, ODE dashed", self.n),
+                    k => format!(
+                        "Phase boundaries: PDE with modes 2..{k} (N = {}, x-axis states) solid, ODE dashed",
+                        self.n
+                    ),
+                },
                 &drawn,
                 self.eta_t,
                 self.kappa2,
