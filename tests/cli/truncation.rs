@@ -272,3 +272,62 @@ fn boundaries_with_modes_draw_the_k_mode_curves_in_the_papers_plane() {
         assert!(err.contains(says), "{args:?}: {err}");
     }
 }
+
+#[test]
+fn a_k_mode_run_settles_on_the_k_mode_steady_state() {
+    // Time stepping and the steady solver give the same moving droplet, mode 3 included.
+    let stepped = json(&run(&[
+        "simulate",
+        "--eta-t",
+        "0.085",
+        "--kappa2",
+        "0.112",
+        "--ic",
+        "custom:0.5,0,-0.1,0",
+        "--modes",
+        "3",
+        "--n",
+        "96",
+        "--steady-tol",
+        "1e-9",
+        "--json",
+    ]));
+    assert_eq!(stepped["status"], "steady", "{stepped}");
+    assert_eq!(stepped["class"], "MD", "{stepped}");
+    let st = json(&run(&[
+        "stability",
+        "--eta-t",
+        "0.085",
+        "--kappa2",
+        "0.112",
+        "--state",
+        "md",
+        "--modes",
+        "3",
+        "--n",
+        "96",
+        "--json",
+    ]));
+    let f = |x: &serde_json::Value| x.as_f64().unwrap();
+    for (a, b) in [
+        (&stepped["v"], &st["v"]),
+        (&stepped["a_k"][0], &st["a_k"][0]),
+        (&stepped["a_k"][1], &st["a_k"][1]),
+    ] {
+        assert!((f(a) - f(b)).abs() < 1e-6, "{stepped} {st}");
+    }
+    assert!(f(&st["a_k"][1]).abs() > 1e-2, "{st}");
+    let o = run(&[
+        "simulate",
+        "--eta-t",
+        "0.085",
+        "--kappa2",
+        "0.112",
+        "--modes",
+        "3",
+        "--series",
+        "never.parquet",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--series"));
+}

@@ -290,6 +290,11 @@ impl ModeSolver {
         &self.u_spec
     }
 
+    /// The rows (and columns) `lo..=hi` that can hold `Theta > 0` for `m`.
+    pub(crate) fn rows_of(&self, m: &Modes) -> (usize, usize) {
+        self.span(m)
+    }
+
     /// The grid.
     pub(crate) fn grid(&self) -> &Grid {
         &self.grid
