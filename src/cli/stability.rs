@@ -166,11 +166,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
         },
         mode_thresholds: None,
     };
-    if a.json {
-        print_json(&report);
-    } else {
-        print_text(&report);
-    }
+    emit(&report, a.json);
     Ok(())
 }
 
@@ -258,11 +254,7 @@ fn with_modes(
             _ => None,
         },
     };
-    if a.json {
-        print_json(&report);
-    } else {
-        print_text(&report);
-    }
+    emit(&report, a.json);
     Ok(())
 }
 
@@ -281,6 +273,15 @@ fn seed_of(text: Option<&str>) -> Result<Option<(f64, f64)>, CliError> {
         _ => Err(CliError::usage(format!(
             "invalid --seed `{text}`: two finite numbers V,SHAPE with |SHAPE| < 1"
         ))),
+    }
+}
+
+/// Prints the report: one JSON object, or text.
+fn emit(report: &Report, json: bool) {
+    if json {
+        print_json(report);
+    } else {
+        print_text(report);
     }
 }
 

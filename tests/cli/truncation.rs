@@ -3,6 +3,18 @@
 use crate::axes::floats;
 use crate::common::{json, read, run};
 
+/// Runs `base` followed by each case's arguments: each must exit 2 with a message that holds
+/// the case's text.
+fn refused(base: &[&str], cases: &[(&[&str], &str)]) {
+    for (args, says) in cases {
+        let all: Vec<&str> = base.iter().chain(args.iter()).copied().collect();
+        let o = run(&all);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(says), "{args:?}: {err}");
+    }
+}
+
 #[test]
 fn two_modes_are_the_two_mode_commands_and_a_third_changes_the_moving_state() {
     let dir = tempfile::tempdir().unwrap();
@@ -127,27 +139,18 @@ fn two_modes_are_the_two_mode_commands_and_a_third_changes_the_moving_state() {
 fn bad_modes_exit_2_naming_the_key() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("t");
-    for (modes, n, says) in [
-        ("1", "96", "modes"),
-        ("0", "96", "modes"),
-        ("2,2", "96", "--modes"),
-        ("2,x", "96", "--modes"),
-        ("17", "192", "modes"),
-        ("8", "64", "at most 7 at N = 64"),
-    ] {
-        let o = run(&[
-            "truncation",
-            "--modes",
-            modes,
-            "--n",
-            n,
-            "--out",
-            out.to_str().unwrap(),
-        ]);
-        let err = String::from_utf8_lossy(&o.stderr);
-        assert_eq!(o.status.code(), Some(2), "--modes {modes}: {err}");
-        assert!(err.contains(says), "--modes {modes}: {err}");
-    }
+    let out = out.to_str().unwrap();
+    refused(
+        &["truncation", "--out", out],
+        &[
+            (&["--modes", "1", "--n", "96"], "modes"),
+            (&["--modes", "0", "--n", "96"], "modes"),
+            (&["--modes", "2,2", "--n", "96"], "--modes"),
+            (&["--modes", "2,x", "--n", "96"], "--modes"),
+            (&["--modes", "17", "--n", "192"], "modes"),
+            (&["--modes", "8", "--n", "64"], "at most 7 at N = 64"),
+        ],
+    );
 }
 
 #[test]
@@ -211,19 +214,15 @@ fn stability_with_modes_gives_the_k_mode_state_and_its_verdict() {
     ]));
     assert_eq!(two["modes"], 2, "{two}");
     assert_eq!(two["a_k"][0], two["a2"], "{two}");
-    for (args, says) in [
-        (vec!["--modes", "3", "--axis", "diagonal"], "--axis"),
-        (vec!["--modes", "3", "--seed", "0.5,-0.2"], "--seed"),
-        (vec!["--modes", "1"], "modes"),
-        (vec!["--modes", "8", "--n", "64"], "modes"),
-    ] {
-        let mut all = vec!["stability", "--eta-t", "0.085", "--kappa2", "0.112"];
-        all.extend(args.iter().copied());
-        let o = run(&all);
-        let err = String::from_utf8_lossy(&o.stderr);
-        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
-        assert!(err.contains(says), "{args:?}: {err}");
-    }
+    refused(
+        &["stability", "--eta-t", "0.085", "--kappa2", "0.112"],
+        &[
+            (&["--modes", "3", "--axis", "diagonal"], "--axis"),
+            (&["--modes", "3", "--seed", "0.5,-0.2"], "--seed"),
+            (&["--modes", "1"], "modes"),
+            (&["--modes", "8", "--n", "64"], "modes"),
+        ],
+    );
 }
 
 #[test]
@@ -260,17 +259,13 @@ fn boundaries_with_modes_draw_the_k_mode_curves_in_the_papers_plane() {
         "{b}"
     );
     assert!(out.join("boundaries.png").exists());
-    for (args, says) in [
-        (vec!["--modes", "1"], "modes"),
-        (vec!["--modes", "3", "--n", "64,96"], "--modes 3"),
-    ] {
-        let mut all = vec!["boundaries", "--out", out.to_str().unwrap()];
-        all.extend(args.iter().copied());
-        let o = run(&all);
-        let err = String::from_utf8_lossy(&o.stderr);
-        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
-        assert!(err.contains(says), "{args:?}: {err}");
-    }
+    refused(
+        &["boundaries", "--out", out.to_str().unwrap()],
+        &[
+            (&["--modes", "1"], "modes"),
+            (&["--modes", "3", "--n", "64,96"], "--modes 3"),
+        ],
+    );
 }
 
 #[test]
