@@ -3,6 +3,15 @@
 use crate::axes::floats;
 use crate::common::{json, read, run};
 
+/// `droplet stability ARGS --json`.
+fn stability(args: &[&str]) -> serde_json::Value {
+    let all: Vec<&str> = std::iter::once("stability")
+        .chain(args.iter().copied())
+        .chain(["--json"])
+        .collect();
+    json(&run(&all))
+}
+
 /// Runs `base` followed by each case's arguments: each must exit 2 with a message that holds
 /// the case's text.
 fn refused(base: &[&str], cases: &[(&[&str], &str)]) {
@@ -34,18 +43,9 @@ fn two_modes_are_the_two_mode_commands_and_a_third_changes_the_moving_state() {
     let (two, three) = (&rows[0], &rows[1]);
     let f = |r: &serde_json::Value, k: &str| r[k].as_f64().unwrap();
     // K = 2: the 2-mode model's MD state, onset of motion and fold, by other code paths.
-    let md = json(&run(&[
-        "stability",
-        "--eta-t",
-        "0.085",
-        "--kappa2",
-        "0.112",
-        "--state",
-        "md",
-        "--n",
-        "96",
-        "--json",
-    ]));
+    let md = stability(&[
+        "--eta-t", "0.085", "--kappa2", "0.112", "--state", "md", "--n", "96",
+    ]);
     assert!((f(two, "v") - f(&md, "v")).abs() < 1e-8, "{two} {md}");
     assert!((f(two, "s") - f(&md, "s")).abs() < 1e-8, "{two} {md}");
     // ... with its stability: the same eigenvalues from the 2K x 2K problem.
@@ -63,18 +63,9 @@ fn two_modes_are_the_two_mode_commands_and_a_third_changes_the_moving_state() {
     }
     // The 3-mode state is stable too (the rotation mode aside).
     assert_eq!(three["stable"], true, "{three}");
-    let ic = json(&run(&[
-        "stability",
-        "--eta-t",
-        "0.085",
-        "--kappa2",
-        "0.13",
-        "--state",
-        "ic",
-        "--n",
-        "96",
-        "--json",
-    ]));
+    let ic = stability(&[
+        "--eta-t", "0.085", "--kappa2", "0.13", "--state", "ic", "--n", "96",
+    ]);
     let onset = ic["ic_thresholds"]["eta_t"].as_f64().unwrap();
     assert!(
         (f(two, "onset_eta_t") - onset).abs() < 1e-7,
@@ -156,20 +147,9 @@ fn bad_modes_exit_2_naming_the_key() {
 #[test]
 fn stability_with_modes_gives_the_k_mode_state_and_its_verdict() {
     // The Fig. 1c state with modes 2..3, as `droplet truncation` finds it, and stable.
-    let s = json(&run(&[
-        "stability",
-        "--eta-t",
-        "0.085",
-        "--kappa2",
-        "0.112",
-        "--state",
-        "md",
-        "--modes",
-        "3",
-        "--n",
-        "96",
-        "--json",
-    ]));
+    let s = stability(&[
+        "--eta-t", "0.085", "--kappa2", "0.112", "--state", "md", "--modes", "3", "--n", "96",
+    ]);
     assert_eq!(s["modes"], 3, "{s}");
     let a = s["a_k"].as_array().unwrap();
     assert_eq!(a.len(), 2, "{s}");
@@ -178,20 +158,9 @@ fn stability_with_modes_gives_the_k_mode_state_and_its_verdict() {
     assert!(s["rotation"].is_f64(), "{s}");
     // The resting disk: round but for the box's square symmetry (a4 small), with each
     // mode's onset.
-    let ic = json(&run(&[
-        "stability",
-        "--eta-t",
-        "0.085",
-        "--kappa2",
-        "0.13",
-        "--state",
-        "ic",
-        "--modes",
-        "4",
-        "--n",
-        "96",
-        "--json",
-    ]));
+    let ic = stability(&[
+        "--eta-t", "0.085", "--kappa2", "0.13", "--state", "ic", "--modes", "4", "--n", "96",
+    ]);
     let a4 = ic["a_k"][2].as_f64().unwrap();
     assert!(a4.abs() > 0.0 && a4.abs() < 2e-3, "{ic}");
     assert_eq!(
@@ -200,18 +169,9 @@ fn stability_with_modes_gives_the_k_mode_state_and_its_verdict() {
         "{ic}"
     );
     // The 2-mode report names its one mode the same way.
-    let two = json(&run(&[
-        "stability",
-        "--eta-t",
-        "0.085",
-        "--kappa2",
-        "0.112",
-        "--state",
-        "md",
-        "--n",
-        "96",
-        "--json",
-    ]));
+    let two = stability(&[
+        "--eta-t", "0.085", "--kappa2", "0.112", "--state", "md", "--n", "96",
+    ]);
     assert_eq!(two["modes"], 2, "{two}");
     assert_eq!(two["a_k"][0], two["a2"], "{two}");
     refused(
@@ -289,20 +249,9 @@ fn a_k_mode_run_settles_on_the_k_mode_steady_state() {
     ]));
     assert_eq!(stepped["status"], "steady", "{stepped}");
     assert_eq!(stepped["class"], "MD", "{stepped}");
-    let st = json(&run(&[
-        "stability",
-        "--eta-t",
-        "0.085",
-        "--kappa2",
-        "0.112",
-        "--state",
-        "md",
-        "--modes",
-        "3",
-        "--n",
-        "96",
-        "--json",
-    ]));
+    let st = stability(&[
+        "--eta-t", "0.085", "--kappa2", "0.112", "--state", "md", "--modes", "3", "--n", "96",
+    ]);
     let f = |x: &serde_json::Value| x.as_f64().unwrap();
     for (a, b) in [
         (&stepped["v"], &st["v"]),

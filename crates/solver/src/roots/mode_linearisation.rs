@@ -14,7 +14,7 @@
 //! (its logarithmic derivative by central differences), started from the eigenvalues of the
 //! `lambda = 0` problem `M^(-1) (E + C (-D)^(-1) B)`.
 use crate::model::modes::Modes;
-use crate::roots::mode_solver::ModeSolver;
+use crate::roots::mode_solver::{fill_operator, ModeSolver};
 use nalgebra::DMatrix;
 use rustfft::num_complex::Complex64;
 
@@ -32,15 +32,6 @@ pub struct ModeLinearization {
     m: Vec<f64>,
 }
 
-/// The forces as one vector `(Fx, Fy, G^(a).., G^(b)..)`.
-fn as_vec(f: &crate::roots::mode_solver::ModeForces) -> Vec<f64> {
-    [f.fx, f.fy]
-        .into_iter()
-        .chain(f.ga.iter().copied())
-        .chain(f.gb.iter().copied())
-        .collect()
-}
-
 impl ModeLinearization {
     /// Linearises `solver`'s model about `z0 = (vx, vy, a_2..a_K, b_2..b_K)` (a root of the
     /// force balance; taken wherever `z0` is). Needs inertia `m > 0`.
@@ -51,7 +42,8 @@ impl ModeLinearization {
         let k_max = m0.k_max();
         solver.forces(z0[0], z0[1], &m0);
         let u0 = solver.field_spectrum().to_vec();
-        let d = solver.operator(z0[0], z0[1]);
+        let mut d = vec![C64::default(); u0.len()];
+        fill_operator(solver.grid(), z0[0], z0[1], &mut d);
         let grid = solver.grid().clone();
         let n = grid.n;
         let mut b: Vec<Vec<C64>> = Vec::with_capacity(dim);
@@ -75,11 +67,13 @@ impl ModeLinearization {
                 z[j] += sign * h;
                 Modes::of_state(&z)
             };
-            let (sp, _) = solver.source(&shifted(1.0));
-            let (sm, _) = solver.source(&shifted(-1.0));
+            solver.source(&shifted(1.0));
+            let sp = solver.source_spectrum().to_vec();
+            solver.source(&shifted(-1.0));
+            let sm = solver.source_spectrum();
             b.push(
                 sp.iter()
-                    .zip(&sm)
+                    .zip(sm)
                     .map(|(a, c)| (a - c) / (2.0 * h))
                     .collect(),
             );
@@ -87,7 +81,7 @@ impl ModeLinearization {
             let mut forces = |sign: f64| {
                 let (area, lo, hi) = solver.sample(&shifted(sign));
                 solver.gradient(&u0, lo, hi);
-                as_vec(&solver.sums(k_max, lo, hi, area))
+                solver.sums(k_max, lo, hi, area).to_vec()
             };
             let (fp, fm) = (forces(1.0), forces(-1.0));
             for i in 0..dim {
@@ -126,9 +120,9 @@ impl ModeLinearization {
                 *im = half_i * (g1 - g2) * b;
             }
             solver.gradient(&re, lo, hi);
-            let fr = as_vec(&solver.sums(k_max, lo, hi, area));
+            let fr = solver.sums(k_max, lo, hi, area).to_vec();
             solver.gradient(&im, lo, hi);
-            let fi = as_vec(&solver.sums(k_max, lo, hi, area));
+            let fi = solver.sums(k_max, lo, hi, area).to_vec();
             for i in 0..dim {
                 r[i][j] = C64::new(fr[i], fi[i]);
             }
@@ -305,15 +299,19 @@ mod tests {
     use crate::roots::linearisation::Linearization;
     use crate::roots::steady_solver::SteadySolver;
 
-    #[test]
-    fn with_two_modes_the_eigenvalues_are_the_two_mode_ones() {
+    /// At the Fig. 1c point and grid size `n`: the 2-mode solver, the K-mode one and the
+    /// 2-mode MD state `(v, 0, a2, 0)` (which both describe).
+    fn fig1c_two_mode_md(n: usize) -> (SteadySolver, ModeSolver, [f64; 4]) {
         let p = ModelParams::at(0.085, 0.112);
-        let n = 64;
         let mut two = SteadySolver::new(p, n).unwrap();
         let st = two.newton(0.59, -0.27, 1e-12).unwrap();
-        let z = [st.v, 0.0, st.a2, 0.0];
+        (two, ModeSolver::new(p, n).unwrap(), [st.v, 0.0, st.a2, 0.0])
+    }
+
+    #[test]
+    fn with_two_modes_the_eigenvalues_are_the_two_mode_ones() {
+        let (mut two, mut solver, z) = fig1c_two_mode_md(64);
         let want = Linearization::at(&mut two, z).eigenvalues();
-        let mut solver = ModeSolver::new(p, n).unwrap();
         let lin = ModeLinearization::at(&mut solver, &z);
         let got = lin.eigenvalues(&mut solver);
         assert_eq!(got.len(), want.len(), "{got:?} vs {want:?}");
@@ -346,13 +344,8 @@ mod tests {
 
     #[test]
     fn the_verdict_finds_the_rotation_mode_and_agrees_with_two_modes() {
-        let p = ModelParams::at(0.085, 0.112);
-        let n = 96;
-        let mut two = SteadySolver::new(p, n).unwrap();
-        let st = two.newton(0.59, -0.27, 1e-12).unwrap();
-        let z = [st.v, 0.0, st.a2, 0.0];
+        let (mut two, mut solver, z) = fig1c_two_mode_md(96);
         let want = crate::roots::verdict::assess(&Linearization::at(&mut two, z), z);
-        let mut solver = ModeSolver::new(p, n).unwrap();
         let got = ModeLinearization::at(&mut solver, &z).verdict(&mut solver);
         assert_eq!(got.stable(), want.stable(), "{got:?} {want:?}");
         match (got.rotation, want.rotation) {

@@ -36,6 +36,30 @@ pub struct ModeForces {
     pub area: f64,
 }
 
+impl ModeForces {
+    /// The forces as one vector `(Fx, Fy, G^(a)_2.., G^(b)_2..)`, ordered like a state.
+    pub fn to_vec(&self) -> Vec<f64> {
+        [self.fx, self.fy]
+            .into_iter()
+            .chain(self.ga.iter().copied())
+            .chain(self.gb.iter().copied())
+            .collect()
+    }
+}
+
+/// `D = -(1 + k^2) + i k.v`, the co-moving field operator, for every stored mode of `grid`
+/// (`[kx][ky]`), into `out`.
+pub(crate) fn fill_operator(grid: &Grid, vx: f64, vy: f64, out: &mut [Complex64]) {
+    let n = grid.n;
+    for jx in 0..=n / 2 {
+        let (kx, kxd) = (grid.kx[jx], grid.kx_d[jx]);
+        for jy in 0..n {
+            let (ky, kyd) = (grid.ky[jy], grid.ky_d[jy]);
+            out[jx * n + jy] = Complex64::new(-(1.0 + kx * kx + ky * ky), kxd * vx + kyd * vy);
+        }
+    }
+}
+
 /// Where the resting disk of the `K`-mode model loses stability (pitchforks: real eigenvalues
 /// crossing 0 of the `lambda = 0` Jacobian).
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
@@ -103,8 +127,10 @@ pub struct ModeSolver {
     spec: Vec<Complex64>,
     dx_spec: Vec<Complex64>,
     dy_spec: Vec<Complex64>,
-    /// The last field's coefficients (normalised, `[kx][ky]`).
+    /// The last field's coefficients (normalised, `[kx][ky]`), and the operator `D` it was
+    /// solved with.
     u_spec: Vec<Complex64>,
+    d: Vec<Complex64>,
     /// The field's gradient on the droplet's rows.
     ux: Vec<f64>,
     uy: Vec<f64>,
@@ -124,6 +150,7 @@ impl ModeSolver {
             dx_spec: vec![Complex64::default(); grid.spectral_len()],
             dy_spec: vec![Complex64::default(); grid.spectral_len()],
             u_spec: vec![Complex64::default(); grid.spectral_len()],
+            d: vec![Complex64::default(); grid.spectral_len()],
             ux: vec![0.0; n * n],
             uy: vec![0.0; n * n],
             grid,
@@ -185,15 +212,24 @@ impl ModeSolver {
         (count * self.grid.dx * self.grid.dx, lo, hi)
     }
 
-    /// The source `Theta / A` of `m` as a normalised half spectrum (`[kx][ky]`, like the
-    /// field's), leaving `Theta` sampled.
-    pub(crate) fn source(&mut self, m: &Modes) -> (Vec<Complex64>, f64) {
+    /// Transforms the source `Theta / A` of `m` into a normalised half spectrum (`[kx][ky]`,
+    /// like the field's; [`Self::source_spectrum`]), leaving `Theta` sampled: the area and the
+    /// rows `lo..=hi` that hold it.
+    pub(crate) fn source(&mut self, m: &Modes) -> (f64, usize, usize) {
         let n = self.grid.n;
         let (area, lo, hi) = self.sample(m);
         self.real[lo * n..(hi + 1) * n].copy_from_slice(&self.theta[lo * n..(hi + 1) * n]);
         self.fft.forward(&mut self.real, &mut self.spec, lo, hi);
         let norm = 1.0 / (area * (n * n) as f64);
-        (self.spec.iter().map(|c| c * norm).collect(), area)
+        for c in self.spec.iter_mut() {
+            *c *= norm;
+        }
+        (area, lo, hi)
+    }
+
+    /// The last [`Self::source`]'s normalised half spectrum.
+    pub(crate) fn source_spectrum(&self) -> &[Complex64] {
+        &self.spec
     }
 
     /// The gradient of the real field with the normalised half spectrum `u` on the rows
@@ -253,30 +289,12 @@ impl ModeSolver {
         f
     }
 
-    /// `-(1 + k^2) + i k.v` for every stored mode: the co-moving field operator `D`.
-    pub(crate) fn operator(&self, vx: f64, vy: f64) -> Vec<Complex64> {
-        let n = self.grid.n;
-        let mut d = Vec::with_capacity(self.grid.spectral_len());
-        for jx in 0..=n / 2 {
-            let (kx, kxd) = (self.grid.kx[jx], self.grid.kx_d[jx]);
-            for jy in 0..n {
-                let (ky, kyd) = (self.grid.ky[jy], self.grid.ky_d[jy]);
-                d.push(Complex64::new(
-                    -(1.0 + kx * kx + ky * ky),
-                    kxd * vx + kyd * vy,
-                ));
-            }
-        }
-        d
-    }
-
     /// The forces of the steady field of the droplet `m` moving at `(vx, vy)`.
     pub fn forces(&mut self, vx: f64, vy: f64, m: &Modes) -> ModeForces {
-        let (source, area) = self.source(m);
-        let (lo, hi) = self.span(m);
+        let (area, lo, hi) = self.source(m);
         // u_hat = source / (1 + k^2 - i k.v) = -source / D.
-        let d = self.operator(vx, vy);
-        for ((u, s), d) in self.u_spec.iter_mut().zip(&source).zip(&d) {
+        fill_operator(&self.grid, vx, vy, &mut self.d);
+        for ((u, s), d) in self.u_spec.iter_mut().zip(&self.spec).zip(&self.d) {
             *u = -s / d;
         }
         let u = std::mem::take(&mut self.u_spec);
@@ -288,11 +306,6 @@ impl ModeSolver {
     /// The last steady field's normalised half spectrum.
     pub(crate) fn field_spectrum(&self) -> &[Complex64] {
         &self.u_spec
-    }
-
-    /// The rows (and columns) `lo..=hi` that can hold `Theta > 0` for `m`.
-    pub(crate) fn rows_of(&self, m: &Modes) -> (usize, usize) {
-        self.span(m)
     }
 
     /// The grid.

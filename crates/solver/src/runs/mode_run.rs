@@ -13,7 +13,7 @@
 use crate::error::SolverError;
 use crate::model::modes::Modes;
 use crate::model::params::ModelParams;
-use crate::roots::mode_solver::ModeSolver;
+use crate::roots::mode_solver::{fill_operator, ModeSolver};
 use rustfft::num_complex::Complex64;
 
 /// How a `K`-mode run steps and when it stops.
@@ -65,7 +65,9 @@ pub fn run_modes(
     let mut solver = ModeSolver::new(*params, n)?;
     let h = settings.dt;
     let mut z = z0.to_vec();
+    // The field, and the operator D at the current velocity.
     let mut u: Vec<Complex64> = Vec::new();
+    let mut d: Vec<Complex64> = Vec::new();
     let (mut t, mut steps) = (0.0, 0u64);
     // The linear decay rates and their exponential-Euler weights, per unknown.
     let mut rate_of = vec![params.eta_t / params.mass; 2];
@@ -86,18 +88,13 @@ pub fn run_modes(
         .collect();
     loop {
         let m = Modes::of_state(&z);
-        let (source, area) = solver.source(&m);
+        let (area, lo, hi) = solver.source(&m);
         if u.is_empty() {
-            u = vec![Complex64::default(); source.len()];
+            u = vec![Complex64::default(); solver.source_spectrum().len()];
+            d = u.clone();
         }
-        let (lo, hi) = solver.rows_of(&m);
         solver.gradient(&u, lo, hi);
-        let f = solver.sums(k_max, lo, hi, area);
-        let forces: Vec<f64> = [f.fx, f.fy]
-            .into_iter()
-            .chain(f.ga.iter().copied())
-            .chain(f.gb.iter().copied())
-            .collect();
+        let forces = solver.sums(k_max, lo, hi, area).to_vec();
         // The rates dz/dt now: (force - stiffness z) / inertia.
         let rate = forces
             .iter()
@@ -114,8 +111,8 @@ pub fn run_modes(
                 rate,
             });
         }
-        let d = solver.operator(z[0], z[1]);
-        for ((u, s), d) in u.iter_mut().zip(&source).zip(&d) {
+        fill_operator(solver.grid(), z[0], z[1], &mut d);
+        for ((u, s), d) in u.iter_mut().zip(solver.source_spectrum()).zip(&d) {
             let e = (d * h).exp();
             *u = e * *u + (e - 1.0) / d * s;
         }
