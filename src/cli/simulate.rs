@@ -20,108 +20,108 @@ use std::path::PathBuf;
 pub struct Args {
     /// Translational friction eta_t (> 0).
     #[arg(long)]
-    eta_t: f64,
+    pub(super) eta_t: f64,
     /// Mode-2 stiffness kappa2 (>= 0).
     #[arg(long)]
-    kappa2: f64,
+    pub(super) kappa2: f64,
     /// Initial condition: i, ii, iii, iv (paper Sect. 3), i', ii' (Fig. 2b; also ip, iip), or custom:vx,vy,a2,b2.
     #[arg(long, default_value = "i")]
-    ic: String,
+    pub(super) ic: String,
     /// Inertia m (0.1 reproduces the paper's IC/MD bistability; 0 = overdamped, with
     /// --steady test only: its labels cannot be checked for stability).
     #[arg(long, default_value_t = 0.1)]
-    mass: f64,
+    pub(super) mass: f64,
     /// Mode-2 friction eta2.
     #[arg(long, default_value_t = 0.1)]
-    eta2: f64,
+    pub(super) eta2: f64,
     /// Droplet radius R.
     #[arg(long, default_value_t = 1.0)]
-    radius: f64,
+    pub(super) radius: f64,
     /// Interface width sigma of Theta.
     #[arg(long, default_value_t = 0.03)]
-    sigma: f64,
+    pub(super) sigma: f64,
     /// Side L of the periodic box.
     #[arg(long, default_value_t = 7.0)]
-    box_len: f64,
+    pub(super) box_len: f64,
     /// Scheme: spectral (co-moving ETD2RK, default) or paper-fd (the paper's explicit scheme).
     #[arg(long, default_value = "spectral")]
-    scheme: String,
+    pub(super) scheme: String,
     /// Grid points per side (default: 192 spectral, 280 paper-fd).
     #[arg(long)]
-    n: Option<usize>,
+    pub(super) n: Option<usize>,
     /// Time step: the first step of adaptive runs, else the fixed step (default: 0.02
     /// spectral, 1e-4 paper-fd).
     #[arg(long)]
-    dt: Option<f64>,
+    pub(super) dt: Option<f64>,
     /// Adaptive stepping: largest accepted embedded error estimate per step (units of v, a2,
     /// b2); 0 = fixed step --dt. Default 1e-4 for spectral (see `droplet bench`), 0 for
     /// paper-fd (no estimate). For accurate time series use 1e-5.
     #[arg(long)]
-    tol: Option<f64>,
+    pub(super) tol: Option<f64>,
     /// Largest adaptive step (default 0.25: larger steps relax slow modes at the wrong rate).
     #[arg(long)]
-    dt_max: Option<f64>,
+    pub(super) dt_max: Option<f64>,
     /// Give up at this time (status t_max).
     #[arg(long, default_value_t = 2000.0)]
-    t_max: f64,
+    pub(super) t_max: f64,
     /// Steady when max change of vx, vy, a2, b2 over one window is below this.
     #[arg(long, default_value_t = 1e-6)]
-    steady_tol: f64,
+    pub(super) steady_tol: f64,
     /// Window of the steady test in time units.
     #[arg(long, default_value_t = 0.1)]
-    steady_window: f64,
+    pub(super) steady_window: f64,
     /// How the run decides it is steady: newton (default for the spectral scheme: once the
     /// run slows down, Newton on the steady equations; it ends at a root only if the root is
     /// stable and the run is approaching it) or test (the paper's test alone; default for
     /// paper-fd). With test, a steady run is checked afterwards and a warning printed if the
     /// state it stopped on is unstable.
     #[arg(long)]
-    steady: Option<droplet_solver::contract::ending::SteadyMethod>,
+    pub(super) steady: Option<droplet_solver::contract::ending::SteadyMethod>,
     /// With --steady newton: stop a run beside an unstable steady state as soon as its growth
     /// rate shows it cannot leave before --t-max with another class (status saddle, the
     /// diagnosis says how far it would get) instead of creeping there.
     #[arg(long)]
-    stop_beside_saddle: bool,
+    pub(super) stop_beside_saddle: bool,
     /// With --steady newton and adaptive steps: once two Newton tries see the run leaving an
     /// unstable steady state along one growing mode, still linear, leap along the mode to a
     /// distance 0.05 from it instead of stepping through the exponential (t_leapt says how
     /// long; the final state is unaffected, t_end moves with the later Newton tries).
     #[arg(long)]
-    leap_departures: bool,
+    pub(super) leap_departures: bool,
     /// With --steady newton: do not end slow runs where their one-dimensional quasi-steady
     /// flow lands (on by default: a slow run ends `steady_by_landing` on the stable root its
     /// flow reaches, confirmed by Newton and the root's eigenvalues); plain time stepping.
     #[arg(long)]
-    no_landing: bool,
+    pub(super) no_landing: bool,
     /// With --steady newton: give up at --t-max, as the paper (by default a run not yet on a
     /// stable state runs on to 4 t_max before it is reported unsettled).
     #[arg(long)]
-    no_run_on: bool,
+    pub(super) no_run_on: bool,
     /// Hold the centre fixed (deformation-only run, Appendix E).
     #[arg(long)]
-    pinned: bool,
+    pub(super) pinned: bool,
     /// Write the time series (t, x, y, vx, vy, a2, b2, v, s) to this Parquet file.
     #[arg(long)]
-    series: Option<PathBuf>,
+    pub(super) series: Option<PathBuf>,
     /// Sampling interval of the series / picture in time units. Adaptive steps are shortened
     /// to land on the sample times, so a recorded run's steps differ from an unrecorded one's:
     /// its values agree within the step tolerance, except in runs still leaving a saddle at
     /// --t-max, whose final values are sensitive to any integration error (README,
     /// Classification).
     #[arg(long, default_value_t = 0.5)]
-    every: f64,
+    pub(super) every: f64,
     /// Draw the Fig. 1 panels (final field, outline, velocity; v(t), s(t)) to this PNG (+ .svg).
     #[arg(long)]
-    picture: Option<PathBuf>,
+    pub(super) picture: Option<PathBuf>,
     /// Print one JSON object instead of text.
     /// Shape modes 2..K (the paper's general model; default 2, the paper's). With K > 2 the
     /// K-mode model is time-stepped by exponential Euler (first order; --dt, default 0.05)
     /// from the IC (higher modes 0, field 0) until every rate |dz/dt| is below --steady-tol,
     /// or t_max; no series, picture, scheme, pinning or ending options yet.
     #[arg(long, default_value_t = 2)]
-    modes: usize,
+    pub(super) modes: usize,
     #[arg(long)]
-    json: bool,
+    pub(super) json: bool,
 }
 
 #[derive(Serialize)]
@@ -179,7 +179,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
     let (params, settings) = model_of(&a)?;
     let ic = InitialCondition::parse(&a.ic)?;
     if a.modes != 2 {
-        return run_with_modes(&a, params, settings.n, &ic);
+        return super::mode_simulate::run(&a, params, settings.n, &ic);
     }
     let record = check_outputs(&a, &settings)?;
     let mut run = Run::new(&params, &ic, &settings)?.record_every(record.then_some(a.every));
@@ -377,73 +377,4 @@ fn print_text(report: &Report) {
     for p in report.series.iter().chain(&report.picture) {
         outln!("wrote {}", p.display());
     }
-}
-
-/// `--modes K` with K > 2: the K-mode model time-stepped from the IC until steady.
-fn run_with_modes(
-    a: &Args,
-    params: ModelParams,
-    n: usize,
-    ic: &InitialCondition,
-) -> Result<(), CliError> {
-    droplet_solver::contract::limits::check_modes(&params, n, a.modes)?;
-    let not_yet = [
-        (a.series.is_some(), "--series"),
-        (a.picture.is_some(), "--picture"),
-        (a.scheme != "spectral", "--scheme"),
-        (a.pinned, "--pinned"),
-        (a.steady.is_some(), "--steady"),
-        (a.stop_beside_saddle, "--stop-beside-saddle"),
-        (a.leap_departures, "--leap-departures"),
-        (a.no_landing, "--no-landing"),
-        (a.no_run_on, "--no-run-on"),
-        (a.tol.is_some(), "--tol"),
-        (a.dt_max.is_some(), "--dt-max"),
-    ];
-    if let Some((_, flag)) = not_yet.iter().find(|(given, _)| *given) {
-        return Err(CliError::usage(format!(
-            "invalid {flag} with --modes {}: the K-mode run is one fixed-step scheme to a \
-             steady state (--dt, --t-max, --steady-tol)",
-            a.modes
-        )));
-    }
-    let k = a.modes;
-    let mut z0 = vec![ic.vx, ic.vy, ic.a2];
-    z0.extend(std::iter::repeat_n(0.0, k - 2));
-    z0.push(ic.b2);
-    z0.extend(std::iter::repeat_n(0.0, k - 2));
-    let settings = droplet_solver::runs::mode_run::ModeRunSettings {
-        dt: a.dt.unwrap_or(0.05),
-        t_max: a.t_max,
-        tol: a.steady_tol,
-    };
-    let started = std::time::Instant::now();
-    let run = droplet_solver::runs::mode_run::run_modes(&params, n, &z0, &settings)?;
-    let (vx, vy) = (run.z[0], run.z[1]);
-    let (a2, b2) = (run.z[2], run.z[k + 1]);
-    let (v, s) = (vx.hypot(vy), a2.hypot(b2));
-    let class = run
-        .steady
-        .then(|| droplet_solver::model::classify::StateClass::of(v, s).as_str());
-    let report = serde_json::json!({
-        "modes": k, "status": if run.steady { "steady" } else { "t_max" }, "class": class,
-        "v": v, "s": s, "vx": vx, "vy": vy, "a_k": &run.z[2..k + 1], "b_k": &run.z[k + 1..],
-        "t_end": run.t_end, "steps": run.steps, "rate": run.rate,
-        "wall_s": started.elapsed().as_secs_f64(), "params": params, "ic": ic, "n": n,
-    });
-    if a.json {
-        print_json(&report);
-    } else {
-        outln!(
-            "{} with {k} modes ({}): v = {v:.6}  s = {s:.6}  a_k {:?}  b_k {:?}  t = {:.1}, {} steps, largest rate {:.1e}",
-            class.unwrap_or("-"),
-            if run.steady { "steady" } else { "t_max" },
-            &run.z[2..k + 1],
-            &run.z[k + 1..],
-            run.t_end,
-            run.steps,
-            run.rate
-        );
-    }
-    Ok(())
 }

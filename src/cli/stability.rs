@@ -3,7 +3,7 @@ use super::param_line::parse_set;
 use super::{print_json, CliError};
 use droplet_solver::model::param::ModelParam;
 use droplet_solver::model::params::ModelParams;
-use droplet_solver::roots::mode_solver::ModeThresholds;
+use droplet_solver::roots::mode_thresholds::ModeThresholds;
 use droplet_solver::roots::named_state::{find, ic_thresholds, IcThresholds, StateKind};
 use serde::Serialize;
 
@@ -170,17 +170,15 @@ pub fn run(a: Args) -> Result<(), CliError> {
     Ok(())
 }
 
-/// `--modes K` with K > 2: the state on the x axis of the K-mode model and its stability.
-fn with_modes(
+/// The options `--modes K` (K > 2) can honour: the x axis, no seed, inertia for the
+/// eigenvalues, and K modes the grid resolves.
+fn check_with_modes(
     a: &Args,
     axis: droplet_solver::roots::steady_solver::MirrorAxis,
     seed: Option<(f64, f64)>,
-    params: ModelParams,
+    params: &ModelParams,
 ) -> Result<(), CliError> {
-    use droplet_solver::continuation::mode_branch::{ic_state, id_state, md_state};
-    use droplet_solver::roots::mode_linearisation::ModeLinearization;
-    use droplet_solver::roots::mode_solver::ModeSolver;
-    droplet_solver::contract::limits::check_modes(&params, a.n, a.modes)?;
+    droplet_solver::contract::limits::check_modes(params, a.n, a.modes)?;
     if axis != droplet_solver::roots::steady_solver::MirrorAxis::X {
         return Err(CliError::usage(format!(
             "invalid --axis {} with --modes {}: the K-mode states are those on the x axis",
@@ -198,6 +196,20 @@ fn with_modes(
             "invalid --mass: > 0 for the eigenvalues".to_string(),
         ));
     }
+    Ok(())
+}
+
+/// `--modes K` with K > 2: the state on the x axis of the K-mode model and its stability.
+fn with_modes(
+    a: &Args,
+    axis: droplet_solver::roots::steady_solver::MirrorAxis,
+    seed: Option<(f64, f64)>,
+    params: ModelParams,
+) -> Result<(), CliError> {
+    use droplet_solver::continuation::mode_branch::{ic_state, id_state, md_state};
+    use droplet_solver::roots::mode_linearisation::ModeLinearization;
+    use droplet_solver::roots::mode_solver::ModeSolver;
+    check_with_modes(a, axis, seed, &params)?;
     let k = a.modes;
     let mut solver = ModeSolver::new(params, a.n)?;
     let lost = |what: &str| CliError {

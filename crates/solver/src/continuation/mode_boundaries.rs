@@ -22,7 +22,8 @@ use crate::model::param::ModelParam;
 use crate::model::params::ModelParams;
 use crate::numerics::newton::fd_jacobian;
 use crate::reduced::boundaries::Boundary;
-use crate::roots::mode_solver::{drift_threshold, ModeSolver};
+use crate::roots::mode_solver::ModeSolver;
+use crate::roots::mode_thresholds::drift_threshold;
 
 /// The window and resolution of [`mode_boundaries`].
 #[derive(Debug, Clone)]

@@ -10,6 +10,7 @@ pub mod h0_fit;
 pub mod linearisation;
 pub mod mode_linearisation;
 pub mod mode_solver;
+pub mod mode_thresholds;
 pub mod named_state;
 pub mod steady_solver;
 pub mod verdict;

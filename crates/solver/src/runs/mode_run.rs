@@ -40,6 +40,31 @@ pub struct ModeRun {
     pub rate: f64,
 }
 
+/// Per unknown `(vx, vy, a_2..a_K, b_2..b_K)`: the linear decay rate (`eta_t / m`,
+/// `kappa_k / eta2`), the inertia (`m`, `eta2`), and the exponential-Euler weights of a step
+/// `h`: `e^(-r h)` on the value and `(1 - e^(-r h)) / (r m)` on the frozen force.
+type LinearParts = (Vec<f64>, Vec<f64>, Vec<(f64, f64)>);
+
+fn linear_parts(solver: &ModeSolver, k_max: usize, h: f64) -> LinearParts {
+    let p = solver.params();
+    let mut rate_of = vec![p.eta_t / p.mass; 2];
+    let mut inertia = vec![p.mass; 2];
+    // a_2..a_K, then b_2..b_K.
+    for k in (2..=k_max).chain(2..=k_max) {
+        rate_of.push(solver.kappa(k) / p.eta2);
+        inertia.push(p.eta2);
+    }
+    let decay = rate_of
+        .iter()
+        .zip(&inertia)
+        .map(|(r, m)| {
+            let e = (-r * h).exp();
+            (e, (1.0 - e) / (r * m))
+        })
+        .collect();
+    (rate_of, inertia, decay)
+}
+
 /// Runs the `K`-mode model (`K = z0.len() / 2`) from `z0` with the field 0.
 pub fn run_modes(
     params: &ModelParams,
@@ -69,23 +94,7 @@ pub fn run_modes(
     let mut u: Vec<Complex64> = Vec::new();
     let mut d: Vec<Complex64> = Vec::new();
     let (mut t, mut steps) = (0.0, 0u64);
-    // The linear decay rates and their exponential-Euler weights, per unknown.
-    let mut rate_of = vec![params.eta_t / params.mass; 2];
-    let mut inertia = vec![params.mass; 2];
-    // a_2..a_K, then b_2..b_K.
-    for k in (2..=k_max).chain(2..=k_max) {
-        rate_of.push(solver.kappa(k) / params.eta2);
-        inertia.push(params.eta2);
-    }
-    let decay: Vec<(f64, f64)> = rate_of
-        .iter()
-        .zip(&inertia)
-        .map(|(r, m)| {
-            let e = (-r * h).exp();
-            // (1 - e^(-r h)) / (r m): the weight of the frozen force.
-            (e, (1.0 - e) / (r * m))
-        })
-        .collect();
+    let (rate_of, inertia, decay) = linear_parts(&solver, k_max, h);
     loop {
         let m = Modes::of_state(&z);
         let (area, lo, hi) = solver.source(&m);

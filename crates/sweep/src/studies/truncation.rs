@@ -122,6 +122,35 @@ fn row(
     ))
 }
 
+/// The Fig. 1c droplet's outline for each row, labelled with its `K` and speed.
+fn outlines(rows: &[TruncationRow], base: &ModelParams) -> Vec<Curve> {
+    let shape = ShapeParams {
+        radius: base.radius,
+        sigma: base.sigma,
+    };
+    rows.iter()
+        .map(|r| {
+            let m = Modes {
+                a: r.fig1c.a.clone(),
+                b: vec![0.0; r.fig1c.a.len()],
+            };
+            let points = (0..=360)
+                .map(|i| {
+                    let th = (i as f64).to_radians();
+                    let f = m.boundary(&shape, th.cos(), th.sin());
+                    (f * th.cos(), f * th.sin())
+                })
+                .collect();
+            Curve {
+                label: format!("K = {}: v = {:.4}", r.k_max, r.fig1c.v),
+                points,
+                dashed: false,
+                colour: None,
+            }
+        })
+        .collect()
+}
+
 /// Runs the study for each `K` of `modes` at grid size `n` (the other parameters the
 /// defaults) and writes `truncation.parquet` and `truncation.png/.svg` into `out`.
 pub fn run(out: &Path, modes: &[usize], n: usize) -> Result<TruncationWritten, SweepError> {
@@ -172,32 +201,7 @@ pub fn run(out: &Path, modes: &[usize], n: usize) -> Result<TruncationWritten, S
         FIG2A_WINDOW.0,
         FIG2A_WINDOW.1,
     )?);
-    let shape = ShapeParams {
-        radius: base.radius,
-        sigma: base.sigma,
-    };
-    let curves: Vec<Curve> = rows
-        .iter()
-        .map(|r| {
-            let m = Modes {
-                a: r.fig1c.a.clone(),
-                b: vec![0.0; r.fig1c.a.len()],
-            };
-            let points = (0..=360)
-                .map(|i| {
-                    let th = (i as f64).to_radians();
-                    let f = m.boundary(&shape, th.cos(), th.sin());
-                    (f * th.cos(), f * th.sin())
-                })
-                .collect();
-            Curve {
-                label: format!("K = {}: v = {:.4}", r.k_max, r.fig1c.v),
-                points,
-                dashed: false,
-                colour: None,
-            }
-        })
-        .collect();
+    let curves = outlines(&rows, &base);
     files.extend(outline_picture(
         out,
         "truncation",

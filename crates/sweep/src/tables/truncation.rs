@@ -9,7 +9,8 @@ use crate::error::SweepError;
 use crate::tables::sweep_tables::{metadata, write_parquet};
 use droplet_solver::continuation::mode_branch::ModeFold;
 use droplet_solver::roots::mode_linearisation::ModeVerdict;
-use droplet_solver::roots::mode_solver::{ModeState, ModeThresholds};
+use droplet_solver::roots::mode_solver::ModeState;
+use droplet_solver::roots::mode_thresholds::ModeThresholds;
 use polars::prelude::*;
 use std::path::{Path, PathBuf};
 
