@@ -94,7 +94,8 @@ pub struct Args {
     #[arg(long)]
     pub(super) no_landing: bool,
     /// With --steady newton: give up at --t-max, as the paper (by default a run not yet on a
-    /// stable state runs on to 4 t_max before it is reported unsettled).
+    /// stable state runs on to 64 t_max, 4 t_max with fixed steps, before it is reported
+    /// unsettled).
     #[arg(long)]
     pub(super) no_run_on: bool,
     /// Hold the centre fixed (deformation-only run, Appendix E).
@@ -113,13 +114,13 @@ pub struct Args {
     /// Draw the Fig. 1 panels (final field, outline, velocity; v(t), s(t)) to this PNG (+ .svg).
     #[arg(long)]
     pub(super) picture: Option<PathBuf>,
-    /// Print one JSON object instead of text.
     /// Shape modes 2..K (the paper's general model; default 2, the paper's). With K > 2 the
     /// K-mode model is time-stepped by exponential Euler (first order; --dt, default 0.05)
     /// from the IC (higher modes 0, field 0) until every rate |dz/dt| is below --steady-tol,
     /// or t_max; no series, picture, scheme, pinning or ending options yet.
     #[arg(long, default_value_t = 2)]
     pub(super) modes: usize,
+    /// Print one JSON object instead of text.
     #[arg(long)]
     pub(super) json: bool,
 }

@@ -53,7 +53,9 @@ use contract::settings::ModelKind;
 /// 5: no landing on a root unstable in its rotation mode (the run's turn decides between
 /// competing orientations); a turn may end on a root of another class within the box's
 /// anisotropy (MD on one mirror line, MC on the other).
-pub const SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-5");
+/// 6: an adaptive run not yet on a stable state at 4 `t_max` runs on to 64 `t_max` (runs that
+/// end before 4 `t_max` are unchanged).
+pub const SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-6");
 
 /// Version of the reduced ODE model's numerics (2: unstable states no longer end a run;
 /// 3: a run that does not end steady has no class).

@@ -24,10 +24,9 @@ pub const MIN_RADIUS_CELLS: f64 = 4.0;
 pub const MIN_SIGMA_CELLS: f64 = 0.1;
 
 /// Accepted adaptive steps after which a run ends with status `step_limit`: 100 times the
-/// fewest steps that could reach where the run is given up (`t_max`, or 4 `t_max` with
-/// `run_on`, [`SolverSettings::give_up_at`]), at least 1e6, at most
-/// [`MAX_STEPS`]. At the defaults (t_max = 2000, dt_max = 0.25) that is 3.2e6; a normal run
-/// takes 1e3 to 1e4.
+/// fewest steps that could reach where the run is given up (`t_max`, or 64 `t_max` with
+/// `run_on`, [`SolverSettings::give_up_at`]), at least 1e6, at most [`MAX_STEPS`]. At the
+/// defaults (t_max = 2000, dt_max = 0.25) that is 5.12e7; a normal run takes 1e3 to 1e4.
 pub fn adaptive_step_cap(settings: &SolverSettings) -> u64 {
     (100.0 * settings.give_up_at() / settings.dt_max).clamp(1e6, MAX_STEPS) as u64
 }
@@ -37,15 +36,16 @@ pub fn paper_fd_max_dt(dx: f64) -> f64 {
     2.0 / (8.0 / (dx * dx) + 1.0)
 }
 
-/// Checks a recording interval against `t_max`.
-pub fn check_series(t_max: f64, every: f64) -> Result<(), SolverError> {
-    let rows = t_max / every;
+/// Checks a recording interval against the time a run may last, `until` (`t_max`, or where a
+/// run that runs on is given up, [`SolverSettings::give_up_at`]).
+pub fn check_series(until: f64, every: f64) -> Result<(), SolverError> {
+    let rows = until / every;
     require(
         every > 0.0 && rows <= MAX_SERIES_ROWS,
         "every",
         every,
         format!(
-            "a finite interval > 0 giving at most {MAX_SERIES_ROWS:e} series rows up to t_max = {t_max} (this one gives {rows:.3e})"
+            "a finite interval > 0 giving at most {MAX_SERIES_ROWS:e} series rows up to t = {until} (t_max, or where a run not yet steady is given up: 64 t_max unless run_on is off) (this one gives {rows:.3e})"
         ),
     )
 }
@@ -203,7 +203,7 @@ mod tests {
         let limit = paper_fd_max_dt(0.025);
         assert!((limit - 2.0 / 12801.0).abs() < 1e-15);
         assert!(limit > 1e-4);
-        // 100 x (4 t_max) / dt_max: the default runs on to 4 t_max.
-        assert_eq!(adaptive_step_cap(&SolverSettings::default()), 3_200_000);
+        // 100 x (64 t_max) / dt_max: the default runs on to 64 t_max.
+        assert_eq!(adaptive_step_cap(&SolverSettings::default()), 51_200_000);
     }
 }

@@ -83,14 +83,22 @@ pub struct SolverSettings {
     #[serde(default = "on")]
     pub landing: bool,
     /// With the Newton finish: a run that has not ended on a stable state by `t_max` runs on,
-    /// up to [`RUN_ON`] times `t_max`, before it is given up as unsettled (its `t_end` says
-    /// how long it ran). On by default (numerics 4); off gives up at `t_max`, as the paper.
+    /// up to [`RUN_ON_FAR`] times `t_max` (adaptive steps, numerics 6; [`RUN_ON`] times with
+    /// fixed steps), before it is given up as unsettled (its `t_end` says how long it ran).
+    /// On by default (numerics 4); off gives up at `t_max`, as the paper.
     #[serde(default = "on")]
     pub run_on: bool,
 }
 
-/// How far past `t_max` a run not yet on a stable state runs on (setting `run_on`).
+/// How far past `t_max` a run not yet on a stable state runs on with its own steps (setting
+/// `run_on`).
 pub const RUN_ON: f64 = 4.0;
+
+/// How far past `t_max` an adaptive run not yet on a stable state runs on (setting `run_on`,
+/// numerics 6), with its own steps. The runs that need it are turning or leaving a saddle at
+/// rates of 1e-4 or less; in the Fig. 2a map the last one ends at t = 100 814
+/// (docs/classification.md, "Running on"). Fixed-step runs stop at [`RUN_ON`] `t_max`.
+pub const RUN_ON_FAR: f64 = 64.0;
 
 fn on() -> bool {
     true
@@ -152,13 +160,15 @@ impl SolverSettings {
         }
     }
 
-    /// The time at which a run not yet steady is given up: `t_max`, or [`RUN_ON`] times it
-    /// with `run_on` and the Newton finish.
+    /// The time at which a run not yet steady is given up: `t_max`; with `run_on` and the
+    /// Newton finish, [`RUN_ON_FAR`] times it (adaptive steps) or [`RUN_ON`] times it (fixed
+    /// steps).
     pub fn give_up_at(&self) -> f64 {
-        if self.run_on && self.steady == SteadyMethod::Newton {
-            RUN_ON * self.t_max
-        } else {
-            self.t_max
+        let runs_on = self.run_on && self.steady == SteadyMethod::Newton;
+        match (runs_on, self.adaptive()) {
+            (true, true) => RUN_ON_FAR * self.t_max,
+            (true, false) => RUN_ON * self.t_max,
+            (false, _) => self.t_max,
         }
     }
 
@@ -186,7 +196,7 @@ impl SolverSettings {
             "dt_max",
             self.dt_max,
             format!(
-                "a largest step giving at most {MAX_STEPS:e} steps to t = {} (t_max, run on to {RUN_ON} t_max unless run_on is off; this one needs at least {fewest:.3e}); raise dt_max or lower t_max",
+                "a largest step giving at most {MAX_STEPS:e} steps to t = {} (t_max, run on to {RUN_ON_FAR} t_max unless run_on is off; this one needs at least {fewest:.3e}); raise dt_max or lower t_max",
                 self.give_up_at()
             ),
         )

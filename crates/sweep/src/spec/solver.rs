@@ -53,7 +53,7 @@ const FLAGS: [Flag; 4] = [
     ),
     (
         "run_on",
-        "run a run not yet on a stable state on to 4 t_max; the default",
+        "run a run not yet on a stable state on to 64 t_max (4 t_max with fixed steps); the default",
         |s| &mut s.run_on,
     ),
 ];
