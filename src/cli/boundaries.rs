@@ -45,9 +45,9 @@ pub struct Args {
     /// Shape modes 2..K (the paper's general model; default 2). With K > 2 the curves of the
     /// states on the x axis (the onsets of motion and of the axis deformation, ID's onset of
     /// motion, the MD fold), in the paper's plane; about 25 s per curve set at N = 192, 90 s
-    /// for K = 6.
-    #[arg(long, default_value_t = 2)]
-    modes: usize,
+    /// for K = 6. Default: the sweep's in --out (its spec's params.modes), else 2.
+    #[arg(long)]
+    modes: Option<usize>,
     /// Output directory (a sweep's directory redraws its phase map).
     #[arg(long, default_value = "out/boundaries")]
     out: PathBuf,
@@ -88,14 +88,16 @@ pub fn run(a: Args) -> Result<(), CliError> {
             a.samples
         )));
     }
-    let study = BoundaryStudy::new(&a.out, eta_t, kappa2, ns[0], a.samples)?.with_modes(a.modes)?;
+    let study = BoundaryStudy::new(&a.out, eta_t, kappa2, ns[0], a.samples)?;
+    let modes = a.modes.unwrap_or(study.modes);
+    let study = study.with_modes(modes)?;
     super::line::within_limit("eta_t window HI (from the sweep in --out)", study.eta_t.1)?;
     super::line::within_limit("kappa2 window HI (from the sweep in --out)", study.kappa2.1)?;
     if ns.len() > 1 {
-        if a.modes != 2 {
+        if modes != 2 {
             return Err(CliError::usage(format!(
                 "invalid --n {} with --modes {}: a convergence study is made with 2 modes",
-                a.n, a.modes
+                a.n, modes
             )));
         }
         if !study.in_paper_plane() {

@@ -24,40 +24,54 @@ use std::path::PathBuf;
 #[derive(clap::Args)]
 #[command(
     allow_negative_numbers = true,
-    after_help = "Examples:\n  droplet continue --kappa2 0.13 --from 0.070 --to 0.100 --out results/continuation    # all branches, vary eta_t\n  droplet continue --eta-t 0.085 --from 0.100 --to 0.170 --out results/continuation   # vary kappa2\n  droplet continue --branch md --kappa2 0.13 --from 0.07 --to 0.1 --json             # the MD branch and its fold\n  droplet continue --param mass --set eta_t=0.078,kappa2=0.13 --from 0.01 --to 1    # in the inertia: stability only"
+    after_help = "Examples:\n  droplet continue --kappa2 0.13 --from 0.070 --to 0.100 --out results/continuation    # all branches, vary eta_t\n  droplet continue --eta-t 0.085 --from 0.100 --to 0.170 --out results/continuation   # vary kappa2\n  droplet continue --branch md --kappa2 0.13 --from 0.07 --to 0.1 --json             # the MD branch and its fold\n  droplet continue --param mass --set eta_t=0.078,kappa2=0.13 --from 0.01 --to 1    # in the inertia: stability only\n  droplet continue --modes 3 --kappa2 0.13 --from 0.075 --to 0.1 --json             # MD with modes 2..3, its fold"
 )]
 pub struct Args {
     /// Which branch: all, ic, id, md (moving along its minor axis), md-major.
     #[arg(long, default_value = "all")]
-    branch: String,
+    pub(super) branch: String,
     #[command(flatten)]
-    line: super::param_line::ParamLineArgs,
+    pub(super) line: super::param_line::ParamLineArgs,
     /// The mirror axis the states lie on: x (motion along x), or diagonal.
     #[arg(long, default_value = "x")]
-    axis: String,
+    pub(super) axis: String,
     /// Grid points per side.
     #[arg(long, default_value_t = 192)]
-    n: usize,
+    pub(super) n: usize,
     /// Inertia m (> 0: it scales the eigenvalues, not the states; default 0.1).
     #[arg(long)]
-    mass: Option<f64>,
+    pub(super) mass: Option<f64>,
     /// Most states per branch and direction.
     #[arg(long, default_value_t = 400)]
-    max_points: usize,
+    pub(super) max_points: usize,
     /// Longest continuation step (arclength in (v, shape, parameter scaled to [0, 1])).
     #[arg(long, default_value_t = 0.03)]
-    ds_max: f64,
+    pub(super) ds_max: f64,
+    /// Shape modes 2..K (the paper's general model; default 2, the paper's). With K > 2 the
+    /// MD branch on the x axis (b_k = 0) is followed in eta_t or kappa2 from --from (where it
+    /// must exist) towards --to, through its folds, with the stability of every state (the
+    /// 2K x 2K eigenproblem with the field, the rotation mode set aside); writes
+    /// DIR/continuation_modes<K>_<fixed>_<value>.parquet (v, s = |a2|, the total deformation,
+    /// a2..aK, fold, stable, leading_re, rotation_eig, unstable) and .png/.svg. K from 2 to 16
+    /// and at most pi R N / (4 L).
+    #[arg(long, default_value_t = 2)]
+    pub(super) modes: usize,
     /// Output directory.
     #[arg(long, default_value = "out/continuation")]
-    out: PathBuf,
+    pub(super) out: PathBuf,
     /// Print one JSON object (keys: line, n, seconds, branches [{branch, mirror, points,
     /// stable_points, ends}], events [{kind, what, branch, parameter, at, eta_t, kappa2, v, s,
-    /// eigenvalue, precision}], files).
+    /// eigenvalue, precision}], files; with --modes K > 2: modes, line, n, seconds, parameter,
+    /// points, stable_points, end, folds [{at, eta_t, kappa2, v, s, a}], files).
     #[arg(long)]
-    json: bool,
+    pub(super) json: bool,
 }
 
 pub fn run(a: Args) -> Result<(), CliError> {
+    check_common(&a)?;
+    if a.modes != 2 {
+        return super::mode_continuation::run(&a);
+    }
     let study = study_of(&a)?;
     let axis = a.axis.clone();
     let done = study.run(&mut |p| match p {
@@ -78,17 +92,8 @@ pub fn run(a: Args) -> Result<(), CliError> {
     precise_events(&done.imprecise, varied)
 }
 
-/// The study the arguments ask for, every value checked.
-fn study_of(a: &Args) -> Result<ContinuationStudy, CliError> {
-    let mirror = super::mirror_axis(&a.axis)?;
-    let families: Vec<Family> = if a.branch == "all" {
-        vec![Family::IC, Family::ID, Family::MdMinor, Family::MdMajor]
-    } else {
-        vec![a
-            .branch
-            .parse()
-            .map_err(|e: String| CliError::usage(format!("invalid --branch: {e}, or all")))?]
-    };
+/// The grid, the number of states and the step, whatever the model.
+fn check_common(a: &Args) -> Result<(), CliError> {
     super::check_grid(a.n)?;
     if !(2..=100_000).contains(&a.max_points) {
         return Err(CliError::usage(format!(
@@ -102,6 +107,20 @@ fn study_of(a: &Args) -> Result<ContinuationStudy, CliError> {
             a.ds_max
         )));
     }
+    Ok(())
+}
+
+/// The study the arguments ask for, every value checked.
+fn study_of(a: &Args) -> Result<ContinuationStudy, CliError> {
+    let mirror = super::mirror_axis(&a.axis)?;
+    let families: Vec<Family> = if a.branch == "all" {
+        vec![Family::IC, Family::ID, Family::MdMinor, Family::MdMajor]
+    } else {
+        vec![a
+            .branch
+            .parse()
+            .map_err(|e: String| CliError::usage(format!("invalid --branch: {e}, or all")))?]
+    };
     let (parameter, base) = a.line.line(a.mass)?;
     Ok(ContinuationStudy {
         out: a.out.clone(),

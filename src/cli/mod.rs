@@ -15,6 +15,7 @@ mod continuation;
 mod fit_h0;
 mod line;
 mod merge;
+mod mode_continuation;
 mod mode_simulate;
 mod ode;
 mod param_line;

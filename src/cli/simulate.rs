@@ -115,9 +115,11 @@ pub struct Args {
     #[arg(long)]
     pub(super) picture: Option<PathBuf>,
     /// Shape modes 2..K (the paper's general model; default 2, the paper's). With K > 2 the
-    /// K-mode model is time-stepped by exponential Euler (first order; --dt, default 0.05)
-    /// from the IC (higher modes 0, field 0) until every rate |dz/dt| is below --steady-tol,
-    /// or t_max; no series, picture, scheme, pinning or ending options yet.
+    /// K-mode model is time-stepped by exponential Euler (first order, fixed steps --dt) from
+    /// the IC (higher modes 0, field 0), ended like a 2-mode run by the Newton finish: steady
+    /// on a root of the 2K force balances whose eigenvalues all decay, else unsettled at
+    /// 4 t_max (as a sweep with params.modes: K runs it); no series, picture, scheme,
+    /// pinning, adaptive steps or landing.
     #[arg(long, default_value_t = 2)]
     pub(super) modes: usize,
     /// Print one JSON object instead of text.
@@ -180,7 +182,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
     let (params, settings) = model_of(&a)?;
     let ic = InitialCondition::parse(&a.ic)?;
     if a.modes != 2 {
-        return super::mode_simulate::run(&a, params, settings.n, &ic);
+        return super::mode_simulate::run(&a, params, settings, &ic);
     }
     let record = check_outputs(&a, &settings)?;
     let mut run = Run::new(&params, &ic, &settings)?.record_every(record.then_some(a.every));

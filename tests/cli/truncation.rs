@@ -275,3 +275,123 @@ fn a_k_mode_run_settles_on_the_k_mode_steady_state() {
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("--series"));
 }
+
+#[test]
+fn continue_with_modes_follows_the_k_mode_branch_with_its_stability() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("c3");
+    let c = json(&run(&[
+        "continue",
+        "--modes",
+        "3",
+        "--kappa2",
+        "0.13",
+        "--from",
+        "0.0775",
+        "--to",
+        "0.1",
+        "--n",
+        "96",
+        "--max-points",
+        "24",
+        "--ds-max",
+        "0.08",
+        "--out",
+        out.to_str().unwrap(),
+        "--json",
+    ]));
+    assert_eq!(c["modes"], 3, "{c}");
+    let folds = c["folds"].as_array().unwrap();
+    assert_eq!(folds.len(), 1, "{c}");
+    let fold = folds[0]["at"].as_f64().unwrap();
+    // Stable up to the fold, unstable after it: the table in branch order.
+    let t = read(&out.join("continuation_modes3_kappa2_0.13.parquet"));
+    let (at, v, a3) = (floats(&t, "at"), floats(&t, "v"), floats(&t, "a3"));
+    let flags = |name: &str| -> Vec<bool> {
+        let c = t.column(name).unwrap().bool().unwrap().clone();
+        (0..c.len()).map(|i| c.get(i).unwrap()).collect()
+    };
+    let stable = flags("stable");
+    let i = flags("fold").iter().position(|f| *f).unwrap();
+    assert!((at[i] - fold).abs() < 1e-12, "{c}");
+    // (The fold itself is marginal: one eigenvalue 0 to the solver's precision.)
+    assert!(i >= 4 && i + 1 < stable.len(), "{c}");
+    assert!(
+        stable[..i].iter().all(|s| *s) && stable[i + 1..].iter().all(|s| !*s),
+        "{c}"
+    );
+    let counted = c["stable_points"].as_u64().unwrap() as usize;
+    assert!(counted == i || counted == i + 1, "{c}");
+    // The branch against two independent computations at a state of the table: Newton at
+    // that point (`stability --modes 3`) and time stepping to it (`simulate --modes 3`). (At
+    // N = 64 the 3-mode model has a second stable MD state there, v = 0.497 against 0.657: an
+    // under-resolved grid; at N = 96 one, which both reach to 1e-10.)
+    let j = i / 2;
+    let eta = format!("{}", at[j]);
+    let st = stability(&[
+        "--eta-t", &eta, "--kappa2", "0.13", "--state", "md", "--modes", "3", "--n", "96",
+    ]);
+    let f = |x: &serde_json::Value| x.as_f64().unwrap();
+    assert!(
+        (f(&st["v"]) - v[j]).abs() < 1e-8 && (f(&st["a_k"][1]) - a3[j]).abs() < 1e-8,
+        "{st}"
+    );
+    assert_eq!(st["stable"], true, "{st}");
+    let stepped = json(&run(&[
+        "simulate",
+        "--eta-t",
+        &eta,
+        "--kappa2",
+        "0.13",
+        "--ic",
+        "custom:0.6,0,-0.15,0",
+        "--modes",
+        "3",
+        "--n",
+        "96",
+        "--steady-tol",
+        "1e-9",
+        "--t-max",
+        "5000",
+        "--json",
+    ]));
+    assert_eq!(stepped["status"], "steady", "{stepped}");
+    assert!((f(&stepped["v"]) - v[j]).abs() < 1e-6, "{stepped} {}", v[j]);
+    assert!(
+        (f(&stepped["a_k"][1]) - a3[j]).abs() < 1e-6,
+        "{stepped} {}",
+        a3[j]
+    );
+    assert!(out.join("continuation_modes3_kappa2_0.13.png").exists());
+    refused(
+        &[
+            "continue",
+            "--kappa2",
+            "0.13",
+            "--from",
+            "0.077",
+            "--to",
+            "0.1",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        &[
+            (&["--modes", "3", "--branch", "ic"], "--branch ic"),
+            (&["--modes", "3", "--axis", "diagonal"], "--axis"),
+            (&["--modes", "1"], "modes"),
+            (&["--modes", "8", "--n", "64"], "modes"),
+        ],
+    );
+    refused(
+        &[
+            "continue",
+            "--modes",
+            "3",
+            "--param",
+            "radius",
+            "--set",
+            "eta_t=0.08,kappa2=0.13",
+        ],
+        &[(&["--from", "0.9", "--to", "1.1"], "--param radius")],
+    );
+}

@@ -1,7 +1,10 @@
 //! Cost of one time step (single-threaded), co-moving spectral scheme at N = 128, 192, 256 and
-//! the paper's finite-difference scheme at its own resolution (N = 280, dt = 1e-4).
+//! the paper's finite-difference scheme at its own resolution (N = 280, dt = 1e-4); and the
+//! `K`-mode model's exponential-Euler step (`runs::mode_run`) at N = 192 for K = 2, 3, 4, 6,
+//! to say what each shape mode adds.
 //! Run: `cargo bench --bench step` (add `-- --quick` for a fast pass).
 use criterion::{criterion_group, criterion_main, Criterion};
+use droplet_solver::runs::mode_run::ModeStepper;
 use droplet_solver::stepping::{comoving_etd::ComovingEtd, paper_fd::PaperFd, Scheme};
 use droplet_solver::{model::initial::InitialCondition, model::params::ModelParams};
 
@@ -23,6 +26,24 @@ fn bench(c: &mut Criterion) {
     }
     let mut fd = warm(PaperFd::new(p, 280, st, false).unwrap(), 1e-4, 2000);
     g.bench_function("paper_fd_n280", |b| b.iter(|| fd.step(1e-4)));
+    for k in [2, 3, 4, 6] {
+        // IC i with modes 3..K at 0, past the start-up.
+        let mut z = vec![st.vx, st.vy, st.a2];
+        z.extend(std::iter::repeat_n(0.0, k - 2));
+        z.push(st.b2);
+        z.extend(std::iter::repeat_n(0.0, k - 2));
+        let mut m = ModeStepper::new(&p, 192, &z, 0.05).unwrap();
+        for _ in 0..200 {
+            m.rate();
+            m.advance();
+        }
+        g.bench_function(format!("modes{k}_n192"), |b| {
+            b.iter(|| {
+                m.rate();
+                m.advance();
+            })
+        });
+    }
     g.finish();
 }
 

@@ -5,8 +5,8 @@
 //! bifurcation points along a branch ([`branch`], located by [`events`]), and their continuation in both parameters,
 //! the PDE's own phase boundaries: in the paper's plane ([`boundaries`]) and in a plane of any
 //! two model parameters ([`plane`]), traced as zero sets ([`level_set`]) or continued
-//! ([`fold_curve`]); the MD branch of the `K`-mode model and its fold ([`mode_branch`]) and its boundaries
-//! ([`mode_boundaries`]).
+//! ([`fold_curve`]); the MD branch of the `K`-mode model and its fold ([`mode_branch`]), the branch along a
+//! line with its stability ([`mode_line`]) and its boundaries ([`mode_boundaries`]).
 //!
 //! May use: `numerics`, `model`, `contract`, `reduced`, `roots`. Used by: the sweep crate and
 //! the CLI (`droplet continue`, `droplet boundaries`).
@@ -18,6 +18,7 @@ pub mod fold_curve;
 pub mod level_set;
 pub mod mode_boundaries;
 pub mod mode_branch;
+pub mod mode_line;
 pub mod plane;
 pub mod polyline;
 pub mod problem;

@@ -1,10 +1,11 @@
 //! The MD branch of the `K`-mode model ([`crate::roots::mode_solver`]) on the x axis (motion
 //! along x, `b_k = 0`), followed in `eta_t` or `kappa2` by pseudo-arclength continuation of
 //! `(v, a_2..a_K, q)`, and its fold (the saddle-node that bounds the bistable bands): where
-//! the tangent's `q` component changes sign, located by bisection in arclength. Stability is
-//! not computed here (the `K`-mode eigenproblem is not built yet): the fold is where a real
-//! eigenvalue crosses zero whatever the others do.
-use crate::continuation::arclength::{point_at, start, ArclengthOptions, CurvePoint, Stepper};
+//! the tangent's `q` component changes sign, located by bisection in arclength. The branch
+//! along a whole line, with every state's stability, is [`crate::continuation::mode_line`].
+use crate::continuation::arclength::{
+    point_at, start, ArclengthOptions, CurvePoint, Step, Stepper,
+};
 use crate::error::SolverError;
 use crate::model::param::ModelParam;
 use crate::model::params::ModelParams;
@@ -129,6 +130,36 @@ pub fn ic_state(solver: &mut ModeSolver, k_max: usize) -> Option<Vec<f64>> {
     .filter(|x| x[0].abs() < 1e-4)
 }
 
+/// The fold between `p` and the accepted `step` after it along a curve `(.., q)` whose
+/// tangent's `q` component changes sign there: bisection in arclength on that sign (the
+/// step's point if no corrector converges).
+pub(crate) fn fold_point(
+    f: &mut impl FnMut(&[f64]) -> Vec<f64>,
+    p: &CurvePoint,
+    step: &Step,
+    opts: &ArclengthOptions,
+) -> CurvePoint {
+    let q_of = |p: &CurvePoint| *p.tangent.last().expect("q");
+    let (mut lo, mut hi) = (0.0, step.ds);
+    let mut best = step.point.clone();
+    for _ in 0..50 {
+        let s = 0.5 * (lo + hi);
+        let Some((c, _)) = point_at(f, p, s, opts) else {
+            break;
+        };
+        if q_of(&c) * q_of(p) > 0.0 {
+            lo = s;
+        } else {
+            hi = s;
+        }
+        best = c;
+        if hi - lo < 1e-13 {
+            break;
+        }
+    }
+    best
+}
+
 /// Follows the MD branch from `line.from` towards `line.to` ([`md_state`] there) and returns
 /// its first fold, if it has one before the line's end or the branch's meeting with the
 /// resting state (`v -> 0`).
@@ -169,24 +200,7 @@ pub fn md_fold(line: &ModeLine) -> Result<Option<ModeFold>, SolverError> {
             return Ok(None);
         }
         if q_of(&step.point) * q_of(&p) < 0.0 {
-            // Bisect in arclength on the sign of the tangent's q component.
-            let (mut lo, mut hi) = (0.0, step.ds);
-            let mut best = step.point.clone();
-            for _ in 0..50 {
-                let s = 0.5 * (lo + hi);
-                let Some((c, _)) = point_at(&mut f, &p, s, &opts) else {
-                    break;
-                };
-                if q_of(&c) * q_of(&p) > 0.0 {
-                    lo = s;
-                } else {
-                    hi = s;
-                }
-                best = c;
-                if hi - lo < 1e-13 {
-                    break;
-                }
-            }
+            let best = fold_point(&mut f, &p, &step, &opts);
             let y = &best.y;
             let k = y.len() - 1;
             return Ok(Some(ModeFold {

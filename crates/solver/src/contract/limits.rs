@@ -31,6 +31,48 @@ pub fn adaptive_step_cap(settings: &SolverSettings) -> u64 {
     (100.0 * settings.give_up_at() / settings.dt_max).clamp(1e6, MAX_STEPS) as u64
 }
 
+/// What a `K`-mode run (`modes` > 2, [`crate::runs::mode_outcome`]) can do: the modes the
+/// grid resolves ([`check_modes`]), with the spectral grid, the Newton finish, a free centre
+/// and none of the 2-mode runs' optional endings.
+fn check_k_mode_run(params: &ModelParams, settings: &SolverSettings) -> Result<(), SolverError> {
+    check_modes(params, settings.n, settings.modes)?;
+    let k = settings.modes as f64;
+    let steps = settings.give_up_at() / settings.dt;
+    require(
+        steps <= MAX_STEPS,
+        "dt",
+        settings.dt,
+        format!(
+            "a step giving at most {MAX_STEPS:e} steps to t = {} (a K-mode run takes fixed \
+             steps dt to t_max, run on to 4 t_max unless run_on is off; this one gives \
+             {steps:.3e}); raise dt or lower t_max",
+            settings.give_up_at()
+        ),
+    )?;
+    let unsupported = [
+        (settings.scheme != SchemeKind::Spectral, "scheme"),
+        (settings.pinned, "pinned"),
+        (
+            settings.steady != crate::contract::ending::SteadyMethod::Newton,
+            "steady",
+        ),
+        (settings.stop_beside_saddle, "stop_beside_saddle"),
+        (settings.leap_departures, "leap_departures"),
+    ];
+    for (given, name) in unsupported {
+        require(
+            !given,
+            "modes",
+            k,
+            format!(
+                "2 with the setting '{name}' given: a K-mode run is the spectral field with \
+                 exponential-Euler steps dt, ended by the Newton finish"
+            ),
+        )?;
+    }
+    Ok(())
+}
+
 /// The largest stable step of the paper's forward-Euler scheme on a grid of spacing `dx`.
 pub fn paper_fd_max_dt(dx: f64) -> f64 {
     2.0 / (8.0 / (dx * dx) + 1.0)
@@ -109,7 +151,12 @@ pub fn check_modes(params: &ModelParams, n: usize, k_max: usize) -> Result<(), S
 pub fn check_run(params: &ModelParams, settings: &SolverSettings) -> Result<(), SolverError> {
     settings.check_steps()?;
     if settings.model != ModelKind::Pde {
-        return Ok(());
+        return require(
+            settings.modes == 2,
+            "modes",
+            settings.modes as f64,
+            "2 for the reduced ODE model (mode 2 only)",
+        );
     }
     // A label is the stable state a run ends on, and stability needs the linearisation,
     // which needs inertia: an overdamped run could only be ended by the paper's test, whose
@@ -124,6 +171,9 @@ pub fn check_run(params: &ModelParams, settings: &SolverSettings) -> Result<(), 
          alone, whose labels are not checked",
     )?;
     check_resolved(params, settings.n)?;
+    if settings.modes != 2 {
+        check_k_mode_run(params, settings)?;
+    }
     let dx = params.box_len / settings.n as f64;
     if settings.scheme == SchemeKind::PaperFd {
         let limit = paper_fd_max_dt(dx);

@@ -88,6 +88,20 @@ pub struct SolverSettings {
     /// On by default (numerics 4); off gives up at `t_max`, as the paper.
     #[serde(default = "on")]
     pub run_on: bool,
+    /// Shape modes `2..=modes` of the paper's general model (default 2, the paper's
+    /// truncation). With more, a run is the `K`-mode model's ([`crate::runs::mode_outcome`]:
+    /// fixed steps `dt`, the Newton finish, run on to 4 `t_max`). A 2-mode run keeps the run
+    /// key it had before.
+    #[serde(default = "two_modes", skip_serializing_if = "is_two_modes")]
+    pub modes: usize,
+}
+
+fn two_modes() -> usize {
+    2
+}
+
+fn is_two_modes(k: &usize) -> bool {
+    *k == 2
 }
 
 /// How far past `t_max` a run not yet on a stable state runs on with its own steps (setting
@@ -132,6 +146,7 @@ impl Default for SolverSettings {
             leap_departures: false,
             landing: true,
             run_on: true,
+            modes: 2,
         }
     }
 }
@@ -162,10 +177,11 @@ impl SolverSettings {
 
     /// The time at which a run not yet steady is given up: `t_max`; with `run_on` and the
     /// Newton finish, [`RUN_ON_FAR`] times it (adaptive steps) or [`RUN_ON`] times it (fixed
-    /// steps).
+    /// steps, and `K`-mode runs).
     pub fn give_up_at(&self) -> f64 {
         let runs_on = self.run_on && self.steady == SteadyMethod::Newton;
-        match (runs_on, self.adaptive()) {
+        // K-mode runs take fixed steps.
+        match (runs_on, self.adaptive() && self.modes == 2) {
             (true, true) => RUN_ON_FAR * self.t_max,
             (true, false) => RUN_ON * self.t_max,
             (false, _) => self.t_max,

@@ -153,6 +153,7 @@ pub fn simulate(
             _ => Some(crate::contract::outcome::Unsettled::NotDiagnosed),
         },
         heading: None,
+        higher_modes: Vec::new(),
         series: Vec::new(),
     })
 }

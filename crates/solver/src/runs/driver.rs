@@ -204,6 +204,7 @@ impl Run {
             t_leapt: end.t_leapt,
             unsettled: found.as_ref().map(|d| d.reason),
             heading: found.and_then(|d| d.heading),
+            higher_modes: Vec::new(),
             series,
         }
     }
@@ -260,6 +261,9 @@ pub fn simulate(
     settings: &SolverSettings,
 ) -> Result<RunOutcome, SolverError> {
     match settings.model {
+        ModelKind::Pde if settings.modes != 2 => {
+            crate::runs::mode_outcome::simulate_modes(params, ic, settings)
+        }
         ModelKind::Pde => Ok(Run::new(params, ic, settings)?.execute()),
         ModelKind::Ode => crate::reduced::ode::simulate(params, ic, settings),
     }

@@ -65,6 +65,110 @@ fn linear_parts(solver: &ModeSolver, k_max: usize, h: f64) -> LinearParts {
     (rate_of, inertia, decay)
 }
 
+/// The `K`-mode model's state in time, stepped by exponential Euler: one step is
+/// [`ModeStepper::rate`] (the forces at the present state, and the largest rate `|dz/dt|`)
+/// then [`ModeStepper::advance`]. Plans and buffers are made once; a step allocates nothing
+/// but the forces' vector.
+pub struct ModeStepper {
+    solver: ModeSolver,
+    /// `(vx, vy, a_2..a_K, b_2..b_K)`.
+    pub z: Vec<f64>,
+    /// The field's spectrum, and the operator `D` at the current velocity.
+    u: Vec<Complex64>,
+    d: Vec<Complex64>,
+    h: f64,
+    rate_of: Vec<f64>,
+    inertia: Vec<f64>,
+    decay: Vec<(f64, f64)>,
+    /// The forces at `z`, from the last [`Self::rate`].
+    forces: Vec<f64>,
+    pub t: f64,
+    pub steps: u64,
+    /// The centre, moved by the velocity at the start of each step.
+    pub x: f64,
+    pub y: f64,
+}
+
+impl ModeStepper {
+    /// The `K`-mode model (`K = z0.len() / 2`) at `z0` with the field 0, steps of `h`.
+    pub fn new(params: &ModelParams, n: usize, z0: &[f64], h: f64) -> Result<Self, SolverError> {
+        let k_max = z0.len() / 2;
+        crate::contract::limits::check_modes(params, n, k_max)?;
+        crate::error::require(
+            params.mass > 0.0,
+            "mass",
+            params.mass,
+            "a finite number > 0 (the K-mode run integrates the velocity)",
+        )?;
+        let solver = ModeSolver::new(*params, n)?;
+        let (rate_of, inertia, decay) = linear_parts(&solver, k_max, h);
+        Ok(Self {
+            solver,
+            z: z0.to_vec(),
+            u: Vec::new(),
+            d: Vec::new(),
+            h,
+            rate_of,
+            inertia,
+            decay,
+            forces: Vec::new(),
+            t: 0.0,
+            steps: 0,
+            x: 0.0,
+            y: 0.0,
+        })
+    }
+
+    /// The forces at the present state, kept for [`Self::advance`], and the largest rate
+    /// `|dz/dt|` = `|force / inertia - rate z|` they give.
+    pub fn rate(&mut self) -> f64 {
+        let k_max = self.z.len() / 2;
+        let m = Modes::of_state(&self.z);
+        let (area, lo, hi) = self.solver.source(&m);
+        if self.u.is_empty() {
+            self.u = vec![Complex64::default(); self.solver.source_spectrum().len()];
+            self.d = self.u.clone();
+        }
+        self.solver.gradient(&self.u, lo, hi);
+        self.forces = self.solver.sums(k_max, lo, hi, area).to_vec();
+        self.forces
+            .iter()
+            .zip(&self.z)
+            .zip(self.rate_of.iter().zip(&self.inertia))
+            .map(|((f, z), (r, m))| (f / m - r * z).abs())
+            .fold(0.0f64, f64::max)
+    }
+
+    /// The steady solver the run steps with (its buffers are refilled by the next
+    /// [`Self::rate`]).
+    pub fn solver_mut(&mut self) -> &mut ModeSolver {
+        &mut self.solver
+    }
+
+    /// One step of `h` with the forces of the last [`Self::rate`] frozen: the field exactly
+    /// under its linear operator, the mechanics under their exact linear decay.
+    pub fn advance(&mut self) {
+        let h = self.h;
+        self.x += h * self.z[0];
+        self.y += h * self.z[1];
+        fill_operator(self.solver.grid(), self.z[0], self.z[1], &mut self.d);
+        for ((u, s), d) in self
+            .u
+            .iter_mut()
+            .zip(self.solver.source_spectrum())
+            .zip(&self.d)
+        {
+            let e = (d * h).exp();
+            *u = e * *u + (e - 1.0) / d * s;
+        }
+        for ((z, f), (e, w)) in self.z.iter_mut().zip(&self.forces).zip(&self.decay) {
+            *z = e * *z + w * f;
+        }
+        self.t += h;
+        self.steps += 1;
+    }
+}
+
 /// Runs the `K`-mode model (`K = z0.len() / 2`) from `z0` with the field 0.
 pub fn run_modes(
     params: &ModelParams,
@@ -72,64 +176,26 @@ pub fn run_modes(
     z0: &[f64],
     settings: &ModeRunSettings,
 ) -> Result<ModeRun, SolverError> {
-    let dim = z0.len();
-    let k_max = dim / 2;
-    crate::contract::limits::check_modes(params, n, k_max)?;
-    crate::error::require(
-        params.mass > 0.0,
-        "mass",
-        params.mass,
-        "a finite number > 0 (the K-mode run integrates the velocity)",
-    )?;
+    let mut run = ModeStepper::new(params, n, z0, settings.dt)?;
     crate::error::require(
         settings.dt > 0.0 && settings.t_max / settings.dt <= crate::contract::settings::MAX_STEPS,
         "dt",
         settings.dt,
         "a finite number > 0 giving at most MAX_STEPS steps up to t_max",
     )?;
-    let mut solver = ModeSolver::new(*params, n)?;
-    let h = settings.dt;
-    let mut z = z0.to_vec();
-    // The field, and the operator D at the current velocity.
-    let mut u: Vec<Complex64> = Vec::new();
-    let mut d: Vec<Complex64> = Vec::new();
-    let (mut t, mut steps) = (0.0, 0u64);
-    let (rate_of, inertia, decay) = linear_parts(&solver, k_max, h);
     loop {
-        let m = Modes::of_state(&z);
-        let (area, lo, hi) = solver.source(&m);
-        if u.is_empty() {
-            u = vec![Complex64::default(); solver.source_spectrum().len()];
-            d = u.clone();
-        }
-        solver.gradient(&u, lo, hi);
-        let forces = solver.sums(k_max, lo, hi, area).to_vec();
-        // The rates dz/dt now: (force - stiffness z) / inertia.
-        let rate = forces
-            .iter()
-            .zip(&z)
-            .zip(rate_of.iter().zip(&inertia))
-            .map(|((f, z), (r, m))| (f / m - r * z).abs())
-            .fold(0.0f64, f64::max);
+        let rate = run.rate();
+        let t = run.t;
         if (rate < settings.tol && t > 0.0) || t >= settings.t_max || !rate.is_finite() {
             return Ok(ModeRun {
-                z,
+                z: run.z,
                 t_end: t,
-                steps,
+                steps: run.steps,
                 steady: rate < settings.tol,
                 rate,
             });
         }
-        fill_operator(solver.grid(), z[0], z[1], &mut d);
-        for ((u, s), d) in u.iter_mut().zip(solver.source_spectrum()).zip(&d) {
-            let e = (d * h).exp();
-            *u = e * *u + (e - 1.0) / d * s;
-        }
-        for ((z, f), (e, w)) in z.iter_mut().zip(&forces).zip(&decay) {
-            *z = e * *z + w * f;
-        }
-        t += h;
-        steps += 1;
+        run.advance();
     }
 }
 

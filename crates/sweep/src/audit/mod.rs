@@ -296,6 +296,17 @@ fn by_point(rows: Vec<Row>) -> Result<BTreeMap<u32, Vec<Row>>, SweepError> {
 
 /// Audits the map in `dir` (its `runs.parquet` and `points.parquet`).
 pub fn audit(dir: &Path) -> Result<Audit, SweepError> {
+    // The audit's steady equations and eigenvalues are the paper's 2-mode model's.
+    if let Ok(spec) = crate::tables::read::stored_spec(&dir.join(tables::RUNS)) {
+        if spec.solver.modes != 2 {
+            return Err(SweepError::Invalid(format!(
+                "audit checks maps of the paper's 2-mode model; this one has modes = {} \
+                 (check its states with `droplet stability --modes {}` and \
+                 `droplet continue --modes {}`)",
+                spec.solver.modes, spec.solver.modes, spec.solver.modes
+            )));
+        }
+    }
     let runs = by_point(tables::runs(&dir.join(tables::RUNS))?)?;
     let labelled: BTreeMap<u32, String> = tables::points(&dir.join(tables::POINTS))?
         .into_iter()

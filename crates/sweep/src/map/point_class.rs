@@ -126,6 +126,7 @@ mod tests {
                 t_leapt: 0.0,
                 unsettled: None,
                 heading: None,
+                higher_modes: vec![],
                 series: vec![],
             },
         }

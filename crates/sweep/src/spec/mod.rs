@@ -217,9 +217,12 @@ pub fn parse(text: &str, file: &str, stem: &str) -> Result<SweepSpec, SpecError>
 
     let grid = grid::parse(&ctx, top)?;
     grid::check_not_fixed(&ctx, top, &grid)?;
-    let params = params::parse(&ctx, top)?;
+    let (params, modes) = params::parse(&ctx, top)?;
     let initial_conditions = initial::parse(&ctx, top)?;
-    let solver = solver::parse(&ctx, top, model)?;
+    let solver = SolverSettings {
+        modes,
+        ..solver::parse(&ctx, top, model)?
+    };
     grid::check_points(&ctx, &grid, &params, &solver)?;
     let refine = refine::parse(&ctx, top, &grid)?;
     classify::parse(&ctx, top)?;

@@ -121,6 +121,7 @@ impl BoundaryStudy {
         let spec_params = sweep
             .as_ref()
             .map_or_else(ModelParams::default, |s| s.params);
+        let modes = sweep.as_ref().map_or(2, |s| s.solver.modes);
         let base = match pair {
             // The pair's window sets its own axes; the others are the spec's.
             Some(_) => spec_params,
@@ -147,7 +148,7 @@ impl BoundaryStudy {
             },
             across,
             pair,
-            modes: 2,
+            modes,
         })
     }
 

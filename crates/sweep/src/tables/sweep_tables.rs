@@ -86,7 +86,7 @@ pub fn runs_frame(
         .filter_map(|t| records.get(&t.key).map(|r| (t, r)))
         .collect();
     let f = |g: &dyn Fn(&RunRecord) -> f64| rows.iter().map(|(_, r)| g(r)).collect::<Vec<f64>>();
-    let cols = vec![
+    let mut cols = vec![
         Column::new(
             "point".into(),
             rows.iter()
@@ -231,6 +231,8 @@ pub fn runs_frame(
         f64_col("wall_s", f(&|r| r.outcome.wall_s)),
         str_col("key", rows.iter().map(|(t, _)| t.key.clone()).collect()),
     ];
+    let records: Vec<&RunRecord> = rows.iter().map(|(_, r)| *r).collect();
+    cols.extend(crate::tables::mode_columns::mode_columns(&records));
     Ok(DataFrame::new(rows.len(), cols)?)
 }
 

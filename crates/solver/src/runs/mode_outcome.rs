@@ -1,0 +1,249 @@
+//! A run of the paper's general model with shape modes `2..K` (setting `modes`, `K > 2`) to a
+//! [`RunOutcome`], as the sweep runs it: the exponential-Euler time stepper of
+//! [`crate::runs::mode_run`] at the fixed step `dt`, ended like a 2-mode run with the Newton
+//! finish (`steady: newton`): once the largest rate `|dz/dt|` falls below
+//! [`crate::runs::finish::TRIGGER_FACTOR`] steady tolerances (or below the steady tolerance,
+//! the test), Newton on all `2K` force balances from the run's state; the run ends `steady` on
+//! the root when every eigenvalue of its `2K x 2K` eigenproblem decays (the near-neutral
+//! rotation mode included, as for 2-mode runs) and the run is within
+//! [`crate::runs::finish::MAX_SETTLED`] of it. A run not steady by where it is given up
+//! (`t_max`, run on to 64 `t_max`) is unsettled: beside an unstable root, converging to a
+//! stable one (with its class as `heading`), or with no root near.
+//!
+//! The class is the paper's, from `v` and `s = |a2|` (mode 2 alone); the higher amplitudes
+//! `a_3..a_K, b_3..b_K` are in [`RunOutcome::higher_modes`]. Not here (refused by
+//! [`crate::contract::limits::check_run`]): adaptive steps, the paper's scheme, the landing
+//! and the other endings of 2-mode runs, pinned runs and time series.
+use crate::contract::ending::Ending;
+use crate::contract::outcome::{RunOutcome, RunStatus, Unsettled};
+use crate::contract::settings::SolverSettings;
+use crate::error::SolverError;
+use crate::model::classify::StateClass;
+use crate::model::initial::InitialCondition;
+use crate::model::params::ModelParams;
+use crate::model::state::DropletState;
+use crate::numerics::newton::NewtonOptions;
+use crate::roots::mode_linearisation::{ModeLinearization, ModeVerdict};
+use crate::runs::finish::{MAX_SETTLED, TRIGGER_FACTOR};
+use crate::runs::mode_run::ModeStepper;
+use crate::runs::orientation::{angle_to, LEAN_FLOOR};
+use std::time::Instant;
+
+/// The state `(vx, vy, a_2..a_K, b_2..b_K)` of `ic` with modes `3..K` at rest.
+pub fn initial_modes(ic: &InitialCondition, k_max: usize) -> Vec<f64> {
+    let mut z = vec![ic.vx, ic.vy, ic.a2];
+    z.extend(std::iter::repeat_n(0.0, k_max - 2));
+    z.push(ic.b2);
+    z.extend(std::iter::repeat_n(0.0, k_max - 2));
+    z
+}
+
+/// A root of the `2K` force balances near a run and its stability.
+struct Root {
+    z: Vec<f64>,
+    verdict: ModeVerdict,
+}
+
+impl Root {
+    /// Stable, the rotation mode included (a run ends where the box would leave it), unless
+    /// the run `z` does not lean from the root's mirror line at all (a mirror-symmetric run
+    /// never turns; leans below [`LEAN_FLOOR`] are round-off).
+    fn ends(&self, z: &[f64]) -> bool {
+        let k = z.len() / 2;
+        let four = |z: &[f64]| [z[0], z[1], z[2], z[k + 1]];
+        let lean = angle_to(&four(z), &four(&self.z)).abs();
+        self.verdict.unstable == 0
+            && (self.verdict.rotation.is_none_or(|r| r < 0.0) || lean < LEAN_FLOOR)
+    }
+}
+
+/// Newton on all `2K` force balances from `z`, and the root's stability.
+fn root_near(run: &mut ModeStepper, z: &[f64]) -> Option<Root> {
+    let opts = NewtonOptions {
+        tol: 1e-11,
+        max_iter: 12,
+        fd_step: 1e-7,
+        max_step: vec![0.2; z.len()],
+    };
+    let solver = run.solver_mut();
+    let x = crate::numerics::newton::solve(|y| solver.residual(y), z, &opts)
+        .ok()?
+        .x;
+    let verdict = ModeLinearization::at(solver, &x).verdict(solver);
+    Some(Root { z: x, verdict })
+}
+
+/// Largest of `|v - v*|` and `|s - s*|` (speed and the paper's `s`), rotation-invariant.
+fn distance(z: &[f64], root: &[f64]) -> f64 {
+    let k = z.len() / 2;
+    let vs = |z: &[f64]| (z[0].hypot(z[1]), z[2].hypot(z[k + 1]));
+    let ((v, s), (vr, sr)) = (vs(z), vs(root));
+    (v - vr).abs().max((s - sr).abs())
+}
+
+/// Runs `params` from `ic` with `settings.modes` shape modes to its outcome.
+pub fn simulate_modes(
+    params: &ModelParams,
+    ic: &InitialCondition,
+    settings: &SolverSettings,
+) -> Result<RunOutcome, SolverError> {
+    let started = Instant::now();
+    crate::contract::limits::check_run(params, settings)?;
+    let k = settings.modes;
+    let mut run = ModeStepper::new(params, settings.n, &initial_modes(ic, k), settings.dt)?;
+    let give_up = settings.give_up_at();
+    let trigger = TRIGGER_FACTOR * settings.steady_tol;
+    let mut next_try = 0.0;
+    let (mut status, mut ended_by, mut end_root) = (RunStatus::TMax, None, None);
+    loop {
+        let rate = run.rate();
+        let s = run.z[2].hypot(run.z[k + 1]);
+        if !rate.is_finite() || run.z.iter().any(|x| !x.is_finite()) || s >= 1.0 {
+            status = RunStatus::Diverged;
+            break;
+        }
+        if rate < trigger && run.t >= next_try {
+            let z = run.z.clone();
+            match root_near(&mut run, &z) {
+                // On its way: within what the slowest decisive rate lets it still move.
+                Some(r)
+                    if r.ends(&z)
+                        && distance(&z, &r.z)
+                            <= (10.0 * rate / r.verdict.leading().abs().max(1e-12))
+                                .min(MAX_SETTLED)
+                                + 1e-9 =>
+                {
+                    status = RunStatus::Steady;
+                    ended_by = Some(if rate < settings.steady_tol {
+                        Ending::Test
+                    } else {
+                        Ending::Newton
+                    });
+                    end_root = Some(r.z);
+                    break;
+                }
+                _ => {
+                    next_try = run.t + (0.25 * run.t).max(10.0);
+                    // Newton used the stepper's solver: its forces again before a step.
+                    continue;
+                }
+            }
+        }
+        if run.t >= give_up - 1e-9 * settings.dt {
+            break;
+        }
+        run.advance();
+    }
+    Ok(outcome(&mut run, status, ended_by, end_root, started))
+}
+
+/// The outcome of a run that stopped with `status` (at the root `end_root` if it ended
+/// steady), its end diagnosed if it did not settle.
+fn outcome(
+    run: &mut ModeStepper,
+    status: RunStatus,
+    ended_by: Option<Ending>,
+    end_root: Option<Vec<f64>>,
+    started: Instant,
+) -> RunOutcome {
+    let k = run.z.len() / 2;
+    let (unsettled, heading, diagnosis) = match status {
+        RunStatus::Steady => (None, None, None),
+        RunStatus::Diverged => (Some(Unsettled::Diverged), None, None),
+        _ => diagnose(run),
+    };
+    let z = end_root.unwrap_or_else(|| run.z.clone());
+    let state = DropletState {
+        x: run.x,
+        y: run.y,
+        vx: z[0],
+        vy: z[1],
+        a2: z[2],
+        b2: z[k + 1],
+    };
+    let (v, s) = (state.speed(), state.deformation());
+    let higher_modes = z[3..k + 1].iter().chain(&z[k + 2..]).copied().collect();
+    let steady = status == RunStatus::Steady;
+    RunOutcome {
+        status,
+        class: steady.then(|| StateClass::of(v, s)),
+        state,
+        v,
+        s,
+        t_end: run.t,
+        t_steady: steady.then_some(run.t),
+        steps: run.steps,
+        rejected: 0,
+        max_step_error: None,
+        wall_s: started.elapsed().as_secs_f64(),
+        ended_by,
+        diagnosis,
+        t_leapt: 0.0,
+        unsettled,
+        heading,
+        higher_modes,
+        series: Vec::new(),
+    }
+}
+
+/// Why a run given up did not settle: what Newton from its final state finds.
+fn diagnose(run: &mut ModeStepper) -> (Option<Unsettled>, Option<StateClass>, Option<String>) {
+    let z = run.z.clone();
+    let k = z.len() / 2;
+    match root_near(run, &z) {
+        None => (
+            Some(Unsettled::NoRoot),
+            None,
+            Some("no steady state near the final state (Newton did not converge)".into()),
+        ),
+        Some(r) if r.ends(&z) => {
+            let class = StateClass::of(r.z[0].hypot(r.z[1]), r.z[2].hypot(r.z[k + 1]));
+            (
+                Some(Unsettled::Converging),
+                Some(class),
+                Some(format!(
+                    "near a stable steady state ({}), not reached",
+                    class.as_str()
+                )),
+            )
+        }
+        Some(r) => (
+            Some(Unsettled::BesideSaddle),
+            None,
+            Some(format!(
+                "near an unstable steady state ({} growing mode(s), largest {:+.2e})",
+                r.verdict.unstable.max(1),
+                r.verdict.eigenvalues.first().map_or(f64::NAN, |l| l[0])
+            )),
+        ),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_three_mode_run_ends_steady_on_the_three_mode_md_state() {
+        // Fig. 1c with modes 2..3 at N = 96 from IC i: the Newton finish ends the run on the
+        // MD state of the steady solver, a3 included, long before the rates fall to the test.
+        let p = ModelParams::at(0.085, 0.112);
+        let settings = SolverSettings {
+            n: 96,
+            dt: 0.05,
+            modes: 3,
+            ..SolverSettings::default()
+        };
+        let ic = InitialCondition::parse("i").unwrap();
+        let out = simulate_modes(&p, &ic, &settings).unwrap();
+        assert_eq!(out.status, RunStatus::Steady, "{out:?}");
+        assert_eq!(out.class, Some(StateClass::MD), "{out:?}");
+        assert_eq!(out.ended_by, Some(Ending::Newton), "{out:?}");
+        let mut solver = crate::roots::mode_solver::ModeSolver::new(p, 96).unwrap();
+        let md = crate::continuation::mode_branch::md_state(&mut solver, 3).unwrap();
+        assert!((out.v - md.v).abs() < 1e-8, "{out:?} {md:?}");
+        let a3 = out.higher_modes[0].hypot(out.higher_modes[1]);
+        assert!((a3 - md.a[1].abs()).abs() < 1e-8, "{out:?} {md:?}");
+        assert_eq!(out.higher_modes.len(), 2);
+    }
+}
