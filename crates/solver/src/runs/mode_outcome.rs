@@ -88,6 +88,8 @@ pub fn simulate_modes(
     settings: &SolverSettings,
 ) -> Result<RunOutcome, SolverError> {
     let started = Instant::now();
+    params.validate()?;
+    settings.validate()?;
     crate::contract::limits::check_run(params, settings)?;
     let k = settings.modes;
     let mut run = ModeStepper::new(params, settings.n, &initial_modes(ic, k), settings.dt)?;
