@@ -50,6 +50,34 @@ fn a_sweep_with_three_modes_runs_the_k_mode_model_and_tables_its_amplitudes() {
             assert!(a3[i].abs() > 1e-2, "{}", a3[i]);
         }
     }
+    // `droplet boundaries` onto the map draws the 3-mode model's curves (those of the states
+    // on the x axis; no MD on this window's middle line, so no fold curve).
+    let b = json(&run(&[
+        "boundaries",
+        "--out",
+        out.to_str().unwrap(),
+        "--n",
+        "96",
+        "--samples",
+        "8",
+        "--json",
+    ]));
+    let pde: Vec<&str> = b["curves"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|c| c["model"] == "pde")
+        .map(|c| c["curve"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        pde,
+        [
+            "IC onset of motion",
+            "IC onset of deformation (a2, axis)",
+            "ID onset of motion (axis ID)"
+        ],
+        "{b}"
+    );
     // The 2-mode tables have none of these columns.
     let two = dir.path().join("m2");
     let o = sweep(&write_spec(dir.path(), "m2.yaml", &spec("2")), &two, &[]);

@@ -97,8 +97,12 @@ fn fold_curve(w: &ModeWindow) -> Result<Vec<(f64, f64)>, SolverError> {
         from: w.eta_t.0,
         to: w.eta_t.1,
     };
-    let Some(fold) = md_fold(&line)? else {
-        return Ok(Vec::new());
+    let fold = match md_fold(&line) {
+        Ok(Some(fold)) => fold,
+        // No fold on the middle line, or no moving state at its start (the window's left
+        // edge is at rest there): no fold curve in this window.
+        Ok(None) | Err(SolverError::RestingRoot { .. }) => return Ok(Vec::new()),
+        Err(e) => return Err(e),
     };
     let mut solver = ModeSolver::new(w.base, w.n)?;
     let k_max = w.k_max;

@@ -181,7 +181,14 @@ pub fn draw(
             (z, point)
         })
         .collect();
-    let model = spec.solver.model.as_str().to_uppercase();
+    let model = match spec.solver.modes {
+        2 => spec.solver.model.as_str().to_uppercase(),
+        // The K-mode model's map; the reduced model's curves drawn over it are the 2-mode ODE's.
+        k => format!(
+            "{} (shape modes 2..{k})",
+            spec.solver.model.as_str().to_uppercase()
+        ),
+    };
     let title = format!(
         "{}: {model} phase map ({} ICs per point)",
         spec.name,
