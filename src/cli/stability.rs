@@ -227,9 +227,7 @@ fn with_modes(
             (st.v, st.a)
         }
     };
-    let mut z = vec![v, 0.0];
-    z.extend(shape.iter().copied());
-    z.extend(std::iter::repeat_n(0.0, k - 1));
+    let z = droplet_solver::roots::mode_solver::on_x_axis(v, &shape);
     let residual = solver
         .residual(&z)
         .iter()

@@ -62,13 +62,7 @@ fn a_sweep_with_three_modes_runs_the_k_mode_model_and_tables_its_amplitudes() {
         "8",
         "--json",
     ]));
-    let pde: Vec<&str> = b["curves"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .filter(|c| c["model"] == "pde")
-        .map(|c| c["curve"].as_str().unwrap())
-        .collect();
+    let pde = crate::truncation::pde_curves(&b);
     assert_eq!(
         pde,
         [

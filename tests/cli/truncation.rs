@@ -12,6 +12,17 @@ fn stability(args: &[&str]) -> serde_json::Value {
     json(&run(&all))
 }
 
+/// The names of the full model's curves in a `boundaries --json` report, in its order.
+pub(crate) fn pde_curves(b: &serde_json::Value) -> Vec<&str> {
+    b["curves"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|c| c["model"] == "pde")
+        .map(|c| c["curve"].as_str().unwrap())
+        .collect()
+}
+
 /// Runs `base` followed by each case's arguments: each must exit 2 with a message that holds
 /// the case's text.
 fn refused(base: &[&str], cases: &[(&[&str], &str)]) {
@@ -201,13 +212,7 @@ fn boundaries_with_modes_draw_the_k_mode_curves_in_the_papers_plane() {
         out.to_str().unwrap(),
         "--json",
     ]));
-    let pde: Vec<&str> = b["curves"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .filter(|c| c["model"] == "pde")
-        .map(|c| c["curve"].as_str().unwrap())
-        .collect();
+    let pde = pde_curves(&b);
     assert_eq!(
         pde,
         [

@@ -4,7 +4,7 @@
 //! to say what each shape mode adds.
 //! Run: `cargo bench --bench step` (add `-- --quick` for a fast pass).
 use criterion::{criterion_group, criterion_main, Criterion};
-use droplet_solver::runs::mode_run::ModeStepper;
+use droplet_solver::runs::{mode_outcome::initial_modes, mode_run::ModeStepper};
 use droplet_solver::stepping::{comoving_etd::ComovingEtd, paper_fd::PaperFd, Scheme};
 use droplet_solver::{model::initial::InitialCondition, model::params::ModelParams};
 
@@ -28,10 +28,7 @@ fn bench(c: &mut Criterion) {
     g.bench_function("paper_fd_n280", |b| b.iter(|| fd.step(1e-4)));
     for k in [2, 3, 4, 6] {
         // IC i with modes 3..K at 0, past the start-up.
-        let mut z = vec![st.vx, st.vy, st.a2];
-        z.extend(std::iter::repeat_n(0.0, k - 2));
-        z.push(st.b2);
-        z.extend(std::iter::repeat_n(0.0, k - 2));
+        let z = initial_modes(&InitialCondition::parse("i").unwrap(), k);
         let mut m = ModeStepper::new(&p, 192, &z, 0.05).unwrap();
         for _ in 0..200 {
             m.rate();

@@ -33,10 +33,7 @@ pub struct ModeBranchPoint {
 impl ModeBranchPoint {
     /// The `2K` unknowns `(vx, vy, a_2..a_K, b_2..b_K)` of the state.
     pub fn z(&self) -> Vec<f64> {
-        let mut z = vec![self.v, 0.0];
-        z.extend(self.a.iter().copied());
-        z.extend(std::iter::repeat_n(0.0, self.a.len()));
-        z
+        crate::roots::mode_solver::on_x_axis(self.v, &self.a)
     }
 }
 

@@ -69,6 +69,15 @@ pub struct ModeState {
     pub residual: f64,
 }
 
+/// The unknowns `(vx, vy, a_2..a_K, b_2..b_K)` of a state moving along +x at speed `v` with the
+/// shape `a = a_2..a_K` symmetric about the x axis (`vy = 0`, `b_k = 0`).
+pub fn on_x_axis(v: f64, a: &[f64]) -> Vec<f64> {
+    let mut z = vec![v, 0.0];
+    z.extend(a.iter().copied());
+    z.extend(std::iter::repeat_n(0.0, a.len()));
+    z
+}
+
 /// Evaluates steady fields and force balances of `K`-mode droplets on an `N x N` grid.
 pub struct ModeSolver {
     params: ModelParams,

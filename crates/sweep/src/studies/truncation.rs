@@ -56,9 +56,7 @@ fn row(
     };
     let mut solver = ModeSolver::new(at, n)?;
     let fig1c = md_state(&mut solver, k_max)?;
-    let mut z = vec![fig1c.v, 0.0];
-    z.extend(fig1c.a.iter().copied());
-    z.extend(std::iter::repeat_n(0.0, k_max - 1));
+    let z = droplet_solver::roots::mode_solver::on_x_axis(fig1c.v, &fig1c.a);
     let fig1c_verdict = ModeLinearization::at(&mut solver, &z).verdict(&mut solver);
     let fig1c_seconds = started.elapsed().as_secs_f64();
     let deformation = Modes {
