@@ -55,7 +55,9 @@ use contract::settings::ModelKind;
 /// anisotropy (MD on one mirror line, MC on the other).
 /// 6: an adaptive run not yet on a stable state at 4 `t_max` runs on to 64 `t_max` (runs that
 /// end before 4 `t_max` are unchanged).
-pub const SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-6");
+/// 7: the landing waits while the run's lean from its mirror line grows (a run turning away
+/// from the line may end on another orientation than the flow's).
+pub const SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-7");
 
 /// Version of the reduced ODE model's numerics (2: unstable states no longer end a run;
 /// 3: a run that does not end steady has no class).

@@ -83,8 +83,9 @@ impl Run {
         let mut steady_test = SteadyTest::new(&cfg, 0.0, self.scheme.state().monitored());
         // The Newton finish needs the linearisation, which needs inertia: an overdamped
         // droplet (m = 0) is finished by the paper's test.
+        let start = self.scheme.state().monitored();
         let mut finish = (cfg.steady == SteadyMethod::Newton && self.params.mass > 0.0)
-            .then(|| NewtonFinish::new(&self.params, &cfg));
+            .then(|| NewtonFinish::new(&self.params, &cfg).starting_at(start));
         let mut end = End::default();
         loop {
             match clock.step(self.scheme.as_mut(), &cfg, rec.next) {

@@ -68,12 +68,19 @@ use crate::roots::verdict::{assess, Verdict};
 use crate::runs::finding::{Diagnosis, Finding};
 use crate::runs::leap::{leap, Leap, Sighting};
 use crate::runs::orientation::{
-    angle_to, class_of, invariant_distance, one_class_within, ORIENTATION,
+    angle_to, class_of, invariant_distance, lean_from_mirror_line, one_class_within,
+    speed_and_deformation, LEAN_FLOOR, ORIENTATION,
 };
 use rustfft::num_complex::Complex64;
 
 /// Newton is first tried when the change per window is below this many steady tolerances.
 pub const TRIGGER_FACTOR: f64 = 100.0;
+
+/// Largest growth of a run's lean between two landing tries, relative to that of its speed
+/// (or deformation at rest), `d ln(lean) <= LEAN_GROWTH |d ln(coordinate)|`, for the landing
+/// to hold the lean fixed (a departure by a factor 1000 turns such a run by at most 40 %
+/// of its lean, in the measured cases by far less).
+pub const LEAN_GROWTH: f64 = 0.05;
 
 /// Largest difference in speed or deformation between a run and the root it is taken to be
 /// approaching.
@@ -106,6 +113,12 @@ pub struct NewtonFinish {
     /// The last try that found the run beside a saddle (for `leap_departures`).
     pub(super) sighting: Option<Sighting>,
     pub(super) solver: Option<SteadySolver>,
+    /// Whether the run started on a mirror line of the box (its own mirror image there), so
+    /// that a lean below [`LEAN_FLOOR`] is none; else such a lean is round-off that grows.
+    pub(super) mirror_symmetric: bool,
+    /// The run's nearest mirror line, its lean from it and its coordinate (speed, or
+    /// deformation at rest) at the last landing try.
+    pub(super) last_lean: Option<((i64, bool), f64, f64)>,
     /// The root of the last try and the run's angle to it then.
     pub(super) last_turn: Option<([f64; 4], f64)>,
     /// Roots already assessed and their verdicts (a run's later tries usually find the same
@@ -129,12 +142,23 @@ impl NewtonFinish {
             landing: settings.landing,
             sighting: None,
             last_turn: None,
+            last_lean: None,
+            mirror_symmetric: true,
             assessed: Vec::new(),
             solver: None,
             trigger: TRIGGER_FACTOR * steady_tol,
             window,
             next_try: 0.0,
         }
+    }
+
+    /// For a run that starts at `(vx, vy, a2, b2)`: only a run that starts mirror-symmetric
+    /// ([`crate::runs::orientation::mirror_symmetric`]; the paper's i' and ii') stays on an
+    /// unstable line for ever (numerics 7). A finish made without its start (a diagnosis)
+    /// takes a lean below [`LEAN_FLOOR`] to be none.
+    pub fn starting_at(mut self, z0: [f64; 4]) -> Self {
+        self.mirror_symmetric = crate::runs::orientation::mirror_symmetric(&z0);
+        self
     }
 
     /// Newton from `z` on all four unknowns, and the root's verdict.
@@ -268,11 +292,38 @@ impl NewtonFinish {
 
     /// With `landing`, the end of the run at `z` on the stable root its slow flow
     /// lands on ([`Self::landing_root`]).
+    /// The flow walks along a mirror line with the run's lean held fixed, so it lands only a
+    /// run whose lean is not growing (numerics 7): below the floor, or on the same side of
+    /// the same line as at the previous landing try and grown since by at most [`LEAN_GROWTH`] times the
+    /// relative change of the run's coordinate (its speed, or its deformation at rest), so that over the whole
+    /// departure the lean changes by a small power of the coordinate's change. A run
+    /// turning away from its line (the family's states unstable in rotation on the way) may
+    /// end on another orientation than the flow's; it goes on by time stepping, or ends
+    /// where it is caught turning to ([`Self::turn_root`]). The first try knows no growth
+    /// and lands only a run without lean. Landings on the resting disk (no orientation)
+    /// need none of this.
     fn land_now(&mut self, z: [f64; 4]) -> Option<Decision> {
         if !self.landing {
             return None;
         }
-        let found = self.landing_root(z)?;
+        let (line, lean) = lean_from_mirror_line(&z);
+        let (v, s) = speed_and_deformation(&z);
+        let coordinate = if v > 1e-9 { v } else { s };
+        let before = self.last_lean.replace((line, lean, coordinate));
+        let turning_away = lean.abs() >= LEAN_FLOOR
+            && before.is_none_or(|(line_before, lean_before, coordinate_before)| {
+                line_before != line
+                    || lean.signum() != lean_before.signum()
+                    || (lean / lean_before).ln()
+                        > LEAN_GROWTH * (coordinate / coordinate_before).ln().abs()
+            });
+        // A landing on the resting disk, which has no orientation, needs no lean.
+        let round = |z: &[f64; 4]| z.iter().all(|x| x.abs() < 1e-9);
+        let found = match self.landing_root(z) {
+            Some(found) if !turning_away || round(&found.z) => found,
+            _ if turning_away => self.turn_root(z)?,
+            _ => return None,
+        };
         Some(Decision::End(Ending::Landing, found.z))
     }
 

@@ -70,6 +70,8 @@ pub struct Landing {
     /// The landing root `(vx, vy, a2, b2)` in the run's own orientation (on the mirror line
     /// nearest the run, turned by the run's lean from it).
     pub z: [f64; 4],
+    /// The same root on the mirror line the flow walked, before the run's lean.
+    pub on_line: [f64; 4],
     pub coordinate: Coordinate,
     /// The run's coordinate, and the landing root's.
     pub from: f64,
@@ -259,9 +261,10 @@ fn land_moving_on(
         prev = Some((v, g));
         (v, g, c) = (next, gn, cn);
     };
-    let root = rotated(&rotated(&on_line(axis, to, c_to), lean), psi);
+    let line_root = on_line(axis, to, c_to);
     Some(Landing {
-        z: root,
+        z: rotated(&rotated(&line_root, lean), psi),
+        on_line: rotated(&line_root, psi),
         coordinate: Coordinate::Speed,
         from: v_run,
         to,
@@ -345,9 +348,10 @@ fn land_resting_on(
         prev = Some((c, h));
         (c, h) = (next, hn);
     };
-    let root = rotated(&rotated(&on_line(axis, 0.0, to), lean), psi);
+    let line_root = on_line(axis, 0.0, to);
     Some(Landing {
-        z: root,
+        z: rotated(&rotated(&line_root, lean), psi),
+        on_line: rotated(&line_root, psi),
         coordinate: Coordinate::Shape,
         from: s_run,
         to,

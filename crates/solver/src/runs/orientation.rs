@@ -28,6 +28,36 @@ pub(crate) fn orientation(z: &[f64; 4]) -> f64 {
     }
 }
 
+/// The box's mirror line nearest the run's orientation (motion, or long axis at rest, at a
+/// multiple of 45 degrees): which one (its multiple of 45 degrees, and whether the run
+/// moves), and the run's lean from it, in [-pi/8, pi/8].
+pub(crate) fn lean_from_mirror_line(z: &[f64; 4]) -> ((i64, bool), f64) {
+    let quarter = std::f64::consts::FRAC_PI_4;
+    let phi = orientation(z);
+    let line = (phi / quarter).round();
+    ((line as i64, z[0].hypot(z[1]) > 1e-9), phi - line * quarter)
+}
+
+/// Whether `(vx, vy, a2, b2)` is its own mirror image in one of the box's mirror lines
+/// (through the droplet at a multiple of 45 degrees): a run from such a state stays on that
+/// line, its lean round-off. Reflection in the line at angle `alpha` takes the velocity
+/// `v -> e^{2 i alpha} conj(v)` and the mode-2 shape `a2 + i b2 -> e^{4 i alpha} conj(a2 + i b2)`.
+pub(crate) fn mirror_symmetric(z: &[f64; 4]) -> bool {
+    (0..4).any(|n| {
+        let alpha = f64::from(n) * std::f64::consts::FRAC_PI_4;
+        let reflect = |x: f64, y: f64, angle: f64| {
+            let (c, s) = (angle.cos(), angle.sin());
+            (c * x + s * y, s * x - c * y)
+        };
+        let (vx, vy) = reflect(z[0], z[1], 2.0 * alpha);
+        let (a2, b2) = reflect(z[2], z[3], 4.0 * alpha);
+        let scale = z.iter().fold(1.0_f64, |m, x| m.max(x.abs()));
+        [vx - z[0], vy - z[1], a2 - z[2], b2 - z[3]]
+            .iter()
+            .all(|d| d.abs() <= 1e-14 * scale)
+    })
+}
+
 /// The angle from the root `root`'s orientation to the run `z`'s, compared like with like:
 /// directions of motion when both move, else long axes (modulo pi; a run slowing down onto
 /// a resting deformed root moves along its short axis, not its long one), and 0 for a

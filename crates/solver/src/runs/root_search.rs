@@ -9,7 +9,7 @@ use crate::runs::finish::{NewtonFinish, MAX_SETTLED};
 use crate::runs::landing::{landings, rotated};
 use crate::runs::orientation::{
     angle_to, class_of, invariant_distance, orientation, speed_and_deformation, LEAN_FLOOR,
-    ORIENTATION, TURN_SEARCH,
+    TURN_SEARCH,
 };
 
 impl NewtonFinish {
@@ -28,20 +28,28 @@ impl NewtonFinish {
             Ok(near) => near,
             Err(_) => self.aligned_root(z)?,
         };
+        let lean = angle_to(&z, &near.z);
+        Some(self.settle(near, lean))
+    }
+
+    /// Where a run leaning by `lean` from the root `near` ends, and whether it may end there
+    /// ([`Self::stable_root`]).
+    fn settle(&mut self, near: Finding, lean: f64) -> (Finding, bool) {
         if near.verdict.rotation.is_none() || near.stable() {
             let ok = near.stable();
-            return Some((near, ok));
+            return (near, ok);
         }
         if near.verdict.unstable > 0 {
-            return Some((near, false));
+            return (near, false);
         }
-        let lean = angle_to(&z, &near.z);
         // Below LEAN_FLOOR a lean is the round-off of a mirror-symmetric run: none.
         let lean = if lean.abs() < LEAN_FLOOR { 0.0 } else { lean };
-        if lean == 0.0 {
+        if lean == 0.0 && self.mirror_symmetric {
             // A mirror-symmetric run stays on its line for ever.
-            return Some((near, true));
+            return (near, true);
         }
+        // Any other run turns, however small its lean (round-off grows too); at a lean below
+        // the floor either side, the two turned roots being mirror images (same v and s).
         let side = if lean >= 0.0 { 1.0 } else { -1.0 };
         // The run turns away from `near` towards the side it leans to, and ends on the first
         // stable root that way: where the unstable line's root lost its rotational stability
@@ -62,43 +70,41 @@ impl NewtonFinish {
                 && turn > 1e-6
                 && turn <= quarter + 1e-6
             {
-                return Some((
+                return (
                     Finding {
                         turned: true,
                         ..other
                     },
                     true,
-                ));
+                );
             }
         }
-        Some((near, false))
+        (near, false)
     }
 
     /// The stable root the run at `z` lands on along its slow flow
-    /// ([`crate::runs::landing`]), confirmed by Newton on all four equations and by its
-    /// eigenvalues: the flow's root itself (speed and deformation equal to 1e-6; a flow's root
-    /// on another mirror line than the run's, when the run was caught between them, to
-    /// [`MAX_SETTLED`]). A flow's root unstable in its rotation mode is not landed on.
+    /// ([`crate::runs::landing`]): the flow's root on its mirror line, confirmed by Newton on
+    /// all four equations (the same speed and deformation to 1e-6, on the line) and by its
+    /// eigenvalues. If that root is unstable in its rotation mode only, the run, arriving
+    /// with its lean (the caller lands only runs whose lean does not grow on the way), turns
+    /// there as [`Self::stable_root`] says: to the first stable root on the side it leans to
+    /// (either side for a lean of round-off), or nowhere if it is mirror-symmetric.
     /// Failing that, a run caught turning between two mirror lines ends where it turns to
     /// ([`Self::turn_root`]).
     pub fn landing_root(&mut self, z: [f64; 4]) -> Option<Finding> {
         for landing in landings(self.steady_solver().ok()?, z) {
-            let Some((found, may_end)) = self.stable_root(landing.z) else {
+            let Ok(near) = self.root_near(landing.on_line) else {
                 continue;
             };
-            if found.turned {
-                // The flow's root is unstable in its rotation mode: where the run ends depends
-                // on how it turns while it speeds up or slows down (two stable orientations
-                // can compete), which the one-dimensional flow does not follow. Time stepping
-                // goes on; the Newton finish takes the run once it is near its root.
+            let flows_own = angle_to(&near.z, &landing.on_line).abs() < 1e-6
+                && invariant_distance(&near.z, &landing.on_line) <= 1e-6
+                && class_of(&near.z) == class_of(&landing.on_line);
+            if !flows_own {
                 continue;
             }
-            let distance = invariant_distance(&found.z, &landing.z);
-            // The flow's own root, or one the run turns to from it.
-            let own = angle_to(&found.z, &landing.z).abs() <= ORIENTATION;
-            let same = class_of(&found.z) == class_of(&landing.z)
-                && distance <= if own { 1e-6 } else { MAX_SETTLED };
-            if may_end && same {
+            let lean = angle_to(&landing.z, &landing.on_line);
+            let (found, may_end) = self.settle(near, lean);
+            if may_end {
                 return Some(found);
             }
         }
