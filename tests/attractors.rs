@@ -4,8 +4,7 @@
 //! catches a false one).
 mod common;
 
-use common::{json, read, run, write_spec};
-use polars::prelude::*;
+use common::{edit, json, read, run, write_spec};
 use std::path::Path;
 
 /// `simulate --json` at N = 192 with the defaults and `extra`.
@@ -69,6 +68,30 @@ fn a_run_where_two_slow_modes_meet_settles_by_running_on() {
     );
 }
 
+#[test]
+fn a_run_that_turns_while_it_departs_lands_where_plain_stepping_ends() {
+    // (0.09, 0.104) from iii: the resting deformed droplet starts to move along the y axis
+    // and turns, over 900 time units, to the stable MD 1.3 degrees off the diagonal (v =
+    // 0.314753). Before numerics 7 the landing held its lean fixed and ended on the MD at 111
+    // degrees (v = 0.337419): it now waits while the lean grows.
+    let landed = simulate("0.09", "0.104", "iii", &[]);
+    let plain = simulate("0.09", "0.104", "iii", &["--no-landing"]);
+    for out in [&landed, &plain] {
+        assert_eq!(out["class"], "MD", "{out}");
+        let v = out["v"].as_f64().unwrap();
+        assert!((v - 0.314753).abs() < 1e-6, "{out}");
+    }
+    assert_eq!(landed["ended_by"], "steady_by_landing", "{landed}");
+    // (0.0805, 0.118) from iii: the run rests on the diagonal for 8e4 time units with a lean
+    // of round-off, then moves along it and turns to the x-axis MD, v = 0.811184 (plain
+    // stepping to t = 84 723, results/landing/table.md); the diagonal MD (v = 0.805135,
+    // where numerics 6 landed) is unstable in rotation. The landing names the x-axis MD.
+    let out = simulate("0.0805", "0.118", "iii", &[]);
+    assert_eq!(out["ended_by"], "steady_by_landing", "{out}");
+    let v = out["v"].as_f64().unwrap();
+    assert!((v - 0.811184).abs() < 1e-6, "{out}");
+}
+
 /// A two-point sweep at N = 96: an MD point and an IC point far from every boundary.
 const TWO_POINTS: &str = "name: two
 grid:
@@ -78,16 +101,6 @@ initial_conditions: [i, iii]
 solver:
   n: 96
 ";
-
-/// Rewrites one string column of a Parquet table: `f(row, old) -> new`.
-fn edit(path: &Path, column: &str, f: impl Fn(usize, Option<&str>) -> Option<String>) {
-    let mut df = read(path);
-    let old = df.column(column).unwrap().str().unwrap().clone();
-    let new: Vec<Option<String>> = (0..df.height()).map(|i| f(i, old.get(i))).collect();
-    df.with_column(Column::new(column.into(), new)).unwrap();
-    let file = std::fs::File::create(path).unwrap();
-    ParquetWriter::new(file).finish(&mut df).unwrap();
-}
 
 fn audit(dir: &Path) -> (Option<i32>, serde_json::Value) {
     let o = run(&["audit", dir.to_str().unwrap(), "--json"]);

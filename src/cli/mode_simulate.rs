@@ -17,7 +17,6 @@ pub fn run(
 ) -> Result<(), CliError> {
     droplet_solver::contract::limits::check_modes(&params, settings.n, a.modes)?;
     let not_yet = [
-        (a.series.is_some(), "--series"),
         (a.picture.is_some(), "--picture"),
         (a.scheme != "spectral", "--scheme"),
         (a.pinned, "--pinned"),
@@ -41,7 +40,19 @@ pub fn run(
         modes: k,
         ..settings
     };
-    let out = droplet_solver::runs::mode_outcome::simulate_modes(&params, ic, &settings)?;
+    let every = super::simulate::check_outputs(a, &settings)?.then_some(a.every);
+    let out =
+        droplet_solver::runs::mode_outcome::simulate_modes_recorded(&params, ic, &settings, every)?;
+    if let Some(path) = &a.series {
+        droplet_sweep::tables::series::write(
+            path,
+            &out.series,
+            &out.higher_series,
+            &params,
+            &settings,
+            ic,
+        )?;
+    }
     let st = &out.state;
     let (a_k, b_k): (Vec<f64>, Vec<f64>) = {
         let h = &out.higher_modes;

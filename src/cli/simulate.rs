@@ -24,7 +24,7 @@ pub struct Args {
     /// Mode-2 stiffness kappa2 (>= 0).
     #[arg(long)]
     pub(super) kappa2: f64,
-    /// Initial condition: i, ii, iii, iv (paper Sect. 3), i', ii' (Fig. 2b; also ip, iip), or custom:vx,vy,a2,b2.
+    /// Initial condition: i, ii, iii, iv (paper Sect. 3), i', ii' (Fig. 2b; also ip, iip), or custom:vx,vy,a2,b2 (with --modes K > 2 followed by a3,b3,a4,b4,... up to mode K; modes not given start at 0).
     #[arg(long, default_value = "i")]
     pub(super) ic: String,
     /// Inertia m (0.1 reproduces the paper's IC/MD bistability; 0 = overdamped, with
@@ -116,10 +116,10 @@ pub struct Args {
     pub(super) picture: Option<PathBuf>,
     /// Shape modes 2..K (the paper's general model; default 2, the paper's). With K > 2 the
     /// K-mode model is time-stepped by exponential Euler (first order, fixed steps --dt) from
-    /// the IC (higher modes 0, field 0), ended like a 2-mode run by the Newton finish: steady
-    /// on a root of the 2K force balances whose eigenvalues all decay, else unsettled at
-    /// 4 t_max (as a sweep with params.modes: K runs it); no series, picture, scheme,
-    /// pinning, adaptive steps or landing.
+    /// the IC (modes 3..K as --ic custom gives them, else 0; field 0), ended like a 2-mode
+    /// run by the Newton finish: steady on a root of the 2K force balances whose eigenvalues
+    /// all decay, else unsettled at 4 t_max (as a sweep with params.modes: K runs it). Its
+    /// --series gains a3..aK, b3..bK; no picture, scheme, pinning, adaptive steps or landing.
     #[arg(long, default_value_t = 2)]
     pub(super) modes: usize,
     /// Print one JSON object instead of text.
@@ -181,6 +181,8 @@ struct Report {
 pub fn run(a: Args) -> Result<(), CliError> {
     let (params, settings) = model_of(&a)?;
     let ic = InitialCondition::parse(&a.ic)?;
+    ic.check_modes(a.modes)
+        .map_err(|e| CliError::usage(format!("invalid --ic with --modes {}: {e}", a.modes)))?;
     if a.modes != 2 {
         return super::mode_simulate::run(&a, params, settings, &ic);
     }
@@ -189,7 +191,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
     let out = run.execute();
     let mass_integral = run.scheme_mut().mass();
     if let Some(path) = &a.series {
-        droplet_sweep::tables::series::write(path, &out.series, &params, &settings, &ic)?;
+        droplet_sweep::tables::series::write(path, &out.series, &[], &params, &settings, &ic)?;
     }
     let mut pictures = Vec::new();
     if let Some(path) = &a.picture {
@@ -286,7 +288,7 @@ fn model_of(a: &Args) -> Result<(ModelParams, SolverSettings), CliError> {
 }
 
 /// Checks `--every` and the output paths; whether the run records a series.
-fn check_outputs(a: &Args, settings: &SolverSettings) -> Result<bool, CliError> {
+pub(super) fn check_outputs(a: &Args, settings: &SolverSettings) -> Result<bool, CliError> {
     let record = a.series.is_some() || a.picture.is_some();
     if record {
         droplet_solver::contract::limits::check_series(settings.give_up_at(), a.every)?;

@@ -48,7 +48,9 @@ pub struct Args {
     mass: f64,
     /// Shape modes 2..K (the paper's general model; default 2, the paper's). With K > 2 the
     /// states on the x axis (motion along x, shapes symmetric about it), started from the
-    /// 2-mode state with one mode added at a time; from 2 to 16 and at most pi R N / (4 L).
+    /// 2-mode state with one mode added at a time, or with --axis diagonal the same state
+    /// turned by 45 degrees and solved again on all 2K balances; from 2 to 16 and at most
+    /// pi R N / (4 L).
     #[arg(long, default_value_t = 2)]
     modes: usize,
     /// Other model parameters: NAME=VALUE[,NAME=VALUE...] of eta2, radius, sigma, box_len
@@ -170,21 +172,14 @@ pub fn run(a: Args) -> Result<(), CliError> {
     Ok(())
 }
 
-/// The options `--modes K` (K > 2) can honour: the x axis, no seed, inertia for the
-/// eigenvalues, and K modes the grid resolves.
+/// The options `--modes K` (K > 2) can honour: no seed, inertia for the eigenvalues, and K
+/// modes the grid resolves.
 fn check_with_modes(
     a: &Args,
-    axis: droplet_solver::roots::steady_solver::MirrorAxis,
     seed: Option<(f64, f64)>,
     params: &ModelParams,
 ) -> Result<(), CliError> {
     droplet_solver::contract::limits::check_modes(params, a.n, a.modes)?;
-    if axis != droplet_solver::roots::steady_solver::MirrorAxis::X {
-        return Err(CliError::usage(format!(
-            "invalid --axis {} with --modes {}: the K-mode states are those on the x axis",
-            a.axis, a.modes
-        )));
-    }
     if seed.is_some() {
         return Err(CliError::usage(format!(
             "invalid --seed with --modes {}: the K-mode state starts from the 2-mode one",
@@ -199,7 +194,8 @@ fn check_with_modes(
     Ok(())
 }
 
-/// `--modes K` with K > 2: the state on the x axis of the K-mode model and its stability.
+/// `--modes K` with K > 2: the state on the x axis (or the diagonal) of the K-mode model and
+/// its stability.
 fn with_modes(
     a: &Args,
     axis: droplet_solver::roots::steady_solver::MirrorAxis,
@@ -209,7 +205,7 @@ fn with_modes(
     use droplet_solver::continuation::mode_branch::{ic_state, id_state, md_state};
     use droplet_solver::roots::mode_linearisation::ModeLinearization;
     use droplet_solver::roots::mode_solver::ModeSolver;
-    check_with_modes(a, axis, seed, &params)?;
+    check_with_modes(a, seed, &params)?;
     let k = a.modes;
     let mut solver = ModeSolver::new(params, a.n)?;
     let lost = |what: &str| CliError {
@@ -227,7 +223,22 @@ fn with_modes(
             (st.v, st.a)
         }
     };
-    let z = droplet_solver::roots::mode_solver::on_x_axis(v, &shape);
+    let mut z = droplet_solver::roots::mode_solver::on_x_axis(v, &shape);
+    if axis == droplet_solver::roots::steady_solver::MirrorAxis::Diagonal {
+        // The state on the diagonal: Newton on all 2K balances from the x-axis state turned
+        // by 45 degrees (the two differ by the box's anisotropy; the mirror symmetry keeps
+        // Newton on the diagonal).
+        let turned = droplet_solver::roots::mode_solver::turned(&z, std::f64::consts::FRAC_PI_4);
+        let opts = droplet_solver::numerics::newton::NewtonOptions {
+            tol: 1e-11,
+            max_iter: 30,
+            fd_step: 1e-7,
+            max_step: vec![0.2; turned.len()],
+        };
+        z = droplet_solver::numerics::newton::solve(|y| solver.residual(y), &turned, &opts)
+            .map_err(|_| lost("diagonal"))?
+            .x;
+    }
     let residual = solver
         .residual(&z)
         .iter()
@@ -241,14 +252,14 @@ fn with_modes(
         n: a.n,
         modes: k,
         params,
-        vx: v,
-        vy: 0.0,
-        a2: shape[0],
-        b2: 0.0,
-        a_k: shape.clone(),
-        b_k: vec![0.0; k - 1],
-        v: v.abs(),
-        s: shape[0].abs(),
+        vx: z[0],
+        vy: z[1],
+        a2: z[2],
+        b2: z[k + 1],
+        a_k: z[2..=k].to_vec(),
+        b_k: z[k + 1..].to_vec(),
+        v: z[0].hypot(z[1]),
+        s: z[2].hypot(z[k + 1]),
         residual,
         eigenvalues: verdict
             .eigenvalues

@@ -1,7 +1,7 @@
 //! Sweeps of the paper's general model with shape modes 2..K (`params.modes: K`): the runs
 //! table's extra amplitudes, the K-mode runs against `simulate --modes K`, and bad input.
 use crate::axes::floats;
-use crate::common::{json, read, run, sweep, write_spec};
+use crate::common::{edit, json, read, run, sweep, write_spec};
 
 /// Four points at N = 96 (where the x-axis MD state is stable in rotation): MD at Fig. 1c,
 /// IC at (0.1, 0.16), far from every boundary.
@@ -50,6 +50,20 @@ fn a_sweep_with_three_modes_runs_the_k_mode_model_and_tables_its_amplitudes() {
             assert!(a3[i].abs() > 1e-2, "{}", a3[i]);
         }
     }
+    // The points table has the state each initial condition's run settled on: the same
+    // amplitudes as the runs table (one run per point here).
+    let points = read(&out.join("points.parquet"));
+    let col = points.column("a3_i").unwrap().f64().unwrap().clone();
+    let mut from_points: Vec<f64> = (0..col.len()).filter_map(|i| col.get(i)).collect();
+    let mut from_runs: Vec<f64> = (0..runs.height())
+        .filter(|&i| classes[i].is_some())
+        .map(|i| a3[i])
+        .collect();
+    from_points.sort_by(f64::total_cmp);
+    from_runs.sort_by(f64::total_cmp);
+    assert_eq!(from_points, from_runs);
+    assert_eq!(from_points.len(), 4);
+    assert!(points.column("deformation_i").is_ok() && points.column("b3_i").is_ok());
     // `droplet boundaries` onto the map draws the 3-mode model's curves (those of the states
     // on the x axis; no MD on this window's middle line, so no fold curve).
     let b = json(&run(&[
@@ -77,15 +91,42 @@ fn a_sweep_with_three_modes_runs_the_k_mode_model_and_tables_its_amplitudes() {
     let o = sweep(&write_spec(dir.path(), "m2.yaml", &spec("2")), &two, &[]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert!(read(&two.join("runs.parquet")).column("a3").is_err());
-    // The audit's equations are the 2-mode model's: it refuses the K-mode map.
-    let o = run(&["audit", out.to_str().unwrap()]);
-    assert_eq!(
-        o.status.code(),
-        Some(2),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-    assert!(String::from_utf8_lossy(&o.stderr).contains("modes = 3"));
+    assert!(read(&two.join("points.parquet")).column("a3_i").is_err());
+    // The audit checks the K-mode map with the 3-mode equations: every label a stable state.
+    let o = run(&["audit", out.to_str().unwrap(), "--json"]);
+    let a = json(&o);
+    assert_eq!(o.status.code(), Some(0), "{a}");
+    assert_eq!(a["points_clean"], 4, "{a}");
+    assert!(a["states_checked"].as_u64().unwrap() >= 2, "{a}");
+    // A false IC at Fig. 1c, where the 3-mode disk deforms: the audit names the run.
+    let md_row = (0..runs.height())
+        .find(|&i| eta[i] == 0.085 && kappa[i] == 0.112)
+        .unwrap();
+    let point = runs
+        .column("point")
+        .unwrap()
+        .u32()
+        .unwrap()
+        .get(md_row)
+        .unwrap();
+    edit(&out.join("runs.parquet"), "class", |i, old| {
+        if i == md_row {
+            Some("IC".into())
+        } else {
+            old.map(str::to_string)
+        }
+    });
+    edit(&out.join("points.parquet"), "class", |i, old| {
+        if i == point as usize {
+            Some("IC".into())
+        } else {
+            old.map(str::to_string)
+        }
+    });
+    let o = run(&["audit", out.to_str().unwrap(), "--json"]);
+    assert_eq!(o.status.code(), Some(1));
+    let a: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(a["list"][0]["kind"], "unstable_disk", "{a}");
 }
 
 #[test]
@@ -116,5 +157,76 @@ fn bad_modes_in_a_spec_exit_2_naming_params_modes() {
         let err = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(2), "{name}: {err}");
         assert!(err.contains("params.modes"), "{name}: {err}");
+    }
+}
+
+#[test]
+fn initial_amplitudes_of_higher_modes_start_the_run_and_beyond_k_exit_2() {
+    // A resting disk given a mode-3 dent at (0.1, 0.16), where the disk is stable: the run
+    // starts from it (the dent shows at t = 0.05) and ends IC, the dent gone.
+    let ic = "custom:0,0,0,0,0.05,0";
+    let out = |extra: &[&str]| {
+        let mut args = vec![
+            "simulate", "--eta-t", "0.1", "--kappa2", "0.16", "--modes", "3", "--n", "96", "--dt",
+            "0.05", "--json", "--ic", ic,
+        ];
+        args.extend_from_slice(extra);
+        json(&run(&args))
+    };
+    let early = out(&["--t-max", "0.05", "--no-run-on"]);
+    let a3 = early["a_k"][1].as_f64().unwrap();
+    assert!(a3 > 0.04 && a3 < 0.05, "{early}");
+    let dir = tempfile::tempdir().unwrap();
+    let series = dir.path().join("dent.parquet");
+    let settled = out(&[
+        "--t-max",
+        "400",
+        "--series",
+        series.to_str().unwrap(),
+        "--every",
+        "1",
+    ]);
+    assert_eq!(settled["class"], "IC", "{settled}");
+    assert!(
+        settled["a_k"][1].as_f64().unwrap().abs() < 1e-8,
+        "{settled}"
+    );
+    // Its time series has mode 3 too: the dent at t = 0, decaying, gone at the end.
+    let table = read(&series);
+    let (t, a3) = (floats(&table, "t"), floats(&table, "a3"));
+    assert_eq!((t[0], a3[0]), (0.0, 0.05));
+    assert!(a3[1] < 0.05 && a3[a3.len() - 1].abs() < 1e-3, "{a3:?}");
+    assert_eq!(t[t.len() - 1], settled["t_end"].as_f64().unwrap());
+    assert!(table.column("b3").is_ok() && table.column("a4").is_err());
+    // Amplitudes beyond K: simulate names --ic, a sweep names initial_conditions.
+    let o = run(&[
+        "simulate",
+        "--eta-t",
+        "0.1",
+        "--kappa2",
+        "0.16",
+        "--modes",
+        "3",
+        "--n",
+        "96",
+        "--ic",
+        "custom:0,0,0,0,0.05,0,0.01,0",
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("--ic") && err.contains("mode 4"), "{err}");
+    for (modes, ics) in [
+        ("2", "[i, 'custom:0,0,0.1,0,0.02,0']"),
+        ("3", "['custom:0,0,0.1,0,0,0,0.01,0']"),
+    ] {
+        let text = spec(modes).replace(
+            "initial_conditions: [i]",
+            &format!("initial_conditions: {ics}"),
+        );
+        let file = write_spec(dir.path(), &format!("beyond-{modes}.yaml"), &text);
+        let o = sweep(&file, &dir.path().join(modes), &[]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{modes}: {err}");
+        assert!(err.contains("initial_conditions"), "{modes}: {err}");
     }
 }

@@ -185,10 +185,59 @@ fn stability_with_modes_gives_the_k_mode_state_and_its_verdict() {
     ]);
     assert_eq!(two["modes"], 2, "{two}");
     assert_eq!(two["a_k"][0], two["a2"], "{two}");
+    // The MD state on the diagonal with 3 modes: on the mirror line (vx = vy; mode 2 along
+    // it, a2 = 0; mode 3 symmetric about it, b3 = -a3), the x-axis state but for the box's
+    // anisotropy, and where a 3-mode run started on the diagonal ends (an independent
+    // computation: time stepping and the Newton finish). At N = 128, where it is stable (at
+    // N = 96 the box's anisotropy turns it unstable, at 192 only its rotation mode grows).
+    let diag = stability(&[
+        "--eta-t", "0.085", "--kappa2", "0.112", "--state", "md", "--modes", "3", "--axis",
+        "diagonal", "--n", "128",
+    ]);
+    let f = |key: &str, i: usize| diag[key][i].as_f64().unwrap();
+    assert!(
+        (diag["vx"].as_f64().unwrap() - diag["vy"].as_f64().unwrap()).abs() < 1e-9,
+        "{diag}"
+    );
+    assert!(
+        f("a_k", 0).abs() < 1e-9 && (f("a_k", 1) + f("b_k", 1)).abs() < 1e-9,
+        "{diag}"
+    );
+    let axis = stability(&[
+        "--eta-t", "0.085", "--kappa2", "0.112", "--state", "md", "--modes", "3", "--n", "128",
+    ]);
+    let (vd, va) = (diag["v"].as_f64().unwrap(), axis["v"].as_f64().unwrap());
+    assert!(vd != va && (vd - va).abs() < 0.05, "{diag} {axis}");
+    let run_d = json(&run(&[
+        "simulate",
+        "--eta-t",
+        "0.085",
+        "--kappa2",
+        "0.112",
+        "--modes",
+        "3",
+        "--n",
+        "96",
+        "--dt",
+        "0.05",
+        "--t-max",
+        "400",
+        "--ic",
+        "custom:0.2,0.2,0,-0.25",
+        "--json",
+    ]));
+    assert_eq!(run_d["class"], "MD", "{run_d}");
+    assert!(
+        (run_d["v"].as_f64().unwrap() - vd).abs() < 1e-6,
+        "{run_d} {diag}"
+    );
+    assert!(
+        (run_d["a_k"][1].as_f64().unwrap() - f("a_k", 1)).abs() < 1e-6,
+        "{run_d}"
+    );
     refused(
         &["stability", "--eta-t", "0.085", "--kappa2", "0.112"],
         &[
-            (&["--modes", "3", "--axis", "diagonal"], "--axis"),
             (&["--modes", "3", "--seed", "0.5,-0.2"], "--seed"),
             (&["--modes", "1"], "modes"),
             (&["--modes", "8", "--n", "64"], "modes"),

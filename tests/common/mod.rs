@@ -16,6 +16,18 @@ pub fn read(path: &Path) -> DataFrame {
         .unwrap()
 }
 
+/// Rewrites one string column of a Parquet table: `f(row, old) -> new` (a false label for
+/// `droplet audit` to catch).
+#[allow(dead_code)]
+pub fn edit(path: &Path, column: &str, f: impl Fn(usize, Option<&str>) -> Option<String>) {
+    let mut df = read(path);
+    let old = df.column(column).unwrap().str().unwrap().clone();
+    let new: Vec<Option<String>> = (0..df.height()).map(|i| f(i, old.get(i))).collect();
+    df.with_column(Column::new(column.into(), new)).unwrap();
+    let file = std::fs::File::create(path).unwrap();
+    ParquetWriter::new(file).finish(&mut df).unwrap();
+}
+
 /// A table without its wall-clock column (the one value that differs between two runs).
 #[allow(dead_code)]
 pub fn table_without_wall(path: &Path) -> DataFrame {

@@ -19,7 +19,7 @@ pub enum SolverError {
         allowed: String,
     },
     /// A named initial condition that does not exist.
-    #[error("unknown initial condition `{0}`: allowed are i, ii, iii, iv, i', ii' or custom:vx,vy,a2,b2")]
+    #[error("unknown initial condition `{0}`: allowed are i, ii, iii, iv, i', ii' or custom:vx,vy,a2,b2 (then a3,b3,a4,b4,... for K-mode runs)")]
     UnknownInitialCondition(String),
     /// A custom initial condition whose values are outside the model.
     #[error("invalid initial condition `{text}`: {reason}")]

@@ -151,6 +151,10 @@ pub struct RunOutcome {
     pub higher_modes: Vec<f64>,
     /// Recorded time series (empty unless asked for).
     pub series: Vec<SeriesRow>,
+    /// A recorded `K`-mode run's higher amplitudes `a_3..a_K, b_3..b_K` at each row of
+    /// `series` (empty for 2-mode runs and unrecorded ones).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub higher_series: Vec<Vec<f64>>,
 }
 
 /// A fixed-step run whose largest embedded error estimate per step exceeds this took steps

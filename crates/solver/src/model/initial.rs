@@ -12,6 +12,11 @@ pub struct InitialCondition {
     pub vy: f64,
     pub a2: f64,
     pub b2: f64,
+    /// The amplitudes `(a_k, b_k)` of shape modes `k = 3, 4, ...` (the paper's general
+    /// shape, eq. 31 with `k >= 3`), for runs of the K-mode model; modes not given start at
+    /// 0. Empty for every 2-mode condition (and then not serialised: run keys unchanged).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub higher: Vec<[f64; 2]>,
 }
 
 /// The paper's named initial conditions, in the order (i), (ii), (iii), (iv), (i'), (ii').
@@ -23,6 +28,11 @@ pub const NAMED: [(&str, [f64; 4]); 6] = [
     ("i'", [1.0, 0.0, -0.1, 0.0]),
     ("ii'", [0.001, 0.0, -0.1, 0.0]),
 ];
+
+/// The form of a custom condition.
+const CUSTOM_FORM: &str =
+    "expected custom:vx,vy,a2,b2 followed by pairs a_k,b_k for k = 3, 4, ... \
+                           (K-mode runs)";
 
 /// The four initial conditions used for every point of the phase map (Fig. 2a).
 pub const PAPER_FOUR: [&str; 4] = ["i", "ii", "iii", "iv"];
@@ -36,10 +46,33 @@ impl InitialCondition {
             vy,
             a2,
             b2,
+            higher: Vec::new(),
         }
     }
 
-    /// Parses `i`, `ii`, `iii`, `iv`, `i'`, `ii'` (also `ip`, `iip`) or `custom:vx,vy,a2,b2`.
+    /// The highest shape mode this condition gives an amplitude for (2 without `higher`).
+    pub fn highest_mode(&self) -> usize {
+        2 + self.higher.len()
+    }
+
+    /// Refuses a condition with amplitudes for modes beyond `k_max` (the run's `modes`).
+    pub fn check_modes(&self, k_max: usize) -> Result<(), SolverError> {
+        if self.highest_mode() <= k_max {
+            return Ok(());
+        }
+        Err(SolverError::InvalidInitialCondition {
+            text: self.name.clone(),
+            reason: format!(
+                "amplitudes are given up to mode {}, beyond the run's shape modes 2..{k_max} \
+                 (params.modes, --modes): raise modes to {} or drop them",
+                self.highest_mode(),
+                self.highest_mode()
+            ),
+        })
+    }
+
+    /// Parses `i`, `ii`, `iii`, `iv`, `i'`, `ii'` (also `ip`, `iip`) or `custom:vx,vy,a2,b2`,
+    /// the latter optionally followed by `a3,b3,a4,b4,...` (amplitudes of modes 3, 4, ...).
     pub fn parse(text: &str) -> Result<Self, SolverError> {
         let key = match text.trim() {
             "ip" => "i'",
@@ -53,6 +86,7 @@ impl InitialCondition {
                 vy: *vy,
                 a2: *a2,
                 b2: *b2,
+                higher: Vec::new(),
             });
         }
         if let Some(rest) = key.strip_prefix("custom:") {
@@ -64,23 +98,31 @@ impl InitialCondition {
                 .split(',')
                 .map(|p| p.trim().parse::<f64>())
                 .collect::<Result<_, _>>()
-                .map_err(|_| bad("expected four numbers custom:vx,vy,a2,b2".into()))?;
-            let [vx, vy, a2, b2] = parts[..] else {
-                return Err(bad(format!(
-                    "expected four numbers custom:vx,vy,a2,b2, got {}",
-                    parts.len()
-                )));
-            };
+                .map_err(|_| bad(CUSTOM_FORM.into()))?;
+            if parts.len() < 4 || !parts.len().is_multiple_of(2) {
+                return Err(bad(format!("{CUSTOM_FORM}, got {} numbers", parts.len())));
+            }
             if !parts.iter().all(|p| p.is_finite()) {
                 return Err(bad("every value must be finite".into()));
             }
-            let s = a2.hypot(b2);
-            if s >= 1.0 {
+            let higher: Vec<[f64; 2]> = parts[4..].chunks(2).map(|c| [c[0], c[1]]).collect();
+            // The shape r = R [1 + sum_k (a_k cos k theta + b_k sin k theta)] stays star-shaped
+            // and small (eq. 31) only if the amplitudes' sizes add up to less than 1.
+            let total: f64 = std::iter::once([parts[2], parts[3]])
+                .chain(higher.iter().copied())
+                .map(|[a, b]| a.hypot(b))
+                .sum();
+            if total >= 1.0 {
                 return Err(bad(format!(
-                    "the deformation s = sqrt(a2^2 + b2^2) = {s} must be < 1 (the small-deformation model, eq. 31)"
+                    "the deformation sum_k sqrt(a_k^2 + b_k^2) = {total} must be < 1 (the small-deformation model, eq. 31)"
                 )));
             }
-            return Ok(Self::custom(vx, vy, a2, b2));
+            let mut ic = Self::custom(parts[0], parts[1], parts[2], parts[3]);
+            if !higher.is_empty() {
+                ic.name = format!("custom:{}", rest.trim());
+                ic.higher = higher;
+            }
+            return Ok(ic);
         }
         Err(SolverError::UnknownInitialCondition(text.to_string()))
     }
@@ -104,6 +146,16 @@ impl InitialCondition {
         for _ in 0..quarter_turns % 4 {
             (ic.vx, ic.vy) = (-ic.vy, ic.vx);
             (ic.a2, ic.b2) = (-ic.a2, -ic.b2);
+            // Mode k turns by k quarter turns: (a, b) -> (a cos k pi/2 - b sin k pi/2, ...).
+            for (i, [a, b]) in ic.higher.iter_mut().enumerate() {
+                let k = i + 3;
+                (*a, *b) = match k % 4 {
+                    0 => (*a, *b),
+                    1 => (-*b, *a),
+                    2 => (-*a, -*b),
+                    _ => (*b, -*a),
+                };
+            }
         }
         ic.name = format!("{}@{}x90", self.name, quarter_turns % 4);
         ic
@@ -125,6 +177,31 @@ mod tests {
         assert!(InitialCondition::parse("v").is_err());
         assert!(InitialCondition::parse("custom:1,2").is_err());
         assert!(InitialCondition::parse("custom:0,0,0.9,0.9").is_err());
+    }
+
+    #[test]
+    fn custom_conditions_give_higher_modes_in_pairs() {
+        let c = InitialCondition::parse("custom:0.01,0,0.1,0,0.02,-0.01,0,0.005").unwrap();
+        assert_eq!(c.higher, vec![[0.02, -0.01], [0.0, 0.005]]);
+        assert_eq!(c.highest_mode(), 4);
+        assert!(c.check_modes(4).is_ok() && c.check_modes(6).is_ok());
+        let e = c.check_modes(3).unwrap_err().to_string();
+        assert!(e.contains("mode 4") && e.contains("modes"), "{e}");
+        // A 2-mode condition is unchanged (no `higher` in its serialised form).
+        let two = InitialCondition::parse("custom:0.5,0,0.1,0").unwrap();
+        assert!(two.higher.is_empty() && two.check_modes(2).is_ok());
+        // Odd counts, and shapes too large in sum.
+        assert!(InitialCondition::parse("custom:0,0,0.1,0,0.02").is_err());
+        assert!(InitialCondition::parse("custom:0,0,0.5,0,0.4,0.4").is_err());
+    }
+
+    #[test]
+    fn a_quarter_turn_turns_mode_k_by_k_quarter_turns() {
+        let c = InitialCondition::parse("custom:0,0,0.1,0,0.02,0.01,0.03,0.004").unwrap();
+        let r = c.rotated(1);
+        // Mode 3 by 270 degrees: (a, b) -> (b, -a); mode 4 by 360 degrees: unchanged.
+        assert_eq!(r.higher, vec![[0.01, -0.02], [0.03, 0.004]]);
+        assert_eq!(c.rotated(4).higher, c.higher);
     }
 
     #[test]

@@ -155,6 +155,7 @@ pub fn simulate(
         heading: None,
         higher_modes: Vec::new(),
         series: Vec::new(),
+        higher_series: Vec::new(),
     })
 }
 

@@ -78,6 +78,23 @@ pub fn on_x_axis(v: f64, a: &[f64]) -> Vec<f64> {
     z
 }
 
+/// The unknowns `(vx, vy, a_2..a_K, b_2..b_K)` of the droplet `z` turned by `phi`: the
+/// velocity by `phi`, shape mode `k` by `k phi` (`r(theta) -> r(theta - phi)`).
+pub fn turned(z: &[f64], phi: f64) -> Vec<f64> {
+    let k_max = z.len() / 2;
+    let (c, s) = (phi.cos(), phi.sin());
+    let mut out = z.to_vec();
+    out[0] = c * z[0] - s * z[1];
+    out[1] = s * z[0] + c * z[1];
+    for k in 2..=k_max {
+        let (a, b) = (z[k], z[k_max - 1 + k]);
+        let (ck, sk) = ((k as f64 * phi).cos(), (k as f64 * phi).sin());
+        out[k] = ck * a - sk * b;
+        out[k_max - 1 + k] = sk * a + ck * b;
+    }
+    out
+}
+
 /// Evaluates steady fields and force balances of `K`-mode droplets on an `N x N` grid.
 pub struct ModeSolver {
     params: ModelParams,
@@ -352,6 +369,28 @@ impl ModeSolver {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn turning_a_k_mode_state_turns_mode_k_k_times() {
+        let z = vec![0.5, 0.1, -0.2, 0.03, 0.01, 0.05, -0.02, 0.004];
+        // Two turns add; a full turn is the identity; with K = 2 it is the 2-mode turn.
+        let twice = turned(&turned(&z, 0.3), 0.4);
+        let once = turned(&z, 0.7);
+        assert!(twice.iter().zip(&once).all(|(a, b)| (a - b).abs() < 1e-15));
+        let full = turned(&z, 2.0 * std::f64::consts::PI);
+        assert!(full.iter().zip(&z).all(|(a, b)| (a - b).abs() < 1e-15));
+        let two = turned(&[0.5, 0.1, -0.2, 0.05], 0.7);
+        let expect = crate::runs::landing::rotated(&[0.5, 0.1, -0.2, 0.05], 0.7);
+        assert!(two.iter().zip(&expect).all(|(a, b)| (a - b).abs() < 1e-15));
+        // An x-axis state turned by 45 degrees lies on the diagonal mirror: a2 = 0, b3 = -a3,
+        // b4 = 0.
+        let d = turned(
+            &on_x_axis(0.4, &[-0.25, 0.04, 0.01]),
+            std::f64::consts::FRAC_PI_4,
+        );
+        assert!((d[0] - d[1]).abs() < 1e-15 && d[2].abs() < 1e-15);
+        assert!((d[3] + d[6]).abs() < 1e-15 && d[7].abs() < 1e-15, "{d:?}");
+    }
     use crate::roots::steady_solver::SteadySolver;
 
     #[test]

@@ -40,6 +40,7 @@ impl Run {
                 allowed: "pde for a field run (ODE runs go through `simulate`)".into(),
             });
         }
+        ic.check_modes(2)?;
         let st = ic.state();
         let scheme: Box<dyn Scheme> = match settings.scheme {
             SchemeKind::Spectral => {
@@ -207,6 +208,7 @@ impl Run {
             heading: found.and_then(|d| d.heading),
             higher_modes: Vec::new(),
             series,
+            higher_series: Vec::new(),
         }
     }
 
@@ -261,6 +263,7 @@ pub fn simulate(
     ic: &InitialCondition,
     settings: &SolverSettings,
 ) -> Result<RunOutcome, SolverError> {
+    ic.check_modes(settings.modes)?;
     match settings.model {
         ModelKind::Pde if settings.modes != 2 => {
             crate::runs::mode_outcome::simulate_modes(params, ic, settings)

@@ -27,9 +27,9 @@
 //! droplet in the square box turns, over thousands of time units, from the mirror line whose
 //! state is unstable in its rotation mode to the other one (axis <-> diagonal), if it leans
 //! away from the first at all. When the root near the run is unstable only in that mode, the
-//! lean `phi` of the run from it decides ([`NewtonFinish::stable_root`]): a
-//! mirror-symmetric run (`phi = 0`; leans below 1e-9 rad are its round-off) never turns and
-//! ends at that root; otherwise the first stable root on the side it leans to is looked for
+//! lean `phi` of the run from it decides ([`NewtonFinish::stable_root`]): a run that started
+//! mirror-symmetric (`phi = 0`; leans below 1e-9 rad are its round-off) never turns and
+//! ends at that root (any other run turns, however small its lean: numerics 7); otherwise the first stable root on the side it leans to is looked for
 //! by Newton from the state turned by [`crate::runs::orientation::TURN_SEARCH`] degrees (a pitchfork pair a degree or
 //! so off the line, else the root on the next mirror line), and the run ends there: speed and
 //! deformation settle long before the orientation, and that root's `v` and `s` are what the
@@ -38,7 +38,9 @@
 //! Slow runs (setting `landing`, on by default): when Newton near the run does not end it,
 //! the run's one-dimensional slow flow ([`crate::runs::landing`]) says which root it lands on;
 //! [`NewtonFinish::landing_root`] confirms that root by Newton on all four equations and its
-//! eigenvalues, and the run ends there (`ended_by`: `landing`). A run caught turning between
+//! eigenvalues (a root unstable only in rotation: the run turns there, as above), and the run
+//! ends there (`ended_by`: `landing`). The flow holds the run's lean fixed: a run whose lean
+//! grows is not landed until it stops growing ([`LEAN_GROWTH`]). A run caught turning between
 //! two mirror lines ends on the stable one of their roots when the other is unstable only in
 //! its rotation mode ([`NewtonFinish::turn_root`]).
 //!

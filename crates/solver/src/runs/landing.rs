@@ -35,7 +35,11 @@
 //! Limits: where two modes are slow at once (where the moving branch's fold meets the onset
 //! of motion, and where the ID and MD onsets meet) the family is two-dimensional and the
 //! scalar flow does not decide; the landing root's stability check then usually refuses it,
-//! and the run goes on by time stepping.
+//! and the run goes on by time stepping. The run's orientation is a slow coordinate too: the
+//! walk holds the run's lean from its line fixed, so the caller lands only runs whose lean does
+//! not grow on the way, and confirms the flow's root on its line ([`Landing::on_line`]),
+//! letting the run turn from there if that root is unstable in rotation
+//! ([`crate::runs::finish`], numerics 7).
 use crate::roots::steady_solver::{MirrorAxis, SteadySolver};
 use std::f64::consts::{FRAC_1_SQRT_2, FRAC_PI_4};
 

@@ -13,9 +13,10 @@
 //! The class is the paper's, from `v` and `s = |a2|` (mode 2 alone); the higher amplitudes
 //! `a_3..a_K, b_3..b_K` are in [`RunOutcome::higher_modes`]. Not here (refused by
 //! [`crate::contract::limits::check_run`]): adaptive steps, the paper's scheme, the landing
-//! and the other endings of 2-mode runs, pinned runs and time series.
+//! and the other endings of 2-mode runs, and pinned runs. Time series:
+//! [`simulate_modes_recorded`].
 use crate::contract::ending::Ending;
-use crate::contract::outcome::{RunOutcome, RunStatus, Unsettled};
+use crate::contract::outcome::{RunOutcome, RunStatus, SeriesRow, Unsettled};
 use crate::contract::settings::SolverSettings;
 use crate::error::SolverError;
 use crate::model::classify::StateClass;
@@ -29,12 +30,14 @@ use crate::runs::mode_run::ModeStepper;
 use crate::runs::orientation::{angle_to, LEAN_FLOOR};
 use std::time::Instant;
 
-/// The state `(vx, vy, a_2..a_K, b_2..b_K)` of `ic` with modes `3..K` at rest.
+/// The state `(vx, vy, a_2..a_K, b_2..b_K)` of `ic`: its amplitudes of modes `3..K`
+/// ([`InitialCondition::higher`]), 0 for modes it does not give.
 pub fn initial_modes(ic: &InitialCondition, k_max: usize) -> Vec<f64> {
+    let mode = |k: usize| ic.higher.get(k - 3).copied().unwrap_or([0.0; 2]);
     let mut z = vec![ic.vx, ic.vy, ic.a2];
-    z.extend(std::iter::repeat_n(0.0, k_max - 2));
+    z.extend((3..=k_max).map(|k| mode(k)[0]));
     z.push(ic.b2);
-    z.extend(std::iter::repeat_n(0.0, k_max - 2));
+    z.extend((3..=k_max).map(|k| mode(k)[1]));
     z
 }
 
@@ -81,23 +84,87 @@ fn distance(z: &[f64], root: &[f64]) -> f64 {
     (v - vr).abs().max((s - sr).abs())
 }
 
+/// The time series of a `K`-mode run: `(t, x, y, vx, vy, a2, b2, v, s)` and the higher
+/// amplitudes `a_3..a_K, b_3..b_K` every `every` time units (the first step at or past each
+/// sample time; fixed steps), and the end.
+struct ModeRecorder {
+    every: f64,
+    next: f64,
+    rows: Vec<SeriesRow>,
+    higher: Vec<Vec<f64>>,
+}
+
+impl ModeRecorder {
+    fn sample(&mut self, run: &ModeStepper, force: bool) {
+        if !(force || run.t >= self.next - 1e-9 * self.every) {
+            return;
+        }
+        if self.rows.last().is_some_and(|r| r.t == run.t) {
+            return;
+        }
+        let k = run.z.len() / 2;
+        let state = DropletState {
+            x: run.x,
+            y: run.y,
+            vx: run.z[0],
+            vy: run.z[1],
+            a2: run.z[2],
+            b2: run.z[k + 1],
+        };
+        self.rows.push(SeriesRow::at(run.t, &state));
+        self.higher.push(
+            run.z[3..k + 1]
+                .iter()
+                .chain(&run.z[k + 2..])
+                .copied()
+                .collect(),
+        );
+        while self.next <= run.t + 1e-9 * self.every {
+            self.next += self.every;
+        }
+    }
+}
+
 /// Runs `params` from `ic` with `settings.modes` shape modes to its outcome.
 pub fn simulate_modes(
     params: &ModelParams,
     ic: &InitialCondition,
     settings: &SolverSettings,
 ) -> Result<RunOutcome, SolverError> {
+    simulate_modes_recorded(params, ic, settings, None)
+}
+
+/// [`simulate_modes`], recording the time series every `every` time units when given
+/// ([`RunOutcome::series`], [`RunOutcome::higher_series`]).
+pub fn simulate_modes_recorded(
+    params: &ModelParams,
+    ic: &InitialCondition,
+    settings: &SolverSettings,
+    every: Option<f64>,
+) -> Result<RunOutcome, SolverError> {
     let started = Instant::now();
     params.validate()?;
     settings.validate()?;
     crate::contract::limits::check_run(params, settings)?;
+    ic.check_modes(settings.modes)?;
     let k = settings.modes;
     let mut run = ModeStepper::new(params, settings.n, &initial_modes(ic, k), settings.dt)?;
+    let mut rec = every
+        .filter(|e| *e > 0.0 && e.is_finite())
+        .map(|every| ModeRecorder {
+            every,
+            next: 0.0,
+            rows: Vec::new(),
+            higher: Vec::new(),
+        });
     let give_up = settings.give_up_at();
     let trigger = TRIGGER_FACTOR * settings.steady_tol;
     let mut next_try = 0.0;
     let (mut status, mut ended_by, mut end_root) = (RunStatus::TMax, None, None);
     loop {
+        if let Some(rec) = rec.as_mut() {
+            rec.sample(&run, false);
+        }
         let rate = run.rate();
         let s = run.z[2].hypot(run.z[k + 1]);
         if !rate.is_finite() || run.z.iter().any(|x| !x.is_finite()) || s >= 1.0 {
@@ -136,7 +203,12 @@ pub fn simulate_modes(
         }
         run.advance();
     }
-    Ok(outcome(&mut run, status, ended_by, end_root, started))
+    let mut out = outcome(&mut run, status, ended_by, end_root, started);
+    if let Some(mut rec) = rec {
+        rec.sample(&run, true);
+        (out.series, out.higher_series) = (rec.rows, rec.higher);
+    }
+    Ok(out)
 }
 
 /// The outcome of a run that stopped with `status` (at the root `end_root` if it ended
@@ -185,6 +257,7 @@ fn outcome(
         heading,
         higher_modes,
         series: Vec::new(),
+        higher_series: Vec::new(),
     }
 }
 

@@ -104,3 +104,40 @@ pub(crate) fn one_class_within(z: &[f64; 4], root: &[f64; 4], reach: f64) -> boo
             .all(|&s| StateClass::of(v, s) == class)
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::initial::NAMED;
+    use crate::runs::landing::rotated;
+
+    #[test]
+    fn only_states_that_are_their_own_mirror_image_are_mirror_symmetric() {
+        // The paper's i' and ii' lie on the x axis; i-iv lean off every mirror line.
+        for (name, z) in NAMED {
+            assert_eq!(mirror_symmetric(&z), name.ends_with('\''), "{name}");
+        }
+        // On the diagonal, and turned by a quarter: still on a mirror line.
+        let diagonal = rotated(&[0.3, 0.0, 0.1, 0.0], std::f64::consts::FRAC_PI_4);
+        assert!(mirror_symmetric(&diagonal));
+        assert!(mirror_symmetric(&rotated(
+            &diagonal,
+            std::f64::consts::FRAC_PI_2
+        )));
+        // Motion on the x axis but the shape turned: no mirror line keeps both.
+        assert!(!mirror_symmetric(&[0.3, 0.0, 0.1, 0.02]));
+        assert!(mirror_symmetric(&[0.0; 4]));
+    }
+
+    #[test]
+    fn a_lean_is_measured_from_the_nearest_mirror_line() {
+        let z = rotated(&[0.3, 0.0, 0.1, 0.0], 50f64.to_radians());
+        let ((line, moving), lean) = lean_from_mirror_line(&z);
+        assert_eq!((line, moving), (1, true));
+        assert!((lean - 5f64.to_radians()).abs() < 1e-12, "{lean}");
+        // At rest the long axis decides.
+        let ((line, moving), lean) = lean_from_mirror_line(&[0.0, 0.0, 0.0, -0.1]);
+        assert_eq!((line, moving), (-1, false));
+        assert!(lean.abs() < 1e-12, "{lean}");
+    }
+}

@@ -19,8 +19,9 @@ impl NewtonFinish {
     /// if it leans at all (a lean `phi` grows like `phi exp(lambda_rot t)`, however long that
     /// takes: before numerics 4 a run that could not turn by 0.01 rad before `t_max` ended
     /// on the unstable line, `v` off by the box's anisotropy from where longer stepping
-    /// lands); a mirror-symmetric run (`phi = 0`)
-    /// ends at the root like the paper's test would. A run that can turn goes to the root of
+    /// lands); a run that started mirror-symmetric (`phi = 0`, [`NewtonFinish::starting_at`])
+    /// ends at the root like the paper's test would, any other turns even at a lean of
+    /// round-off (numerics 7). A run that can turn goes to the root of
     /// the state turned by 45 degrees (motion and long axis together, towards the side it
     /// leans to), where the box's other mirror line is, if that root is stable.
     pub fn stable_root(&mut self, z: [f64; 4]) -> Option<(Finding, bool)> {

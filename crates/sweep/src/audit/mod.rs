@@ -17,6 +17,10 @@
 //!   label edited by hand, or written by an older rule (a class from a run that had not
 //!   settled), is caught too.
 //!
+//! A map of the general model (`params.modes: K`) is checked the same way with its own
+//! equations: the disk's `2K x 2K` eigenvalues, Newton on all `2K` balances from each run's
+//! final `(vx, vy, a2..aK, b2..bK)` ([`point_model`]).
+//!
 //! It reads the tables a sweep leaves (`runs.parquet`, `points.parquet`), so committed maps
 //! are audited as they are. Roots met twice at one point (runs from several initial
 //! conditions on one state) are checked once. Points run in parallel, one steady solver
@@ -24,15 +28,14 @@
 //!
 //! May use: `spec`, `store`, `map`, `tables`. Used by: the CLI.
 
+mod point_model;
+
 use crate::error::SweepError;
 use crate::tables::read::{self as tables, RunRow as Row};
-use droplet_solver::numerics::newton::NewtonOptions;
-use droplet_solver::roots::linearisation::Linearization;
-use droplet_solver::roots::verdict::{assess, Verdict};
 use droplet_solver::{
     contract::outcome::RunStatus, model::classify::StateClass, model::params::ModelParams,
-    roots::steady_solver::SteadySolver,
 };
+use point_model::{Growth, PointModel, Root};
 use rayon::prelude::*;
 use serde::Serialize;
 use std::collections::{BTreeMap, BTreeSet};
@@ -108,35 +111,12 @@ impl Audit {
     }
 }
 
-/// Speed and deformation of `(vx, vy, a2, b2)`.
-fn class_of(z: &[f64; 4]) -> StateClass {
-    StateClass::of(z[0].hypot(z[1]), z[2].hypot(z[3]))
-}
-
-/// The verdict of the steady state near `z` at `params`: the root and its eigenvalues, or
-/// `None` when Newton does not converge from `z`.
-fn root_near(solver: &mut SteadySolver, z: [f64; 4]) -> Checked {
-    let opts = NewtonOptions {
-        tol: 1e-11,
-        max_iter: 30,
-        fd_step: 1e-6,
-        max_step: vec![f64::INFINITY, f64::INFINITY, 0.2, 0.2],
-    };
-    let root = solver.root_from(z, &opts).ok()?;
-    Some((root, assess(&Linearization::at(solver, root), root)))
-}
-
-/// The growing eigenvalues of a verdict, as text.
-fn growth(v: &Verdict) -> String {
-    format!("{} growing mode(s), largest {:+.3e}", v.unstable, v.max_re)
-}
-
-/// A root found from a run's final state, and its verdict (`None`: Newton did not converge).
-type Checked = Option<([f64; 4], Verdict)>;
+/// A root found from a run's final state (`None`: Newton did not converge).
+type Checked = Option<Root>;
 
 /// Audits the runs of one point (spec order of initial conditions) under `label`.
 fn audit_point(
-    solver: &mut SteadySolver,
+    model: &mut dyn PointModel,
     runs: &[&Row],
     label: &str,
     states: &mut usize,
@@ -156,7 +136,7 @@ fn audit_point(
         });
     }
     let mut point = PointStates {
-        solver,
+        model,
         disk: None,
         roots: Vec::new(),
         states,
@@ -166,7 +146,7 @@ fn audit_point(
         let problem = match (r.status.as_str(), r.class) {
             ("diverged", _) => None,
             (_, Some(StateClass::IC)) if steady => point.check_disk(),
-            (_, Some(class)) if steady => point.check_root(r.z, class),
+            (_, Some(class)) if steady => point.check_root(&r.state, class),
             _ => Some((Kind::Unsettled, unsettled_detail(r))),
         };
         if let Some((kind, detail)) = problem {
@@ -185,43 +165,42 @@ fn audit_point(
     out
 }
 
-/// The steady states met at one point, each computed once: the resting disk's verdict and the
+/// The steady states met at one point, each computed once: the resting disk's growth and the
 /// roots near the runs' final states (counted in `states`).
 struct PointStates<'a> {
-    solver: &'a mut SteadySolver,
-    disk: Option<Verdict>,
-    roots: Vec<([f64; 4], Checked)>,
+    model: &'a mut dyn PointModel,
+    disk: Option<Growth>,
+    roots: Vec<(Vec<f64>, Checked)>,
     states: &'a mut usize,
 }
 
 impl PointStates<'_> {
     /// An IC run: the resting disk must be stable here.
     fn check_disk(&mut self) -> Option<(Kind, String)> {
-        let (solver, states) = (&mut *self.solver, &mut *self.states);
-        let v = self.disk.get_or_insert_with(|| {
+        let (model, states) = (&mut *self.model, &mut *self.states);
+        let g = *self.disk.get_or_insert_with(|| {
             *states += 1;
-            assess(&Linearization::at(solver, [0.0; 4]), [0.0; 4])
+            model.disk()
         });
-        (!v.stable()).then(|| {
+        (!g.stable()).then(|| {
             (
                 Kind::UnstableDisk,
-                format!("the resting disk is unstable here: {}", growth(v)),
+                format!("the resting disk is unstable here: {g}"),
             )
         })
     }
 
     /// A run of `class` ending at `z`: Newton from `z` must find a stable root of that class.
-    fn check_root(&mut self, z: [f64; 4], class: StateClass) -> Option<(Kind, String)> {
-        let known = self
-            .roots
-            .iter()
-            .find(|(start, _)| droplet_solver::model::state::max_distance(start, &z) < 1e-9);
-        let found = match known {
-            Some((_, f)) => f.clone(),
+    fn check_root(&mut self, z: &[f64], class: StateClass) -> Option<(Kind, String)> {
+        let near = |start: &[f64]| {
+            start.len() == z.len() && start.iter().zip(z).all(|(a, b)| (a - b).abs() < 1e-9)
+        };
+        let found = match self.roots.iter().find(|(start, _)| near(start)) {
+            Some((_, f)) => *f,
             None => {
-                let f = root_near(self.solver, z);
+                let f = self.model.root_near(z);
                 *self.states += usize::from(f.is_some());
-                self.roots.push((z, f.clone()));
+                self.roots.push((z.to_vec(), f));
                 f
             }
         };
@@ -230,18 +209,18 @@ impl PointStates<'_> {
                 Kind::NoRoot,
                 format!("Newton finds no steady state from the run's final state {z:?}"),
             )),
-            Some((root, _)) if class_of(&root) != class => Some((
+            Some(root) if StateClass::of(root.v, root.s) != class => Some((
                 Kind::OtherClass,
                 format!(
                     "the steady state there is {} (v = {:.6}, s = {:.6})",
-                    class_of(&root),
-                    root[0].hypot(root[1]),
-                    root[2].hypot(root[3])
+                    StateClass::of(root.v, root.s),
+                    root.v,
+                    root.s
                 ),
             )),
-            Some((_, v)) if !v.stable() => Some((
+            Some(root) if !root.growth.stable() => Some((
                 Kind::UnstableRoot,
-                format!("the {class} state is unstable here: {}", growth(&v)),
+                format!("the {class} state is unstable here: {}", root.growth),
             )),
             Some(_) => None,
         }
@@ -294,19 +273,10 @@ fn by_point(rows: Vec<Row>) -> Result<BTreeMap<u32, Vec<Row>>, SweepError> {
     Ok(out)
 }
 
-/// Audits the map in `dir` (its `runs.parquet` and `points.parquet`).
+/// Audits the map in `dir` (its `runs.parquet` and `points.parquet`), with the steady
+/// equations and eigenvalues of its model: the paper's 2-mode model, or the general one with
+/// the map's shape modes `2..K` (`params.modes`).
 pub fn audit(dir: &Path) -> Result<Audit, SweepError> {
-    // The audit's steady equations and eigenvalues are the paper's 2-mode model's.
-    if let Ok(spec) = crate::tables::read::stored_spec(&dir.join(tables::RUNS)) {
-        if spec.solver.modes != 2 {
-            return Err(SweepError::Invalid(format!(
-                "audit checks maps of the paper's 2-mode model; this one has modes = {} \
-                 (check its states with `droplet stability --modes {}` and \
-                 `droplet continue --modes {}`)",
-                spec.solver.modes, spec.solver.modes, spec.solver.modes
-            )));
-        }
-    }
     let runs = by_point(tables::runs(&dir.join(tables::RUNS))?)?;
     let labelled: BTreeMap<u32, String> = tables::points(&dir.join(tables::POINTS))?
         .into_iter()
@@ -319,18 +289,26 @@ pub fn audit(dir: &Path) -> Result<Audit, SweepError> {
             dir.display()
         )));
     }
+    let modes = runs.values().flatten().map(|r| r.modes).max().unwrap_or(2);
+    if let Some(r) = runs.values().flatten().find(|r| r.modes != modes) {
+        return Err(SweepError::Invalid(format!(
+            "{}: runs with {} and {modes} shape modes in one map; audit checks one model",
+            dir.display(),
+            r.modes
+        )));
+    }
     let groups: Vec<(&String, Vec<&Row>)> = runs
         .iter()
         .map(|(p, rows)| (&labelled[p], rows.iter().collect()))
         .collect();
     if let Some(first) = groups.first().and_then(|(_, r)| r.first()) {
         // Fails here, not in a worker, if the solver cannot be made.
-        SteadySolver::new(first.params, first.n)?;
+        point_model::for_map(modes, first.params, first.n)?;
     }
     let results: Vec<(Vec<Contradiction>, usize)> = groups
         .par_iter()
         .map_init(
-            || None::<SteadySolver>,
+            || None::<Box<dyn PointModel>>,
             |slot, (label, rows)| {
                 let Some(first) = rows.first() else {
                     return (Vec::new(), 0);
@@ -338,23 +316,23 @@ pub fn audit(dir: &Path) -> Result<Audit, SweepError> {
                 let (p, n) = (first.params, first.n);
                 // One solver per worker, moved between points by (eta_t, kappa2); a new one
                 // when another parameter or the grid differs.
-                let reusable = slot.as_ref().is_some_and(|s| {
-                    s.grid().n == n
+                let reusable = slot.as_ref().is_some_and(|m| {
+                    m.n() == n
                         && ModelParams {
                             eta_t: p.eta_t,
                             kappa2: p.kappa2,
-                            ..*s.params()
+                            ..*m.params()
                         } == p
                 });
                 if !reusable {
-                    *slot = SteadySolver::new(p, n).ok();
+                    *slot = point_model::for_map(modes, p, n).ok();
                 }
-                let Some(solver) = slot.as_mut() else {
+                let Some(model) = slot.as_mut() else {
                     return (Vec::new(), 0);
                 };
-                solver.set_control(p.eta_t, p.kappa2);
+                model.set_control(p.eta_t, p.kappa2);
                 let mut states = 0;
-                let c = audit_point(solver, rows, label, &mut states);
+                let c = audit_point(model.as_mut(), rows, label, &mut states);
                 (c, states)
             },
         )

@@ -5,6 +5,7 @@ use crate::map::point_class::{classify_point, PointClass, MISSING};
 use crate::map::tally::tally;
 use crate::store::plan::Plan;
 use crate::store::run_store::RunRecord;
+use crate::tables::mode_columns::EndShape;
 use droplet_solver::contract::outcome::RunStatus;
 use std::collections::{BTreeMap, HashMap};
 
@@ -23,6 +24,9 @@ pub struct MapEntry {
     /// How the run from each initial condition ended (spec order): its class, `diverged` or
     /// `unsettled`; `None` while the run is not stored.
     pub per_ic: Vec<Option<String>>,
+    /// The shape each initial condition's run settled on (spec order; `None` for a run not
+    /// stored or not settled): the K-mode columns of the points table.
+    pub shapes: Vec<Option<EndShape>>,
 }
 
 impl MapEntry {
@@ -79,6 +83,13 @@ impl PhaseMap {
                 cell: plan.cells[i],
                 class: classify_point(runs.iter().flatten().copied()),
                 per_ic: runs.iter().map(|r| r.map(run_end)).collect(),
+                shapes: runs
+                    .iter()
+                    .map(|r| {
+                        r.filter(|r| r.outcome.status == RunStatus::Steady)
+                            .map(EndShape::of)
+                    })
+                    .collect(),
             })
             .collect();
         Self {

@@ -128,6 +128,7 @@ mod tests {
                 heading: None,
                 higher_modes: vec![],
                 series: vec![],
+                higher_series: vec![],
             },
         }
     }

@@ -18,7 +18,8 @@ pub(super) fn parse(ctx: &Ctx, top: &Mapping) -> Result<Vec<InitialCondition>, S
         ctx.err(
             &path,
             show(v),
-            "a non-empty list of i, ii, iii, iv, i', ii', custom:vx,vy,a2,b2",
+            "a non-empty list of i, ii, iii, iv, i', ii', custom:vx,vy,a2,b2 (K-mode runs: \
+             then a3,b3,a4,b4,...)",
         )
     })?;
     let mut out: Vec<InitialCondition> = Vec::new();
@@ -36,7 +37,8 @@ pub(super) fn parse(ctx: &Ctx, top: &Mapping) -> Result<Vec<InitialCondition>, S
                 show(item),
                 match e {
                     SolverError::InvalidInitialCondition { reason, .. } => reason,
-                    _ => "i, ii, iii, iv, i', ii' or custom:vx,vy,a2,b2 with s < 1".into(),
+                    _ => "i, ii, iii, iv, i', ii' or custom:vx,vy,a2,b2[,a3,b3,...] with s < 1"
+                        .into(),
                 },
             )
         })?;
@@ -46,4 +48,19 @@ pub(super) fn parse(ctx: &Ctx, top: &Mapping) -> Result<Vec<InitialCondition>, S
         out.push(ic);
     }
     Ok(out)
+}
+
+/// Refuses initial conditions with amplitudes for shape modes beyond the spec's `params.modes`
+/// (named under `initial_conditions`).
+pub(super) fn check_modes(
+    ctx: &Ctx,
+    initial_conditions: &[InitialCondition],
+    modes: usize,
+) -> Result<(), SpecError> {
+    for ic in initial_conditions {
+        if let Err(SolverError::InvalidInitialCondition { reason, .. }) = ic.check_modes(modes) {
+            return Err(ctx.err(&["initial_conditions"], format!("{:?}", ic.name), reason));
+        }
+    }
+    Ok(())
 }

@@ -219,6 +219,7 @@ pub fn parse(text: &str, file: &str, stem: &str) -> Result<SweepSpec, SpecError>
     grid::check_not_fixed(&ctx, top, &grid)?;
     let (params, modes) = params::parse(&ctx, top)?;
     let initial_conditions = initial::parse(&ctx, top)?;
+    initial::check_modes(&ctx, &initial_conditions, modes)?;
     let solver = SolverSettings {
         modes,
         ..solver::parse(&ctx, top, model)?

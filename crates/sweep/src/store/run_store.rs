@@ -368,6 +368,7 @@ mod tests {
                 heading: None,
                 higher_modes: vec![],
                 series: vec![],
+                higher_series: vec![],
             },
         }
     }

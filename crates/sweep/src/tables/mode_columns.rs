@@ -1,40 +1,60 @@
-//! The columns a sweep of the `K`-mode model (spec `params.modes` > 2) adds to
+//! The columns a sweep of the `K`-mode model (spec `params.modes` > 2) adds to its tables.
 //! `runs.parquet`: `modes`, the higher amplitudes at each run's end `a3 .. aK`, `b3 .. bK`
-//! (null beyond a run's own `K`) and the total deformation `sqrt(sum_k a_k^2 + b_k^2)`. The
-//! class stays the paper's, from `v` and `s = sqrt(a2^2 + b2^2)` (mode 2). A 2-mode sweep's
-//! table has none of them, and is unchanged.
+//! (null beyond a run's own `K`) and the total deformation `sqrt(sum_k a_k^2 + b_k^2)`.
+//! `points.parquet`: `modes`, and for each initial condition the state its run settled on,
+//! `deformation_<ic>`, `a3_<ic> .. aK_<ic>`, `b3_<ic> .. bK_<ic>` (null for a run not settled).
+//! The class stays the paper's, from `v` and `s = sqrt(a2^2 + b2^2)` (mode 2). A 2-mode
+//! sweep's tables have none of them, and are unchanged.
+use crate::map::phase_map::{MapEntry, PhaseMap};
 use crate::store::run_store::RunRecord;
 use polars::prelude::*;
 
-/// `(a_k, b_k)` of a run at its end, for `k >= 3` (`None` beyond its `K`).
-fn amplitude(r: &RunRecord, k: usize) -> (Option<f64>, Option<f64>) {
-    let own = r.settings.modes;
-    if k > own {
-        return (None, None);
-    }
-    let h = &r.outcome.higher_modes;
-    (h.get(k - 3).copied(), h.get(own - 2 + k - 3).copied())
+/// The shape a run ended with: its `K`, `s` of mode 2 and the amplitudes of modes `3..K`
+/// (`a3..aK, b3..bK`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct EndShape {
+    pub modes: usize,
+    pub s: f64,
+    pub higher: Vec<f64>,
 }
 
-/// The columns, empty when every run is a 2-mode run.
-pub fn mode_columns(records: &[&RunRecord]) -> Vec<Column> {
-    let k_top = records.iter().map(|r| r.settings.modes).max().unwrap_or(2);
-    if k_top <= 2 {
-        return Vec::new();
+impl EndShape {
+    pub fn of(r: &RunRecord) -> Self {
+        Self {
+            modes: r.settings.modes,
+            s: r.outcome.s,
+            higher: r.outcome.higher_modes.clone(),
+        }
     }
-    let mut cols = vec![Column::new(
-        "modes".into(),
-        records
-            .iter()
-            .map(|r| r.settings.modes as u32)
-            .collect::<Vec<u32>>(),
-    )];
+
+    /// `(a_k, b_k)` for `k >= 3` (`None` beyond its `K`).
+    fn amplitude(&self, k: usize) -> (Option<f64>, Option<f64>) {
+        if k > self.modes {
+            return (None, None);
+        }
+        let h = &self.higher;
+        (
+            h.get(k - 3).copied(),
+            h.get(self.modes - 2 + k - 3).copied(),
+        )
+    }
+
+    /// `sqrt(sum_k a_k^2 + b_k^2)`, all modes.
+    fn deformation(&self) -> f64 {
+        let higher: f64 = self.higher.iter().map(|x| x * x).sum();
+        (self.s * self.s + higher).sqrt()
+    }
+}
+
+/// The `a3..aK, b3..bK` columns (suffix `suffix`) of `shapes`.
+fn amplitude_columns(shapes: &[Option<EndShape>], k_top: usize, suffix: &str) -> Vec<Column> {
+    let mut cols = Vec::new();
     for (name, pick) in [("a", 0), ("b", 1)] {
         for k in 3..=k_top {
-            let v: Vec<Option<f64>> = records
+            let v: Vec<Option<f64>> = shapes
                 .iter()
-                .map(|r| {
-                    let (a, b) = amplitude(r, k);
+                .map(|e| {
+                    let (a, b) = e.as_ref().map_or((None, None), |e| e.amplitude(k));
                     if pick == 0 {
                         a
                     } else {
@@ -42,17 +62,58 @@ pub fn mode_columns(records: &[&RunRecord]) -> Vec<Column> {
                     }
                 })
                 .collect();
-            cols.push(Column::new(format!("{name}{k}").into(), v));
+            cols.push(Column::new(format!("{name}{k}{suffix}").into(), v));
         }
     }
-    let total: Vec<f64> = records
-        .iter()
-        .map(|r| {
-            let s = r.outcome.s;
-            let higher: f64 = r.outcome.higher_modes.iter().map(|x| x * x).sum();
-            (s * s + higher).sqrt()
-        })
-        .collect();
+    cols
+}
+
+/// The runs table's columns, empty when every run is a 2-mode run.
+pub fn mode_columns(records: &[&RunRecord]) -> Vec<Column> {
+    let k_top = records.iter().map(|r| r.settings.modes).max().unwrap_or(2);
+    if k_top <= 2 {
+        return Vec::new();
+    }
+    let shapes: Vec<Option<EndShape>> = records.iter().map(|r| Some(EndShape::of(r))).collect();
+    let mut cols = vec![Column::new(
+        "modes".into(),
+        records
+            .iter()
+            .map(|r| r.settings.modes as u32)
+            .collect::<Vec<u32>>(),
+    )];
+    cols.extend(amplitude_columns(&shapes, k_top, ""));
+    let total: Vec<f64> = shapes.iter().flatten().map(EndShape::deformation).collect();
     cols.push(Column::new("deformation".into(), total));
+    cols
+}
+
+/// The points table's columns, empty for a 2-mode map: `modes` (the largest `K` of the
+/// point's runs), and per initial condition the settled run's deformation and amplitudes.
+pub fn point_mode_columns(map: &PhaseMap) -> Vec<Column> {
+    fn shapes(p: &MapEntry) -> impl Iterator<Item = usize> + '_ {
+        p.shapes.iter().flatten().map(|e| e.modes)
+    }
+    let k_top = map.points.iter().flat_map(shapes).max().unwrap_or(2);
+    if k_top <= 2 {
+        return Vec::new();
+    }
+    let mut cols = vec![Column::new(
+        "modes".into(),
+        map.points
+            .iter()
+            .map(|p| shapes(p).max().map(|k| k as u32))
+            .collect::<Vec<Option<u32>>>(),
+    )];
+    for (i, name) in map.ic_names.iter().enumerate() {
+        let own: Vec<Option<EndShape>> = map.points.iter().map(|p| p.shapes[i].clone()).collect();
+        cols.push(Column::new(
+            format!("deformation_{name}").into(),
+            own.iter()
+                .map(|e| e.as_ref().map(EndShape::deformation))
+                .collect::<Vec<Option<f64>>>(),
+        ));
+        cols.extend(amplitude_columns(&own, k_top, &format!("_{name}")));
+    }
     cols
 }

@@ -27,6 +27,10 @@ pub struct RunRow {
     pub class: Option<StateClass>,
     /// `(vx, vy, a2, b2)` at the end.
     pub z: [f64; 4],
+    /// Its shape modes `K` (2 in a table without a `modes` column), and the whole state at
+    /// the end, `(vx, vy, a2..aK, b2..bK)` (the K-mode model's unknowns; `z` when `K = 2`).
+    pub modes: usize,
+    pub state: Vec<f64>,
     pub v: f64,
     pub s: f64,
     pub t_end: f64,
@@ -123,9 +127,14 @@ fn bools_or(df: &DataFrame, name: &str, default: bool) -> Result<Vec<bool>, Swee
 
 /// A u32 column, 0 where the table lacks it.
 fn u32s_or_zero(df: &DataFrame, name: &str) -> Result<Vec<u32>, SweepError> {
+    u32s_or(df, name, 0)
+}
+
+/// A u32 column, `default` where the table lacks it.
+fn u32s_or(df: &DataFrame, name: &str, default: u32) -> Result<Vec<u32>, SweepError> {
     match df.column(name) {
         Ok(_) => u32s(df, name),
-        Err(_) => Ok(vec![0; df.height()]),
+        Err(_) => Ok(vec![default; df.height()]),
     }
 }
 
@@ -156,6 +165,23 @@ pub fn runs(path: &Path) -> Result<Vec<RunRow>, SweepError> {
         optional_strings(&df, "unsettled")?,
         optional_strings(&df, "heading")?,
     );
+    let modes = u32s_or(&df, "modes", 2)?;
+    let k_top = modes.iter().copied().max().unwrap_or(2) as usize;
+    let amplitude = |name: String| -> Result<Vec<f64>, SweepError> { floats(&df, &name) };
+    let a_k = (3..=k_top)
+        .map(|k| amplitude(format!("a{k}")))
+        .collect::<Result<Vec<_>, _>>()?;
+    let b_k = (3..=k_top)
+        .map(|k| amplitude(format!("b{k}")))
+        .collect::<Result<Vec<_>, _>>()?;
+    let state = |i: usize| -> Vec<f64> {
+        let k = modes[i] as usize;
+        let mut z = vec![f("vx", i), f("vy", i), f("a2", i)];
+        z.extend(a_k[..k - 2].iter().map(|c| c[i]));
+        z.push(f("b2", i));
+        z.extend(b_k[..k - 2].iter().map(|c| c[i]));
+        z
+    };
     Ok((0..df.height())
         .map(|i| RunRow {
             point: point[i],
@@ -175,6 +201,8 @@ pub fn runs(path: &Path) -> Result<Vec<RunRow>, SweepError> {
             status: t("status", i),
             class: StateClass::parse(&t("class", i)),
             z: [f("vx", i), f("vy", i), f("a2", i), f("b2", i)],
+            modes: modes[i] as usize,
+            state: state(i),
             v: f("v", i),
             s: f("s", i),
             t_end: f("t_end", i),

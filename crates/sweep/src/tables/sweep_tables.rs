@@ -307,6 +307,7 @@ pub fn points_frame(map: &PhaseMap) -> Result<DataFrame, SweepError> {
                 .collect::<Vec<u32>>(),
         ));
     }
+    cols.extend(crate::tables::mode_columns::point_mode_columns(map));
     Ok(DataFrame::new(n, cols)?)
 }
 
