@@ -217,7 +217,7 @@ fn stability_with_modes_gives_the_k_mode_state_and_its_verdict() {
         "--modes",
         "3",
         "--n",
-        "96",
+        "128",
         "--dt",
         "0.05",
         "--t-max",
@@ -323,11 +323,11 @@ fn a_k_mode_run_settles_on_the_k_mode_steady_state() {
         "0.112",
         "--modes",
         "3",
-        "--series",
-        "never.parquet",
+        "--picture",
+        "never.png",
     ]);
     assert_eq!(o.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&o.stderr).contains("--series"));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--picture"));
 }
 
 #[test]

@@ -30,9 +30,8 @@ pub const NAMED: [(&str, [f64; 4]); 6] = [
 ];
 
 /// The form of a custom condition.
-const CUSTOM_FORM: &str =
-    "expected custom:vx,vy,a2,b2 followed by pairs a_k,b_k for k = 3, 4, ... \
-                           (K-mode runs)";
+const CUSTOM_FORM: &str = "expected four numbers custom:vx,vy,a2,b2, then for K-mode runs \
+                           pairs a_k,b_k for k = 3, 4, ...";
 
 /// The four initial conditions used for every point of the phase map (Fig. 2a).
 pub const PAPER_FOUR: [&str; 4] = ["i", "ii", "iii", "iv"];
@@ -113,8 +112,13 @@ impl InitialCondition {
                 .map(|[a, b]| a.hypot(b))
                 .sum();
             if total >= 1.0 {
+                let what = if higher.is_empty() {
+                    "s = sqrt(a2^2 + b2^2)"
+                } else {
+                    "sum_k sqrt(a_k^2 + b_k^2)"
+                };
                 return Err(bad(format!(
-                    "the deformation sum_k sqrt(a_k^2 + b_k^2) = {total} must be < 1 (the small-deformation model, eq. 31)"
+                    "the deformation {what} = {total} must be < 1 (the small-deformation model, eq. 31)"
                 )));
             }
             let mut ic = Self::custom(parts[0], parts[1], parts[2], parts[3]);

@@ -1,9 +1,11 @@
 //! From runs to a phase map: the class of a point from its runs' endings (`point_class`), the
 //! map of a sweep computed once from its plan and stored runs (`phase_map`), the refinement
 //! rule (`refine`) and the point set it gives level by level (`levels`), label counts
-//! (`tally`), and a 1-D sweep's class changes against continuation (`line_compare`).
+//! (`tally`), a 1-D sweep's class changes against continuation (`line_compare`), and the
+//! shape each run ended with for the K-mode columns (`end_shape`).
 //!
 //! May use: `spec`, `store`. Used by: `tables`, `pictures`, `execution`, `audit`.
+pub mod end_shape;
 pub mod levels;
 pub mod line_compare;
 pub mod phase_map;

@@ -1,11 +1,11 @@
 //! The phase map of a sweep: every point with its class (from [`crate::map::point_class`]) and the end
 //! of each of its runs, computed once from the plan and the stored runs, and read by the
 //! points table, `droplet status` and the picture.
+use crate::map::end_shape::EndShape;
 use crate::map::point_class::{classify_point, PointClass, MISSING};
 use crate::map::tally::tally;
 use crate::store::plan::Plan;
 use crate::store::run_store::RunRecord;
-use crate::tables::mode_columns::EndShape;
 use droplet_solver::contract::outcome::RunStatus;
 use std::collections::{BTreeMap, HashMap};
 

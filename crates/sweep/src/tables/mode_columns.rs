@@ -5,46 +5,10 @@
 //! `deformation_<ic>`, `a3_<ic> .. aK_<ic>`, `b3_<ic> .. bK_<ic>` (null for a run not settled).
 //! The class stays the paper's, from `v` and `s = sqrt(a2^2 + b2^2)` (mode 2). A 2-mode
 //! sweep's tables have none of them, and are unchanged.
+use crate::map::end_shape::EndShape;
 use crate::map::phase_map::{MapEntry, PhaseMap};
 use crate::store::run_store::RunRecord;
 use polars::prelude::*;
-
-/// The shape a run ended with: its `K`, `s` of mode 2 and the amplitudes of modes `3..K`
-/// (`a3..aK, b3..bK`).
-#[derive(Debug, Clone, PartialEq)]
-pub struct EndShape {
-    pub modes: usize,
-    pub s: f64,
-    pub higher: Vec<f64>,
-}
-
-impl EndShape {
-    pub fn of(r: &RunRecord) -> Self {
-        Self {
-            modes: r.settings.modes,
-            s: r.outcome.s,
-            higher: r.outcome.higher_modes.clone(),
-        }
-    }
-
-    /// `(a_k, b_k)` for `k >= 3` (`None` beyond its `K`).
-    fn amplitude(&self, k: usize) -> (Option<f64>, Option<f64>) {
-        if k > self.modes {
-            return (None, None);
-        }
-        let h = &self.higher;
-        (
-            h.get(k - 3).copied(),
-            h.get(self.modes - 2 + k - 3).copied(),
-        )
-    }
-
-    /// `sqrt(sum_k a_k^2 + b_k^2)`, all modes.
-    fn deformation(&self) -> f64 {
-        let higher: f64 = self.higher.iter().map(|x| x * x).sum();
-        (self.s * self.s + higher).sqrt()
-    }
-}
 
 /// The `a3..aK, b3..bK` columns (suffix `suffix`) of `shapes`.
 fn amplitude_columns(shapes: &[Option<EndShape>], k_top: usize, suffix: &str) -> Vec<Column> {
