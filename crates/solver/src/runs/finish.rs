@@ -296,9 +296,10 @@ impl NewtonFinish {
     /// lands on ([`Self::landing_root`]).
     /// The flow walks along a mirror line with the run's lean held fixed, so it lands only a
     /// run whose lean is not growing (numerics 7): below the floor, or on the same side of
-    /// the same line as at the previous landing try and grown since by at most [`LEAN_GROWTH`] times the
-    /// relative change of the run's coordinate (its speed, or its deformation at rest), so that over the whole
-    /// departure the lean changes by a small power of the coordinate's change. A run
+    /// the same line as at the previous landing try and grown since by at most
+    /// [`LEAN_GROWTH`] times the relative change of the run's coordinate (its speed, or its
+    /// deformation at rest), so that over the whole departure the lean changes by a small
+    /// power of the coordinate's change. A run
     /// turning away from its line (the family's states unstable in rotation on the way) may
     /// end on another orientation than the flow's; it goes on by time stepping, or ends
     /// where it is caught turning to ([`Self::turn_root`]). The first try knows no growth
