@@ -322,10 +322,13 @@ impl NewtonFinish {
             });
         // A landing on the resting disk, which has no orientation, needs no lean.
         let round = |z: &[f64; 4]| z.iter().all(|x| x.abs() < 1e-9);
-        let found = match self.landing_root(z) {
-            Some(found) if !turning_away || round(&found.z) => found,
-            _ if turning_away => self.turn_root(z)?,
-            _ => return None,
+        let found = if turning_away {
+            match self.flow_root(z) {
+                Some(found) if round(&found.z) => found,
+                _ => self.turn_root(z)?,
+            }
+        } else {
+            self.landing_root(z)?
         };
         Some(Decision::End(Ending::Landing, found.z))
     }

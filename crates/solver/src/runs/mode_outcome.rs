@@ -84,6 +84,24 @@ fn distance(z: &[f64], root: &[f64]) -> f64 {
     (v - vr).abs().max((s - sr).abs())
 }
 
+/// The `K`-mode state `z = (vx, vy, a_2..a_K, b_2..b_K)` at `(x, y)` as the 2-mode state and
+/// the higher amplitudes `a_3..a_K, b_3..b_K`.
+fn split(z: &[f64], x: f64, y: f64) -> (DropletState, Vec<f64>) {
+    let k = z.len() / 2;
+    let state = DropletState {
+        x,
+        y,
+        vx: z[0],
+        vy: z[1],
+        a2: z[2],
+        b2: z[k + 1],
+    };
+    (
+        state,
+        z[3..k + 1].iter().chain(&z[k + 2..]).copied().collect(),
+    )
+}
+
 /// The time series of a `K`-mode run: `(t, x, y, vx, vy, a2, b2, v, s)` and the higher
 /// amplitudes `a_3..a_K, b_3..b_K` every `every` time units (the first step at or past each
 /// sample time; fixed steps), and the end.
@@ -102,23 +120,9 @@ impl ModeRecorder {
         if self.rows.last().is_some_and(|r| r.t == run.t) {
             return;
         }
-        let k = run.z.len() / 2;
-        let state = DropletState {
-            x: run.x,
-            y: run.y,
-            vx: run.z[0],
-            vy: run.z[1],
-            a2: run.z[2],
-            b2: run.z[k + 1],
-        };
+        let (state, higher) = split(&run.z, run.x, run.y);
         self.rows.push(SeriesRow::at(run.t, &state));
-        self.higher.push(
-            run.z[3..k + 1]
-                .iter()
-                .chain(&run.z[k + 2..])
-                .copied()
-                .collect(),
-        );
+        self.higher.push(higher);
         while self.next <= run.t + 1e-9 * self.every {
             self.next += self.every;
         }
@@ -220,23 +224,14 @@ fn outcome(
     end_root: Option<Vec<f64>>,
     started: Instant,
 ) -> RunOutcome {
-    let k = run.z.len() / 2;
     let (unsettled, heading, diagnosis) = match status {
         RunStatus::Steady => (None, None, None),
         RunStatus::Diverged => (Some(Unsettled::Diverged), None, None),
         _ => diagnose(run),
     };
     let z = end_root.unwrap_or_else(|| run.z.clone());
-    let state = DropletState {
-        x: run.x,
-        y: run.y,
-        vx: z[0],
-        vy: z[1],
-        a2: z[2],
-        b2: z[k + 1],
-    };
+    let (state, higher_modes) = split(&z, run.x, run.y);
     let (v, s) = (state.speed(), state.deformation());
-    let higher_modes = z[3..k + 1].iter().chain(&z[k + 2..]).copied().collect();
     let steady = status == RunStatus::Steady;
     RunOutcome {
         status,

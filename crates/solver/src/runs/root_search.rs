@@ -93,6 +93,11 @@ impl NewtonFinish {
     /// Failing that, a run caught turning between two mirror lines ends where it turns to
     /// ([`Self::turn_root`]).
     pub fn landing_root(&mut self, z: [f64; 4]) -> Option<Finding> {
+        self.flow_root(z).or_else(|| self.turn_root(z))
+    }
+
+    /// [`Self::landing_root`] along the slow flow alone (no [`Self::turn_root`]).
+    pub fn flow_root(&mut self, z: [f64; 4]) -> Option<Finding> {
         for landing in landings(self.steady_solver().ok()?, z) {
             let Ok(near) = self.root_near(landing.on_line) else {
                 continue;
@@ -109,7 +114,7 @@ impl NewtonFinish {
                 return Some(found);
             }
         }
-        self.turn_root(z)
+        None
     }
 
     /// The root a run turning between the box's two mirror lines next to it ends on. The

@@ -167,12 +167,11 @@ pub fn runs(path: &Path) -> Result<Vec<RunRow>, SweepError> {
     );
     let modes = u32s_or(&df, "modes", 2)?;
     let k_top = modes.iter().copied().max().unwrap_or(2) as usize;
-    let amplitude = |name: String| -> Result<Vec<f64>, SweepError> { floats(&df, &name) };
     let a_k = (3..=k_top)
-        .map(|k| amplitude(format!("a{k}")))
+        .map(|k| floats(&df, &format!("a{k}")))
         .collect::<Result<Vec<_>, _>>()?;
     let b_k = (3..=k_top)
-        .map(|k| amplitude(format!("b{k}")))
+        .map(|k| floats(&df, &format!("b{k}")))
         .collect::<Result<Vec<_>, _>>()?;
     let state = |i: usize| -> Vec<f64> {
         let k = modes[i] as usize;
