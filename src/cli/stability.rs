@@ -225,19 +225,7 @@ fn with_modes(
     };
     let mut z = droplet_solver::roots::mode_solver::on_x_axis(v, &shape);
     if axis == droplet_solver::roots::steady_solver::MirrorAxis::Diagonal {
-        // The state on the diagonal: Newton on all 2K balances from the x-axis state turned
-        // by 45 degrees (the two differ by the box's anisotropy; the mirror symmetry keeps
-        // Newton on the diagonal).
-        let turned = droplet_solver::roots::mode_solver::turned(&z, std::f64::consts::FRAC_PI_4);
-        let opts = droplet_solver::numerics::newton::NewtonOptions {
-            tol: 1e-11,
-            max_iter: 30,
-            fd_step: 1e-7,
-            max_step: vec![0.2; turned.len()],
-        };
-        z = droplet_solver::numerics::newton::solve(|y| solver.residual(y), &turned, &opts)
-            .map_err(|_| lost("diagonal"))?
-            .x;
+        z = on_diagonal(&mut solver, &z).ok_or_else(|| lost("diagonal"))?;
     }
     let residual = solver
         .residual(&z)
@@ -277,6 +265,25 @@ fn with_modes(
     };
     emit(&report, a.json);
     Ok(())
+}
+
+/// The `K`-mode state on the diagonal from the one on the x axis `z`: Newton on all 2K
+/// balances from `z` turned by 45 degrees (the two differ by the box's anisotropy; the mirror
+/// symmetry keeps Newton on the diagonal). `None` if Newton does not converge.
+fn on_diagonal(
+    solver: &mut droplet_solver::roots::mode_solver::ModeSolver,
+    z: &[f64],
+) -> Option<Vec<f64>> {
+    let turned = droplet_solver::roots::mode_solver::turned(z, std::f64::consts::FRAC_PI_4);
+    let opts = droplet_solver::numerics::newton::NewtonOptions {
+        tol: 1e-11,
+        max_iter: 30,
+        fd_step: 1e-7,
+        max_step: vec![0.2; turned.len()],
+    };
+    droplet_solver::numerics::newton::solve(|y| solver.residual(y), &turned, &opts)
+        .ok()
+        .map(|r| r.x)
 }
 
 /// `--seed V,SHAPE`: a starting guess for Newton, if given.
