@@ -15,3 +15,4 @@ pub mod mode_outcome;
 pub mod mode_run;
 pub mod orientation;
 pub mod root_search;
+pub mod rotation_flow;

@@ -7,6 +7,7 @@
 use crate::runs::finding::Finding;
 use crate::runs::finish::{NewtonFinish, MAX_SETTLED};
 use crate::runs::landing::{landings, rotated};
+use crate::runs::rotation_flow::turns_back;
 use crate::runs::orientation::{
     angle_to, class_of, invariant_distance, orientation, speed_and_deformation, LEAN_FLOOR,
     TURN_SEARCH,
@@ -37,7 +38,7 @@ impl NewtonFinish {
     /// ([`Self::stable_root`]).
     fn settle(&mut self, near: Finding, lean: f64) -> (Finding, bool) {
         if near.verdict.rotation.is_none() || near.stable() {
-            let ok = near.stable();
+            let ok = near.stable() && self.within_rotation_basin(&near, lean);
             return (near, ok);
         }
         if near.verdict.unstable > 0 {
@@ -70,6 +71,7 @@ impl NewtonFinish {
                 && invariant_distance(&other.z, &near.z) <= MAX_SETTLED
                 && turn > 1e-6
                 && turn <= quarter + 1e-6
+                && self.within_rotation_basin(&other, lean - side * turn)
             {
                 return (
                     Finding {
@@ -151,11 +153,30 @@ impl NewtonFinish {
         if !(between(run.0, ra.0, rb.0) && between(run.1, ra.1, rb.1)) {
             return None;
         }
-        match (a.stable(), b.stable()) {
-            (true, false) => Some(a),
-            (false, true) => Some(b),
-            _ => None,
+        let found = match (a.stable(), b.stable()) {
+            (true, false) => a,
+            (false, true) => b,
+            _ => return None,
+        };
+        let lean = angle_to(&z, &found.z);
+        self.within_rotation_basin(&found, lean).then_some(found)
+    }
+
+    /// Whether a run leaning by `lean` from the stable root `near` on a mirror line turns
+    /// back to it (numerics 8): the orientation's slow flow points back to the line all the
+    /// way from the run ([`crate::runs::rotation_flow::turns_back`]). A root stable in
+    /// rotation is not enough: the box's anisotropy can put an unstable root between the
+    /// line and the run (at (0.072, 0.132) 4.8 degrees off the x-axis MD; a run leaning 6.5
+    /// degrees turns on to the stable root at 8.7). A lean below [`LEAN_FLOOR`], or a root
+    /// with no orientation, always holds.
+    fn within_rotation_basin(&mut self, near: &Finding, lean: f64) -> bool {
+        if near.verdict.rotation.is_none() || lean.abs() < LEAN_FLOOR {
+            return true;
         }
+        let Ok(solver) = self.steady_solver() else {
+            return false;
+        };
+        turns_back(solver, &near.z, lean)
     }
 
     /// The root of a run caught mid-turn, between the box's mirror lines, where Newton from
@@ -180,3 +201,4 @@ impl NewtonFinish {
         first
     }
 }
+
