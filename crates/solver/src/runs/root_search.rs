@@ -167,8 +167,9 @@ impl NewtonFinish {
     /// way from the run ([`crate::runs::rotation_flow::turns_back`]). A root stable in
     /// rotation is not enough: the box's anisotropy can put an unstable root between the
     /// line and the run (at (0.072, 0.132) 4.8 degrees off the x-axis MD; a run leaning 6.5
-    /// degrees turns on to the stable root at 8.7). A lean below [`LEAN_FLOOR`], or a root
-    /// with no orientation, always holds.
+    /// degrees turns on to the stable root at 8.7). A lean below
+    /// [`crate::runs::rotation_flow::LINEAR_LEAN`], or a root with no orientation, always
+    /// holds.
     fn within_rotation_basin(&mut self, near: &Finding, lean: f64) -> bool {
         if near.verdict.rotation.is_none() || lean.abs() < LEAN_FLOOR {
             return true;
