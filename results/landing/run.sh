@@ -8,7 +8,7 @@
 # 0.16 (the run), the IC/MD band, the deformation onsets, the turning runs of the map.
 # Run from the repository root after `cargo build --release`; writes results/landing/table.md.
 set -euo pipefail
-bin=./target/release/droplet
+bin=${BIN:-./target/release/droplet}
 here=results/landing
 points=("0.0763 0.16" "0.0765 0.16" "0.07625 0.16" "0.078 0.13" "0.085 0.112" "0.0875 0.11875" "0.09 0.1186" "0.0805 0.118" "0.09 0.104" "0.092 0.102")
 {

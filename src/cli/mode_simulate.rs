@@ -5,6 +5,8 @@ use super::simulate::Args;
 use super::{print_json, CliError};
 use droplet_solver::contract::settings::SolverSettings;
 use droplet_solver::model::{initial::InitialCondition, params::ModelParams};
+use droplet_solver::roots::{mode_field::lab_field, mode_solver::ModeSolver};
+use droplet_sweep::pictures::run_figure;
 
 /// `--modes K` with K > 2: the K-mode model from the IC (modes 3..K at rest) at fixed steps
 /// --dt, ended by the Newton finish (`droplet_solver::runs::mode_outcome`, as a sweep with
@@ -17,13 +19,13 @@ pub fn run(
 ) -> Result<(), CliError> {
     droplet_solver::contract::limits::check_modes(&params, settings.n, a.modes)?;
     let not_yet = [
-        (a.picture.is_some(), "--picture"),
         (a.scheme != "spectral", "--scheme"),
         (a.pinned, "--pinned"),
         (a.steady.is_some(), "--steady"),
         (a.stop_beside_saddle, "--stop-beside-saddle"),
         (a.leap_departures, "--leap-departures"),
         (a.no_landing, "--no-landing"),
+        (a.orientation_flow, "--orientation-flow"),
         (a.tol.is_some(), "--tol"),
         (a.dt_max.is_some(), "--dt-max"),
     ];
@@ -54,6 +56,10 @@ pub fn run(
         )?;
     }
     let st = &out.state;
+    let picture = match &a.picture {
+        Some(path) => picture(path, &params, &settings, ic, &out)?,
+        None => Vec::new(),
+    };
     let (a_k, b_k): (Vec<f64>, Vec<f64>) = {
         let h = &out.higher_modes;
         let a: Vec<f64> = std::iter::once(st.a2)
@@ -71,6 +77,7 @@ pub fn run(
         "unsettled": out.unsettled.map(|u| u.as_str()),
         "heading": out.heading.map(|c| c.as_str()), "diagnosis": out.diagnosis,
         "wall_s": out.wall_s, "params": params, "settings": settings, "ic": ic,
+        "picture": picture,
     });
     if a.json {
         print_json(&report);
@@ -87,4 +94,43 @@ pub fn run(
         );
     }
     Ok(())
+}
+
+/// The run's Fig. 1 panels: the steady field of its final state (modes `2..K`, centred where
+/// the run ends; the run's own field is not kept), the outline with every mode, and `v(t)`,
+/// `s(t)`.
+fn picture(
+    path: &std::path::Path,
+    params: &ModelParams,
+    settings: &SolverSettings,
+    ic: &InitialCondition,
+    out: &droplet_solver::contract::outcome::RunOutcome,
+) -> Result<Vec<std::path::PathBuf>, CliError> {
+    let st = &out.state;
+    let (a, b) = out.higher_modes.split_at(out.higher_modes.len() / 2);
+    let mut z = vec![st.vx, st.vy, st.a2];
+    z.extend(a);
+    z.push(st.b2);
+    z.extend(b);
+    let mut solver = ModeSolver::new(*params, settings.n)?;
+    let field = lab_field(&mut solver, &z, st.x, st.y);
+    let title = format!(
+        "eta_t = {}, kappa2 = {}, IC {}, modes 2..{}: {} ({}), t = {:.1}",
+        params.eta_t,
+        params.kappa2,
+        ic.name,
+        settings.modes,
+        out.class.map_or("-", |c| c.as_str()),
+        out.status.as_str(),
+        out.t_end
+    );
+    Ok(run_figure::run_picture(
+        path,
+        &title,
+        params,
+        &field,
+        st,
+        &out.higher_modes,
+        &out.series,
+    )?)
 }

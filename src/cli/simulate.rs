@@ -93,6 +93,13 @@ pub struct Args {
     /// flow reaches, confirmed by Newton and the root's eigenvalues); plain time stepping.
     #[arg(long)]
     pub(super) no_landing: bool,
+    /// With --steady newton: end a run that leans from a root stable in rotation on that root
+    /// only if the orientation's slow flow (speed and shape solved at each orientation, the
+    /// force across the motion left) turns it back there; the box's anisotropy can put an
+    /// unstable root between them (docs/classification.md, "The orientation's flow"). Slower;
+    /// off by default.
+    #[arg(long)]
+    pub(super) orientation_flow: bool,
     /// With --steady newton: give up at --t-max, as the paper (by default a run not yet on a
     /// stable state runs on to 64 t_max, 4 t_max with fixed steps, before it is reported
     /// unsettled).
@@ -119,7 +126,7 @@ pub struct Args {
     /// the IC (modes 3..K as --ic custom gives them, else 0; field 0), ended like a 2-mode
     /// run by the Newton finish: steady on a root of the 2K force balances whose eigenvalues
     /// all decay, else unsettled at 4 t_max (as a sweep with params.modes: K runs it). Its
-    /// --series gains a3..aK, b3..bK; no picture, scheme, pinning, adaptive steps or landing.
+    /// --series gains a3..aK, b3..bK; --picture draws every mode (the field: the steady field of the final state); no scheme, pinning, adaptive steps or landing.
     #[arg(long, default_value_t = 2)]
     pub(super) modes: usize,
     /// Print one JSON object instead of text.
@@ -205,7 +212,8 @@ pub fn run(a: Args) -> Result<(), CliError> {
             out.status.as_str(),
             out.t_end
         );
-        pictures = run_figure::run_picture(path, &title, &params, &field, &out.state, &out.series)?;
+        pictures =
+            run_figure::run_picture(path, &title, &params, &field, &out.state, &[], &out.series)?;
     }
     let final_state = final_state_of(&params, &settings, &out);
     let report = Report {
@@ -272,6 +280,7 @@ fn model_of(a: &Args) -> Result<(ModelParams, SolverSettings), CliError> {
         stop_beside_saddle: a.stop_beside_saddle,
         leap_departures: a.leap_departures,
         landing: !a.no_landing,
+        orientation_flow: a.orientation_flow,
         run_on: !a.no_run_on,
         ..base
     };

@@ -230,3 +230,43 @@ fn initial_amplitudes_of_higher_modes_start_the_run_and_beyond_k_exit_2() {
         assert!(err.contains("initial_conditions"), "{modes}: {err}");
     }
 }
+
+#[test]
+fn a_k_mode_run_draws_its_picture_with_every_mode() {
+    // Fig. 1c with modes 2..3 at N = 96: the run ends MD and draws its panels (PNG and SVG),
+    // listed in the JSON.
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join("md3.png");
+    let out = json(&run(&[
+        "simulate",
+        "--eta-t",
+        "0.085",
+        "--kappa2",
+        "0.112",
+        "--ic",
+        "i",
+        "--modes",
+        "3",
+        "--n",
+        "96",
+        "--dt",
+        "0.05",
+        "--t-max",
+        "400",
+        "--json",
+        "--picture",
+        png.to_str().unwrap(),
+    ]));
+    assert_eq!(out["class"], "MD", "{out}");
+    let files: Vec<&str> = out["picture"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| p.as_str().unwrap())
+        .collect();
+    assert_eq!(files.len(), 2, "{out}");
+    assert!(files.iter().any(|f| f.ends_with(".svg")), "{files:?}");
+    for f in files {
+        assert!(std::fs::metadata(f).unwrap().len() > 10_000, "{f}");
+    }
+}

@@ -323,11 +323,10 @@ fn a_k_mode_run_settles_on_the_k_mode_steady_state() {
         "0.112",
         "--modes",
         "3",
-        "--picture",
-        "never.png",
+        "--no-landing",
     ]);
     assert_eq!(o.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&o.stderr).contains("--picture"));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--no-landing"));
 }
 
 #[test]

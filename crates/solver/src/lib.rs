@@ -57,10 +57,8 @@ use contract::settings::ModelKind;
 /// end before 4 `t_max` are unchanged).
 /// 7: the landing waits while the run's lean from its mirror line grows (a run turning away
 /// from the line may end on another orientation than the flow's).
-/// 8: the landing ends a leaning run on its mirror line's root only if no other root lies
-/// between the line and the run's orientation (the box's bumpy rotation flow;
-/// `NewtonFinish::within_rotation_basin`).
-pub const SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-8");
+/// (The orientation's flow, `orientation_flow`, is an option: off, runs are numerics 7's.)
+pub const SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-7");
 
 /// Version of the reduced ODE model's numerics (2: unstable states no longer end a run;
 /// 3: a run that does not end steady has no class).

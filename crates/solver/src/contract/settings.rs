@@ -82,6 +82,14 @@ pub struct SolverSettings {
     /// reproduces plain time stepping.
     #[serde(default = "on")]
     pub landing: bool,
+    /// With the Newton finish: end a run that leans from a root stable in rotation on that
+    /// root only if the orientation's slow flow turns it back there
+    /// ([`crate::runs::rotation_flow`]): the box's anisotropy can put an unstable root between
+    /// the two, and the run then turns on to another orientation. Off by default (it costs
+    /// flow samples at every try, and at (0.076, 0.1535) from ii a run it refuses stays
+    /// unsettled); a run without it has the run key it had before.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub orientation_flow: bool,
     /// With the Newton finish: a run that has not ended on a stable state by `t_max` runs on,
     /// up to [`RUN_ON_FAR`] times `t_max` (adaptive steps, numerics 6; [`RUN_ON`] times with
     /// fixed steps), before it is given up as unsettled (its `t_end` says how long it ran).
@@ -145,6 +153,7 @@ impl Default for SolverSettings {
             stop_beside_saddle: false,
             leap_departures: false,
             landing: true,
+            orientation_flow: false,
             run_on: true,
             modes: 2,
         }

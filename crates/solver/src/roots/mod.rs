@@ -8,6 +8,7 @@
 //! `continuation`.
 pub mod h0_fit;
 pub mod linearisation;
+pub mod mode_field;
 pub mod mode_linearisation;
 pub mod mode_solver;
 pub mod mode_thresholds;

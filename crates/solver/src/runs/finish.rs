@@ -126,6 +126,10 @@ pub struct NewtonFinish {
     /// Roots already assessed and their verdicts (a run's later tries usually find the same
     /// root again; its eigenvalues are not recomputed).
     pub(super) assessed: Vec<([f64; 4], Verdict)>,
+    /// What is known of the orientation's flow beside roots stable in rotation, per root and
+    /// side (lean > 0) ([`crate::runs::rotation_flow::FlowScan`]).
+    pub(super) orientation_flow: bool,
+    pub(super) flows: Vec<([f64; 4], bool, crate::runs::rotation_flow::FlowScan)>,
     pub(super) trigger: f64,
     pub(super) window: f64,
     pub(super) next_try: f64,
@@ -147,6 +151,8 @@ impl NewtonFinish {
             last_lean: None,
             mirror_symmetric: true,
             assessed: Vec::new(),
+            orientation_flow: settings.orientation_flow,
+            flows: Vec::new(),
             solver: None,
             trigger: TRIGGER_FACTOR * steady_tol,
             window,

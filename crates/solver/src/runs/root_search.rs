@@ -7,11 +7,11 @@
 use crate::runs::finding::Finding;
 use crate::runs::finish::{NewtonFinish, MAX_SETTLED};
 use crate::runs::landing::{landings, rotated};
-use crate::runs::rotation_flow::turns_back;
 use crate::runs::orientation::{
     angle_to, class_of, invariant_distance, orientation, speed_and_deformation, LEAN_FLOOR,
     TURN_SEARCH,
 };
+use crate::runs::rotation_flow::FlowScan;
 
 impl NewtonFinish {
     /// The root the run at `z` ends at, if Newton finds one, and whether it may
@@ -163,21 +163,37 @@ impl NewtonFinish {
     }
 
     /// Whether a run leaning by `lean` from the stable root `near` on a mirror line turns
-    /// back to it (numerics 8): the orientation's slow flow points back to the line all the
-    /// way from the run ([`crate::runs::rotation_flow::turns_back`]). A root stable in
+    /// back to it (setting `orientation_flow`; without it, always): the orientation's slow
+    /// flow points back to the line all the way from the run
+    /// ([`crate::runs::rotation_flow::FlowScan`]). A root stable in
     /// rotation is not enough: the box's anisotropy can put an unstable root between the
     /// line and the run (at (0.072, 0.132) 4.8 degrees off the x-axis MD; a run leaning 6.5
     /// degrees turns on to the stable root at 8.7). A lean below
     /// [`crate::runs::rotation_flow::LINEAR_LEAN`], or a root with no orientation, always
     /// holds.
     fn within_rotation_basin(&mut self, near: &Finding, lean: f64) -> bool {
-        if near.verdict.rotation.is_none() || lean.abs() < LEAN_FLOOR {
+        if !self.orientation_flow || near.verdict.rotation.is_none() || lean.abs() < LEAN_FLOOR {
             return true;
         }
+        // What earlier tries learnt of this root's flow on this side (a run's later tries find
+        // the same root at a similar lean; the flow is sampled once).
+        let side = lean > 0.0;
+        let known = self.flows.iter().position(|(z, s, _)| {
+            *s == side && z.iter().zip(&near.z).all(|(a, b)| (a - b).abs() < 1e-9)
+        });
+        let mut scan = known.map_or_else(FlowScan::new, |i| self.flows[i].2);
+        if let Some(verdict) = scan.verdict(lean) {
+            return verdict;
+        }
         let Ok(solver) = self.steady_solver() else {
-            return false;
+            return true;
         };
-        turns_back(solver, &near.z, lean)
+        scan.extend(solver, &near.z, lean);
+        match known {
+            Some(i) => self.flows[i].2 = scan,
+            None => self.flows.push((near.z, side, scan)),
+        }
+        scan.verdict(lean).unwrap_or(true)
     }
 
     /// The root of a run caught mid-turn, between the box's mirror lines, where Newton from
@@ -202,4 +218,3 @@ impl NewtonFinish {
         first
     }
 }
-

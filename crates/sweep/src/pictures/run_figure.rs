@@ -37,6 +37,8 @@ struct RunFigure<'a> {
     params: &'a ModelParams,
     field: &'a Field,
     state: &'a DropletState,
+    /// The amplitudes of modes `3..K` (`a_3..a_K`, then `b_3..b_K`); empty for 2 modes.
+    higher: &'a [f64],
     series: &'a [SeriesRow],
 }
 
@@ -90,17 +92,19 @@ impl RunFigure<'_> {
         let image = BitMapElement::with_owned_buffer((-half, half), (w, h), rgb)
             .ok_or_else(|| SweepError::Plot("field bitmap of the wrong size".into()))?;
         chart.draw_series(std::iter::once(image)).map_err(perr)?;
-        draw_droplet(&mut chart, field.len, state, params)?;
+        draw_droplet(&mut chart, field.len, state, self.higher, params)?;
         colour_bar(&bar_area, lo, hi)
     }
 }
 
-/// The droplet's outline `r = R (1 + a2 cos 2t + b2 sin 2t)` around its centre wrapped into
-/// the box of side `len`, and an arrow along its velocity.
+/// The droplet's outline `r = R (1 + sum_k a_k cos kt + b_k sin kt)` (`k = 2..K`; `higher`
+/// holds `a_3..a_K`, then `b_3..b_K`) around its centre wrapped into the box of side `len`,
+/// and an arrow along its velocity.
 fn draw_droplet<DB: DrawingBackend>(
     chart: &mut ChartContext<'_, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
     len: f64,
     state: &DropletState,
+    higher: &[f64],
     params: &ModelParams,
 ) -> Result<(), SweepError>
 where
@@ -108,10 +112,17 @@ where
 {
     let wrap = |c: f64| c - len * (c / len).round();
     let (xc, yc) = (wrap(state.x), wrap(state.y));
-    let outline: Vec<(f64, f64)> = (0..=180)
+    let (a, b) = higher.split_at(higher.len() / 2);
+    let outline: Vec<(f64, f64)> = (0..=360)
         .map(|i| {
-            let t = i as f64 / 180.0 * std::f64::consts::TAU;
-            let r = params.radius * (1.0 + state.a2 * (2.0 * t).cos() + state.b2 * (2.0 * t).sin());
+            let t = i as f64 / 360.0 * std::f64::consts::TAU;
+            let modes = (3..).zip(a.iter().zip(b));
+            let relative = state.a2 * (2.0 * t).cos()
+                + state.b2 * (2.0 * t).sin()
+                + modes
+                    .map(|(k, (ak, bk))| ak * (k as f64 * t).cos() + bk * (k as f64 * t).sin())
+                    .sum::<f64>();
+            let r = params.radius * (1.0 + relative);
             (xc + r * t.cos(), yc + r * t.sin())
         })
         .collect();
@@ -226,14 +237,16 @@ impl Figure for RunFigure<'_> {
     }
 }
 
-/// The Fig. 1 panels of one run: final field (interpolated, with a colour bar), outline and
-/// velocity arrow, and `v(t)`, `s(t)`. Writes `path` (PNG) and the same name with `.svg`.
+/// The Fig. 1 panels of one run: final field (interpolated, with a colour bar), outline (with
+/// the amplitudes `higher` of modes `3..K`, `a_3..a_K` then `b_3..b_K`; empty for 2 modes)
+/// and velocity arrow, and `v(t)`, `s(t)`. Writes `path` (PNG) and the same name with `.svg`.
 pub fn run_picture(
     path: &Path,
     title: &str,
     params: &ModelParams,
     field: &Field,
     state: &DropletState,
+    higher: &[f64],
     series: &[SeriesRow],
 ) -> Result<Vec<PathBuf>, SweepError> {
     render(
@@ -243,6 +256,7 @@ pub fn run_picture(
             params,
             field,
             state,
+            higher,
             series,
         },
     )

@@ -11,12 +11,13 @@ use droplet_solver::{
 use serde_yaml::Mapping;
 
 /// The keys of the section.
-const KEYS: [&str; 14] = [
+const KEYS: [&str; 15] = [
     "scheme",
     "steady",
     "stop_beside_saddle",
     "leap_departures",
     "landing",
+    "orientation_flow",
     "run_on",
     "n",
     "dt",
@@ -35,7 +36,7 @@ type Flag = (
     fn(&mut SolverSettings) -> &mut bool,
 );
 
-const FLAGS: [Flag; 4] = [
+const FLAGS: [Flag; 5] = [
     (
         "stop_beside_saddle",
         "stop a run beside a saddle it cannot leave before t_max",
@@ -50,6 +51,11 @@ const FLAGS: [Flag; 4] = [
         "landing",
         "end a slow run where its one-dimensional quasi-steady flow lands; the default",
         |s| &mut s.landing,
+    ),
+    (
+        "orientation_flow",
+        "end a leaning run on a root stable in rotation only if the orientation's slow flow turns it back there (slower)",
+        |s| &mut s.orientation_flow,
     ),
     (
         "run_on",
