@@ -17,7 +17,7 @@
 //! the shape is assumed (odd modes break the point symmetry the 2-mode solver uses).
 use crate::error::SolverError;
 use crate::model::grid::Grid;
-use crate::model::modes::{w_fields, Modes};
+use crate::model::modes::Modes;
 use crate::model::params::ModelParams;
 use crate::model::shape::ShapeParams;
 use crate::numerics::fft2::PrunedFft2;
@@ -240,7 +240,6 @@ impl ModeSolver {
             gb: vec![0.0; k_max - 1],
             area,
         };
-        let r0 = self.params.radius;
         for iy in lo..=hi {
             let y = self.grid.coord(iy);
             for ix in lo..=hi {
@@ -253,18 +252,25 @@ impl ModeSolver {
                 let (gx, gy) = (self.ux[i] * t, self.uy[i] * t);
                 f.fx += gx;
                 f.fy += gy;
-                for k in 2..=k_max {
-                    let (wa, wb) = w_fields(k, r0, x, y);
-                    f.ga[k - 2] += wa[0] * gx + wa[1] * gy;
-                    f.gb[k - 2] += wb[0] * gx + wb[1] * gy;
+                // w_k^(a) . g and w_k^(b) . g without their factor R^(2-k)
+                // ([`crate::model::modes::w_fields`]):
+                // (Re, Im) of (x + i y)^(k-1), one product per mode.
+                let (mut re, mut im) = (x, y);
+                for (ga, gb) in f.ga.iter_mut().zip(f.gb.iter_mut()) {
+                    *ga += re * gx - im * gy;
+                    *gb += im * gx + re * gy;
+                    (re, im) = (re * x - im * y, re * y + im * x);
                 }
             }
         }
         let da = -self.grid.dx * self.grid.dx;
         f.fx *= da;
         f.fy *= da;
-        for g in f.ga.iter_mut().chain(f.gb.iter_mut()) {
-            *g *= da;
+        let r0 = self.params.radius;
+        for (k, (ga, gb)) in (2..).zip(f.ga.iter_mut().zip(f.gb.iter_mut())) {
+            let scale = da * r0.powi(2 - k);
+            *ga *= scale;
+            *gb *= scale;
         }
         f
     }
@@ -369,6 +375,7 @@ impl ModeSolver {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::modes::w_fields;
 
     #[test]
     fn turning_a_k_mode_state_turns_mode_k_k_times() {

@@ -13,7 +13,7 @@
 use crate::error::SolverError;
 use crate::model::modes::Modes;
 use crate::model::params::ModelParams;
-use crate::roots::mode_solver::{fill_operator, ModeSolver};
+use crate::roots::mode_solver::ModeSolver;
 use rustfft::num_complex::Complex64;
 
 /// How a `K`-mode run steps and when it stops.
@@ -73,9 +73,12 @@ pub struct ModeStepper {
     solver: ModeSolver,
     /// `(vx, vy, a_2..a_K, b_2..b_K)`.
     pub z: Vec<f64>,
-    /// The field's spectrum, and the operator `D` at the current velocity.
+    /// The field's spectrum.
     u: Vec<Complex64>,
-    d: Vec<Complex64>,
+    /// `e^(D h)` factored by wavenumber: its `kx` and `ky` parts at the current velocity
+    /// (`D` is a sum of a part in `kx` and a part in `ky`).
+    ex: Vec<Complex64>,
+    ey: Vec<Complex64>,
     h: f64,
     rate_of: Vec<f64>,
     inertia: Vec<f64>,
@@ -106,7 +109,8 @@ impl ModeStepper {
             solver,
             z: z0.to_vec(),
             u: Vec::new(),
-            d: Vec::new(),
+            ex: Vec::new(),
+            ey: Vec::new(),
             h,
             rate_of,
             inertia,
@@ -127,7 +131,6 @@ impl ModeStepper {
         let (area, lo, hi) = self.solver.source(&m);
         if self.u.is_empty() {
             self.u = vec![Complex64::default(); self.solver.source_spectrum().len()];
-            self.d = self.u.clone();
         }
         self.solver.gradient(&self.u, lo, hi);
         self.forces = self.solver.sums(k_max, lo, hi, area).to_vec();
@@ -147,19 +150,42 @@ impl ModeStepper {
 
     /// One step of `h` with the forces of the last [`Self::rate`] frozen: the field exactly
     /// under its linear operator, the mechanics under their exact linear decay.
+    ///
+    /// `D = -(1 + kx^2) + i kx vx - ky^2 + i ky vy` ([`crate::roots::mode_solver::fill_operator`]), so `e^(D h)` is the
+    /// product of a factor per column and one per row: `N + 1` complex exponentials per step
+    /// instead of one per stored mode (`N (N / 2 + 1)`), equal to round-off.
     pub fn advance(&mut self) {
         let h = self.h;
-        self.x += h * self.z[0];
-        self.y += h * self.z[1];
-        fill_operator(self.solver.grid(), self.z[0], self.z[1], &mut self.d);
-        for ((u, s), d) in self
-            .u
-            .iter_mut()
-            .zip(self.solver.source_spectrum())
-            .zip(&self.d)
-        {
-            let e = (d * h).exp();
-            *u = e * *u + (e - 1.0) / d * s;
+        let (vx, vy) = (self.z[0], self.z[1]);
+        self.x += h * vx;
+        self.y += h * vy;
+        let grid = self.solver.grid();
+        let n = grid.n;
+        self.ex.clear();
+        self.ex.extend((0..=n / 2).map(|jx| {
+            let kx = grid.kx[jx];
+            Complex64::new(-(1.0 + kx * kx) * h, grid.kx_d[jx] * vx * h).exp()
+        }));
+        self.ey.clear();
+        self.ey.extend((0..n).map(|jy| {
+            let ky = grid.ky[jy];
+            Complex64::new(-ky * ky * h, grid.ky_d[jy] * vy * h).exp()
+        }));
+        let source = self.solver.source_spectrum();
+        for (jx, ex) in self.ex.iter().enumerate() {
+            let (kx, kxd) = (grid.kx[jx], grid.kx_d[jx]);
+            let row = jx * n..(jx + 1) * n;
+            for (((u, s), ey), jy) in self.u[row.clone()]
+                .iter_mut()
+                .zip(&source[row])
+                .zip(&self.ey)
+                .zip(0..)
+            {
+                let (ky, kyd) = (grid.ky[jy], grid.ky_d[jy]);
+                let d = Complex64::new(-(1.0 + kx * kx + ky * ky), kxd * vx + kyd * vy);
+                let e = ex * ey;
+                *u = e * *u + (e - 1.0) / d * s;
+            }
         }
         for ((z, f), (e, w)) in self.z.iter_mut().zip(&self.forces).zip(&self.decay) {
             *z = e * *z + w * f;
