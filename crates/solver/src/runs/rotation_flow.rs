@@ -21,11 +21,11 @@ use crate::numerics::newton::{self, NewtonOptions};
 use crate::roots::steady_solver::SteadySolver;
 use crate::runs::orientation::orientation;
 
-/// Largest spacing (radians) of the orientations at which [`turns_back`] samples the flow:
+/// Largest spacing (radians) of the orientations at which [`FlowScan::extend`] samples the flow:
 /// a bump of the flow narrower than this between two samples is not seen.
 pub const SAMPLE_SPACING: f64 = 0.5 * std::f64::consts::PI / 180.0;
 
-/// Most samples of one [`turns_back`].
+/// Most samples of one [`FlowScan::extend`].
 const MAX_SAMPLES: usize = 48;
 
 /// Leans (radians, 0.05 degrees) within which the root's own rotation eigenvalue decides: the
