@@ -96,28 +96,41 @@ fn a_run_that_turns_while_it_departs_lands_where_plain_stepping_ends() {
 }
 
 #[test]
-fn with_the_orientation_flow_a_run_beyond_a_bump_ends_where_pure_stepping_does() {
+fn a_run_beyond_a_bump_of_the_orientation_flow_ends_where_pure_stepping_does() {
     // The box's anisotropy makes the orientation's flow bumpy: the x-axis MD at (0.072,
     // 0.132) is stable in rotation (-3.2e-4), but an unstable root 4.8 degrees off it bounds
     // its basin. From iii the run leaves the disk leaning 6.5 degrees and, by pure time
     // stepping (`--steady test --steady-tol 1e-300 --t-max 10000`), turns on to the stable
     // MD 8.7 degrees off the axis (v = 1.175454 at t = 10 000, still converging). Numerics 7
-    // lands it on the x axis (v = 1.173823); with `--orientation-flow` it asks the flow first.
-    let out = simulate("0.072", "0.132", "iii", &["--orientation-flow"]);
+    // landed it on the x axis (v = 1.173823); numerics 8 asks the flow first.
+    let out = simulate("0.072", "0.132", "iii", &[]);
     assert_eq!(out["class"], "MD", "{out}");
     let v = out["v"].as_f64().unwrap();
     assert!((v - 1.1755).abs() < 1e-6, "{out}");
-    // The default (numerics 7) still lands it on the x axis: the option is what changes it.
-    let default = simulate("0.072", "0.132", "iii", &[]);
+    // Without the flow (numerics 7) it lands on the x axis: the flow is what changes it.
+    let default = simulate("0.072", "0.132", "iii", &["--no-orientation-flow"]);
     let v = default["v"].as_f64().unwrap();
     assert!((v - 1.173823).abs() < 1e-6, "{default}");
     // (0.096, 0.1) from i: at rest, the deformed droplet on the x axis (s = 0.371008, stable,
     // rotation -1.1e-3) has an unstable root 0.57 degrees off it; the run, leaning 12
     // degrees, turns on to the diagonal one (s = 0.376292), as pure stepping does by t = 2800.
-    let out = simulate("0.096", "0.1", "i", &["--orientation-flow"]);
+    let out = simulate("0.096", "0.1", "i", &[]);
     assert_eq!(out["class"], "ID", "{out}");
     let s = out["s"].as_f64().unwrap();
     assert!((s - 0.376292).abs() < 1e-6, "{out}");
+    // (0.076, 0.1535) from ii: the x-axis MD (v = 0.528044) is unstable in rotation; the
+    // flow turns the run to its first stable zero that way, the MD 22.15 degrees off the axis
+    // (v = 0.530204, where the run from iii ends by the paper's test), not past the unstable
+    // zero at 34 degrees to the diagonal (v = 0.532016, numerics 7's end).
+    let out = simulate("0.076", "0.1535", "ii", &[]);
+    assert_eq!(out["class"], "MD", "{out}");
+    let v = out["v"].as_f64().unwrap();
+    assert!((v - 0.530204).abs() < 1e-6, "{out}");
+    let angle = out["vy"]
+        .as_f64()
+        .unwrap()
+        .atan2(out["vx"].as_f64().unwrap());
+    assert!((angle.to_degrees().abs() - 22.151).abs() < 1e-2, "{out}");
 }
 
 /// A two-point sweep at N = 96: an MD point and an IC point far from every boundary.

@@ -25,7 +25,7 @@ pub fn run(
         (a.stop_beside_saddle, "--stop-beside-saddle"),
         (a.leap_departures, "--leap-departures"),
         (a.no_landing, "--no-landing"),
-        (a.orientation_flow, "--orientation-flow"),
+        (a.no_orientation_flow, "--no-orientation-flow"),
         (a.tol.is_some(), "--tol"),
         (a.dt_max.is_some(), "--dt-max"),
     ];

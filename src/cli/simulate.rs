@@ -93,13 +93,14 @@ pub struct Args {
     /// flow reaches, confirmed by Newton and the root's eigenvalues); plain time stepping.
     #[arg(long)]
     pub(super) no_landing: bool,
-    /// With --steady newton: end a run that leans from a root stable in rotation on that root
-    /// only if the orientation's slow flow (speed and shape solved at each orientation, the
-    /// force across the motion left) turns it back there; the box's anisotropy can put an
-    /// unstable root between them (docs/classification.md, "The orientation's flow"). Slower;
-    /// off by default.
+    /// With --steady newton: leave out the orientation's slow flow (numerics 7). By default a
+    /// run leaning from a root stable in rotation ends there only if that flow (speed and
+    /// shape solved at each orientation, the force across the motion left) turns it back,
+    /// and a run leaning from a root unstable in rotation turns to the flow's first stable
+    /// zero; the box's anisotropy puts such zeros a few degrees off the mirror lines
+    /// (docs/classification.md, "The orientation's flow").
     #[arg(long)]
-    pub(super) orientation_flow: bool,
+    pub(super) no_orientation_flow: bool,
     /// With --steady newton: give up at --t-max, as the paper (by default a run not yet on a
     /// stable state runs on to 64 t_max, 4 t_max with fixed steps, before it is reported
     /// unsettled).
@@ -280,7 +281,7 @@ fn model_of(a: &Args) -> Result<(ModelParams, SolverSettings), CliError> {
         stop_beside_saddle: a.stop_beside_saddle,
         leap_departures: a.leap_departures,
         landing: !a.no_landing,
-        orientation_flow: a.orientation_flow,
+        orientation_flow: !a.no_orientation_flow,
         run_on: !a.no_run_on,
         ..base
     };

@@ -57,8 +57,10 @@ use contract::settings::ModelKind;
 /// end before 4 `t_max` are unchanged).
 /// 7: the landing waits while the run's lean from its mirror line grows (a run turning away
 /// from the line may end on another orientation than the flow's).
-/// (The orientation's flow, `orientation_flow`, is an option: off, runs are numerics 7's.)
-pub const SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-7");
+/// 8: the orientation's slow flow decides where a leaning run ends (`orientation_flow`, on:
+/// a root stable in rotation only if the flow turns the run back there; from a root unstable
+/// in rotation, the flow's first stable zero the way the run turns); off gives numerics 7.
+pub const SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-8");
 
 /// Version of the reduced ODE model's numerics (2: unstable states no longer end a run;
 /// 3: a run that does not end steady has no class).

@@ -58,7 +58,6 @@ fn check_k_mode_run(params: &ModelParams, settings: &SolverSettings) -> Result<(
         ),
         (settings.stop_beside_saddle, "stop_beside_saddle"),
         (settings.leap_departures, "leap_departures"),
-        (settings.orientation_flow, "orientation_flow"),
     ];
     for (given, name) in unsupported {
         require(

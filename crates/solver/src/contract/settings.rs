@@ -82,13 +82,13 @@ pub struct SolverSettings {
     /// reproduces plain time stepping.
     #[serde(default = "on")]
     pub landing: bool,
-    /// With the Newton finish: end a run that leans from a root stable in rotation on that
-    /// root only if the orientation's slow flow turns it back there
-    /// ([`crate::runs::rotation_flow`]): the box's anisotropy can put an unstable root between
-    /// the two, and the run then turns on to another orientation. Off by default (it costs
-    /// flow samples at every try, and at (0.076, 0.1535) from ii a run it refuses stays
-    /// unsettled); a run without it has the run key it had before.
-    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    /// With the Newton finish (2-mode runs): end a run that leans from a root stable in
+    /// rotation on that root only if the orientation's slow flow turns it back there, and
+    /// turn a run leaning from a root unstable in rotation to where that flow takes it
+    /// ([`crate::runs::rotation_flow`]): the box's anisotropy can put roots of the flow
+    /// between a mirror line and the run. On by default (numerics 8); off gives numerics 7's
+    /// runs.
+    #[serde(default = "on")]
     pub orientation_flow: bool,
     /// With the Newton finish: a run that has not ended on a stable state by `t_max` runs on,
     /// up to [`RUN_ON_FAR`] times `t_max` (adaptive steps, numerics 6; [`RUN_ON`] times with
@@ -153,7 +153,7 @@ impl Default for SolverSettings {
             stop_beside_saddle: false,
             leap_departures: false,
             landing: true,
-            orientation_flow: false,
+            orientation_flow: true,
             run_on: true,
             modes: 2,
         }

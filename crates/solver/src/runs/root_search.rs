@@ -11,7 +11,7 @@ use crate::runs::orientation::{
     angle_to, class_of, invariant_distance, orientation, speed_and_deformation, LEAN_FLOOR,
     TURN_SEARCH,
 };
-use crate::runs::rotation_flow::FlowScan;
+use crate::runs::rotation_flow::{flow_zero, FlowScan, LINEAR_LEAN};
 
 impl NewtonFinish {
     /// The root the run at `z` ends at, if Newton finds one, and whether it may
@@ -53,6 +53,15 @@ impl NewtonFinish {
         // Any other run turns, however small its lean (round-off grows too); at a lean below
         // the floor either side, the two turned roots being mirror images (same v and s).
         let side = if lean >= 0.0 { 1.0 } else { -1.0 };
+        if self.orientation_flow {
+            // The run turns the way the orientation's flow takes it (away from `near`
+            // within LINEAR_LEAN of it, where the rotation eigenvalue decides).
+            let away = lean.abs() < LINEAR_LEAN;
+            let from = if away { side * LINEAR_LEAN } else { lean };
+            if let Some(found) = self.flow_turn(&near, from, away) {
+                return (found, true);
+            }
+        }
         // The run turns away from `near` towards the side it leans to, and ends on the first
         // stable root that way: where the unstable line's root lost its rotational stability
         // in a pitchfork, a pair of roots a few degrees to either side; else the root on the
@@ -194,6 +203,26 @@ impl NewtonFinish {
             None => self.flows.push((near.z, side, scan)),
         }
         scan.verdict(lean).unwrap_or(true)
+    }
+
+    /// With `orientation_flow`: the stable root that the orientation's flow takes a run
+    /// leaning `lean` from `near` to ([`flow_zero`]; `away` as there), confirmed by Newton on
+    /// all four balances (at the flow's zero to 1e-4 rad) and by its eigenvalues; a root of
+    /// the run's family (within [`MAX_SETTLED`] of `near`), not `near` itself.
+    fn flow_turn(&mut self, near: &Finding, lean: f64, away: bool) -> Option<Finding> {
+        if !self.orientation_flow {
+            return None;
+        }
+        let z = flow_zero(self.steady_solver().ok()?, &near.z, lean, away)?;
+        let found = self.root_near(z).ok()?;
+        let ends = found.stable()
+            && angle_to(&found.z, &z).abs() < 1e-4
+            && angle_to(&found.z, &near.z).abs() > 1e-6
+            && invariant_distance(&found.z, &near.z) <= MAX_SETTLED;
+        ends.then_some(Finding {
+            turned: true,
+            ..found
+        })
     }
 
     /// The root of a run caught mid-turn, between the box's mirror lines, where Newton from

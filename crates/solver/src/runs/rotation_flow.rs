@@ -43,7 +43,7 @@ fn turn(x: f64, y: f64, angle: f64) -> (f64, f64) {
 /// axis at rest): the fast balances solved from `guess` (speed and the shape in the frame
 /// of `phi`; at rest the deformation alone), and the balance left across them (its sign is
 /// that of `dphi/dt`). `None` when Newton does not converge.
-fn flow_at(
+pub fn flow_at(
     solver: &mut SteadySolver,
     moving: bool,
     phi: f64,
@@ -81,6 +81,84 @@ fn flow_at(
     let y = newton::solve(fast, guess, &opts).ok()?.x;
     let r = balance(&y);
     Some((if moving { r[1] } else { r[3] }, y))
+}
+
+/// The state `(vx, vy, a2, b2)` at the absolute orientation `phi` whose fast variables in the
+/// frame of `phi` are `y` ([`flow_at`]'s unknowns).
+fn state_at(moving: bool, phi: f64, y: &[f64]) -> [f64; 4] {
+    let (v, c, d) = if moving {
+        (y[0], y[1], y[2])
+    } else {
+        (0.0, y[0], 0.0)
+    };
+    let (vx, vy) = turn(v, 0.0, phi);
+    let (a2, b2) = turn(c, d, 2.0 * phi);
+    [vx, vy, a2, b2]
+}
+
+/// The fast variables of `root` in the frame of its own orientation: the guess of [`flow_at`].
+fn fast_guess(root: &[f64; 4]) -> (bool, f64, Vec<f64>) {
+    let moving = root[0].hypot(root[1]) > 1e-9;
+    let phi0 = orientation(root);
+    let (c0, d0) = turn(root[2], root[3], -2.0 * phi0);
+    let guess = if moving {
+        vec![root[0].hypot(root[1]), c0, d0]
+    } else {
+        vec![c0.hypot(d0)]
+    };
+    (moving, phi0, guess)
+}
+
+/// Where the orientation's flow takes a run leaning `lean` (radians) from `root`, a root on
+/// a mirror line: the orientation moves the way the flow at the run's orientation points
+/// (away from the root when `away`: a lean within [`LINEAR_LEAN`] of a root unstable in
+/// rotation, where the root's eigenvalue decides) and stops at the first zero of the flow
+/// that way, the first sample whose flow points back, refined by bisection to 1e-8 rad, or
+/// the next mirror line of the box (45 degrees apart), where the flow vanishes by symmetry.
+/// Samples at most [`SAMPLE_SPACING`] apart. Returns the state there (the fast balances
+/// solved, the flow about zero): a guess for Newton on all four balances. `None` when the
+/// fast balances cannot be solved.
+pub fn flow_zero(
+    solver: &mut SteadySolver,
+    root: &[f64; 4],
+    lean: f64,
+    away: bool,
+) -> Option<[f64; 4]> {
+    let (moving, phi0, mut guess) = fast_guess(root);
+    let start = phi0 + lean;
+    let (drift, y) = flow_at(solver, moving, start, &guess)?;
+    let dir = if away { lean.signum() } else { drift.signum() };
+    guess = y;
+    let quarter = std::f64::consts::FRAC_PI_4;
+    let line = if dir > 0.0 {
+        ((start / quarter).floor() + 1.0) * quarter
+    } else {
+        ((start / quarter).ceil() - 1.0) * quarter
+    };
+    let samples = ((line - start).abs() / SAMPLE_SPACING).ceil().max(1.0) as usize;
+    let mut before = (start, guess.clone());
+    for j in 1..=samples {
+        let phi = start + (line - start) * j as f64 / samples as f64;
+        if j == samples {
+            return Some(state_at(moving, line, &before.1));
+        }
+        let (drift, y) = flow_at(solver, moving, phi, &before.1)?;
+        if drift * dir <= 0.0 {
+            let (mut lo, mut hi, mut ylo) = (before.0, phi, before.1);
+            while (hi - lo).abs() > 1e-8 {
+                let mid = 0.5 * (lo + hi);
+                let (d, ym) = flow_at(solver, moving, mid, &ylo)?;
+                if d * dir > 0.0 {
+                    (lo, ylo) = (mid, ym);
+                } else {
+                    hi = mid;
+                }
+            }
+            return Some(state_at(moving, 0.5 * (lo + hi), &ylo));
+        }
+        before = (phi, y);
+    }
+    None
 }
 
 /// What is known of the orientation's flow on one side of a root stable in rotation: it
@@ -122,14 +200,7 @@ impl FlowScan {
         if to <= from || self.outward_at.is_some() {
             return;
         }
-        let moving = root[0].hypot(root[1]) > 1e-9;
-        let phi0 = orientation(root);
-        let (c0, d0) = turn(root[2], root[3], -2.0 * phi0);
-        let mut guess = if moving {
-            vec![root[0].hypot(root[1]), c0, d0]
-        } else {
-            vec![c0.hypot(d0)]
-        };
+        let (moving, phi0, mut guess) = fast_guess(root);
         let samples = (((to - from) / SAMPLE_SPACING).ceil() as usize).clamp(1, MAX_SAMPLES);
         for j in 1..=samples {
             let theta = from + (to - from) * j as f64 / samples as f64;
@@ -203,6 +274,40 @@ mod tests {
         assert!((angle - 0.571).abs() < 1e-3, "{angle}");
         assert!(turns_back(&mut solver, &root, -(0.9 * angle).to_radians()));
         assert!(!turns_back(&mut solver, &root, -(1.1 * angle).to_radians()));
+    }
+
+    #[test]
+    fn from_a_root_unstable_in_rotation_the_flow_leads_to_its_first_stable_zero() {
+        // (0.076, 0.1535): the x-axis MD is unstable in rotation; the flow points away from
+        // it out to 22.15 degrees (a stable MD off the lines, v = 0.530204), back from there
+        // to 34 degrees (unstable), and on to the diagonal beyond.
+        let mut solver = SteadySolver::new(ModelParams::at(0.076, 0.1535), 192).unwrap();
+        let md = solver.newton(0.528, -0.049, 1e-12).unwrap();
+        let root = [md.v, 0.0, md.a2, 0.0];
+        let opts = NewtonOptions {
+            tol: 1e-12,
+            max_iter: 20,
+            fd_step: 1e-6,
+            max_step: vec![f64::INFINITY, f64::INFINITY, 0.2, 0.2],
+        };
+        for (lean, away) in [(LINEAR_LEAN, true), (4f64.to_radians(), false)] {
+            let z = flow_zero(&mut solver, &root, lean, away).unwrap();
+            assert!(
+                (orientation(&z).to_degrees() - 22.151).abs() < 1e-2,
+                "{z:?}"
+            );
+            let found = solver.root_from(z, &opts).unwrap();
+            let v = found[0].hypot(found[1]);
+            assert!((v - 0.530204).abs() < 1e-6, "{found:?}");
+        }
+        // From 30 degrees the flow points back to the stable zero; from 40, on to the diagonal.
+        let z = flow_zero(&mut solver, &root, 30f64.to_radians(), false).unwrap();
+        assert!(
+            (orientation(&z).to_degrees() - 22.151).abs() < 1e-2,
+            "{z:?}"
+        );
+        let z = flow_zero(&mut solver, &root, 40f64.to_radians(), false).unwrap();
+        assert!((orientation(&z).to_degrees() - 45.0).abs() < 1e-9, "{z:?}");
     }
 
     #[test]

@@ -54,7 +54,7 @@ const FLAGS: [Flag; 5] = [
     ),
     (
         "orientation_flow",
-        "end a leaning run on a root stable in rotation only if the orientation's slow flow turns it back there (slower)",
+        "end a leaning run where the orientation's slow flow takes it (2-mode runs); the default",
         |s| &mut s.orientation_flow,
     ),
     (
