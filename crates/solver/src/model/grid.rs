@@ -4,6 +4,7 @@
 //! centre is the grid point `(N/2, N/2)`. Spectra are stored kx-major (`[kx][ky]`, `N/2 + 1`
 //! rows of length `N`), the layout of [`crate::numerics::fft2::PrunedFft2`].
 use crate::error::{require, SolverError};
+use rustfft::num_complex::Complex64;
 
 /// Grid geometry and wavenumber tables.
 #[derive(Debug, Clone)]
@@ -87,6 +88,20 @@ impl Grid {
             1.0
         } else {
             2.0
+        }
+    }
+
+    /// Moves the field whose half spectrum is `spec` (row-major, `N/2 + 1` columns of `N`) by
+    /// `(x, y)`: `u(r) -> u(r - (x, y))`, the exact phase shift `e^{-i k . (x, y)}` with the
+    /// derivative wavenumbers (the Nyquist modes dropped).
+    pub fn shift_spectrum(&self, spec: &mut [Complex64], x: f64, y: f64) {
+        let n = self.n;
+        for jx in 0..=n / 2 {
+            let kx = self.kx_d[jx];
+            for jy in 0..n {
+                let phase = -(kx * x + self.ky_d[jy] * y);
+                spec[jx * n + jy] *= Complex64::from_polar(1.0, phase);
+            }
         }
     }
 }

@@ -6,7 +6,6 @@ use crate::model::modes::Modes;
 use crate::numerics::fft2::PrunedFft2;
 use crate::roots::mode_solver::ModeSolver;
 use crate::stepping::Field;
-use rustfft::num_complex::Complex64;
 
 /// The steady field of the droplet `z = (vx, vy, a_2..a_K, b_2..b_K)` centred at `(x, y)`, on
 /// the solver's grid (row-major, `values[iy * n + ix]` at `((ix - n/2) dx, (iy - n/2) dx)`).
@@ -14,15 +13,8 @@ pub fn lab_field(solver: &mut ModeSolver, z: &[f64], x: f64, y: f64) -> Field {
     solver.forces(z[0], z[1], &Modes::of_state(z));
     let n = solver.n();
     let len = solver.params().box_len;
-    let grid = solver.grid();
     let mut spec = solver.field_spectrum().to_vec();
-    for jx in 0..=n / 2 {
-        let kx = grid.kx_d[jx];
-        for jy in 0..n {
-            let phase = -(kx * x + grid.ky_d[jy] * y);
-            spec[jx * n + jy] *= Complex64::from_polar(1.0, phase);
-        }
-    }
+    solver.grid().shift_spectrum(&mut spec, x, y);
     let mut values = vec![0.0; n * n];
     PrunedFft2::new(n).inverse(&mut spec, &mut values, 0, n - 1);
     Field { n, len, values }

@@ -29,8 +29,10 @@
 //! away from the first at all. When the root near the run is unstable only in that mode, the
 //! lean `phi` of the run from it decides ([`NewtonFinish::stable_root`]): a run that started
 //! mirror-symmetric (`phi = 0`; leans below 1e-9 rad are its round-off) never turns and
-//! ends at that root (any other run turns, however small its lean: numerics 7); otherwise the first stable root on the side it leans to is looked for
-//! by Newton from the state turned by [`crate::runs::orientation::TURN_SEARCH`] degrees (a pitchfork pair a degree or
+//! ends at that root (any other run turns, however small its lean: numerics 7); otherwise it
+//! turns to the first stable zero of the orientation's slow flow the way that flow points
+//! ([`crate::runs::rotation_flow::flow_zero`], numerics 8), or, failing that, to the first
+//! stable root on the side it leans to, looked for by Newton from the state turned by [`crate::runs::orientation::TURN_SEARCH`] degrees (a pitchfork pair a degree or
 //! so off the line, else the root on the next mirror line), and the run ends there: speed and
 //! deformation settle long before the orientation, and that root's `v` and `s` are what the
 //! time stepper reaches after the turn.
@@ -102,6 +104,12 @@ pub enum Decision {
     Saddle(String),
     /// Leap along the growing mode of a saddle the run is leaving.
     Leap(Leap),
+}
+
+/// Whether two roots Newton found are the same state: equal to 1e-9 in every unknown (Newton's
+/// tolerance is 1e-12), so that what a run's tries learnt of a root is found again.
+pub(super) fn same_root(a: &[f64; 4], b: &[f64; 4]) -> bool {
+    a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-9)
 }
 
 /// The Newton finish of one run.
@@ -189,11 +197,7 @@ impl NewtonFinish {
             max_step: vec![f64::INFINITY, f64::INFINITY, 0.2, 0.2],
         };
         let root = solver.root_from(z, &opts)?;
-        // The same root as before (Newton's tolerance is 1e-12; 1e-9 is the same state).
-        let known = self
-            .assessed
-            .iter()
-            .find(|(z, _)| z.iter().zip(&root).all(|(a, b)| (a - b).abs() < 1e-9));
+        let known = self.assessed.iter().find(|(z, _)| same_root(z, &root));
         let verdict = match known {
             Some((_, v)) => v.clone(),
             None => {

@@ -5,7 +5,7 @@
 //! lines is caught between ([`NewtonFinish::turn_root`]), and the root on the nearest mirror
 //! line ([`NewtonFinish::aligned_root`]).
 use crate::runs::finding::Finding;
-use crate::runs::finish::{NewtonFinish, MAX_SETTLED};
+use crate::runs::finish::{same_root, NewtonFinish, MAX_SETTLED};
 use crate::runs::landing::{landings, rotated};
 use crate::runs::orientation::{
     angle_to, class_of, invariant_distance, orientation, speed_and_deformation, LEAN_FLOOR,
@@ -24,7 +24,10 @@ impl NewtonFinish {
     /// ends at the root like the paper's test would, any other turns even at a lean of
     /// round-off (numerics 7). A run that can turn goes to the root of
     /// the state turned by 45 degrees (motion and long axis together, towards the side it
-    /// leans to), where the box's other mirror line is, if that root is stable.
+    /// leans to), where the box's other mirror line is, if that root is stable. With
+    /// `orientation_flow` (numerics 8) the orientation's flow says first where it turns to
+    /// ([`Self::flow_turn`]), and a root stable in rotation holds a leaning run only inside
+    /// the stretch its flow turns back from ([`Self::within_rotation_basin`]).
     pub fn stable_root(&mut self, z: [f64; 4]) -> Option<(Finding, bool)> {
         let near = match self.root_near(z) {
             Ok(near) => near,
@@ -187,9 +190,10 @@ impl NewtonFinish {
         // What earlier tries learnt of this root's flow on this side (a run's later tries find
         // the same root at a similar lean; the flow is sampled once).
         let side = lean > 0.0;
-        let known = self.flows.iter().position(|(z, s, _)| {
-            *s == side && z.iter().zip(&near.z).all(|(a, b)| (a - b).abs() < 1e-9)
-        });
+        let known = self
+            .flows
+            .iter()
+            .position(|(z, s, _)| *s == side && same_root(z, &near.z));
         let mut scan = known.map_or_else(FlowScan::new, |i| self.flows[i].2);
         if let Some(verdict) = scan.verdict(lean) {
             return verdict;

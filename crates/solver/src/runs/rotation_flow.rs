@@ -10,7 +10,9 @@
 //! deformation along its long axis at `theta`; what is left, the force across the motion
 //! (the torque on the long axis at rest), is the flow of the orientation:
 //! `m v dtheta/dt = F_perp` (`2 eta2 c dtheta/dt = G_perp` at rest). Its sign between the
-//! line and the run says whether the run turns back to the line.
+//! line and the run says whether the run turns back to the line ([`FlowScan`]), and its
+//! first zero the way it points is where a run leaning from a root unstable in rotation turns
+//! to ([`flow_zero`]; numerics 8).
 //!
 //! The flow is bumpy: the box's anisotropy at N = 192 puts unstable roots 0.6 to 5 degrees
 //! off lines whose own root is stable in rotation (at (0.096, 0.1) the resting deformed
@@ -43,7 +45,7 @@ fn turn(x: f64, y: f64, angle: f64) -> (f64, f64) {
 /// axis at rest): the fast balances solved from `guess` (speed and the shape in the frame
 /// of `phi`; at rest the deformation alone), and the balance left across them (its sign is
 /// that of `dphi/dt`). `None` when Newton does not converge.
-pub fn flow_at(
+fn flow_at(
     solver: &mut SteadySolver,
     moving: bool,
     phi: f64,
@@ -224,22 +226,19 @@ impl Default for FlowScan {
     }
 }
 
-/// Whether a run leaning by `lean` (radians) from the root `root` (stable in rotation) turns
-/// back to it: the orientation's flow, sampled from the root out to the run's orientation at
-/// most [`SAMPLE_SPACING`] apart, points back towards the root at every sample
-/// ([`FlowScan`]). A lean within [`LINEAR_LEAN`] turns back (the root's rotation eigenvalue
-/// decides there).
-pub fn turns_back(solver: &mut SteadySolver, root: &[f64; 4], lean: f64) -> bool {
-    let mut scan = FlowScan::new();
-    scan.extend(solver, root, lean);
-    scan.verdict(lean).unwrap_or(true)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::model::params::ModelParams;
     use crate::runs::landing::rotated;
+
+    /// Whether a run leaning by `lean` (radians) from `root` (stable in rotation) turns back
+    /// to it: one [`FlowScan`] from the root out to the run, as a run's first try asks it.
+    fn turns_back(solver: &mut SteadySolver, root: &[f64; 4], lean: f64) -> bool {
+        let mut scan = FlowScan::new();
+        scan.extend(solver, root, lean);
+        scan.verdict(lean).unwrap_or(true)
+    }
 
     #[test]
     fn the_flow_turns_a_run_back_only_inside_the_bump_that_bounds_the_basin() {

@@ -308,15 +308,9 @@ impl Scheme for ComovingEtd {
     fn field(&mut self) -> Field {
         // Lab frame: u(x) = w(x - r_c), an exact phase shift e^{-i k . r_c}.
         let n = self.grid.n;
-        let (x, y) = (self.state.x, self.state.y);
         let mut spec = self.w_hat.clone();
-        for jx in 0..=n / 2 {
-            let kx = self.grid.kx_d[jx];
-            for jy in 0..n {
-                let phase = -(kx * x + self.grid.ky_d[jy] * y);
-                spec[jx * n + jy] *= Complex64::from_polar(1.0, phase);
-            }
-        }
+        self.grid
+            .shift_spectrum(&mut spec, self.state.x, self.state.y);
         let mut values = vec![0.0; n * n];
         self.fft.inverse(&mut spec, &mut values, 0, n - 1);
         Field {
