@@ -53,15 +53,9 @@ fn flow_at(
 ) -> Option<(f64, Vec<f64>)> {
     let p = *solver.params();
     let mut balance = |y: &[f64]| -> [f64; 4] {
-        let (v, c, d) = if moving {
-            (y[0], y[1], y[2])
-        } else {
-            (0.0, y[0], 0.0)
-        };
-        let (vx, vy) = turn(v, 0.0, phi);
-        let (a2, b2) = turn(c, d, 2.0 * phi);
-        let f = solver.forces(vx, vy, a2, b2);
-        let r = dynamics::force_balance(&p, [vx, vy, a2, b2], &f);
+        let z = state_at(moving, phi, y);
+        let f = solver.forces(z[0], z[1], z[2], z[3]);
+        let r = dynamics::force_balance(&p, z, &f);
         let (along, across) = turn(r[0], r[1], -phi);
         let (sc, sd) = turn(r[2], r[3], -2.0 * phi);
         [along, across, sc, sd]
