@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The Fig. 2(a) map at a finest step of 2.5e-4 with the defaults (numerics 7; issue 24): sweeps/fig2a-map.yaml
+# The Fig. 2(a) map at a finest step of 2.5e-4 with the defaults (issue 24): sweeps/fig2a-map.yaml
 # at N = 192 on all cores, timed from start to finish, then its tables, picture, summary and
 # per-level status copied here. Run from the repository root after `cargo build --release`,
 # with nothing else running (elapsed.txt is the wall time the issue's budget is about).

@@ -60,7 +60,10 @@ use contract::settings::ModelKind;
 /// 8: the orientation's slow flow decides where a leaning run ends (`orientation_flow`, on:
 /// a root stable in rotation only if the flow turns the run back there; from a root unstable
 /// in rotation, the flow's first stable zero the way the run turns); off gives numerics 7.
-pub const SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-8");
+/// 9: with the flow, a landing from a departure (the run far from the root's family, its
+/// lean shrinking) does not end by a turn from a root unstable in rotation: the lean it
+/// arrives with is not known yet, and the run steps on.
+pub const SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-9");
 
 /// Version of the reduced ODE model's numerics (2: unstable states no longer end a run;
 /// 3: a run that does not end steady has no class).

@@ -238,7 +238,7 @@ impl NewtonFinish {
             Err(e) => (format!("not diagnosed: {e}"), Unsettled::NotDiagnosed, None),
         };
         if reason != Unsettled::Turning && reason != Unsettled::Converging {
-            if let Some(landed) = self.landing_root(z) {
+            if let Some(landed) = self.landing_root(z, false) {
                 heading = Some(class_of(&landed.z));
             }
         }
@@ -323,6 +323,9 @@ impl NewtonFinish {
         let (v, s) = speed_and_deformation(&z);
         let coordinate = if v > 1e-9 { v } else { s };
         let before = self.last_lean.replace((line, lean, coordinate));
+        let lean_shrinking = before.is_some_and(|(line_before, lean_before, _)| {
+            line_before == line && lean.abs() < lean_before.abs()
+        });
         let turning_away = lean.abs() >= LEAN_FLOOR
             && before.is_none_or(|(line_before, lean_before, coordinate_before)| {
                 line_before != line
@@ -333,12 +336,12 @@ impl NewtonFinish {
         // A landing on the resting disk, which has no orientation, needs no lean.
         let round = |z: &[f64; 4]| z.iter().all(|x| x.abs() < 1e-9);
         let found = if turning_away {
-            match self.flow_root(z) {
+            match self.flow_root(z, false) {
                 Some(found) if round(&found.z) => found,
                 _ => self.turn_root(z)?,
             }
         } else {
-            self.landing_root(z)?
+            self.landing_root(z, lean_shrinking)?
         };
         Some(Decision::End(Ending::Landing, found.z))
     }

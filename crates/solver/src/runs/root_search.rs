@@ -34,12 +34,16 @@ impl NewtonFinish {
             Err(_) => self.aligned_root(z)?,
         };
         let lean = angle_to(&z, &near.z);
-        Some(self.settle(near, lean))
+        Some(self.settle(near, lean, false))
     }
 
     /// Where a run leaning by `lean` from the root `near` ends, and whether it may end there
-    /// ([`Self::stable_root`]).
-    fn settle(&mut self, near: Finding, lean: f64) -> (Finding, bool) {
+    /// ([`Self::stable_root`]). `turning_in`: the run is still far from the root's family (a
+    /// landing from a departure) and its lean shrinks; it turns on its way as the departure
+    /// turns it, which the orientation's flow on the family ([`Self::flow_turn`]) does not
+    /// know: with `orientation_flow`, a root unstable in rotation does not end it unless its
+    /// lean is within [`LINEAR_LEAN`].
+    fn settle(&mut self, near: Finding, lean: f64, turning_in: bool) -> (Finding, bool) {
         if near.verdict.rotation.is_none() || near.stable() {
             let ok = near.stable() && self.within_rotation_basin(&near, lean);
             return (near, ok);
@@ -60,6 +64,15 @@ impl NewtonFinish {
             // The run turns the way the orientation's flow takes it (away from `near`
             // within LINEAR_LEAN of it, where the rotation eigenvalue decides).
             let away = lean.abs() < LINEAR_LEAN;
+            if turning_in && !away {
+                // The lean the run arrives with is not known: while it is still leaving the
+                // resting ID its orientation relaxes as the ID's does. (0.088, 0.1095) iii
+                // lands 13 degrees off the diagonal MD, where the flow on the family points
+                // to the y axis, and arrives 1 degree off it; (0.08625, 0.1135) iii lands 9.9
+                // degrees off it, next to a stable zero of the flow, and arrives on the
+                // diagonal with a lean of round-off. Such a run steps on.
+                return (near, false);
+            }
             let from = if away { side * LINEAR_LEAN } else { lean };
             if let Some(found) = self.flow_turn(&near, from, away) {
                 return (found, true);
@@ -106,12 +119,15 @@ impl NewtonFinish {
     /// (either side for a lean of round-off), or nowhere if it is mirror-symmetric.
     /// Failing that, a run caught turning between two mirror lines ends where it turns to
     /// ([`Self::turn_root`]).
-    pub fn landing_root(&mut self, z: [f64; 4]) -> Option<Finding> {
-        self.flow_root(z).or_else(|| self.turn_root(z))
+    /// `lean_shrinking`: the run's lean from its line shrank since the last try (numerics 9
+    /// then lets it end on a turn only once it is on the family, [`Self::settle`]).
+    pub fn landing_root(&mut self, z: [f64; 4], lean_shrinking: bool) -> Option<Finding> {
+        self.flow_root(z, lean_shrinking)
+            .or_else(|| self.turn_root(z))
     }
 
     /// [`Self::landing_root`] along the slow flow alone (no [`Self::turn_root`]).
-    pub fn flow_root(&mut self, z: [f64; 4]) -> Option<Finding> {
+    pub fn flow_root(&mut self, z: [f64; 4], lean_shrinking: bool) -> Option<Finding> {
         for landing in landings(self.steady_solver().ok()?, z) {
             let Ok(near) = self.root_near(landing.on_line) else {
                 continue;
@@ -123,7 +139,8 @@ impl NewtonFinish {
                 continue;
             }
             let lean = angle_to(&landing.z, &landing.on_line);
-            let (found, may_end) = self.settle(near, lean);
+            let far = invariant_distance(&z, &near.z) > MAX_SETTLED;
+            let (found, may_end) = self.settle(near, lean, far && lean_shrinking);
             if may_end {
                 return Some(found);
             }
