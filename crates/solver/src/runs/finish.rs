@@ -134,10 +134,15 @@ pub struct NewtonFinish {
     /// Roots already assessed and their verdicts (a run's later tries usually find the same
     /// root again; its eigenvalues are not recomputed).
     pub(super) assessed: Vec<([f64; 4], Verdict)>,
+    pub(super) orientation_flow: bool,
     /// What is known of the orientation's flow beside roots stable in rotation, per root and
     /// side (lean > 0) ([`crate::runs::rotation_flow::FlowScan`]).
-    pub(super) orientation_flow: bool,
     pub(super) flows: Vec<([f64; 4], bool, crate::runs::rotation_flow::FlowScan)>,
+    /// Turns followed from roots unstable in rotation: the root, the lean the flow was
+    /// followed from, the lean where it ended (its zero, or where the fast balances could not
+    /// be solved), and the stable root found there, if any ([`NewtonFinish::flow_turn`]; a
+    /// later try leaning in between ends the same way).
+    pub(super) turns: Vec<([f64; 4], f64, f64, Option<Finding>)>,
     pub(super) trigger: f64,
     pub(super) window: f64,
     pub(super) next_try: f64,
@@ -161,6 +166,7 @@ impl NewtonFinish {
             assessed: Vec::new(),
             orientation_flow: settings.orientation_flow,
             flows: Vec::new(),
+            turns: Vec::new(),
             solver: None,
             trigger: TRIGGER_FACTOR * steady_tol,
             window,
@@ -256,7 +262,7 @@ impl NewtonFinish {
             return Decision::Continue;
         }
         let found = self.stable_root(z);
-        let Some((f, may_end)) = found else {
+        let Some((f, may_end, basin_left)) = found else {
             // No root near (a run passing the ghost of a saddle-node, or caught mid-turn):
             // where its slow flow lands, else on by time stepping. The paper's test alone
             // never ends a run on a state that is not a stable root (numerics 4).
@@ -280,7 +286,12 @@ impl NewtonFinish {
         });
         self.last_turn = Some((f.z, turn));
         let approaching = settled && (f.turned || turn <= ORIENTATION || turning_to);
-        if may_end && (test_fired || approaching) {
+        // The basin check of a root stable in rotation, left to here: only a run that would
+        // end on it pays for the flow's samples (the same decisions, fewer samples).
+        if may_end
+            && (test_fired || approaching)
+            && (!basin_left || self.within_rotation_basin(&f, angle_to(&z, &f.z)))
+        {
             let ending = if test_fired {
                 Ending::Test
             } else {

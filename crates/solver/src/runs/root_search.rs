@@ -27,14 +27,20 @@ impl NewtonFinish {
     /// leans to), where the box's other mirror line is, if that root is stable. With
     /// `orientation_flow` (numerics 8) the orientation's flow says first where it turns to
     /// ([`Self::flow_turn`]), and a root stable in rotation holds a leaning run only inside
-    /// the stretch its flow turns back from ([`Self::within_rotation_basin`]).
-    pub fn stable_root(&mut self, z: [f64; 4]) -> Option<(Finding, bool)> {
+    /// the stretch its flow turns back from ([`Self::within_rotation_basin`]). That check,
+    /// for the root near `z` when it is stable, is left to the caller: it samples the flow,
+    /// and is needed only when the run would end there (`basin_left`: the root is that one).
+    pub fn stable_root(&mut self, z: [f64; 4]) -> Option<(Finding, bool, bool)> {
         let near = match self.root_near(z) {
             Ok(near) => near,
             Err(_) => self.aligned_root(z)?,
         };
+        if near.stable() {
+            return Some((near, true, true));
+        }
         let lean = angle_to(&z, &near.z);
-        Some(self.settle(near, lean, false))
+        let (found, may_end) = self.settle(near, lean, false);
+        Some((found, may_end, false))
     }
 
     /// Where a run leaning by `lean` from the root `near` ends, and whether it may end there
@@ -200,7 +206,7 @@ impl NewtonFinish {
     /// degrees turns on to the stable root at 8.7). A lean below
     /// [`crate::runs::rotation_flow::LINEAR_LEAN`], or a root with no orientation, always
     /// holds.
-    fn within_rotation_basin(&mut self, near: &Finding, lean: f64) -> bool {
+    pub(super) fn within_rotation_basin(&mut self, near: &Finding, lean: f64) -> bool {
         if !self.orientation_flow || near.verdict.rotation.is_none() || lean.abs() < LEAN_FLOOR {
             return true;
         }
@@ -234,16 +240,38 @@ impl NewtonFinish {
         if !self.orientation_flow {
             return None;
         }
-        let z = flow_zero(self.steady_solver().ok()?, &near.z, lean, away)?;
+        // The flow was followed from `from` to `to` (its zero, or where the fast balances
+        // failed), pointing that way all along: a run leaning in between (a later try, as
+        // the run turns) ends the same way.
+        let between = |from: f64, to: f64| {
+            lean * from > 0.0 && lean.abs() >= from.abs() && lean.abs() < to.abs()
+        };
+        if let Some((.., found)) = self
+            .turns
+            .iter()
+            .find(|(root, from, to, _)| same_root(root, &near.z) && between(*from, *to))
+        {
+            return found.clone();
+        }
+        let z = match flow_zero(self.steady_solver().ok()?, &near.z, lean, away) {
+            Ok(z) => z,
+            Err(failed_at) => {
+                self.turns.push((near.z, lean, failed_at, None));
+                return None;
+            }
+        };
         let found = self.root_near(z).ok()?;
+        let to = angle_to(&z, &near.z);
         let ends = found.stable()
             && angle_to(&found.z, &z).abs() < 1e-4
             && angle_to(&found.z, &near.z).abs() > 1e-6
             && invariant_distance(&found.z, &near.z) <= MAX_SETTLED;
-        ends.then_some(Finding {
+        let found = ends.then_some(Finding {
             turned: true,
             ..found
-        })
+        });
+        self.turns.push((near.z, lean, to, found.clone()));
+        found
     }
 
     /// The root of a run caught mid-turn, between the box's mirror lines, where Newton from

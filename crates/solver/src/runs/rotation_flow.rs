@@ -50,6 +50,7 @@ fn flow_at(
     moving: bool,
     phi: f64,
     guess: &[f64],
+    jac: &mut Option<Vec<Vec<f64>>>,
 ) -> Option<(f64, Vec<f64>)> {
     let p = *solver.params();
     let mut balance = |y: &[f64]| -> [f64; 4] {
@@ -66,7 +67,7 @@ fn flow_at(
         fd_step: 1e-6,
         max_step: vec![0.2; guess.len()],
     };
-    let fast = |y: &[f64]| {
+    let mut fast = |y: &[f64]| {
         let r = balance(y);
         if moving {
             vec![r[0], r[2], r[3]]
@@ -74,7 +75,19 @@ fn flow_at(
             vec![r[2]]
         }
     };
-    let y = newton::solve(fast, guess, &opts).ok()?.x;
+    // The chord method with the Jacobian of the previous sample (samples are at most half a
+    // degree apart), else Newton, whose root's Jacobian the next sample then uses.
+    let chorded = jac
+        .as_ref()
+        .and_then(|j| newton::chord(&mut fast, guess, j, &opts).ok());
+    let y = match chorded {
+        Some(found) => found.x,
+        None => {
+            let y = newton::solve(&mut fast, guess, &opts).ok()?.x;
+            *jac = Some(newton::fd_jacobian(&mut fast, &y, opts.fd_step));
+            y
+        }
+    };
     let r = balance(&y);
     Some((if moving { r[1] } else { r[3] }, y))
 }
@@ -112,17 +125,18 @@ fn fast_guess(root: &[f64; 4]) -> (bool, f64, Vec<f64>) {
 /// that way, the first sample whose flow points back, refined by bisection to 1e-8 rad, or
 /// the next mirror line of the box (45 degrees apart), where the flow vanishes by symmetry.
 /// Samples at most [`SAMPLE_SPACING`] apart. Returns the state there (the fast balances
-/// solved, the flow about zero): a guess for Newton on all four balances. `None` when the
-/// fast balances cannot be solved.
+/// solved, the flow about zero): a guess for Newton on all four balances; or, where the fast
+/// balances cannot be solved, the error names that orientation (its lean from `root`).
 pub fn flow_zero(
     solver: &mut SteadySolver,
     root: &[f64; 4],
     lean: f64,
     away: bool,
-) -> Option<[f64; 4]> {
+) -> Result<[f64; 4], f64> {
     let (moving, phi0, mut guess) = fast_guess(root);
     let start = phi0 + lean;
-    let (drift, y) = flow_at(solver, moving, start, &guess)?;
+    let mut jac = None;
+    let (drift, y) = flow_at(solver, moving, start, &guess, &mut jac).ok_or(lean)?;
     let dir = if away { lean.signum() } else { drift.signum() };
     guess = y;
     let quarter = std::f64::consts::FRAC_PI_4;
@@ -136,25 +150,25 @@ pub fn flow_zero(
     for j in 1..=samples {
         let phi = start + (line - start) * j as f64 / samples as f64;
         if j == samples {
-            return Some(state_at(moving, line, &before.1));
+            return Ok(state_at(moving, line, &before.1));
         }
-        let (drift, y) = flow_at(solver, moving, phi, &before.1)?;
+        let (drift, y) = flow_at(solver, moving, phi, &before.1, &mut jac).ok_or(phi - phi0)?;
         if drift * dir <= 0.0 {
             let (mut lo, mut hi, mut ylo) = (before.0, phi, before.1);
             while (hi - lo).abs() > 1e-8 {
                 let mid = 0.5 * (lo + hi);
-                let (d, ym) = flow_at(solver, moving, mid, &ylo)?;
+                let (d, ym) = flow_at(solver, moving, mid, &ylo, &mut jac).ok_or(mid - phi0)?;
                 if d * dir > 0.0 {
                     (lo, ylo) = (mid, ym);
                 } else {
                     hi = mid;
                 }
             }
-            return Some(state_at(moving, 0.5 * (lo + hi), &ylo));
+            return Ok(state_at(moving, 0.5 * (lo + hi), &ylo));
         }
         before = (phi, y);
     }
-    None
+    Err(line - phi0)
 }
 
 /// What is known of the orientation's flow on one side of a root stable in rotation: it
@@ -197,10 +211,12 @@ impl FlowScan {
             return;
         }
         let (moving, phi0, mut guess) = fast_guess(root);
+        let mut jac = None;
         let samples = (((to - from) / SAMPLE_SPACING).ceil() as usize).clamp(1, MAX_SAMPLES);
         for j in 1..=samples {
             let theta = from + (to - from) * j as f64 / samples as f64;
-            let Some((drift, y)) = flow_at(solver, moving, phi0 + side * theta, &guess) else {
+            let phi = phi0 + side * theta;
+            let Some((drift, y)) = flow_at(solver, moving, phi, &guess, &mut jac) else {
                 self.back_to = to;
                 return;
             };
