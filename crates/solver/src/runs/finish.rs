@@ -134,6 +134,8 @@ pub struct NewtonFinish {
     /// Roots already assessed and their verdicts (a run's later tries usually find the same
     /// root again; its eigenvalues are not recomputed).
     pub(super) assessed: Vec<([f64; 4], Verdict)>,
+    /// Whether the orientation's slow flow decides where a leaning run ends (numerics 8 and
+    /// 9; the setting `orientation_flow`).
     pub(super) orientation_flow: bool,
     /// What is known of the orientation's flow beside roots stable in rotation, per root and
     /// side (lean > 0) ([`crate::runs::rotation_flow::FlowScan`]).
