@@ -282,7 +282,8 @@ impl NewtonFinish {
         let rate = f.verdict.max_re.abs().max(1e-12);
         let settled = invariant_distance(&z, &f.z)
             <= (10.0 * (change / self.window) / rate).min(MAX_SETTLED) + 1e-9;
-        let turn = angle_to(&z, &f.z).abs();
+        let lean = angle_to(&z, &f.z);
+        let turn = lean.abs();
         let turning_to = self.last_turn.is_some_and(|(root, before)| {
             root.iter().zip(&f.z).all(|(a, b)| (a - b).abs() < 1e-6) && turn < before
         });
@@ -292,7 +293,7 @@ impl NewtonFinish {
         // end on it pays for the flow's samples (the same decisions, fewer samples).
         if may_end
             && (test_fired || approaching)
-            && (!basin_left || self.within_rotation_basin(&f, angle_to(&z, &f.z)))
+            && (!basin_left || self.within_rotation_basin(&f, lean))
         {
             let ending = if test_fired {
                 Ending::Test
