@@ -53,7 +53,7 @@ def pure(r):
                                    "--t-max", "10000", "--no-run-on", "--json"])
     p = json.loads(out)
     x = {"key": key(r), "v": p["v"], "s": p["s"], "vx": p["vx"], "vy": p["vy"], "a2": p["a2"], "b2": p["b2"],
-         "wall_s": p["wall_s"]}
+         "wall_s": p["wall_s"], "unsettled": p.get("unsettled"), "heading": p.get("heading")}
     with open(CACHE, "a") as c:
         c.write(json.dumps(x) + "\n")
     return x
@@ -65,6 +65,16 @@ with ThreadPoolExecutor(JOBS) as ex:
 
 agrees = lambda c, v, s, p: c == class_of(p["v"], p["s"]) and max(abs(v - p["v"]), abs(s - p["s"])) < 1e-4
 f = lambda c: c or "-"
+
+
+def pure_end(p):
+    """What Newton from the pure run's state at t = 10 000 finds (`simulate`'s diagnosis of a run
+    given up): beside an unstable root (still leaving it, or turning on it), or converging on a
+    stable one; `?` for runs cached before this column existed."""
+    if "unsettled" not in p:
+        return "?"
+    u = p["unsettled"] or "-"
+    return f"{u} ({p['heading']})" if p.get("heading") else u
 
 
 def angle(p):
@@ -83,19 +93,21 @@ for r, p in zip(rows, results):
     lines.append(f"| {r['eta_t']:.5g} | {r['kappa2']:.5g} | {r['ic']} | {f(r['class'])} | {r['v']:.6f} | {r['s']:.6f} | {r['ended_by']} "
                  f"| {f(r['class_new'])} | {r['v_new']:.6f} | {r['s_new']:.6f} | {r['ended_by_new']} "
                  f"| {class_of(p['v'], p['s'])} | {p['v']:.6f} | {p['s']:.6f} | {angle(p):.2f} | {do:.1e} | {dn:.1e} "
-                 f"| {'yes' if a_old else 'no'} | {'yes' if a_new else 'no'} |")
+                 f"| {pure_end(p)} | {'yes' if a_old else 'no'} | {'yes' if a_new else 'no'} |")
 with open("results/fig2a-map/changed_runs.md", "w") as out:
     out.write(f"# Runs whose end changed from {old_commit}'s map, against pure time stepping\n\n")
     out.write("`python3 results/fig2a-map/check_changed.py " + old_commit + "` (this folder's script). "
               "Changed: class differs, or `v` or `s` by 1e-4 or more. Pure: `droplet simulate ... --no-landing "
               "--steady test --steady-tol 1e-300 --t-max 10000 --no-run-on` (no Newton finish: stepped to "
               "t = 10 000, class from the final `v` and `s`; angle: its direction of motion, or long axis at "
-              "rest, in degrees). Agrees: same class, `v` and `s` within 1e-4 of the pure run's at t = 10 000 "
-              "(a run still turning there agrees with neither).\n\n")
+              "rest, in degrees; pure end: what Newton from its state at t = 10 000 finds, `beside_saddle` "
+              "when that root is unstable, i.e. the run is still leaving or turning on it and its class is "
+              "not yet its end's). Agrees: same class, `v` and `s` within 1e-4 of the pure run's at "
+              "t = 10 000 (a run still turning there agrees with neither).\n\n")
     out.write(f"**{len(lines)} runs changed; the new end agrees with pure stepping in {n_new}, the old one in {n_old}; "
               f"the new end is the closer in {close_new}.**\n\n")
     out.write("| eta_t | kappa2 | ic | old class | v | s | ended by | new class | v | s | ended by "
-              "| pure class | v | s | angle | old off by | new off by | old agrees | new agrees |\n")
-    out.write("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n")
+              "| pure class | v | s | angle | old off by | new off by | pure end | old agrees | new agrees |\n")
+    out.write("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n")
     out.write("\n".join(lines) + "\n")
 print(len(lines), n_new, n_old, close_new)
