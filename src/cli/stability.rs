@@ -335,8 +335,9 @@ fn print_text(report: &Report) {
         let ks: Vec<String> = th
             .kappa2
             .iter()
+            .zip(&th.kappa2_b)
             .enumerate()
-            .map(|(i, k)| format!("a{} for kappa2 < {k:.7}", i + 2))
+            .map(|(i, (k, kb))| format!("a{0} for kappa2 < {k:.7} (b{0} < {kb:.7})", i + 2))
             .collect();
         outln!(
             "resting disk: moves for eta_t < {:.9}; deforms {}",

@@ -262,10 +262,13 @@ fn boundaries_with_modes_draw_the_k_mode_curves_in_the_papers_plane() {
         "--json",
     ]));
     let pde = pde_curves(&b);
+    // No MC onset at N = 64, as for the 2-mode model there (at N = 96 it is drawn; its K = 2
+    // line is the 2-mode one, crates/solver's mode_boundaries test).
     assert_eq!(
         pde,
         [
             "IC onset of motion",
+            "IC onset of deformation (b2, diagonal)",
             "IC onset of deformation (a2, axis)",
             "ID onset of motion (axis ID)",
             "MD saddle-node (x axis)"

@@ -69,10 +69,16 @@ pub const SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-9
 /// 3: a run that does not end steady has no class).
 pub const ODE_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-1+ode-3");
 
-/// The numerics version of a model's runs, part of their cache key: a change to one model's
-/// results invalidates its stored runs only.
-pub fn solver_version(model: ModelKind) -> &'static str {
+/// Version of the time stepping of the general model with shape modes `2..K`, `K > 2`
+/// (`runs::mode_run`) on top of [`SOLVER_VERSION`]; 2: the field's advection and source
+/// explicit over a step, as in the production scheme's predictor (same fixed points).
+pub const MODES_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-9+modes-2");
+
+/// The numerics version of a model's runs with shape modes `2..=modes`, part of their cache
+/// key: a change to one model's results invalidates its stored runs only.
+pub fn solver_version(model: ModelKind, modes: usize) -> &'static str {
     match model {
+        ModelKind::Pde if modes > 2 => MODES_SOLVER_VERSION,
         ModelKind::Pde => SOLVER_VERSION,
         ModelKind::Ode => ODE_SOLVER_VERSION,
     }

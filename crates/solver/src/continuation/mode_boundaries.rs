@@ -4,8 +4,9 @@
 //!
 //! - **IC onset of motion**: the disk's drift threshold with the odd modes it couples to in
 //!   the box ([`ModeSolver::disk_thresholds`]), at the window's bottom and top.
-//! - **IC onset of deformation (a2, axis)**: the disk's mode-2 threshold (modes decouple at
-//!   the circle but for the box's weak `k +- 4` coupling, left out).
+//! - **IC onset of deformation (a2, axis)** and **(b2, diagonal)**: the disk's mode-2
+//!   thresholds (modes decouple at the circle but for the box's weak `k +- 4` coupling, left
+//!   out); the onset of motion starts from the higher of the two.
 //! - **ID onset of motion (axis ID)**: the resting deformed state elongated along y (`v = 0`,
 //!   its odd modes 0 by the mirror `x -> -x`) solved by Newton at each `kappa2`, and the `eta_t`
 //!   at which its drift along x, its minor axis (the speed and the odd modes), has a zero
@@ -14,14 +15,22 @@
 //!   `R = 0, det dR/d(v, a) = 0`, started from the fold of the MD branch at the middle
 //!   `kappa2` ([`crate::continuation::mode_branch`]).
 //!
-//! The diagonal versions (`b_k`) and the MC onset are the 2-mode model's only so far.
+//! - **MC onset, s = 0.01 (x axis)**: the moving state with `a2 = -0.01` solves the `K` steady
+//!   equations on the x axis for `(v, a_3..a_K, eta_t)` at each `kappa2`, from the window's top
+//!   down, continued from the last sample, on the stretch where that state is stable (the
+//!   rotation mode aside), as the 2-mode model's line ([`crate::continuation::boundaries`]).
+//!
+//! The diagonal states' lines (the diagonal ID's onset of motion) are the 2-mode model's
+//! only so far.
 use crate::continuation::fold_curve::{fold_options, fold_walk};
 use crate::continuation::mode_branch::{id_state, md_fold, rest_shape, ModeLine};
 use crate::error::SolverError;
+use crate::model::classify::CLASS_THRESHOLD;
 use crate::model::param::ModelParam;
 use crate::model::params::ModelParams;
-use crate::numerics::newton::fd_jacobian;
+use crate::numerics::newton::{fd_jacobian, NewtonOptions};
 use crate::reduced::boundaries::Boundary;
+use crate::roots::mode_linearisation::ModeLinearization;
 use crate::roots::mode_solver::ModeSolver;
 use crate::roots::mode_thresholds::drift_threshold;
 
@@ -144,6 +153,85 @@ fn fold_curve(w: &ModeWindow) -> Result<Vec<(f64, f64)>, SolverError> {
     Ok(out)
 }
 
+/// The state `(vx, vy, a_2..a_K, b_2..b_K)` on the x axis with `a2 = -CLASS_THRESHOLD` from
+/// the MC line's unknowns `x = (v, a_3..a_K, eta_t)`.
+fn mc_state(x: &[f64]) -> Vec<f64> {
+    let k_max = x.len();
+    let mut z = vec![x[0], 0.0, -CLASS_THRESHOLD];
+    z.extend(&x[1..k_max - 1]);
+    z.extend(std::iter::repeat_n(0.0, k_max - 1));
+    z
+}
+
+/// The MC onset line on the x axis (see the module doc), from the top of the window down
+/// while Newton converges inside it, cut where the states turn unstable: below the point
+/// where the onset of motion turns subcritical the `s = 0.01` state lies on the unstable
+/// part of the branch, and no label changes there. The stability is decided at the line's
+/// two ends and by bisection between them (one change of stability along the line; each
+/// verdict is a `2K x 2K` eigenproblem with the field, seconds at N = 192).
+fn mc_line(w: &ModeWindow, onset_eta_t: f64) -> Result<Vec<(f64, f64)>, SolverError> {
+    let mut solver = ModeSolver::new(w.base, w.n)?;
+    let k_max = w.k_max;
+    let opts = NewtonOptions {
+        tol: 1e-12,
+        max_iter: 30,
+        fd_step: 1e-7,
+        max_step: [vec![0.05; k_max - 1], vec![0.002]].concat(),
+    };
+    // a2 ~ -0.18 v^2 on the 2-mode moving branch near the onset of motion.
+    let mut guess = vec![0.0; k_max];
+    guess[0] = (CLASS_THRESHOLD / 0.18f64).sqrt();
+    guess[k_max - 1] = onset_eta_t;
+    let (k0, k1) = w.kappa2;
+    let m = w.id_samples.max(2);
+    let mut line: Vec<(f64, f64, Vec<f64>)> = Vec::new();
+    for i in 0..m {
+        let k = k1 - (k1 - k0) * i as f64 / (m - 1) as f64;
+        let balance = |x: &[f64]| {
+            solver.set_control(x[k_max - 1], k);
+            let z = mc_state(x);
+            let mut y = vec![z[0]];
+            y.extend(&z[2..k_max + 1]);
+            solver.residual_x(&y)
+        };
+        let Ok(sol) = crate::numerics::newton::solve(balance, &guess, &opts) else {
+            break;
+        };
+        let (v, eta) = (sol.x[0], sol.x[k_max - 1]);
+        if v <= 0.0 || !(w.eta_t.0..=w.eta_t.1).contains(&eta) {
+            break;
+        }
+        guess = sol.x.clone();
+        line.push((eta, k, mc_state(&sol.x)));
+    }
+    let mut stable = |i: usize| {
+        let (eta, k, z) = &line[i];
+        solver.set_control(*eta, *k);
+        ModeLinearization::at(&mut solver, z)
+            .verdict(&mut solver)
+            .stable()
+    };
+    let kept = match line.len() {
+        0 => 0,
+        _ if !stable(0) => 0,
+        len if stable(len - 1) => len,
+        len => {
+            // stable(good), unstable(bad): the last stable sample lies in good..bad.
+            let (mut good, mut bad) = (0, len - 1);
+            while bad - good > 1 {
+                let mid = (good + bad) / 2;
+                if stable(mid) {
+                    good = mid;
+                } else {
+                    bad = mid;
+                }
+            }
+            good + 1
+        }
+    };
+    Ok(line[..kept].iter().map(|(e, k, _)| (*e, *k)).collect())
+}
+
 /// The `K`-mode model's boundaries in the window (see the module doc), named like the
 /// 2-mode model's.
 pub fn mode_boundaries(w: &ModeWindow) -> Result<Vec<Boundary>, SolverError> {
@@ -161,16 +249,26 @@ pub fn mode_boundaries(w: &ModeWindow) -> Result<Vec<Boundary>, SolverError> {
     disk.set_control(w.base.eta_t, k1);
     let high = disk.disk_thresholds(w.k_max);
     let shape_onset = low.kappa2[0];
+    let diagonal_onset = low.kappa2_b[0];
     type Curve = Result<Vec<(f64, f64)>, SolverError>;
-    let (id, fold): (Curve, Curve) = std::thread::scope(|scope| {
+    let (id, fold, mc): (Curve, Curve, Curve) = std::thread::scope(|scope| {
         let id = scope.spawn(|| id_line(w, shape_onset));
+        let mc = scope.spawn(|| mc_line(w, high.eta_t));
         let fold = fold_curve(w);
-        (id.join().expect("the ID line's thread panicked"), fold)
+        let id = id.join().expect("the ID line's thread panicked");
+        (id, fold, mc.join().expect("the MC line's thread panicked"))
     });
     let mut out = vec![
         Boundary {
             name: "IC onset of motion",
-            points: vec![(low.eta_t, shape_onset.max(k0)), (high.eta_t, k1)],
+            points: vec![
+                (low.eta_t, shape_onset.max(diagonal_onset).max(k0)),
+                (high.eta_t, k1),
+            ],
+        },
+        Boundary {
+            name: "IC onset of deformation (b2, diagonal)",
+            points: vec![(low.eta_t.max(e0), diagonal_onset), (e1, diagonal_onset)],
         },
         Boundary {
             name: "IC onset of deformation (a2, axis)",
@@ -183,6 +281,10 @@ pub fn mode_boundaries(w: &ModeWindow) -> Result<Vec<Boundary>, SolverError> {
         Boundary {
             name: "MD saddle-node (x axis)",
             points: fold?,
+        },
+        Boundary {
+            name: "MC onset, s = 0.01 (x axis)",
+            points: mc?,
         },
     ];
     out.retain(|b| b.points.len() > 1);
@@ -218,16 +320,10 @@ mod tests {
         })
         .unwrap();
         let scaled = |p: (f64, f64)| ((p.0 - e.0) / (e.1 - e.0), (p.1 - k.0) / (k.1 - k.0));
-        assert_eq!(mine.len(), 4, "{mine:?}");
+        assert_eq!(mine.len(), 6, "{mine:?}");
         for b in &mine {
             let other = two.iter().find(|c| c.name == b.name).expect(b.name);
-            if b.name == "IC onset of motion" {
-                // The 2-mode line starts at the higher (diagonal) deformation onset, which the
-                // x-axis states do not have: its eta_t only.
-                let off = (b.points[0].0 - other.points[0].0).abs();
-                assert!(off < 1e-7, "{b:?} vs {other:?}");
-                continue;
-            }
+
             let line: Vec<(f64, f64)> = other.points.iter().map(|&p| scaled(p)).collect();
             let worst = b
                 .points

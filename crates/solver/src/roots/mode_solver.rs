@@ -171,6 +171,8 @@ impl ModeSolver {
         let shape = self.shape();
         let (lo, hi) = self.span(m);
         let (r_in, r_out) = (m.inner_radius(&shape), m.outer_radius(&shape));
+        // Squared radii: no square root outside the interface band.
+        let (r_in2, r_out2) = (r_in * r_in, r_out * r_out);
         let mut count = 0.0;
         for iy in lo..=hi {
             let y = self.grid.coord(iy);
@@ -178,10 +180,10 @@ impl ModeSolver {
             row.fill(0.0);
             for (ix, t) in row.iter_mut().enumerate().take(hi + 1).skip(lo) {
                 let x = self.grid.coord(ix);
-                let r = x.hypot(y);
-                *t = if r < r_in {
+                let r2 = x * x + y * y;
+                *t = if r2 < r_in2 {
                     1.0
-                } else if r > r_out {
+                } else if r2 > r_out2 {
                     0.0
                 } else {
                     m.theta(&shape, x, y)
@@ -196,18 +198,32 @@ impl ModeSolver {
     /// like the field's; [`Self::source_spectrum`]), leaving `Theta` sampled: the area and the
     /// rows `lo..=hi` that hold it.
     pub(crate) fn source(&mut self, m: &Modes) -> (f64, usize, usize) {
-        let n = self.grid.n;
-        let (area, lo, hi) = self.sample(m);
-        self.real[lo * n..(hi + 1) * n].copy_from_slice(&self.theta[lo * n..(hi + 1) * n]);
-        self.fft.forward(&mut self.real, &mut self.spec, lo, hi);
-        let norm = 1.0 / (area * (n * n) as f64);
+        let (area, lo, hi) = self.theta_spectrum(m);
+        let norm = self.source_scale(area);
         for c in self.spec.iter_mut() {
             *c *= norm;
         }
         (area, lo, hi)
     }
 
-    /// The last [`Self::source`]'s normalised half spectrum.
+    /// Like [`Self::source`], but leaves the raw transform of `Theta` (not divided by
+    /// `A N^2`, [`Self::source_scale`]) in [`Self::source_spectrum`]: a time step folds the
+    /// scale into its own pass over the spectrum.
+    pub(crate) fn theta_spectrum(&mut self, m: &Modes) -> (f64, usize, usize) {
+        let n = self.grid.n;
+        let (area, lo, hi) = self.sample(m);
+        self.real[lo * n..(hi + 1) * n].copy_from_slice(&self.theta[lo * n..(hi + 1) * n]);
+        self.fft.forward(&mut self.real, &mut self.spec, lo, hi);
+        (area, lo, hi)
+    }
+
+    /// The factor `1 / (A N^2)` from the raw transform of `Theta` to the normalised source.
+    pub(crate) fn source_scale(&self, area: f64) -> f64 {
+        1.0 / (area * (self.grid.n * self.grid.n) as f64)
+    }
+
+    /// The last [`Self::source`]'s normalised half spectrum (raw after
+    /// [`Self::theta_spectrum`]).
     pub(crate) fn source_spectrum(&self) -> &[Complex64] {
         &self.spec
     }

@@ -16,6 +16,10 @@ pub struct ModeThresholds {
     /// entry of the shape block: `kappa_k^c = dG_k^(a)/da_k`, `kappa2 = 4 kappa_k^c / k^2`;
     /// the box's weak coupling of `k` with `k +- 4` left out).
     pub kappa2: Vec<f64>,
+    /// The same for the `b_k` deformation (`dG_k^(b)/db_k`). At the circle `a_k` and `b_k`
+    /// are one mode turned by `pi / (2k)`; the square box tells them apart, by 4e-4 in
+    /// `kappa2` for `k = 2` at N = 192 (the diagonal onset above the axis one).
+    pub kappa2_b: Vec<f64>,
 }
 
 /// The `eta_t` at which the drift along x of a resting state has a zero eigenvalue, from the
@@ -63,15 +67,34 @@ impl ModeSolver {
         j
     }
 
+    /// The `b_k` diagonal entries `dG_k^(b)/db_k - kappa_k` (`k = 2..=k_max`) of the `lambda =
+    /// 0` Jacobian of [`Self::residual`] at the resting disk, by central differences in each
+    /// `b_k` alone.
+    fn disk_b_entries(&mut self, k_max: usize) -> Vec<f64> {
+        let h = 1e-5;
+        (2..=k_max)
+            .map(|k| {
+                let i = k_max + k - 1;
+                let mut z = vec![0.0; 2 * k_max];
+                z[i] = h;
+                let plus = self.residual(&z)[i];
+                z[i] = -h;
+                let minus = self.residual(&z)[i];
+                (plus - minus) / (2.0 * h)
+            })
+            .collect()
+    }
+
     /// The resting disk's thresholds with modes up to `k_max` (see [`ModeThresholds`]).
     pub fn disk_thresholds(&mut self, k_max: usize) -> ModeThresholds {
         let c = self.disk_jacobian(k_max);
+        let b = self.disk_b_entries(k_max);
         let kappa2 = self.params().kappa2;
+        let onset = |k: usize, entry: f64| 4.0 / (k * k) as f64 * entry + kappa2;
         ModeThresholds {
             eta_t: drift_threshold(&c),
-            kappa2: (2..=k_max)
-                .map(|k| 4.0 / (k * k) as f64 * c[k - 1][k - 1] + kappa2)
-                .collect(),
+            kappa2: (2..=k_max).map(|k| onset(k, c[k - 1][k - 1])).collect(),
+            kappa2_b: (2..=k_max).zip(b).map(|(k, e)| onset(k, e)).collect(),
         }
     }
 }
@@ -90,6 +113,11 @@ mod tests {
         // K = 2: the 2-mode model's thresholds (its a2 onset; the drift alone).
         assert!(
             (th.kappa2[0] - two.kappa2_a2).abs() < 1e-7,
+            "{th:?} {two:?}"
+        );
+        // And its diagonal (b2) onset, which the box puts above the axis one.
+        assert!(
+            (th.kappa2_b[0] - two.kappa2_b2).abs() < 1e-7 && two.kappa2_b2 > two.kappa2_a2 + 1e-4,
             "{th:?} {two:?}"
         );
         assert!((s.disk_thresholds(2).eta_t - two.eta_t).abs() < 1e-7);

@@ -2,18 +2,21 @@
 //! [`crate::roots::mode_solver`]) in the droplet's frame, until its state is steady: the first
 //! scheme of the `K`-mode model, exponential Euler (first order in time).
 //!
-//! Per step of length `h` the field moves exactly under its linear operator at the current
-//! velocity with the current source frozen, `u_hat <- e^(D h) u_hat + (e^(D h) - 1) / D s_hat`
-//! (`D = -(1 + k^2) + i k.v`, `s = Theta / A`), and the mechanics under their exact linear decay
-//! with the current forces frozen: `m v_t = -eta_t v + F`,
-//! `eta_k a_k,t = G_k^(a) - kappa_k a_k` (`eta_k = eta2`), the same for `b_k`. Its fixed points
-//! are exactly the steady states of [`ModeSolver`] (the field's is `-s_hat / D`), so a run that
-//! settles lands on the root Newton finds, to the accuracy of its settling. The run starts from
-//! `u = 0` (the paper's initial field) and is steady when every rate `|dz/dt|` is below `tol`.
+//! Per step of length `h` the field moves exactly under its diffusion and decay
+//! `c = -(1 + k^2)` with the advection and the source frozen at the step's start, as the
+//! production scheme's predictor does ([`crate::stepping::comoving_etd`]):
+//! `u_hat <- e^(c h) u_hat + (e^(c h) - 1) / c (i k.v u_hat + s_hat)` (`s = Theta / A`),
+//! and the mechanics under their exact linear decay with the current forces frozen:
+//! `m v_t = -eta_t v + F`, `eta_k a_k,t = G_k^(a) - kappa_k a_k` (`eta_k = eta2`), the same
+//! for `b_k`. Its fixed points are exactly the steady states of [`ModeSolver`] (the field's
+//! is `s_hat / (1 + k^2 - i k.v)`), so a run that settles lands on the root Newton finds, to
+//! the accuracy of its settling. The run starts from `u = 0` (the paper's initial field) and
+//! is steady when every rate `|dz/dt|` is below `tol`.
 use crate::error::SolverError;
 use crate::model::modes::Modes;
 use crate::model::params::ModelParams;
 use crate::roots::mode_solver::ModeSolver;
+use crate::stepping::etd::SeparableExp;
 use rustfft::num_complex::Complex64;
 
 /// How a `K`-mode run steps and when it stops.
@@ -75,10 +78,11 @@ pub struct ModeStepper {
     pub z: Vec<f64>,
     /// The field's spectrum.
     u: Vec<Complex64>,
-    /// `e^(D h)` factored by wavenumber: its `kx` and `ky` parts at the current velocity
-    /// (`D` is a sum of a part in `kx` and a part in `ky`).
-    ex: Vec<Complex64>,
-    ey: Vec<Complex64>,
+    /// `e^(c h) - 1` factored by wavenumber (`c = -(1 + kx^2 + ky^2)`), and `1 / c` per mode.
+    exp: SeparableExp,
+    inv_c: Vec<f64>,
+    /// `1 / (A N^2)`: the last [`Self::rate`]'s raw transform of `Theta` to the source.
+    src_scale: f64,
     h: f64,
     rate_of: Vec<f64>,
     inertia: Vec<f64>,
@@ -105,12 +109,23 @@ impl ModeStepper {
         )?;
         let solver = ModeSolver::new(*params, n)?;
         let (rate_of, inertia, decay) = linear_parts(&solver, k_max, h);
+        let grid = solver.grid();
+        let mut exp = SeparableExp::default();
+        exp.update(h, &grid.kx, &grid.ky);
+        let n = grid.n;
+        let inv_c = (0..grid.spectral_len())
+            .map(|i| {
+                let (kx, ky) = (grid.kx[i / n], grid.ky[i % n]);
+                -1.0 / (1.0 + kx * kx + ky * ky)
+            })
+            .collect();
         Ok(Self {
             solver,
             z: z0.to_vec(),
             u: Vec::new(),
-            ex: Vec::new(),
-            ey: Vec::new(),
+            exp,
+            inv_c,
+            src_scale: 0.0,
             h,
             rate_of,
             inertia,
@@ -128,7 +143,8 @@ impl ModeStepper {
     pub fn rate(&mut self) -> f64 {
         let k_max = self.z.len() / 2;
         let m = Modes::of_state(&self.z);
-        let (area, lo, hi) = self.solver.source(&m);
+        let (area, lo, hi) = self.solver.theta_spectrum(&m);
+        self.src_scale = self.solver.source_scale(area);
         if self.u.is_empty() {
             self.u = vec![Complex64::default(); self.solver.source_spectrum().len()];
         }
@@ -148,12 +164,11 @@ impl ModeStepper {
         &mut self.solver
     }
 
-    /// One step of `h` with the forces of the last [`Self::rate`] frozen: the field exactly
-    /// under its linear operator, the mechanics under their exact linear decay.
-    ///
-    /// `D = -(1 + kx^2) + i kx vx - ky^2 + i ky vy` ([`crate::roots::mode_solver::fill_operator`]), so `e^(D h)` is the
-    /// product of a factor per column and one per row: `N + 1` complex exponentials per step
-    /// instead of one per stored mode (`N (N / 2 + 1)`), equal to round-off.
+    /// One step of `h` with the forces, the advection and the source of the last
+    /// [`Self::rate`] frozen: the field's diffusion and decay exact, the mechanics under their
+    /// exact linear decay. The propagator's coefficients come from [`SeparableExp`] (made
+    /// once for the fixed step): no exponential or division per mode, and the source's scale
+    /// `1 / (A N^2)` is applied in the same pass.
     pub fn advance(&mut self) {
         let h = self.h;
         let (vx, vy) = (self.z[0], self.z[1]);
@@ -161,30 +176,24 @@ impl ModeStepper {
         self.y += h * vy;
         let grid = self.solver.grid();
         let n = grid.n;
-        self.ex.clear();
-        self.ex.extend((0..=n / 2).map(|jx| {
-            let kx = grid.kx[jx];
-            Complex64::new(-(1.0 + kx * kx) * h, grid.kx_d[jx] * vx * h).exp()
-        }));
-        self.ey.clear();
-        self.ey.extend((0..n).map(|jy| {
-            let ky = grid.ky[jy];
-            Complex64::new(-ky * ky * h, grid.ky_d[jy] * vy * h).exp()
-        }));
+        let inv_h = 1.0 / h;
+        let scale = self.src_scale;
         let source = self.solver.source_spectrum();
-        for (jx, ex) in self.ex.iter().enumerate() {
-            let (kx, kxd) = (grid.kx[jx], grid.kx_d[jx]);
+        for (jx, (kxd, ax)) in grid.kx_d.iter().zip(&self.exp.ax).enumerate() {
             let row = jx * n..(jx + 1) * n;
-            for (((u, s), ey), jy) in self.u[row.clone()]
-                .iter_mut()
-                .zip(&source[row])
-                .zip(&self.ey)
-                .zip(0..)
+            let modes = grid
+                .ky_d
+                .iter()
+                .zip(&self.exp.ay)
+                .zip(&self.inv_c[row.clone()]);
+            for ((u, s), ((kyd, ay), ic)) in
+                self.u[row.clone()].iter_mut().zip(&source[row]).zip(modes)
             {
-                let (ky, kyd) = (grid.ky[jy], grid.ky_d[jy]);
-                let d = Complex64::new(-(1.0 + kx * kx + ky * ky), kxd * vx + kyd * vy);
-                let e = ex * ey;
-                *u = e * *u + (e - 1.0) / d * s;
+                let cf = SeparableExp::coef(*ax, *ay, *ic, h, inv_h);
+                let kv = kxd * vx + kyd * vy;
+                // i k.v u + s.
+                let nl = Complex64::new(-kv * u.im + scale * s.re, kv * u.re + scale * s.im);
+                *u = *u * cf.e + nl * cf.p1;
             }
         }
         for ((z, f), (e, w)) in self.z.iter_mut().zip(&self.forces).zip(&self.decay) {

@@ -72,7 +72,8 @@ pub fn run_task(task: &Task) -> Result<RunRecord, SweepError> {
         params: task.params,
         ic: task.ic.clone(),
         settings: task.settings,
-        solver_version: droplet_solver::solver_version(task.settings.model).to_string(),
+        solver_version: droplet_solver::solver_version(task.settings.model, task.settings.modes)
+            .to_string(),
         outcome,
     })
 }

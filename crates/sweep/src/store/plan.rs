@@ -120,22 +120,37 @@ pub fn check_size(spec: &SweepSpec, max_runs: u64) -> Result<(), crate::error::S
 struct KeyMaterial<'a> {
     params: &'a ModelParams,
     ic: [f64; 4],
+    /// The condition's amplitudes of modes 3.. (absent for 2-mode conditions, whose keys
+    /// are as before).
+    #[serde(skip_serializing_if = "no_higher_modes")]
+    ic_higher: &'a [[f64; 2]],
     settings: &'a SolverSettings,
     solver_version: &'a str,
 }
 
-/// Content key of a run: SHA-256 of the model parameters, the initial condition's values,
-/// the solver settings and the solver's numerics version. Equal runs in two sweeps share it.
+fn no_higher_modes(higher: &&[[f64; 2]]) -> bool {
+    higher.is_empty()
+}
+
+/// Content key of a run: SHA-256 of the model parameters, the initial condition's values
+/// (every mode it gives), the solver settings and the solver's numerics version. Equal runs
+/// in two sweeps share it.
 pub fn run_key(params: &ModelParams, ic: &InitialCondition, settings: &SolverSettings) -> String {
+    let json = key_material(params, ic, settings);
+    let digest = Sha256::digest(json.as_bytes());
+    digest.iter().take(16).map(|b| format!("{b:02x}")).collect()
+}
+
+/// The text [`run_key`] hashes.
+fn key_material(params: &ModelParams, ic: &InitialCondition, settings: &SolverSettings) -> String {
     let material = KeyMaterial {
         params,
         ic: [ic.vx, ic.vy, ic.a2, ic.b2],
+        ic_higher: &ic.higher,
         settings,
-        solver_version: droplet_solver::solver_version(settings.model),
+        solver_version: droplet_solver::solver_version(settings.model, settings.modes),
     };
-    let json = serde_json::to_string(&material).expect("plain data serialises");
-    let digest = Sha256::digest(json.as_bytes());
-    digest.iter().take(16).map(|b| format!("{b:02x}")).collect()
+    serde_json::to_string(&material).expect("plain data serialises")
 }
 
 /// Smallest gap between the values of an axis (`NaN` for one value).
@@ -225,6 +240,15 @@ mod tests {
         assert_ne!(k, run_key(&p, &InitialCondition::parse("ii").unwrap(), &s));
         assert_ne!(k, run_key(&p, &ic, &SolverSettings { n: 128, ..s }));
         assert_eq!(k.len(), 32);
+        // Conditions that differ in a higher mode only are different runs; a 2-mode
+        // condition's key material is as it was before modes 3.. existed.
+        let k4 = SolverSettings { modes: 4, ..s };
+        let with = |a3: f64| {
+            let ic = InitialCondition::parse(&format!("custom:0.5,0,-0.1,0,{a3},0")).unwrap();
+            run_key(&p, &ic, &k4)
+        };
+        assert_ne!(with(0.1), with(-0.1));
+        assert!(!key_material(&p, &ic, &s).contains("ic_higher"));
     }
 
     #[test]

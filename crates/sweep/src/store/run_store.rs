@@ -200,7 +200,8 @@ impl Store {
         };
         let content_key = crate::store::plan::run_key(&rec.params, &rec.ic, &rec.settings);
         if rec.key != key
-            || rec.solver_version != droplet_solver::solver_version(rec.settings.model)
+            || rec.solver_version
+                != droplet_solver::solver_version(rec.settings.model, rec.settings.modes)
             || content_key != key
         {
             return Stored::Corrupt(format!(

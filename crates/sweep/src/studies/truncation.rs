@@ -9,7 +9,7 @@
 //!   bistable band (its left edge is the onset of motion);
 //! - the phase boundaries of the Fig. 2a window for the states on the x axis
 //!   (`droplet_solver::continuation::mode_boundaries`: the onsets, ID's onset of motion, the MD
-//!   fold curve), drawn for every `K` over each other;
+//!   fold curve, the MC onset), drawn for every `K` over each other;
 //!
 //! each with the time it took, as `truncation.parquet`, a picture of the Fig. 1c droplet's
 //! outline for each `K`, and the rows returned for the CLI.
