@@ -67,6 +67,18 @@ impl Grid {
         (self.n / 2 + 1) * self.n
     }
 
+    /// `1 / c` per stored coefficient (`[kx][ky]`), `c = -(1 + kx^2 + ky^2)`: the field's
+    /// diffusion and decay, the exact part of the exponential steps.
+    pub fn inverse_rates(&self) -> Vec<f64> {
+        let n = self.n;
+        (0..self.spectral_len())
+            .map(|i| {
+                let (kx, ky) = (self.kx[i / n], self.ky[i % n]);
+                -1.0 / (1.0 + kx * kx + ky * ky)
+            })
+            .collect()
+    }
+
     /// Coordinate of grid index `i` relative to the centre.
     pub fn coord(&self, i: usize) -> f64 {
         (i as f64 - (self.n / 2) as f64) * self.dx

@@ -112,13 +112,7 @@ impl ModeStepper {
         let grid = solver.grid();
         let mut exp = SeparableExp::default();
         exp.update(h, &grid.kx, &grid.ky);
-        let n = grid.n;
-        let inv_c = (0..grid.spectral_len())
-            .map(|i| {
-                let (kx, ky) = (grid.kx[i / n], grid.ky[i % n]);
-                -1.0 / (1.0 + kx * kx + ky * ky)
-            })
-            .collect();
+        let inv_c = grid.inverse_rates();
         Ok(Self {
             solver,
             z: z0.to_vec(),

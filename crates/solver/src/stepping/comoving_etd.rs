@@ -135,12 +135,7 @@ impl ComovingEtd {
             pred_th: vec![0.0; len],
             forces0: None,
             exp: SeparableExp::default(),
-            inv_c: (0..len)
-                .map(|i| {
-                    let (kx, ky) = (grid.kx[i / n], grid.ky[i % n]);
-                    -1.0 / (1.0 + kx * kx + ky * ky)
-                })
-                .collect(),
+            inv_c: grid.inverse_rates(),
             grid,
         })
     }
