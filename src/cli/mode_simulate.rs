@@ -1,6 +1,6 @@
 //! `droplet simulate --modes K` (K > 2): the paper's general model with shape modes 2..K,
-//! time-stepped from the initial condition and ended by the Newton finish
-//! (`droplet_solver::runs::mode_outcome`).
+//! time-stepped from the initial condition and ended by the Newton finish, or with
+//! `--scheme paper-fd` by the paper's scheme and its test (`droplet_solver::runs::mode_outcome`).
 use super::simulate::Args;
 use super::{print_json, CliError};
 use droplet_solver::contract::settings::SolverSettings;
@@ -9,8 +9,8 @@ use droplet_solver::roots::{mode_field::lab_field, mode_solver::ModeSolver};
 use droplet_sweep::pictures::run_figure;
 
 /// `--modes K` with K > 2: the K-mode model from the IC (modes 3..K at rest) at fixed steps
-/// --dt, ended by the Newton finish (`droplet_solver::runs::mode_outcome`, as a sweep with
-/// `params.modes: K` runs it).
+/// --dt, ended by the Newton finish, or by the steady test with --scheme paper-fd
+/// (`droplet_solver::runs::mode_outcome`, as a sweep with `params.modes: K` runs it).
 pub fn run(
     a: &Args,
     params: ModelParams,
@@ -19,9 +19,7 @@ pub fn run(
 ) -> Result<(), CliError> {
     droplet_solver::contract::limits::check_modes(&params, settings.n, a.modes)?;
     let not_yet = [
-        (a.scheme != "spectral", "--scheme"),
         (a.pinned, "--pinned"),
-        (a.steady.is_some(), "--steady"),
         (a.stop_beside_saddle, "--stop-beside-saddle"),
         (a.leap_departures, "--leap-departures"),
         (a.no_landing, "--no-landing"),
@@ -31,9 +29,10 @@ pub fn run(
     ];
     if let Some((_, flag)) = not_yet.iter().find(|(given, _)| *given) {
         return Err(CliError::usage(format!(
-            "invalid {flag} with --modes {}: the K-mode run takes fixed exponential-Euler \
-             steps (--dt) to t_max (run on to 4 t_max unless --no-run-on), ended by the \
-             Newton finish (--steady-tol)",
+            "invalid {flag} with --modes {}: the K-mode run takes fixed steps (--dt): \
+             exponential Euler to t_max (run on to 4 t_max unless --no-run-on), ended by \
+             the Newton finish (--steady-tol), or with --scheme paper-fd the paper's forward \
+             Euler to t_max, ended by the steady test",
             a.modes
         )));
     }

@@ -127,7 +127,9 @@ pub struct Args {
     /// the IC (modes 3..K as --ic custom gives them, else 0; field 0), ended like a 2-mode
     /// run by the Newton finish: steady on a root of the 2K force balances whose eigenvalues
     /// all decay, else unsettled at 4 t_max (as a sweep with params.modes: K runs it). Its
-    /// --series gains a3..aK, b3..bK; --picture draws every mode (the field: the steady field of the final state); no scheme, pinning, adaptive steps or landing.
+    /// --series gains a3..aK, b3..bK; --picture draws every mode (the field: the steady field of the final state). With --scheme paper-fd: the paper's forward Euler with every
+    /// mode to t_max, ended by the steady test (every rate below --steady-tol). No pinning,
+    /// adaptive steps or landing.
     #[arg(long, default_value_t = 2)]
     pub(super) modes: usize,
     /// Print one JSON object instead of text.

@@ -10,6 +10,7 @@
 //! - for the paper's explicit scheme, a step below forward Euler's stability limit for
 //!   `u_t = Lap u - u` on the 5-point stencil, `dt (8 / dx^2 + 1) <= 2` (above it every run
 //!   diverges, whatever the physics).
+use crate::contract::ending::SteadyMethod;
 use crate::contract::settings::MAX_STEPS;
 use crate::contract::settings::{ModelKind, SolverSettings};
 use crate::error::{require, SolverError};
@@ -32,8 +33,9 @@ pub fn adaptive_step_cap(settings: &SolverSettings) -> u64 {
 }
 
 /// What a `K`-mode run (`modes` > 2, [`crate::runs::mode_outcome`]) can do: the modes the
-/// grid resolves ([`check_modes`]), with the spectral grid, the Newton finish, a free centre
-/// and none of the 2-mode runs' optional endings.
+/// grid resolves ([`check_modes`]), fixed steps, a free centre and none of the 2-mode runs'
+/// optional endings; the spectral scheme with the Newton finish, or the paper's scheme with
+/// its test.
 fn check_k_mode_run(params: &ModelParams, settings: &SolverSettings) -> Result<(), SolverError> {
     check_modes(params, settings.n, settings.modes)?;
     let k = settings.modes as f64;
@@ -49,13 +51,15 @@ fn check_k_mode_run(params: &ModelParams, settings: &SolverSettings) -> Result<(
             settings.give_up_at()
         ),
     )?;
+    // The spectral run is ended by the Newton finish; the paper's scheme by its test alone
+    // (its end is not a root of the spectral steady solver).
+    let (steady, ending) = match settings.scheme {
+        SchemeKind::Spectral => (SteadyMethod::Newton, "the Newton finish"),
+        SchemeKind::PaperFd => (SteadyMethod::Test, "the steady test"),
+    };
     let unsupported = [
-        (settings.scheme != SchemeKind::Spectral, "scheme"),
         (settings.pinned, "pinned"),
-        (
-            settings.steady != crate::contract::ending::SteadyMethod::Newton,
-            "steady",
-        ),
+        (settings.steady != steady, "steady"),
         (settings.stop_beside_saddle, "stop_beside_saddle"),
         (settings.leap_departures, "leap_departures"),
     ];
@@ -65,8 +69,10 @@ fn check_k_mode_run(params: &ModelParams, settings: &SolverSettings) -> Result<(
             "modes",
             k,
             format!(
-                "2 with the setting '{name}' given: a K-mode run is the spectral field with \
-                 exponential-Euler steps dt, ended by the Newton finish"
+                "2 with the setting '{name}' given: a K-mode run of the {} scheme takes \
+                 fixed steps dt and is ended by {ending} (steady: {})",
+                settings.scheme,
+                steady.as_str()
             ),
         )?;
     }
@@ -163,7 +169,7 @@ pub fn check_run(params: &ModelParams, settings: &SolverSettings) -> Result<(), 
     // label is not checked (at m = 0 a run from the paper's ICs rests on the unstable disk
     // below the onset of motion, held there by their mirror symmetry).
     require(
-        params.mass > 0.0 || settings.steady != crate::contract::ending::SteadyMethod::Newton,
+        params.mass > 0.0 || settings.steady != SteadyMethod::Newton,
         "mass",
         params.mass,
         "a finite number > 0 with steady: newton (the stability of the end state needs \

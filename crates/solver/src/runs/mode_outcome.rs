@@ -1,20 +1,23 @@
 //! A run of the paper's general model with shape modes `2..K` (setting `modes`, `K > 2`) to a
-//! [`RunOutcome`], as the sweep runs it: the exponential-Euler time stepper of
-//! [`crate::runs::mode_run`] at the fixed step `dt`, ended like a 2-mode run with the Newton
-//! finish (`steady: newton`): once the largest rate `|dz/dt|` falls below
-//! [`crate::runs::finish::TRIGGER_FACTOR`] steady tolerances (or below the steady tolerance,
-//! the test), Newton on all `2K` force balances from the run's state; the run ends `steady` on
-//! the root when every eigenvalue of its `2K x 2K` eigenproblem decays (the near-neutral
-//! rotation mode included, as for 2-mode runs) and the run is within
-//! [`crate::runs::finish::MAX_SETTLED`] of it. A run not steady by where it is given up
-//! (`t_max`, run on to 64 `t_max`) is unsettled: beside an unstable root, converging to a
-//! stable one (with its class as `heading`), or with no root near.
+//! [`RunOutcome`], as the sweep runs it, at the fixed step `dt`, with either scheme:
+//!
+//! - spectral (default): the exponential-Euler time stepper of [`crate::runs::mode_run`],
+//!   ended like a 2-mode run with the Newton finish (`steady: newton`): once the largest rate
+//!   `|dz/dt|` falls below [`crate::runs::finish::TRIGGER_FACTOR`] steady tolerances (or below
+//!   the steady tolerance, the test), Newton on all `2K` force balances from the run's state;
+//!   the run ends `steady` on the root when every eigenvalue of its `2K x 2K` eigenproblem
+//!   decays (the near-neutral rotation mode included, as for 2-mode runs) and the run is
+//!   within [`crate::runs::finish::MAX_SETTLED`] of it. A run not steady by where it is given
+//!   up (`t_max`, run on to 4 `t_max`) is unsettled: beside an unstable root, converging to
+//!   a stable one (with its class as `heading`), or with no root near.
+//! - `paper-fd`: the paper's forward-Euler finite differences ([`crate::stepping::mode_fd`])
+//!   to `t_max`, ended by the test alone (`steady: test`; every rate below the steady
+//!   tolerance), as the paper ended its runs; not diagnosed when it does not settle.
 //!
 //! The class is the paper's, from `v` and `s = |a2|` (mode 2 alone); the higher amplitudes
 //! `a_3..a_K, b_3..b_K` are in [`RunOutcome::higher_modes`]. Not here (refused by
-//! [`crate::contract::limits::check_run`]): adaptive steps, the paper's scheme, the landing
-//! and the other endings of 2-mode runs, and pinned runs. Time series:
-//! [`simulate_modes_recorded`].
+//! [`crate::contract::limits::check_run`]): adaptive steps, the landing and the other
+//! endings of 2-mode runs, and pinned runs. Time series: [`simulate_modes_recorded`].
 use crate::contract::ending::Ending;
 use crate::contract::outcome::{RunOutcome, RunStatus, SeriesRow, Unsettled};
 use crate::contract::settings::SolverSettings;
@@ -28,6 +31,7 @@ use crate::roots::mode_linearisation::{ModeLinearization, ModeVerdict};
 use crate::runs::finish::{MAX_SETTLED, TRIGGER_FACTOR};
 use crate::runs::mode_run::ModeStepper;
 use crate::runs::orientation::{angle_to, LEAN_FLOOR};
+use crate::stepping::{mode_fd::ModeFd, SchemeKind};
 use std::time::Instant;
 
 /// The state `(vx, vy, a_2..a_K, b_2..b_K)` of `ic`: its amplitudes of modes `3..K`
@@ -102,6 +106,43 @@ fn split(z: &[f64], x: f64, y: f64) -> (DropletState, Vec<f64>) {
     )
 }
 
+/// Where a run is: its state `(vx, vy, a_2..a_K, b_2..b_K)`, centre, time and steps taken.
+struct Snapshot<'a> {
+    z: &'a [f64],
+    x: f64,
+    y: f64,
+    t: f64,
+    steps: u64,
+}
+
+impl ModeStepper {
+    fn snapshot(&self) -> Snapshot<'_> {
+        Snapshot {
+            z: &self.z,
+            x: self.x,
+            y: self.y,
+            t: self.t,
+            steps: self.steps,
+        }
+    }
+}
+
+impl ModeFd {
+    fn snapshot(&self) -> Snapshot<'_> {
+        Snapshot {
+            z: &self.z,
+            x: self.x,
+            y: self.y,
+            t: self.t,
+            steps: self.steps,
+        }
+    }
+}
+
+/// Why a run did not settle: the reason, the class of the stable state it heads to, and
+/// the diagnosis in words.
+type Found = (Option<Unsettled>, Option<StateClass>, Option<String>);
+
 /// The time series of a `K`-mode run: `(t, x, y, vx, vy, a2, b2, v, s)` and the higher
 /// amplitudes `a_3..a_K, b_3..b_K` every `every` time units (the first step at or past each
 /// sample time; fixed steps), and the end.
@@ -113,17 +154,17 @@ struct ModeRecorder {
 }
 
 impl ModeRecorder {
-    fn sample(&mut self, run: &ModeStepper, force: bool) {
-        if !(force || run.t >= self.next - 1e-9 * self.every) {
+    fn sample(&mut self, at: &Snapshot, force: bool) {
+        if !(force || at.t >= self.next - 1e-9 * self.every) {
             return;
         }
-        if self.rows.last().is_some_and(|r| r.t == run.t) {
+        if self.rows.last().is_some_and(|r| r.t == at.t) {
             return;
         }
-        let (state, higher) = split(&run.z, run.x, run.y);
-        self.rows.push(SeriesRow::at(run.t, &state));
+        let (state, higher) = split(at.z, at.x, at.y);
+        self.rows.push(SeriesRow::at(at.t, &state));
         self.higher.push(higher);
-        while self.next <= run.t + 1e-9 * self.every {
+        while self.next <= at.t + 1e-9 * self.every {
             self.next += self.every;
         }
     }
@@ -151,8 +192,6 @@ pub fn simulate_modes_recorded(
     settings.validate()?;
     crate::contract::limits::check_run(params, settings)?;
     ic.check_modes(settings.modes)?;
-    let k = settings.modes;
-    let mut run = ModeStepper::new(params, settings.n, &initial_modes(ic, k), settings.dt)?;
     let mut rec = every
         .filter(|e| *e > 0.0 && e.is_finite())
         .map(|every| ModeRecorder {
@@ -161,17 +200,43 @@ pub fn simulate_modes_recorded(
             rows: Vec::new(),
             higher: Vec::new(),
         });
+    let z0 = initial_modes(ic, settings.modes);
+    let mut out = match settings.scheme {
+        SchemeKind::Spectral => newton_finished(params, &z0, settings, &mut rec)?,
+        SchemeKind::PaperFd => paper_fd(params, &z0, settings, &mut rec)?,
+    };
+    out.wall_s = started.elapsed().as_secs_f64();
+    if let Some(rec) = rec {
+        (out.series, out.higher_series) = (rec.rows, rec.higher);
+    }
+    Ok(out)
+}
+
+/// True when a run at `z` with largest rate `rate` has left the model (a non-finite value,
+/// or `s >= 1`).
+fn left_model(z: &[f64], rate: f64) -> bool {
+    let k = z.len() / 2;
+    !rate.is_finite() || z.iter().any(|x| !x.is_finite()) || z[2].hypot(z[k + 1]) >= 1.0
+}
+
+/// The spectral run at fixed steps, ended by the Newton finish.
+fn newton_finished(
+    params: &ModelParams,
+    z0: &[f64],
+    settings: &SolverSettings,
+    rec: &mut Option<ModeRecorder>,
+) -> Result<RunOutcome, SolverError> {
+    let mut run = ModeStepper::new(params, settings.n, z0, settings.dt)?;
     let give_up = settings.give_up_at();
     let trigger = TRIGGER_FACTOR * settings.steady_tol;
     let mut next_try = 0.0;
     let (mut status, mut ended_by, mut end_root) = (RunStatus::TMax, None, None);
     loop {
         if let Some(rec) = rec.as_mut() {
-            rec.sample(&run, false);
+            rec.sample(&run.snapshot(), false);
         }
         let rate = run.rate();
-        let s = run.z[2].hypot(run.z[k + 1]);
-        if !rate.is_finite() || run.z.iter().any(|x| !x.is_finite()) || s >= 1.0 {
+        if left_model(&run.z, rate) {
             status = RunStatus::Diverged;
             break;
         }
@@ -207,30 +272,74 @@ pub fn simulate_modes_recorded(
         }
         run.advance();
     }
-    let mut out = outcome(&mut run, status, ended_by, end_root, started);
-    if let Some(mut rec) = rec {
-        rec.sample(&run, true);
-        (out.series, out.higher_series) = (rec.rows, rec.higher);
+    if let Some(rec) = rec.as_mut() {
+        rec.sample(&run.snapshot(), true);
     }
-    Ok(out)
-}
-
-/// The outcome of a run that stopped with `status` (at the root `end_root` if it ended
-/// steady), its end diagnosed if it did not settle.
-fn outcome(
-    run: &mut ModeStepper,
-    status: RunStatus,
-    ended_by: Option<Ending>,
-    end_root: Option<Vec<f64>>,
-    started: Instant,
-) -> RunOutcome {
-    let (unsettled, heading, diagnosis) = match status {
+    let found = match status {
         RunStatus::Steady => (None, None, None),
         RunStatus::Diverged => (Some(Unsettled::Diverged), None, None),
-        _ => diagnose(run),
+        _ => diagnose(&mut run),
     };
-    let z = end_root.unwrap_or_else(|| run.z.clone());
-    let (state, higher_modes) = split(&z, run.x, run.y);
+    let at = run.snapshot();
+    Ok(outcome(
+        &Snapshot {
+            z: end_root.as_deref().unwrap_or(at.z),
+            ..at
+        },
+        status,
+        ended_by,
+        found,
+    ))
+}
+
+/// The paper's scheme at fixed steps `dt` to `t_max`, ended by the test alone: steady when
+/// every rate `|dz/dt|` is below `steady_tol` (as the spectral run's test). Its end is not
+/// a root of the spectral steady solver (the discretisations differ by `O(dx^2)`), so it is
+/// neither polished nor diagnosed, as a 2-mode run of the paper's scheme.
+fn paper_fd(
+    params: &ModelParams,
+    z0: &[f64],
+    settings: &SolverSettings,
+    rec: &mut Option<ModeRecorder>,
+) -> Result<RunOutcome, SolverError> {
+    let mut run = ModeFd::new(params, settings.n, z0)?;
+    let mut status = RunStatus::TMax;
+    loop {
+        if let Some(rec) = rec.as_mut() {
+            rec.sample(&run.snapshot(), false);
+        }
+        let rate = run.rate();
+        if left_model(&run.z, rate) {
+            status = RunStatus::Diverged;
+            break;
+        }
+        if rate < settings.steady_tol && run.t > 0.0 {
+            status = RunStatus::Steady;
+            break;
+        }
+        if run.t >= settings.t_max - 1e-9 * settings.dt {
+            break;
+        }
+        run.advance(settings.dt);
+    }
+    if let Some(rec) = rec.as_mut() {
+        rec.sample(&run.snapshot(), true);
+    }
+    let found = match status {
+        RunStatus::Steady => (None, None, None),
+        RunStatus::Diverged => (Some(Unsettled::Diverged), None, None),
+        _ => (Some(Unsettled::NotDiagnosed), None, None),
+    };
+    let ended_by = (status == RunStatus::Steady).then_some(Ending::Test);
+    Ok(outcome(&run.snapshot(), status, ended_by, found))
+}
+
+/// The outcome of a run that stopped at `at` with `status` (`at` is the root if it ended
+/// steady by the Newton finish), with what was found of it if it did not settle. Its wall
+/// time is the caller's to set.
+fn outcome(at: &Snapshot, status: RunStatus, ended_by: Option<Ending>, found: Found) -> RunOutcome {
+    let (unsettled, heading, diagnosis) = found;
+    let (state, higher_modes) = split(at.z, at.x, at.y);
     let (v, s) = (state.speed(), state.deformation());
     let steady = status == RunStatus::Steady;
     RunOutcome {
@@ -239,12 +348,12 @@ fn outcome(
         state,
         v,
         s,
-        t_end: run.t,
-        t_steady: steady.then_some(run.t),
-        steps: run.steps,
+        t_end: at.t,
+        t_steady: steady.then_some(at.t),
+        steps: at.steps,
         rejected: 0,
         max_step_error: None,
-        wall_s: started.elapsed().as_secs_f64(),
+        wall_s: 0.0,
         ended_by,
         diagnosis,
         t_leapt: 0.0,
@@ -257,7 +366,7 @@ fn outcome(
 }
 
 /// Why a run given up did not settle: what Newton from its final state finds.
-fn diagnose(run: &mut ModeStepper) -> (Option<Unsettled>, Option<StateClass>, Option<String>) {
+fn diagnose(run: &mut ModeStepper) -> Found {
     let z = run.z.clone();
     let k = z.len() / 2;
     match root_near(run, &z) {

@@ -4,12 +4,14 @@
 //! - `comoving_etd`: the default pseudo-spectral ETD2RK in the droplet's co-moving frame,
 //!   fixed or adaptive steps; `spectral_pass` its one spectral pass per stage; `etd` the
 //!   exponential time-differencing coefficients; `step_control` the PI step-size controller.
-//! - `paper_fd`: the paper's forward-Euler finite differences (the baseline).
+//! - `paper_fd`: the paper's forward-Euler finite differences (the baseline); `mode_fd` the
+//!   same scheme for the general model with shape modes `2..K`.
 //!
 //! May use: `numerics`, `model`. Used by: `contract` (the scheme setting), `runs`.
 pub mod comoving_etd;
 pub mod comoving_step;
 pub mod etd;
+pub mod mode_fd;
 pub mod paper_fd;
 pub mod spectral_pass;
 pub mod step_control;
