@@ -64,9 +64,10 @@ fn a_sweep_with_three_modes_runs_the_k_mode_model_and_tables_its_amplitudes() {
     assert_eq!(from_points, from_runs);
     assert_eq!(from_points.len(), 4);
     assert!(points.column("deformation_i").is_ok() && points.column("b3_i").is_ok());
-    // `droplet boundaries` onto the map draws the 3-mode model's curves (those of the states
-    // on the x axis and the disk's two deformation onsets; no MD on this window's middle
-    // line, so no fold curve, and its MC onset lies left of the window).
+    // `droplet boundaries` onto the map draws the 3-mode model's curves (the disk's onsets
+    // and the diagonal ID's onset of motion; the axis ID meets the disk below the window, at
+    // kappa2 = 0.1097 at N = 96; no MD on this window's middle line, so no fold curve, and its
+    // MC onset lies left of the window).
     let b = json(&run(&[
         "boundaries",
         "--out",
@@ -84,7 +85,7 @@ fn a_sweep_with_three_modes_runs_the_k_mode_model_and_tables_its_amplitudes() {
             "IC onset of motion",
             "IC onset of deformation (b2, diagonal)",
             "IC onset of deformation (a2, axis)",
-            "ID onset of motion (axis ID)"
+            "ID onset of motion (diagonal ID)"
         ],
         "{b}"
     );

@@ -270,6 +270,7 @@ fn boundaries_with_modes_draw_the_k_mode_curves_in_the_papers_plane() {
             "IC onset of motion",
             "IC onset of deformation (b2, diagonal)",
             "IC onset of deformation (a2, axis)",
+            "ID onset of motion (diagonal ID)",
             "ID onset of motion (axis ID)",
             "MD saddle-node (x axis)"
         ],

@@ -72,10 +72,13 @@ pub fn id_onset(
 }
 
 /// The ID onset line on `mirror` for `kappa2` from `lo` up to (not including) `hi`, where ID
-/// meets IC.
+/// meets IC; none when the window lies above `hi`.
 fn id_line(w: &Window, mirror: MirrorAxis, hi: f64) -> Result<Vec<(f64, f64)>, SolverError> {
     let mut solver = SteadySolver::new(w.base, w.n)?;
     let lo = w.kappa2.0;
+    if hi <= lo {
+        return Ok(Vec::new());
+    }
     let mut seed = 0.3;
     let mut pts = Vec::new();
     let m = w.id_samples.max(2);

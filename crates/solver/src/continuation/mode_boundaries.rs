@@ -20,8 +20,11 @@
 //!   down, continued from the last sample, on the stretch where that state is stable (the
 //!   rotation mode aside), as the 2-mode model's line ([`crate::continuation::boundaries`]).
 //!
-//! The diagonal states' lines (the diagonal ID's onset of motion) are the 2-mode model's
-//! only so far.
+//! - **ID onset of motion (diagonal ID)**: the same for the resting deformed state elongated
+//!   along a diagonal, drifting along the other: every x-axis computation in the frame turned
+//!   by 45 degrees ([`ModeSolver::set_axis`]); the box's square symmetry tells it from the
+//!   axis ID (for `K = 2`, as in the 2-mode model; from `K = 4` also through mode 4, which the
+//!   turn flips).
 use crate::continuation::fold_curve::{fold_options, fold_walk};
 use crate::continuation::mode_branch::{id_state, md_fold, rest_shape, ModeLine};
 use crate::error::SolverError;
@@ -57,11 +60,17 @@ fn det(a: Vec<Vec<f64>>) -> f64 {
 /// The ID onset of motion at each of `w.id_samples` values of `kappa2` from the window's
 /// bottom up to where ID meets the disk (the mode-2 onset `top`), from the first `kappa2`
 /// where ID is found (with mode 2 alone, then adding one mode at a time) to where Newton
-/// loses it.
-fn id_line(w: &ModeWindow, top: f64) -> Result<Vec<(f64, f64)>, SolverError> {
+/// loses it (none when the window lies above `top`), for the ID whose minor axis is the mirror line at angle `axis` to x (0: the
+/// axis ID; `pi / 4`: the diagonal ID, [`ModeSolver::set_axis`]).
+fn id_line(w: &ModeWindow, top: f64, axis: f64) -> Result<Vec<(f64, f64)>, SolverError> {
     let mut solver = ModeSolver::new(w.base, w.n)?;
+    solver.set_axis(axis);
     let k_max = w.k_max;
     let (lo, hi) = (w.kappa2.0, top.min(w.kappa2.1));
+    // The window lies above where this ID meets the disk.
+    if hi <= lo {
+        return Ok(Vec::new());
+    }
     let m = w.id_samples.max(2);
     let mut shape: Option<Vec<f64>> = None;
     let mut pts = Vec::new();
@@ -251,12 +260,20 @@ pub fn mode_boundaries(w: &ModeWindow) -> Result<Vec<Boundary>, SolverError> {
     let shape_onset = low.kappa2[0];
     let diagonal_onset = low.kappa2_b[0];
     type Curve = Result<Vec<(f64, f64)>, SolverError>;
-    let (id, fold, mc): (Curve, Curve, Curve) = std::thread::scope(|scope| {
-        let id = scope.spawn(|| id_line(w, shape_onset));
+    let diagonal = std::f64::consts::FRAC_PI_4;
+    let (id, id_diagonal, fold, mc): (Curve, Curve, Curve, Curve) = std::thread::scope(|scope| {
+        let id = scope.spawn(|| id_line(w, shape_onset, 0.0));
+        let id_diagonal = scope.spawn(|| id_line(w, diagonal_onset, diagonal));
         let mc = scope.spawn(|| mc_line(w, high.eta_t));
         let fold = fold_curve(w);
         let id = id.join().expect("the ID line's thread panicked");
-        (id, fold, mc.join().expect("the MC line's thread panicked"))
+        let id_diagonal = id_diagonal.join().expect("the ID line's thread panicked");
+        (
+            id,
+            id_diagonal,
+            fold,
+            mc.join().expect("the MC line's thread panicked"),
+        )
     });
     let mut out = vec![
         Boundary {
@@ -273,6 +290,10 @@ pub fn mode_boundaries(w: &ModeWindow) -> Result<Vec<Boundary>, SolverError> {
         Boundary {
             name: "IC onset of deformation (a2, axis)",
             points: vec![(low.eta_t.max(e0), shape_onset), (e1, shape_onset)],
+        },
+        Boundary {
+            name: "ID onset of motion (diagonal ID)",
+            points: id_diagonal?,
         },
         Boundary {
             name: "ID onset of motion (axis ID)",
@@ -298,6 +319,62 @@ mod tests {
     use crate::continuation::polyline::distance_to_polyline;
 
     #[test]
+    fn the_diagonal_ids_onset_is_where_its_full_eigenproblem_gains_a_growing_mode() {
+        // Modes 2..4 at N = 96, kappa2 = 0.105: the diagonal ID's onset of motion from the
+        // lambda = 0 Schur complement, against the 2K x 2K eigenproblem with the field of the
+        // diagonal ID (Newton on all 2K balances from the turned axis ID, so the frame turned
+        // back is not used) either side of it: one more growing mode below it.
+        let k = 0.105;
+        let w = ModeWindow {
+            base: ModelParams::at(0.08, k),
+            n: 96,
+            k_max: 4,
+            eta_t: (0.06, 0.1),
+            kappa2: (k, k + 1e-3),
+            id_samples: 2,
+        };
+        let diagonal = std::f64::consts::FRAC_PI_4;
+        let line = id_line(&w, 0.118, diagonal).unwrap();
+        let axis = id_line(&w, 0.118, 0.0).unwrap();
+        assert_eq!((line[0].1, axis[0].1), (k, k));
+        let onset = line[0].0;
+        let mut solver = ModeSolver::new(w.base, w.n).unwrap();
+        let shape = id_state(&mut solver, 4, -0.3).unwrap();
+        let unstable = |solver: &mut ModeSolver, eta: f64| {
+            solver.set_control(eta, k);
+            let z = crate::roots::mode_solver::turned(
+                &crate::roots::mode_solver::on_x_axis(0.0, &shape),
+                diagonal,
+            );
+            let opts = NewtonOptions {
+                tol: 1e-12,
+                max_iter: 30,
+                fd_step: 1e-7,
+                max_step: vec![0.05; z.len()],
+            };
+            let z = crate::numerics::newton::solve(|y| solver.residual(y), &z, &opts)
+                .unwrap()
+                .x;
+            assert!(
+                z[0].abs() < 1e-10 && z[2].abs() < 1e-10,
+                "on the diagonal: {z:?}"
+            );
+            ModeLinearization::at(solver, &z).verdict(solver).unstable
+        };
+        let (above, below) = (
+            unstable(&mut solver, onset + 2e-4),
+            unstable(&mut solver, onset - 2e-4),
+        );
+        assert_eq!(
+            below,
+            above + 1,
+            "onset {onset}: {above} above, {below} below"
+        );
+        // The box tells the two IDs apart.
+        assert!((onset - axis[0].0).abs() > 1e-6, "{onset} vs {}", axis[0].0);
+    }
+
+    #[test]
     fn with_two_modes_they_are_the_two_mode_boundaries() {
         let (e, k) = ((0.07, 0.1), (0.1, 0.17));
         let base = ModelParams::at(0.07, 0.1);
@@ -320,7 +397,7 @@ mod tests {
         })
         .unwrap();
         let scaled = |p: (f64, f64)| ((p.0 - e.0) / (e.1 - e.0), (p.1 - k.0) / (k.1 - k.0));
-        assert_eq!(mine.len(), 6, "{mine:?}");
+        assert_eq!(mine.len(), 7, "{mine:?}");
         for b in &mine {
             let other = two.iter().find(|c| c.name == b.name).expect(b.name);
 

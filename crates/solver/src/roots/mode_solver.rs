@@ -114,6 +114,8 @@ pub struct ModeSolver {
     /// The field's gradient on the droplet's rows.
     ux: Vec<f64>,
     uy: Vec<f64>,
+    /// The angle of the axis [`Self::residual_x`] works on (0: the x axis).
+    axis: f64,
 }
 
 impl ModeSolver {
@@ -133,6 +135,7 @@ impl ModeSolver {
             d: vec![Complex64::default(); grid.spectral_len()],
             ux: vec![0.0; n * n],
             uy: vec![0.0; n * n],
+            axis: 0.0,
             grid,
         })
     }
@@ -149,6 +152,14 @@ impl ModeSolver {
     pub fn set_control(&mut self, eta_t: f64, kappa2: f64) {
         self.params.eta_t = eta_t;
         self.params.kappa2 = kappa2;
+    }
+
+    /// Makes [`Self::residual_x`] work on the mirror line at angle `phi` to the x axis (the
+    /// diagonal: `pi / 4`): its unknowns and balances are those of the state turned back by
+    /// `phi`. Every x-axis computation on this solver (Newton, thresholds, folds) then holds
+    /// on that line; the box tells the lines apart.
+    pub fn set_axis(&mut self, phi: f64) {
+        self.axis = phi;
     }
 
     fn shape(&self) -> ShapeParams {
@@ -358,7 +369,18 @@ impl ModeSolver {
 
     /// The force balance along x for a droplet moving along x with `a_k = y[k - 1]`
     /// (`b_k = 0`): `(-eta_t v + Fx, G_k^(a) - kappa_k a_k for k = 2..=K)`, `K = y.len()`.
+    ///
+    /// With [`Self::set_axis`] `phi`: the same in the frame turned by `phi`, the state
+    /// [`turned`] by `phi` and its balances (which turn as the state does) turned back.
     pub fn residual_x(&mut self, y: &[f64]) -> Vec<f64> {
+        if self.axis != 0.0 {
+            let k_max = y.len();
+            let z = turned(&on_x_axis(y[0], &y[1..]), self.axis);
+            let r = turned(&self.residual(&z), -self.axis);
+            return std::iter::once(r[0])
+                .chain(r[2..k_max + 1].iter().copied())
+                .collect();
+        }
         let m = Modes {
             a: y[1..].to_vec(),
             b: vec![0.0; y.len() - 1],
@@ -414,6 +436,41 @@ mod tests {
         assert!((d[0] - d[1]).abs() < 1e-15 && d[2].abs() < 1e-15);
         assert!((d[3] + d[6]).abs() < 1e-15 && d[7].abs() < 1e-15, "{d:?}");
     }
+    #[test]
+    fn on_the_diagonal_axis_newton_finds_the_turned_state_of_all_2k_balances() {
+        // Fig. 1c with modes 2..3 at N = 96: Newton on the x-axis unknowns with the axis at
+        // 45 degrees, against Newton on all 2K balances from the x-axis state turned by 45
+        // degrees (independent: no frame turned back). They agree, the off-line balances
+        // vanish there, and the box makes the diagonal state differ from the axis one.
+        let p = ModelParams::at(0.085, 0.112);
+        let mut solver = ModeSolver::new(p, 96).unwrap();
+        let axis = crate::continuation::mode_branch::md_state(&mut solver, 3).unwrap();
+        let phi = std::f64::consts::FRAC_PI_4;
+        let guess: Vec<f64> = std::iter::once(axis.v).chain(axis.a.clone()).collect();
+        solver.set_axis(phi);
+        let diag = solver.newton_x(&guess, 1e-12).unwrap();
+        solver.set_axis(0.0);
+        let opts = NewtonOptions {
+            tol: 1e-12,
+            max_iter: 30,
+            fd_step: 1e-7,
+            max_step: vec![0.2; 6],
+        };
+        let full = newton::solve(
+            |y| solver.residual(y),
+            &turned(&on_x_axis(axis.v, &axis.a), phi),
+            &opts,
+        )
+        .unwrap()
+        .x;
+        let mine = turned(&on_x_axis(diag.v, &diag.a), phi);
+        for (a, b) in mine.iter().zip(&full) {
+            assert!((a - b).abs() < 1e-9, "{mine:?} vs {full:?}");
+        }
+        assert!(solver.residual(&mine).iter().all(|r| r.abs() < 1e-10));
+        assert!((diag.v - axis.v).abs() > 1e-7, "{diag:?} {axis:?}");
+    }
+
     use crate::roots::steady_solver::SteadySolver;
 
     #[test]
