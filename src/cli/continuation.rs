@@ -56,6 +56,16 @@ pub struct Args {
     /// and at most pi R N / (4 L).
     #[arg(long, default_value_t = 2)]
     pub(super) modes: usize,
+    /// With --modes K > 2: the friction law of the modes k >= 3, eta_k = eta2 (k/2)^P (default
+    /// 0: every mode eta2; -1: the dissipation of the mode's own flow); from -4 to 4. It moves
+    /// the eigenvalues of the verdicts, not the branch or its folds.
+    #[arg(
+        long,
+        value_name = "P",
+        default_value_t = 0.0,
+        allow_negative_numbers = true
+    )]
+    pub(super) eta_k_exponent: f64,
     /// Output directory.
     #[arg(long, default_value = "out/continuation")]
     pub(super) out: PathBuf,
@@ -69,6 +79,7 @@ pub struct Args {
 
 pub fn run(a: Args) -> Result<(), CliError> {
     check_common(&a)?;
+    droplet_solver::model::mode_friction::check_exponent(a.eta_k_exponent, a.modes)?;
     if a.modes != 2 {
         return super::mode_continuation::run(&a);
     }

@@ -38,6 +38,7 @@ fn study_of(a: &Args) -> Result<ModeContinuationStudy, CliError> {
             parameter,
             from: a.line.span.from,
             to: a.line.span.to,
+            eta_k_exponent: a.eta_k_exponent,
         },
         max_points: a.max_points,
         opts: ArclengthOptions {

@@ -132,6 +132,16 @@ pub struct Args {
     /// adaptive steps or landing.
     #[arg(long, default_value_t = 2)]
     pub(super) modes: usize,
+    /// With --modes K > 2: the friction law of the modes k >= 3, eta_k = eta2 (k/2)^P
+    /// (default 0: every mode eta2; -1: the dissipation of the mode's own flow, eta_k = (2/k)
+    /// eta2); from -4 to 4. It changes how fast the shape relaxes, not where it settles.
+    #[arg(
+        long,
+        value_name = "P",
+        default_value_t = 0.0,
+        allow_negative_numbers = true
+    )]
+    pub(super) eta_k_exponent: f64,
     /// Print one JSON object instead of text.
     #[arg(long)]
     pub(super) json: bool,
@@ -285,6 +295,8 @@ fn model_of(a: &Args) -> Result<(ModelParams, SolverSettings), CliError> {
         landing: !a.no_landing,
         orientation_flow: !a.no_orientation_flow,
         run_on: !a.no_run_on,
+        modes: a.modes,
+        eta_k_exponent: a.eta_k_exponent,
         ..base
     };
     let params = ModelParams {

@@ -53,6 +53,16 @@ pub struct Args {
     /// pi R N / (4 L).
     #[arg(long, default_value_t = 2)]
     modes: usize,
+    /// With --modes K > 2: the friction law of the modes k >= 3, eta_k = eta2 (k/2)^P (default
+    /// 0: every mode eta2; -1: the dissipation of the mode's own flow); from -4 to 4. It moves
+    /// the eigenvalues, not the state.
+    #[arg(
+        long,
+        value_name = "P",
+        default_value_t = 0.0,
+        allow_negative_numbers = true
+    )]
+    eta_k_exponent: f64,
     /// Other model parameters: NAME=VALUE[,NAME=VALUE...] of eta2, radius, sigma, box_len
     /// (default: eta2 0.1, R 1, sigma 0.03, box_len 7), e.g. radius=1.02,sigma=0.025.
     #[arg(long, value_name = "NAME=VALUE,...")]
@@ -124,6 +134,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
     }
     params.validate()?;
     super::check_grid(a.n)?;
+    droplet_solver::model::mode_friction::check_exponent(a.eta_k_exponent, a.modes)?;
     if a.modes != 2 {
         return with_modes(&a, axis, seed, params);
     }
@@ -208,6 +219,7 @@ fn with_modes(
     check_with_modes(a, seed, &params)?;
     let k = a.modes;
     let mut solver = ModeSolver::new(params, a.n)?;
+    solver.set_eta_k_exponent(a.eta_k_exponent);
     let lost = |what: &str| CliError {
         message: format!("Newton lost the {what} state with {k} modes at this point"),
         code: 1,

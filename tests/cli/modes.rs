@@ -157,6 +157,27 @@ fn bad_modes_in_a_spec_exit_2_naming_params_modes() {
         assert_eq!(o.status.code(), Some(2), "{name}: {err}");
         assert!(err.contains("params.modes"), "{name}: {err}");
     }
+    // The friction law: within -4..4, and only with modes > 2.
+    for (name, text) in [
+        (
+            "law-5",
+            spec("3").replace("{modes: 3}", "{modes: 3, eta_k_exponent: 5}"),
+        ),
+        (
+            "law-k2",
+            spec("2").replace("{modes: 2}", "{modes: 2, eta_k_exponent: -1}"),
+        ),
+        (
+            "law-text",
+            spec("3").replace("{modes: 3}", "{modes: 3, eta_k_exponent: fast}"),
+        ),
+    ] {
+        let file = write_spec(dir.path(), &format!("bad-{name}.yaml"), &text);
+        let o = sweep(&file, &dir.path().join(name), &[]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{name}: {err}");
+        assert!(err.contains("params.eta_k_exponent"), "{name}: {err}");
+    }
 }
 
 #[test]

@@ -167,6 +167,40 @@ fn stability_with_modes_gives_the_k_mode_state_and_its_verdict() {
     assert!(a[1].as_f64().unwrap().abs() > 1e-2, "{s}");
     assert_eq!(s["stable"], true, "{s}");
     assert!(s["rotation"].is_f64(), "{s}");
+    // With the friction law eta_k = (2/k) eta2: the same state, other eigenvalues (eta_k
+    // enters only how fast the shape moves); with two modes the law is refused.
+    let law = stability(&[
+        "--eta-t",
+        "0.085",
+        "--kappa2",
+        "0.112",
+        "--state",
+        "md",
+        "--modes",
+        "3",
+        "--n",
+        "96",
+        "--eta-k-exponent",
+        "-1",
+    ]);
+    assert_eq!(law["v"], s["v"], "{law}");
+    assert_ne!(law["eigenvalues"], s["eigenvalues"], "{law}");
+    let o = run(&[
+        "stability",
+        "--eta-t",
+        "0.085",
+        "--kappa2",
+        "0.112",
+        "--state",
+        "md",
+        "--n",
+        "96",
+        "--eta-k-exponent",
+        "-1",
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("eta_k_exponent"), "{err}");
     // The resting disk: round but for the box's square symmetry (a4 small), with each
     // mode's onset.
     let ic = stability(&[

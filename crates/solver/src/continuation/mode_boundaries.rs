@@ -84,7 +84,14 @@ fn id_line(w: &ModeWindow, top: f64, axis: f64) -> Result<Vec<(f64, f64)>, Solve
             Some(s) => rest_shape(&mut solver, s),
             // ID elongated along y (a2 < 0): it starts to move along x, its minor axis, which
             // the x-axis states describe (the one elongated along x is its quarter turn).
-            None => id_state(&mut solver, k_max, -0.3),
+            // Found on the x axis and then turned, so that both lines follow one family of
+            // states (from 0 a mode may also converge to another one, as with K = 6).
+            None => {
+                solver.set_axis(0.0);
+                let axis_id = id_state(&mut solver, k_max, -0.3);
+                solver.set_axis(axis);
+                axis_id.and_then(|s| rest_shape(&mut solver, &s))
+            }
         };
         match next {
             Some(s) => shape = Some(s),
@@ -114,6 +121,7 @@ fn fold_curve(w: &ModeWindow) -> Result<Vec<(f64, f64)>, SolverError> {
         parameter: ModelParam::EtaT,
         from: w.eta_t.0,
         to: w.eta_t.1,
+        eta_k_exponent: 0.0,
     };
     let fold = match md_fold(&line) {
         Ok(Some(fold)) => fold,

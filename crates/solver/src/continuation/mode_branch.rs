@@ -23,6 +23,9 @@ pub struct ModeLine {
     pub parameter: ModelParam,
     pub from: f64,
     pub to: f64,
+    /// The friction law of the modes `k >= 3` ([`crate::model::mode_friction`]; 0: `eta_k =
+    /// eta2`): it moves no state or fold, only the eigenvalues of the verdicts.
+    pub eta_k_exponent: f64,
 }
 
 /// The fold of a `K`-mode MD branch.
@@ -234,6 +237,7 @@ mod tests {
             parameter: ModelParam::EtaT,
             from: 0.07,
             to: 0.1,
+            eta_k_exponent: 0.0,
         };
         let fold = md_fold(&line).unwrap().expect("a fold");
         let branch = follow(

@@ -112,6 +112,7 @@ pub fn follow_md(
     opts: &ArclengthOptions,
 ) -> Result<ModeBranch, SolverError> {
     let mut solver = ModeSolver::new(line.base, line.n)?;
+    solver.set_eta_k_exponent(line.eta_k_exponent);
     let st = md_state(&mut solver, line.k_max)?;
     let span = line.to - line.from;
     let (base, parameter) = (line.base, line.parameter);
@@ -181,6 +182,7 @@ mod tests {
             parameter: ModelParam::EtaT,
             from: 0.077,
             to: 0.1,
+            eta_k_exponent: 0.0,
         }
     }
 

@@ -2,7 +2,8 @@
 //! `(r_c, v, a2, b2)`, the initial conditions, the grid of the co-moving frame, the smoothed
 //! indicator and its transforms, the driving forces (eqs. 35-37), the equations of motion
 //! (eqs. 36-39 with the inertia `m`) and the classes IC / ID / MD / MC of a steady state; the
-//! general shape with modes `k = 2..K` and its fields `w_k` (`modes`).
+//! general shape with modes `k = 2..K` and its fields `w_k` (`modes`), and their friction
+//! `eta_k` (`mode_friction`).
 //!
 //! May use: `numerics`. Used by every folder above it.
 pub mod classify;
@@ -10,6 +11,7 @@ pub mod dynamics;
 pub mod forces;
 pub mod grid;
 pub mod initial;
+pub mod mode_friction;
 pub mod modes;
 pub mod param;
 pub mod params;

@@ -3,7 +3,7 @@
 //! `z = (vx, vy, a_2..a_K, b_2..b_K)` (`2K` unknowns). In the co-moving frame
 //!
 //! `du_t = D du + B dz`,  `M dz_t = E dz + C du`,  `M = diag(m, m, eta_k.., eta_k..)`
-//! (`eta_k = eta2` for every mode),
+//! (`eta_k` of [`ModeSolver::eta`]: `eta2` for every mode unless a friction law is set),
 //!
 //! with `D = -(1 + k^2) + i k.v`, `B`'s columns `i k_x u0`, `i k_y u0` and the shape
 //! derivatives of the source `Theta / A`, `C du` the forces of a field at the frozen shape and
@@ -91,7 +91,7 @@ impl ModeLinearization {
             e[j][j] -= (k * k) as f64 / 4.0 * p.kappa2;
         }
         let mut m = vec![p.mass, p.mass];
-        m.extend(std::iter::repeat_n(p.eta2, dim - 2));
+        m.extend((2..=k_max).chain(2..=k_max).map(|k| solver.eta(k)));
         Self {
             z0: z0.to_vec(),
             d,

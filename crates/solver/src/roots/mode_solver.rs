@@ -116,6 +116,8 @@ pub struct ModeSolver {
     uy: Vec<f64>,
     /// The angle of the axis [`Self::residual_x`] works on (0: the x axis).
     axis: f64,
+    /// The friction law's exponent ([`crate::model::mode_friction`]).
+    eta_k_exponent: f64,
 }
 
 impl ModeSolver {
@@ -136,6 +138,7 @@ impl ModeSolver {
             ux: vec![0.0; n * n],
             uy: vec![0.0; n * n],
             axis: 0.0,
+            eta_k_exponent: 0.0,
             grid,
         })
     }
@@ -360,6 +363,17 @@ impl ModeSolver {
             }
         }
         sum
+    }
+
+    /// Sets the friction law of the modes `k >= 3` ([`crate::model::mode_friction`]): the
+    /// time stepping and the eigenvalues use [`Self::eta`]; no steady state depends on it.
+    pub fn set_eta_k_exponent(&mut self, exponent: f64) {
+        self.eta_k_exponent = exponent;
+    }
+
+    /// The friction `eta_k` of mode `k` (`eta2` for every mode by default).
+    pub fn eta(&self, k: usize) -> f64 {
+        crate::model::mode_friction::eta_k(self.params.eta2, k, self.eta_k_exponent)
     }
 
     /// `kappa_k = (k^2 / 4) kappa2`.

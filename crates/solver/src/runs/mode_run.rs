@@ -44,7 +44,7 @@ pub struct ModeRun {
 }
 
 /// Per unknown `(vx, vy, a_2..a_K, b_2..b_K)`: the linear decay rate (`eta_t / m`,
-/// `kappa_k / eta2`), the inertia (`m`, `eta2`), and the exponential-Euler weights of a step
+/// `kappa_k / eta_k`), the inertia (`m`, `eta_k`), and the exponential-Euler weights of a step
 /// `h`: `e^(-r h)` on the value and `(1 - e^(-r h)) / (r m)` on the frozen force.
 type LinearParts = (Vec<f64>, Vec<f64>, Vec<(f64, f64)>);
 
@@ -54,8 +54,8 @@ fn linear_parts(solver: &ModeSolver, k_max: usize, h: f64) -> LinearParts {
     let mut inertia = vec![p.mass; 2];
     // a_2..a_K, then b_2..b_K.
     for k in (2..=k_max).chain(2..=k_max) {
-        rate_of.push(solver.kappa(k) / p.eta2);
-        inertia.push(p.eta2);
+        rate_of.push(solver.kappa(k) / solver.eta(k));
+        inertia.push(solver.eta(k));
     }
     let decay = rate_of
         .iter()
@@ -130,6 +130,14 @@ impl ModeStepper {
             x: 0.0,
             y: 0.0,
         })
+    }
+
+    /// Sets the friction law of the modes `k >= 3` ([`crate::model::mode_friction`]; the
+    /// default is `eta_k = eta2`).
+    pub fn set_eta_k_exponent(&mut self, exponent: f64) {
+        self.solver.set_eta_k_exponent(exponent);
+        (self.rate_of, self.inertia, self.decay) =
+            linear_parts(&self.solver, self.z.len() / 2, self.h);
     }
 
     /// The forces at the present state, kept for [`Self::advance`], and the largest rate

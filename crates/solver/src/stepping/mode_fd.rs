@@ -6,12 +6,14 @@
 //! Per step of `h`, with everything at the step's start:
 //! `u <- u + h (Lap u - u + Theta / A)`, `r_c <- r_c + h v`,
 //! `v <- v + (h / m) (-eta_t v + F)`, `a_k <- a_k + (h / eta2) (G_k^(a) - kappa_k a_k)` and the
-//! same for `b_k` (`kappa_k = (k^2 / 4) kappa2`, `eta_k = eta2`), with the forces
+//! same for `b_k` (`kappa_k = (k^2 / 4) kappa2`, `eta_k = eta2` unless a friction law is
+//! set, [`ModeFd::set_eta_k_exponent`]), with the forces
 //! `F = -Int grad u Theta dA` (eq. 35) and `G_k = -Int w_k . grad u Theta dA` (the smoothed
 //! eqs. dakdt_dl, dbkdt_dl; `w_k` of [`crate::model::modes::w_fields`]). With `K = 2` this is
 //! [`crate::stepping::paper_fd::PaperFd`] (tested to round-off).
 use crate::error::SolverError;
 use crate::model::grid::Grid;
+use crate::model::mode_friction::eta_k;
 use crate::model::modes::{w_fields, Modes};
 use crate::model::params::ModelParams;
 use crate::model::shape::ShapeParams;
@@ -88,6 +90,15 @@ impl ModeFd {
             balance: vec![0.0; z0.len()],
             area: 0.0,
         })
+    }
+
+    /// Sets the friction law of the modes `k >= 3` ([`crate::model::mode_friction`]; the
+    /// default is `eta_k = eta2`).
+    pub fn set_eta_k_exponent(&mut self, exponent: f64) {
+        let k_max = self.z.len() / 2;
+        for (i, k) in (2..=k_max).chain(2..=k_max).enumerate() {
+            self.inertia[2 + i] = eta_k(self.params.eta2, k, exponent);
+        }
     }
 
     /// Replaces the field by `values` (lab grid, `values[iy * n + ix]` at

@@ -290,13 +290,25 @@ pub fn audit(dir: &Path) -> Result<Audit, SweepError> {
         )));
     }
     let modes = runs.values().flatten().map(|r| r.modes).max().unwrap_or(2);
-    if let Some(r) = runs.values().flatten().find(|r| r.modes != modes) {
+    let law = runs
+        .values()
+        .flatten()
+        .next()
+        .map_or(0.0, |r| r.eta_k_exponent);
+    if let Some(r) = runs
+        .values()
+        .flatten()
+        .find(|r| r.modes != modes || r.eta_k_exponent != law)
+    {
         return Err(SweepError::Invalid(format!(
-            "{}: runs with {} and {modes} shape modes in one map; audit checks one model",
+            "{}: runs with {} and {modes} shape modes (friction exponents {} and {law}) in one \
+             map; audit checks one model",
             dir.display(),
-            r.modes
+            r.modes,
+            r.eta_k_exponent
         )));
     }
+    let modes = (modes, law);
     let groups: Vec<(&String, Vec<&Row>)> = runs
         .iter()
         .map(|(p, rows)| (&labelled[p], rows.iter().collect()))

@@ -57,19 +57,19 @@ pub trait PointModel: Send {
     fn root_near(&mut self, state: &[f64]) -> Option<Root>;
 }
 
-/// The model of a map with `modes` shape modes at `params` on an `n` grid.
+/// The model of a map with `modes` shape modes (their friction law's exponent
+/// `eta_k_exponent`, which moves the eigenvalues) at `params` on an `n` grid.
 pub fn for_map(
-    modes: usize,
+    (modes, eta_k_exponent): (usize, f64),
     params: ModelParams,
     n: usize,
 ) -> Result<Box<dyn PointModel>, SweepError> {
     Ok(if modes == 2 {
         Box::new(TwoModes(SteadySolver::new(params, n)?))
     } else {
-        Box::new(KModes {
-            solver: ModeSolver::new(params, n)?,
-            modes,
-        })
+        let mut solver = ModeSolver::new(params, n)?;
+        solver.set_eta_k_exponent(eta_k_exponent);
+        Box::new(KModes { solver, modes })
     })
 }
 

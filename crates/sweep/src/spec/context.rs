@@ -206,7 +206,7 @@ pub fn second_key_line(text: &str, start: usize, key: &str) -> Option<usize> {
 fn key_of(name: &str) -> [&str; 2] {
     match Param::parse(name) {
         Some(p) if p.is_model() => ["params", name],
-        _ if name == "modes" => ["params", name],
+        _ if name == "modes" || name == "eta_k_exponent" => ["params", name],
         _ => ["solver", name],
     }
 }

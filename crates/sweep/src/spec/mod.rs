@@ -217,11 +217,12 @@ pub fn parse(text: &str, file: &str, stem: &str) -> Result<SweepSpec, SpecError>
 
     let grid = grid::parse(&ctx, top)?;
     grid::check_not_fixed(&ctx, top, &grid)?;
-    let (params, modes) = params::parse(&ctx, top)?;
+    let (params, shape) = params::parse(&ctx, top)?;
     let initial_conditions = initial::parse(&ctx, top)?;
-    initial::check_modes(&ctx, &initial_conditions, modes)?;
+    initial::check_modes(&ctx, &initial_conditions, shape.modes)?;
     let solver = SolverSettings {
-        modes,
+        modes: shape.modes,
+        eta_k_exponent: shape.eta_k_exponent,
         ..solver::parse(&ctx, top, model)?
     };
     grid::check_points(&ctx, &grid, &params, &solver)?;

@@ -1,6 +1,7 @@
 //! The `params` section: the fixed model parameters (paper defaults where absent; `eta_t`
 //! and `kappa2` default to the Fig. 1(c) point 0.085, 0.112 when no axis sweeps them), and
-//! `modes: K`, the shape modes `2..K` of the paper's general model (default 2, the paper's).
+//! `modes: K`, the shape modes `2..K` of the paper's general model (default 2, the paper's),
+//! with `eta_k_exponent: p`, their friction law `eta_k = eta2 (k/2)^p` (default 0).
 //! Only the types are read here; the ranges are checked by `ModelParams::validate` and
 //! `limits::check_run` (the solver's one source of truth) at the grid's points,
 //! [`super::grid::check_points`].
@@ -9,26 +10,44 @@ use crate::error::SpecError;
 use droplet_solver::model::params::ModelParams;
 use serde_yaml::Mapping;
 
-/// The `params` section: the model parameters and the number of shape modes `K`.
-pub(super) fn parse(ctx: &Ctx, top: &Mapping) -> Result<(ModelParams, usize), SpecError> {
+/// The shape modes of the `params` section: `K` and the friction law's exponent.
+pub(super) struct ShapeModes {
+    pub modes: usize,
+    pub eta_k_exponent: f64,
+}
+
+/// The `params` section: the model parameters and the shape modes.
+pub(super) fn parse(ctx: &Ctx, top: &Mapping) -> Result<(ModelParams, ShapeModes), SpecError> {
     let mut params = ModelParams::default();
+    let mut shape = ShapeModes {
+        modes: 2,
+        eta_k_exponent: 0.0,
+    };
     let Some(v) = top.get("params") else {
-        return Ok((params, 2));
+        return Ok((params, shape));
     };
     let keys = [
         "eta_t", "kappa2", "eta2", "radius", "sigma", "box_len", "mass",
     ];
-    let all = [&keys[..], &["modes"]].concat();
+    let all = [&keys[..], &["modes", "eta_k_exponent"]].concat();
     let m = ctx.mapping(v, &["params"], &all)?;
-    let modes = match m.get("modes") {
-        None => 2,
-        Some(x) => ctx.number(
+    if let Some(x) = m.get("modes") {
+        shape.modes = ctx.number(
             x,
             &["params", "modes"],
             |k| k.fract() == 0.0 && (0.0..=1e6).contains(&k),
             "an integer K from 2 to 16: shape modes 2..K (2: the paper's)",
-        )? as usize,
-    };
+        )? as usize;
+    }
+    if let Some(x) = m.get("eta_k_exponent") {
+        // The range is the solver's to check (SolverSettings::validate).
+        shape.eta_k_exponent = ctx.number(
+            x,
+            &["params", "eta_k_exponent"],
+            f64::is_finite,
+            "a number p: eta_k = eta2 (k/2)^p for the shape modes k >= 3 (0: the default)",
+        )?;
+    }
     ctx.numbers(m, "params", &keys, |key, val| match key {
         "eta_t" => params.eta_t = val,
         "kappa2" => params.kappa2 = val,
@@ -38,5 +57,5 @@ pub(super) fn parse(ctx: &Ctx, top: &Mapping) -> Result<(ModelParams, usize), Sp
         "box_len" => params.box_len = val,
         _ => params.mass = val,
     })?;
-    Ok((params, modes))
+    Ok((params, shape))
 }

@@ -80,6 +80,7 @@ fn row(
         parameter: ModelParam::EtaT,
         from,
         to,
+        eta_k_exponent: 0.0,
     })?;
     let fold_seconds = started.elapsed().as_secs_f64();
     let started = Instant::now();

@@ -1,5 +1,5 @@
 //! The columns a sweep of the `K`-mode model (spec `params.modes` > 2) adds to its tables.
-//! `runs.parquet`: `modes`, the higher amplitudes at each run's end `a3 .. aK`, `b3 .. bK`
+//! `runs.parquet`: `modes`, `eta_k_exponent` (the friction law of modes `k >= 3`), the higher amplitudes at each run's end `a3 .. aK`, `b3 .. bK`
 //! (null beyond a run's own `K`) and the total deformation `sqrt(sum_k a_k^2 + b_k^2)`.
 //! `points.parquet`: `modes`, and for each initial condition the state its run settled on,
 //! `deformation_<ic>`, `a3_<ic> .. aK_<ic>`, `b3_<ic> .. bK_<ic>` (null for a run not settled).
@@ -46,6 +46,13 @@ pub fn mode_columns(records: &[&RunRecord]) -> Vec<Column> {
             .map(|r| r.settings.modes as u32)
             .collect::<Vec<u32>>(),
     )];
+    cols.push(Column::new(
+        "eta_k_exponent".into(),
+        records
+            .iter()
+            .map(|r| r.settings.eta_k_exponent)
+            .collect::<Vec<f64>>(),
+    ));
     cols.extend(amplitude_columns(&shapes, k_top, ""));
     let total: Vec<f64> = shapes.iter().flatten().map(EndShape::deformation).collect();
     cols.push(Column::new("deformation".into(), total));

@@ -30,6 +30,8 @@ pub struct RunRow {
     /// Its shape modes `K` (2 in a table without a `modes` column), and the whole state at
     /// the end, `(vx, vy, a2..aK, b2..bK)` (the K-mode model's unknowns; `z` when `K = 2`).
     pub modes: usize,
+    /// The friction law's exponent of modes `k >= 3` (0 in a table without the column).
+    pub eta_k_exponent: f64,
     pub state: Vec<f64>,
     pub v: f64,
     pub s: f64,
@@ -166,6 +168,10 @@ pub fn runs(path: &Path) -> Result<Vec<RunRow>, SweepError> {
         optional_strings(&df, "heading")?,
     );
     let modes = u32s_or(&df, "modes", 2)?;
+    let eta_k_exponent = match df.column("eta_k_exponent") {
+        Ok(_) => floats(&df, "eta_k_exponent")?,
+        Err(_) => vec![0.0; df.height()],
+    };
     let k_top = modes.iter().copied().max().unwrap_or(2) as usize;
     let a_k = (3..=k_top)
         .map(|k| floats(&df, &format!("a{k}")))
@@ -201,6 +207,7 @@ pub fn runs(path: &Path) -> Result<Vec<RunRow>, SweepError> {
             class: StateClass::parse(&t("class", i)),
             z: [f("vx", i), f("vy", i), f("a2", i), f("b2", i)],
             modes: modes[i] as usize,
+            eta_k_exponent: eta_k_exponent[i],
             state: state(i),
             v: f("v", i),
             s: f("s", i),
