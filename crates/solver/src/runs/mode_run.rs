@@ -100,13 +100,7 @@ impl ModeStepper {
     /// The `K`-mode model (`K = z0.len() / 2`) at `z0` with the field 0, steps of `h`.
     pub fn new(params: &ModelParams, n: usize, z0: &[f64], h: f64) -> Result<Self, SolverError> {
         let k_max = z0.len() / 2;
-        crate::contract::limits::check_modes(params, n, k_max)?;
-        crate::error::require(
-            params.mass > 0.0,
-            "mass",
-            params.mass,
-            "a finite number > 0 (the K-mode run integrates the velocity)",
-        )?;
+        crate::contract::limits::check_mode_stepper(params, n, k_max)?;
         let solver = ModeSolver::new(*params, n)?;
         let (rate_of, inertia, decay) = linear_parts(&solver, k_max, h);
         let grid = solver.grid();

@@ -54,13 +54,7 @@ impl ModeFd {
     pub fn new(params: &ModelParams, n: usize, z0: &[f64]) -> Result<Self, SolverError> {
         params.validate()?;
         let k_max = z0.len() / 2;
-        crate::contract::limits::check_modes(params, n, k_max)?;
-        crate::error::require(
-            params.mass > 0.0,
-            "mass",
-            params.mass,
-            "a finite number > 0 (the K-mode run integrates the velocity)",
-        )?;
+        crate::contract::limits::check_mode_stepper(params, n, k_max)?;
         let grid = Grid::new(n, params.box_len)?;
         let mut inertia = vec![params.mass; 2];
         let mut stiffness = vec![params.eta_t; 2];
@@ -183,24 +177,14 @@ impl ModeFd {
 
     /// One forward-Euler step of `h` from the state of the last [`Self::rate`].
     pub fn advance(&mut self, h: f64) {
-        let n = self.n;
-        let inv_dx2 = 1.0 / (self.dx * self.dx);
-        let inv_a = 1.0 / self.area;
-        for iy in 0..n {
-            let up = ((iy + n - 1) % n) * n;
-            let dn = ((iy + 1) % n) * n;
-            let row = iy * n;
-            for ix in 0..n {
-                let l = if ix == 0 { n - 1 } else { ix - 1 };
-                let r = if ix == n - 1 { 0 } else { ix + 1 };
-                let c = self.u[row + ix];
-                let lap = (self.u[row + l] + self.u[row + r] + self.u[up + ix] + self.u[dn + ix]
-                    - 4.0 * c)
-                    * inv_dx2;
-                self.u_next[row + ix] = c + h * (lap - c + self.theta[row + ix] * inv_a);
-            }
-        }
-        std::mem::swap(&mut self.u, &mut self.u_next);
+        crate::stepping::paper_fd::euler_field_step(
+            &mut self.u,
+            &mut self.u_next,
+            &self.theta,
+            (self.n, self.dx),
+            h,
+            self.area,
+        );
         self.x += h * self.z[0];
         self.y += h * self.z[1];
         for ((z, b), m) in self.z.iter_mut().zip(&self.balance).zip(&self.inertia) {

@@ -132,28 +132,46 @@ impl Scheme for PaperFd {
     }
 }
 
+/// One forward-Euler step of `h` of the field on the periodic `n x n` lab grid of spacing
+/// `dx`: `u <- u + h (Lap u - u + Theta / A)`, the 5-point Laplacian, into `u` (`u_next` is
+/// scratch).
+pub(crate) fn euler_field_step(
+    u: &mut Vec<f64>,
+    u_next: &mut Vec<f64>,
+    theta: &[f64],
+    (n, dx): (usize, f64),
+    h: f64,
+    area: f64,
+) {
+    let inv_dx2 = 1.0 / (dx * dx);
+    let inv_a = 1.0 / area;
+    for iy in 0..n {
+        let up = ((iy + n - 1) % n) * n;
+        let dn = ((iy + 1) % n) * n;
+        let row = iy * n;
+        for ix in 0..n {
+            let l = if ix == 0 { n - 1 } else { ix - 1 };
+            let r = if ix == n - 1 { 0 } else { ix + 1 };
+            let c = u[row + ix];
+            let lap = (u[row + l] + u[row + r] + u[up + ix] + u[dn + ix] - 4.0 * c) * inv_dx2;
+            u_next[row + ix] = c + h * (lap - c + theta[row + ix] * inv_a);
+        }
+    }
+    std::mem::swap(u, u_next);
+}
+
 impl PaperFd {
     /// One forward-Euler step of the field and the droplet (paper Sect. 3).
     fn euler_step(&mut self, h: f64) {
         let [area, fx, fy, ga, gb] = self.fill_and_forces();
-        let n = self.n;
-        let inv_dx2 = 1.0 / (self.dx * self.dx);
-        let inv_a = 1.0 / area;
-        for iy in 0..n {
-            let up = ((iy + n - 1) % n) * n;
-            let dn = ((iy + 1) % n) * n;
-            let row = iy * n;
-            for ix in 0..n {
-                let l = if ix == 0 { n - 1 } else { ix - 1 };
-                let r = if ix == n - 1 { 0 } else { ix + 1 };
-                let c = self.u[row + ix];
-                let lap = (self.u[row + l] + self.u[row + r] + self.u[up + ix] + self.u[dn + ix]
-                    - 4.0 * c)
-                    * inv_dx2;
-                self.u_next[row + ix] = c + h * (lap - c + self.theta[row + ix] * inv_a);
-            }
-        }
-        std::mem::swap(&mut self.u, &mut self.u_next);
+        euler_field_step(
+            &mut self.u,
+            &mut self.u_next,
+            &self.theta,
+            (self.n, self.dx),
+            h,
+            area,
+        );
         let p = self.params;
         let st = &mut self.state;
         let f = Forces {
