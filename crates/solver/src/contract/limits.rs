@@ -129,7 +129,7 @@ pub const MAX_MODES: usize = 16;
 /// Least grid cells along half a wavelength of the highest mode on the boundary, `pi R / K`.
 pub const MIN_MODE_CELLS: f64 = 4.0;
 
-/// Checks what a `K`-mode time stepper needs (`K = k_max`): the modes the grid resolves
+/// Checks what the `K`-mode spectral stepper needs (`K = k_max`): the modes the grid resolves
 /// ([`check_modes`]) and inertia (the stepper integrates the velocity).
 pub fn check_mode_stepper(params: &ModelParams, n: usize, k_max: usize) -> Result<(), SolverError> {
     check_modes(params, n, k_max)?;

@@ -54,7 +54,14 @@ impl ModeFd {
     pub fn new(params: &ModelParams, n: usize, z0: &[f64]) -> Result<Self, SolverError> {
         params.validate()?;
         let k_max = z0.len() / 2;
-        crate::contract::limits::check_mode_stepper(params, n, k_max)?;
+        // The modes the grid resolves are the caller's to check
+        // (`contract::limits::check_run`); the velocity is integrated, so it needs inertia.
+        crate::error::require(
+            params.mass > 0.0,
+            "mass",
+            params.mass,
+            "a finite number > 0 (the K-mode run integrates the velocity)",
+        )?;
         let grid = Grid::new(n, params.box_len)?;
         let mut inertia = vec![params.mass; 2];
         let mut stiffness = vec![params.eta_t; 2];
