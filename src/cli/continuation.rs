@@ -71,7 +71,7 @@ pub struct Args {
     pub(super) out: PathBuf,
     /// Print one JSON object (keys: line, n, seconds, branches [{branch, mirror, points,
     /// stable_points, ends}], events [{kind, what, branch, parameter, at, eta_t, kappa2, v, s,
-    /// eigenvalue, precision}], files; with --modes K > 2: modes, line, n, seconds, parameter,
+    /// eigenvalue, precision}], files; with --modes K > 2: modes, eta_k_exponent, line, n, seconds, parameter,
     /// points, stable_points, end, folds [{at, eta_t, kappa2, v, s, a}], files).
     #[arg(long)]
     pub(super) json: bool,

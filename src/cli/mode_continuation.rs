@@ -105,7 +105,8 @@ fn json_summary(done: &ModeContinuationWritten, n: usize, varied: &str) -> serde
         })
         .collect();
     serde_json::json!({
-        "modes": b.k_max, "line": done.description, "n": n, "seconds": done.seconds,
+        "modes": b.k_max, "eta_k_exponent": b.eta_k_exponent, "line": done.description,
+        "n": n, "seconds": done.seconds,
         "parameter": varied, "points": b.points.len(),
         "stable_points": b.points.iter().filter(|p| p.verdict.stable()).count(),
         "end": b.end, "folds": folds, "files": done.files,

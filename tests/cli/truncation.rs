@@ -392,6 +392,7 @@ fn continue_with_modes_follows_the_k_mode_branch_with_its_stability() {
         "--json",
     ]));
     assert_eq!(c["modes"], 3, "{c}");
+    assert_eq!(c["eta_k_exponent"], 0.0, "{c}");
     let folds = c["folds"].as_array().unwrap();
     assert_eq!(folds.len(), 1, "{c}");
     let fold = folds[0]["at"].as_f64().unwrap();

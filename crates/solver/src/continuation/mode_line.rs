@@ -55,6 +55,9 @@ pub enum ModeBranchEnd {
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct ModeBranch {
     pub k_max: usize,
+    /// The friction law's exponent the verdicts were computed with
+    /// ([`crate::model::mode_friction`]).
+    pub eta_k_exponent: f64,
     pub points: Vec<ModeBranchPoint>,
     pub end: ModeBranchEnd,
 }
@@ -162,6 +165,7 @@ pub fn follow_md(
     let points = with_stability(&mut solver, line, walked);
     Ok(ModeBranch {
         k_max: line.k_max,
+        eta_k_exponent: line.eta_k_exponent,
         points,
         end,
     })

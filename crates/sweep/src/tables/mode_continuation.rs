@@ -70,6 +70,7 @@ pub fn write(
     meta.push(("line".into(), line.to_string()));
     meta.push(("n".into(), n.to_string()));
     meta.push(("modes".into(), branch.k_max.to_string()));
+    meta.push(("eta_k_exponent".into(), branch.eta_k_exponent.to_string()));
     meta.push((
         "end".into(),
         serde_json::to_value(branch.end)
