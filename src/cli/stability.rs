@@ -67,7 +67,7 @@ pub struct Args {
     /// (default: eta2 0.1, R 1, sigma 0.03, box_len 7), e.g. radius=1.02,sigma=0.025.
     #[arg(long, value_name = "NAME=VALUE,...")]
     set: Option<String>,
-    /// Print one JSON object (keys: state, axis, eta_t, kappa2, n, modes, params {eta_t,
+    /// Print one JSON object (keys: state, axis, eta_t, kappa2, n, modes, eta_k_exponent, params {eta_t,
     /// kappa2, eta2, mass, radius, sigma, box_len}, vx, vy, a2, b2, a_k [a2..aK], b_k
     /// [b2..bK], v, s (the paper's, mode 2), residual, eigenvalues [{re, im}], rotation (the
     /// rotation mode's eigenvalue or null), unstable (rotation excluded), stable,
@@ -92,6 +92,8 @@ struct Report {
     kappa2: f64,
     n: usize,
     modes: usize,
+    /// The friction law's exponent of modes `k >= 3` (0 with two modes).
+    eta_k_exponent: f64,
     params: ModelParams,
     vx: f64,
     vy: f64,
@@ -155,6 +157,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
         kappa2: a.kappa2,
         n: a.n,
         modes: 2,
+        eta_k_exponent: 0.0,
         params,
         vx,
         vy,
@@ -251,6 +254,7 @@ fn with_modes(
         kappa2: a.kappa2,
         n: a.n,
         modes: k,
+        eta_k_exponent: a.eta_k_exponent,
         params,
         vx: z[0],
         vy: z[1],

@@ -184,6 +184,10 @@ fn stability_with_modes_gives_the_k_mode_state_and_its_verdict() {
         "-1",
     ]);
     assert_eq!(law["v"], s["v"], "{law}");
+    assert_eq!(
+        (law["eta_k_exponent"].as_f64(), s["eta_k_exponent"].as_f64()),
+        (Some(-1.0), Some(0.0))
+    );
     assert_ne!(law["eigenvalues"], s["eigenvalues"], "{law}");
     let o = run(&[
         "stability",
