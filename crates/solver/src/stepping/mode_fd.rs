@@ -17,6 +17,7 @@ use crate::model::mode_friction::eta_k;
 use crate::model::modes::{w_fields, Modes};
 use crate::model::params::ModelParams;
 use crate::model::shape::ShapeParams;
+use crate::stepping::paper_fd::central_gradient;
 
 /// Explicit finite differences for the `K`-mode droplet on the lab grid. One step is
 /// [`ModeFd::rate`] (`Theta` and the forces at the present state, and the largest rate) then
@@ -153,9 +154,7 @@ impl ModeFd {
                 self.theta[idx] = t;
                 self.touched.push(idx);
                 area += t;
-                let u = &self.u;
-                let ux = (u[iy * n + (ix + 1) % n] - u[iy * n + (ix + n - 1) % n]) * inv2dx;
-                let uy = (u[((iy + 1) % n) * n + ix] - u[((iy + n - 1) % n) * n + ix]) * inv2dx;
+                let (ux, uy) = central_gradient(&self.u, n, (ix, iy), inv2dx);
                 self.balance[0] -= ux * t;
                 self.balance[1] -= uy * t;
                 for k in 2..=k_max {

@@ -90,10 +90,7 @@ impl PaperFd {
                 self.theta[idx] = t;
                 self.touched.push(idx);
                 area += t;
-                let ux =
-                    (self.u[iy * n + (ix + 1) % n] - self.u[iy * n + (ix + n - 1) % n]) * inv2dx;
-                let uy = (self.u[((iy + 1) % n) * n + ix] - self.u[((iy + n - 1) % n) * n + ix])
-                    * inv2dx;
+                let (ux, uy) = central_gradient(&self.u, n, (ix, iy), inv2dx);
                 fx -= ux * t;
                 fy -= uy * t;
                 ga -= (x * ux - y * uy) * t;
@@ -130,6 +127,19 @@ impl Scheme for PaperFd {
             values: self.u.clone(),
         }
     }
+}
+
+/// `grad u` at cell `(ix, iy)` of the periodic `n x n` field `u` by central differences
+/// (`inv2dx = 1 / (2 dx)`).
+pub(crate) fn central_gradient(
+    u: &[f64],
+    n: usize,
+    (ix, iy): (usize, usize),
+    inv2dx: f64,
+) -> (f64, f64) {
+    let ux = (u[iy * n + (ix + 1) % n] - u[iy * n + (ix + n - 1) % n]) * inv2dx;
+    let uy = (u[((iy + 1) % n) * n + ix] - u[((iy + n - 1) % n) * n + ix]) * inv2dx;
+    (ux, uy)
 }
 
 /// One forward-Euler step of `h` of the field on the periodic `n x n` lab grid of spacing
