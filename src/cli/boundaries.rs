@@ -110,14 +110,14 @@ pub fn run(a: Args) -> Result<(), CliError> {
         }
         return convergence(&study, &ns, a.json);
     }
-    eprintln!(
+    errln!(
         "boundaries in {} at {} (about 10 s at N = 192 in the paper's plane)",
         study.window(),
         study.grid_words()
     );
     let done = study.run()?;
     if let Some((missing, points)) = done.missing.filter(|m| m.0 > 0) {
-        eprintln!(
+        errln!(
             "warning: {}",
             super::plot::missing_message(missing, points, &a.out)
         );
@@ -207,9 +207,10 @@ fn grid_sizes(text: &str) -> Result<Vec<usize>, CliError> {
 
 /// The boundaries at every N of `ns` and their shifts from one N to the next.
 fn convergence(study: &BoundaryStudy, ns: &[usize], json: bool) -> Result<(), CliError> {
-    eprintln!(
+    errln!(
         "boundaries in eta_t {:?}, kappa2 {:?} at N = {ns:?}",
-        study.eta_t, study.kappa2
+        study.eta_t,
+        study.kappa2
     );
     let done = droplet_sweep::studies::convergence::run(study, ns)?;
     if json {

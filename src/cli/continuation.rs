@@ -86,13 +86,13 @@ pub fn run(a: Args) -> Result<(), CliError> {
     let study = study_of(&a)?;
     let axis = a.axis.clone();
     let done = study.run(&mut |p| match p {
-        Progress::Following(f) => eprint!("following {} ({axis}) ... ", f.as_str()),
+        Progress::Following(f) => err!("following {} ({axis}) ... ", f.as_str()),
         Progress::Followed {
             states,
             events,
             seconds,
-        } => eprintln!("{states} states, {events} events in {seconds:.1} s"),
-        Progress::NoneOnLine => eprintln!("none on this line"),
+        } => errln!("{states} states, {events} events in {seconds:.1} s"),
+        Progress::NoneOnLine => errln!("none on this line"),
     })?;
     let varied = study.varied();
     if a.json {

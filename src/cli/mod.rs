@@ -8,6 +8,21 @@ macro_rules! outln {
     };
 }
 
+/// `eprintln!` for messages: a full or closed stderr (`2>/dev/full`) loses the message but never
+/// panics, so the exit code stays the command's own.
+macro_rules! errln {
+    ($($arg:tt)*) => {
+        $crate::cli::write_err(format_args!("{}\n", format_args!($($arg)*)))
+    };
+}
+
+/// `eprint!` without the line end (a message finished by a later [`errln!`]).
+macro_rules! err {
+    ($($arg:tt)*) => {
+        $crate::cli::write_err(format_args!($($arg)*))
+    };
+}
+
 mod audit;
 mod bench;
 mod boundaries;
@@ -78,7 +93,7 @@ pub fn main() -> i32 {
     match result {
         Ok(()) => 0,
         Err(e) => {
-            eprintln!("error: {}", e.message);
+            errln!("error: {}", e.message);
             e.code
         }
     }
@@ -142,19 +157,25 @@ pub fn mirror_axis(
 pub fn print_json<T: serde::Serialize>(value: &T) {
     match serde_json::to_string_pretty(value) {
         Ok(text) => write_out(format_args!("{text}")),
-        Err(e) => eprintln!("error: the result could not be written as JSON ({e})"),
+        Err(e) => errln!("error: the result could not be written as JSON ({e})"),
     }
 }
 
 /// Writes one line of output (see `outln!`). A reader that went away (a closed pipe) is not
 /// an error; any other failure to write is reported once on stderr, never a panic.
+/// Writes `text` to stderr; a write that fails (a full or closed stderr) is dropped.
+pub fn write_err(text: std::fmt::Arguments) {
+    use std::io::Write;
+    let _ = std::io::stderr().write_fmt(text);
+}
+
 pub fn write_out(line: std::fmt::Arguments) {
     use std::io::Write;
     use std::sync::atomic::{AtomicBool, Ordering};
     static REPORTED: AtomicBool = AtomicBool::new(false);
     if let Err(e) = writeln!(std::io::stdout(), "{line}") {
         if e.kind() != std::io::ErrorKind::BrokenPipe && !REPORTED.swap(true, Ordering::Relaxed) {
-            eprintln!("warning: output could not be written ({e})");
+            errln!("warning: output could not be written ({e})");
         }
     }
 }

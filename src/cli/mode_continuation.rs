@@ -51,9 +51,9 @@ fn study_of(a: &Args) -> Result<ModeContinuationStudy, CliError> {
 /// `droplet continue --modes K` with K > 2 (the other options checked by the caller).
 pub fn run(a: &Args) -> Result<(), CliError> {
     let study = study_of(a)?;
-    eprint!("following md (x, modes 2..{}) ... ", a.modes);
+    err!("following md (x, modes 2..{}) ... ", a.modes);
     let done = study.run()?;
-    eprintln!(
+    errln!(
         "{} states, {} fold(s) in {:.1} s",
         done.branch.points.len(),
         done.branch.folds().count(),

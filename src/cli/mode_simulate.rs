@@ -18,24 +18,6 @@ pub fn run(
     ic: &InitialCondition,
 ) -> Result<(), CliError> {
     droplet_solver::contract::limits::check_modes(&params, settings.n, a.modes)?;
-    let not_yet = [
-        (a.pinned, "--pinned"),
-        (a.stop_beside_saddle, "--stop-beside-saddle"),
-        (a.leap_departures, "--leap-departures"),
-        (a.no_landing, "--no-landing"),
-        (a.no_orientation_flow, "--no-orientation-flow"),
-        (a.tol.is_some(), "--tol"),
-        (a.dt_max.is_some(), "--dt-max"),
-    ];
-    if let Some((_, flag)) = not_yet.iter().find(|(given, _)| *given) {
-        return Err(CliError::usage(format!(
-            "invalid {flag} with --modes {}: the K-mode run takes fixed steps (--dt): \
-             exponential Euler to t_max (run on to 4 t_max unless --no-run-on), ended by \
-             the Newton finish (--steady-tol), or with --scheme paper-fd the paper's forward \
-             Euler to t_max, ended by the steady test",
-            a.modes
-        )));
-    }
     let k = a.modes;
     let settings = SolverSettings {
         modes: k,

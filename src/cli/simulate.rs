@@ -67,9 +67,9 @@ pub struct Args {
     /// Steady when max change of vx, vy, a2, b2 over one window is below this.
     #[arg(long, default_value_t = 1e-6)]
     pub(super) steady_tol: f64,
-    /// Window of the steady test in time units.
-    #[arg(long, default_value_t = 0.1)]
-    pub(super) steady_window: f64,
+    /// Window of the steady test in time units (default 0.1, the paper's).
+    #[arg(long)]
+    pub(super) steady_window: Option<f64>,
     /// How the run decides it is steady: newton (default for the spectral scheme: once the
     /// run slows down, Newton on the steady equations; it ends at a root only if the root is
     /// stable and the run is approaching it) or test (the paper's test alone; default for
@@ -283,7 +283,7 @@ fn model_of(a: &Args) -> Result<(ModelParams, SolverSettings), CliError> {
         dt_max: a.dt_max.unwrap_or(base.dt_max.max(a.dt.unwrap_or(base.dt))),
         t_max: a.t_max,
         steady_tol: a.steady_tol,
-        steady_window: a.steady_window,
+        steady_window: a.steady_window.unwrap_or(base.steady_window),
         pinned: a.pinned,
         steady: match (a.steady, a.pinned) {
             (Some(m), _) => m,
@@ -299,6 +299,7 @@ fn model_of(a: &Args) -> Result<(ModelParams, SolverSettings), CliError> {
         eta_k_exponent: a.eta_k_exponent,
         ..base
     };
+    check_read(a, &settings)?;
     let params = ModelParams {
         eta_t: a.eta_t,
         kappa2: a.kappa2,
@@ -309,6 +310,44 @@ fn model_of(a: &Args) -> Result<(ModelParams, SolverSettings), CliError> {
         mass: a.mass,
     };
     Ok((params, settings))
+}
+
+/// Refuses an option this run would not read (`SolverSettings::first_unread`, the check a
+/// spec makes too), naming the option.
+fn check_read(a: &Args, settings: &SolverSettings) -> Result<(), CliError> {
+    let given = [
+        (a.tol.is_some(), "tol", "--tol"),
+        (a.dt_max.is_some(), "dt_max", "--dt-max"),
+        (
+            a.steady_window.is_some(),
+            "steady_window",
+            "--steady-window",
+        ),
+        (a.no_landing, "landing", "--no-landing"),
+        (
+            a.no_orientation_flow,
+            "orientation_flow",
+            "--no-orientation-flow",
+        ),
+        (a.no_run_on, "run_on", "--no-run-on"),
+        (
+            a.stop_beside_saddle,
+            "stop_beside_saddle",
+            "--stop-beside-saddle",
+        ),
+        (a.leap_departures, "leap_departures", "--leap-departures"),
+        (a.pinned, "pinned", "--pinned"),
+    ];
+    let fields: Vec<&str> = given.iter().filter(|g| g.0).map(|g| g.1).collect();
+    match settings.first_unread(&fields) {
+        None => Ok(()),
+        Some((field, why)) => {
+            let flag = given.iter().find(|g| g.1 == field).map_or(field, |g| g.2);
+            Err(CliError::usage(format!(
+                "invalid {flag}: this run does not read it ({why})"
+            )))
+        }
+    }
 }
 
 /// Checks `--every` and the output paths; whether the run records a series.
@@ -395,13 +434,13 @@ fn print_text(report: &Report) {
         outln!("not finished: {d}");
     }
     if let Some(f) = report.final_state.as_ref().filter(|f| !f.stable) {
-        eprintln!(
+        errln!(
                 "warning: the paper's test stopped this run on an unstable state ({}); with --steady newton it would go on",
                 f.note
             );
     }
     if let Some(w) = &report.dt_warning {
-        eprintln!("warning: {w}");
+        errln!("warning: {w}");
     }
     for p in report.series.iter().chain(&report.picture) {
         outln!("wrote {}", p.display());

@@ -60,6 +60,15 @@ pub fn run(a: Args) -> Result<(), CliError> {
         return Err(CliError::usage("--shards and --cpus must be at least 1"));
     }
     droplet_sweep::store::plan::check_size(&sweep, a.max_runs)?;
+    // A refined sweep's levels hold up to the finest lattice's runs; the spec's own grid is
+    // what every level has at least.
+    let runs = droplet_sweep::store::plan::run_count(&sweep);
+    if a.shards as u64 > runs {
+        return Err(CliError::usage(format!(
+            "invalid --shards {}: the sweep has {runs} runs at most, so at most {runs} shards have work",
+            a.shards
+        )));
+    }
     let out = abs(&a.out.clone().unwrap_or_else(|| sweep.output.clone()));
     let exe = match &a.droplet {
         Some(p) => abs(p),

@@ -67,8 +67,16 @@ pub fn run(a: Args) -> Result<(), CliError> {
         max_runs: Some(a.max_runs),
     };
     let summary = run_sweep(&spec, &out, &opts)?;
+    if summary.upgraded > 0 {
+        errln!(
+            "note: {} stored runs of an earlier release were upgraded in place, not recomputed \
+             (sealed with the digest of their outcome, or re-keyed: their keys held settings \
+             the runs do not read, such as a PDE run's h0)",
+            summary.upgraded
+        );
+    }
     for c in &summary.corrupt {
-        eprintln!(
+        errln!(
             "warning: stored run {} could not be used ({}); moved to {} and recomputed",
             c.key,
             c.reason,
@@ -96,7 +104,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
             .collect();
         outln!("point classes: {}", classes.join(", "));
         if summary.dt_warnings > 0 {
-            eprintln!(
+            errln!(
                 "warning: {} fixed-step runs took steps too large to trust (column max_step_error > {:e} in runs.parquet); lower dt or use adaptive stepping (solver.tol)",
                 summary.dt_warnings,
                 droplet_solver::contract::outcome::STEP_ERROR_LIMIT

@@ -69,7 +69,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
     for &k in &ks {
         droplet_solver::contract::limits::check_modes(&base, a.n, k)?;
     }
-    eprintln!(
+    errln!(
         "truncation: K = {ks:?} at N = {} (about 25 s per K at N = 192)",
         a.n
     );

@@ -346,7 +346,8 @@ fn boundaries_over_an_n_eta_t_sweep_are_recomputed_at_each_n() {
     let spec = write_spec(
         dir.path(),
         "ne.yaml",
-        "model: ode\nparams: {kappa2: 0.13}\ngrid:\n  n: [96, 128]\n  eta_t: [0.07, 0.08, 0.09]\ninitial_conditions: [i]\n",
+        // Short PDE runs: the boundaries need the sweep's plane, not settled runs.
+        "params: {kappa2: 0.13}\ngrid:\n  n: [96, 128]\n  eta_t: [0.07, 0.08, 0.09]\ninitial_conditions: [i]\nsolver: {t_max: 1, run_on: false}\n",
     );
     let out = dir.path().join("ne");
     sweep_with_pictures(&spec, &out);

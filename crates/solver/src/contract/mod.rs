@@ -6,6 +6,7 @@
 //! May use: `model`, `stepping` (the scheme setting). Used by: `reduced`, `roots`, `runs`,
 //! `continuation`.
 pub mod ending;
+pub mod honoured;
 pub mod limits;
 pub mod outcome;
 pub mod settings;

@@ -33,6 +33,12 @@ pub const NAMED: [(&str, [f64; 4]); 6] = [
 const CUSTOM_FORM: &str = "expected four numbers custom:vx,vy,a2,b2, then for K-mode runs \
                            pairs a_k,b_k for k = 3, 4, ...";
 
+/// Largest initial speed `sqrt(vx^2 + vy^2)` a custom condition may give. The model's steady
+/// states move at `v < 1.1` in the paper's window (the ODE model's fastest MD) and its named
+/// conditions start at `v <= 1.005`; a start ten times faster than any state it could reach
+/// only tests how the stepping fails (at `v = 1e308` the first step overflows).
+pub const MAX_START_SPEED: f64 = 10.0;
+
 /// The four initial conditions used for every point of the phase map (Fig. 2a).
 pub const PAPER_FOUR: [&str; 4] = ["i", "ii", "iii", "iv"];
 
@@ -103,6 +109,12 @@ impl InitialCondition {
             }
             if !parts.iter().all(|p| p.is_finite()) {
                 return Err(bad("every value must be finite".into()));
+            }
+            let speed = parts[0].hypot(parts[1]);
+            if speed > MAX_START_SPEED {
+                return Err(bad(format!(
+                    "the initial speed sqrt(vx^2 + vy^2) = {speed:e} must be at most {MAX_START_SPEED} (steady states move at v < 1.1)"
+                )));
             }
             let higher: Vec<[f64; 2]> = parts[4..].chunks(2).map(|c| [c[0], c[1]]).collect();
             // The shape r = R [1 + sum_k (a_k cos k theta + b_k sin k theta)] stays star-shaped
@@ -181,6 +193,17 @@ mod tests {
         assert!(InitialCondition::parse("v").is_err());
         assert!(InitialCondition::parse("custom:1,2").is_err());
         assert!(InitialCondition::parse("custom:0,0,0.9,0.9").is_err());
+        // Speeds up to the bound are accepted, beyond it refused (1e308 overflowed the
+        // first step's field and hung the K-mode eigenvalues on NaN).
+        assert!(InitialCondition::parse("custom:6,-8,0.1,0").is_ok());
+        let e = InitialCondition::parse("custom:1e308,0,0.1,0")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("initial speed") && e.contains("at most 10"),
+            "{e}"
+        );
+        assert!(InitialCondition::parse("custom:0,10.001,0.1,0").is_err());
     }
 
     #[test]

@@ -41,9 +41,9 @@ pub fn rhs(c: &Coefficients, p: &ModelParams, y: [f64; 4]) -> [f64; 4] {
 pub const UNSTABLE: f64 = 1e-6;
 
 /// Largest real part of the eigenvalues of the Jacobian of [`rhs`] at `y` (central
-/// differences).
+/// differences); `NaN` where the Jacobian is not finite.
 pub fn max_growth(c: &Coefficients, p: &ModelParams, y: [f64; 4]) -> f64 {
-    let mut j = nalgebra::Matrix4::<f64>::zeros();
+    let mut j = nalgebra::DMatrix::<f64>::zeros(4, 4);
     for col in 0..4 {
         let h = 1e-6 * y[col].abs().max(1e-3);
         let (mut a, mut b) = (y, y);
@@ -54,10 +54,9 @@ pub fn max_growth(c: &Coefficients, p: &ModelParams, y: [f64; 4]) -> f64 {
             j[(row, col)] = (fa[row] - fb[row]) / (2.0 * h);
         }
     }
-    j.complex_eigenvalues()
-        .iter()
-        .map(|l| l.re)
-        .fold(f64::NEG_INFINITY, f64::max)
+    crate::numerics::eigen::complex_eigenvalues(&j).map_or(f64::NAN, |e| {
+        e.iter().map(|l| l.re).fold(f64::NEG_INFINITY, f64::max)
+    })
 }
 
 /// One RK4 step.

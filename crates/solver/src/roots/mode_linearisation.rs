@@ -153,12 +153,15 @@ impl ModeLinearization {
             .collect()
     }
 
-    /// The eigenvalues with `Re lambda > -1`, sorted by decreasing real part.
+    /// The eigenvalues with `Re lambda > -1`, sorted by decreasing real part; one `NaN` when
+    /// the state or its response is not finite (counted as growing by [`Self::verdict`]).
     pub fn eigenvalues(&self, solver: &mut ModeSolver) -> Vec<C64> {
         let dim = self.z0.len();
         let r0 = self.response(solver, C64::default());
         let k0 = DMatrix::from_fn(dim, dim, |i, j| (self.e[i][j] + r0[i][j].re) / self.m[i]);
-        let guesses: Vec<C64> = k0.complex_eigenvalues().iter().copied().collect();
+        let Some(guesses) = crate::numerics::eigen::complex_eigenvalues(&k0) else {
+            return vec![C64::new(f64::NAN, 0.0)];
+        };
         let det = |s: &mut ModeSolver, l: C64| self.t_matrix(s, l).determinant();
         let mut found: Vec<C64> = Vec::new();
         for guess in guesses.iter().chain(&guesses) {
@@ -280,7 +283,7 @@ impl ModeLinearization {
                     skipped = true;
                     return false;
                 }
-                l.re > 0.0
+                l.re > 0.0 || !l.re.is_finite()
             })
             .count();
         ModeVerdict {

@@ -76,6 +76,9 @@ fn root_near(run: &mut ModeStepper, z: &[f64]) -> Option<Root> {
     let x = crate::numerics::newton::solve(|y| solver.residual(y), z, &opts)
         .ok()?
         .x;
+    if !x.iter().all(|v| v.is_finite()) {
+        return None;
+    }
     let verdict = ModeLinearization::at(solver, &x).verdict(solver);
     Some(Root { z: x, verdict })
 }

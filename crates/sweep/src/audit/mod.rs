@@ -57,6 +57,13 @@ pub enum Kind {
     UnstableRoot,
     /// The points table's label is not the one its runs give.
     LabelMismatch,
+    /// A run of one of the spec's initial conditions is not in the runs table.
+    MissingRun,
+    /// A run is in the runs table more than once.
+    DuplicateRun,
+    /// A run of an initial condition the spec does not have, or of a point the points
+    /// table does not list.
+    UnknownRun,
 }
 
 impl Kind {
@@ -68,6 +75,9 @@ impl Kind {
             Self::OtherClass => "other_class",
             Self::UnstableRoot => "unstable_root",
             Self::LabelMismatch => "label_mismatch",
+            Self::MissingRun => "missing_run",
+            Self::DuplicateRun => "duplicate_run",
+            Self::UnknownRun => "unknown_run",
         }
     }
 }
@@ -75,6 +85,8 @@ impl Kind {
 /// One contradiction: the run that caused it and why.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Contradiction {
+    /// The point's index in the tables.
+    pub point: u32,
     pub eta_t: f64,
     pub kappa2: f64,
     /// The point's label.
@@ -125,6 +137,7 @@ fn audit_point(
     let expected = expected_label(runs);
     if let Some(r) = runs.first().filter(|_| expected != label) {
         out.push(Contradiction {
+            point: r.point,
             eta_t: r.params.eta_t,
             kappa2: r.params.kappa2,
             label: label.to_string(),
@@ -151,6 +164,7 @@ fn audit_point(
         };
         if let Some((kind, detail)) = problem {
             out.push(Contradiction {
+                point: r.point,
                 eta_t: r.params.eta_t,
                 kappa2: r.params.kappa2,
                 label: label.to_string(),
@@ -277,18 +291,24 @@ fn by_point(rows: Vec<Row>) -> Result<BTreeMap<u32, Vec<Row>>, SweepError> {
 /// equations and eigenvalues of its model: the paper's 2-mode model, or the general one with
 /// the map's shape modes `2..K` (`params.modes`).
 pub fn audit(dir: &Path) -> Result<Audit, SweepError> {
-    let runs = by_point(tables::runs(&dir.join(tables::RUNS))?)?;
-    let labelled: BTreeMap<u32, String> = tables::points(&dir.join(tables::POINTS))?
-        .into_iter()
-        .map(|p| (p.point, p.label))
-        .collect();
-    if let Some(p) = runs.keys().find(|p| !labelled.contains_key(p)) {
+    let runs_path = dir.join(tables::RUNS);
+    let runs = by_point(tables::runs(&runs_path)?)?;
+    let points = tables::points(&dir.join(tables::POINTS))?;
+    if points.is_empty() || runs.is_empty() {
         return Err(SweepError::Invalid(format!(
-            "{}: runs.parquet has runs of point {p}, which points.parquet does not list; \
-             the two tables are not from one sweep",
-            dir.display()
+            "{}: the map has {} points and {} runs; there is nothing to certify",
+            dir.display(),
+            points.len(),
+            runs.len()
         )));
     }
+    let ics: Vec<String> = tables::stored_spec(&runs_path)?
+        .initial_conditions
+        .iter()
+        .map(|ic| ic.name.clone())
+        .collect();
+    let complete = completeness(&points, &runs, &ics);
+    let labelled: BTreeMap<u32, String> = points.into_iter().map(|p| (p.point, p.label)).collect();
     let modes = runs.values().flatten().map(|r| r.modes).max().unwrap_or(2);
     let law = runs
         .values()
@@ -311,7 +331,7 @@ pub fn audit(dir: &Path) -> Result<Audit, SweepError> {
     let modes = (modes, law);
     let groups: Vec<(&String, Vec<&Row>)> = runs
         .iter()
-        .map(|(p, rows)| (&labelled[p], rows.iter().collect()))
+        .filter_map(|(p, rows)| Some((labelled.get(p)?, rows.iter().collect())))
         .collect();
     if let Some(first) = groups.first().and_then(|(_, r)| r.first()) {
         // Fails here, not in a worker, if the solver cannot be made.
@@ -349,11 +369,104 @@ pub fn audit(dir: &Path) -> Result<Audit, SweepError> {
             },
         )
         .collect();
+    let states_checked = results.iter().map(|(_, s)| s).sum();
+    let contradictions: Vec<Contradiction> = complete
+        .into_iter()
+        .chain(results.into_iter().flat_map(|(c, _)| c))
+        .collect();
+    let flawed: BTreeSet<u32> = contradictions
+        .iter()
+        .map(|c| c.point)
+        .filter(|p| labelled.contains_key(p))
+        .collect();
     Ok(Audit {
         points: labelled.len(),
         runs: runs.values().map(Vec::len).sum(),
-        points_clean: labelled.len() - results.iter().filter(|(c, _)| !c.is_empty()).count(),
-        states_checked: results.iter().map(|(_, s)| s).sum(),
-        contradictions: results.into_iter().flat_map(|(c, _)| c).collect(),
+        points_clean: labelled.len().saturating_sub(flawed.len()),
+        states_checked,
+        contradictions,
     })
+}
+
+/// Whether every point of the points table has exactly one run of each of the spec's
+/// initial conditions `ics`, and no run is of another condition or of a point it does not
+/// list: a map with a run deleted, duplicated or foreign is not certified, whatever its
+/// other runs show. (A point's label is then also checked against the runs it has.)
+fn completeness(
+    points: &[tables::PointRow],
+    runs: &BTreeMap<u32, Vec<Row>>,
+    ics: &[String],
+) -> Vec<Contradiction> {
+    let mut out = Vec::new();
+    let mut flag = |(point, eta_t, kappa2): (u32, f64, f64),
+                    label: &str,
+                    ic: &str,
+                    kind: Kind,
+                    detail: String,
+                    key: &str| {
+        out.push(Contradiction {
+            point,
+            eta_t,
+            kappa2,
+            label: label.to_string(),
+            ic: ic.to_string(),
+            class: None,
+            kind,
+            detail,
+            key: key.to_string(),
+        })
+    };
+    let listed: BTreeSet<u32> = points.iter().map(|p| p.point).collect();
+    for (p, rows) in runs.iter().filter(|(p, _)| !listed.contains(p)) {
+        for r in rows {
+            let detail = format!("a run of point {p}, which points.parquet does not list");
+            let at = (*p, r.params.eta_t, r.params.kappa2);
+            flag(at, "-", &r.ic, Kind::UnknownRun, detail, &r.key);
+        }
+    }
+    for point in points {
+        let rows = runs.get(&point.point).map_or(&[][..], Vec::as_slice);
+        // A point without runs is named by its coordinates in the sweep's plane.
+        let (eta_t, kappa2) = rows
+            .first()
+            .map_or((point.x, point.y), |r| (r.params.eta_t, r.params.kappa2));
+        let at = (point.point, eta_t, kappa2);
+        for ic in ics {
+            let of_ic: Vec<&Row> = rows.iter().filter(|r| &r.ic == ic).collect();
+            match of_ic.len() {
+                1 => {}
+                0 => flag(
+                    at,
+                    &point.label,
+                    ic,
+                    Kind::MissingRun,
+                    format!(
+                        "point {} has no run from initial condition {ic}",
+                        point.point
+                    ),
+                    "-",
+                ),
+                n => flag(
+                    at,
+                    &point.label,
+                    ic,
+                    Kind::DuplicateRun,
+                    format!(
+                        "point {} has {n} runs from initial condition {ic}",
+                        point.point
+                    ),
+                    &of_ic[1].key,
+                ),
+            }
+        }
+        for r in rows.iter().filter(|r| !ics.contains(&r.ic)) {
+            let detail = format!(
+                "initial condition {} is not one of the spec's ({})",
+                r.ic,
+                ics.join(", ")
+            );
+            flag(at, &point.label, &r.ic, Kind::UnknownRun, detail, &r.key);
+        }
+    }
+    out
 }

@@ -55,6 +55,9 @@ pub struct SweepSummary {
     /// Stored runs that could not be used (unreadable, or content not matching the key):
     /// moved to `DIR/corrupt/` and recomputed.
     pub corrupt: Vec<CorruptRun>,
+    /// Stored runs of an earlier release upgraded in place when the store was opened
+    /// (sealed, or re-keyed: `Store::upgraded`), not recomputed.
+    pub upgraded: usize,
     pub wall_s: f64,
     pub jobs: usize,
     pub point_classes: BTreeMap<String, usize>,
@@ -320,6 +323,7 @@ pub fn run_sweep(
         computed: ran.computed,
         reused: ran.reused,
         corrupt: ran.corrupt,
+        upgraded: store.upgraded(),
         wall_s: started.elapsed().as_secs_f64(),
         jobs,
         point_classes,

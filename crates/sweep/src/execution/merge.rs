@@ -9,8 +9,10 @@ use std::path::Path;
 /// Builds the final tables of the sweep in `dir` from all its stored runs (e.g. after the
 /// shards of an array job). With runs missing or unreadable, writes nothing and fails with a
 /// report. Idempotent: the tables depend only on the stored runs. `draw` adds the pictures.
+/// Refused while a sweep or a shard works in `dir` (its lock is taken exclusively): a merge
+/// then would find runs missing that are only not finished yet.
 pub fn merge(dir: &Path, draw: bool) -> Result<MergeReport, SweepError> {
-    let store = Store::open_read(dir)?;
+    let store = Store::open_idle(dir)?;
     let spec = crate::spec::load_stored(dir)?;
     let plan = crate::map::levels::stored_plan(&spec, &store)?;
     let report = store.report_missing(&plan);

@@ -53,21 +53,19 @@ impl Ctx<'_> {
         Ok(map)
     }
 
-    /// Reads each of `keys` present in `m` (the mapping at `section`) as a finite number and
-    /// hands it to `set`; the ranges are the solver crate's to check ([`Self::checked`]).
-    pub fn numbers(
+    /// Reads each key of `fields` present in `m` (the mapping at `section`) as a finite
+    /// number into its field of `target`; the ranges are the solver crate's to check
+    /// ([`Self::checked`]).
+    pub fn numbers<T>(
         &self,
         m: &serde_yaml::Mapping,
         section: &str,
-        keys: &[&str],
-        mut set: impl FnMut(&str, f64),
+        fields: &[NumberField<T>],
+        target: &mut T,
     ) -> Result<(), SpecError> {
-        for key in keys {
+        for (key, field) in fields {
             if let Some(x) = m.get(*key) {
-                set(
-                    key,
-                    self.number(x, &[section, key], |_| true, "a finite number")?,
-                );
+                *field(target) = self.number(x, &[section, key], |_| true, "a finite number")?;
             }
         }
         Ok(())
@@ -203,6 +201,9 @@ pub fn second_key_line(text: &str, start: usize, key: &str) -> Option<usize> {
 
 /// The spec key of a field named in a [`droplet_solver::error::SolverError::InvalidParameter`]:
 /// `params.<name>` for a model parameter, `solver.<name>` for a setting.
+/// A numeric key of a section and the field of its own name that it sets.
+pub(super) type NumberField<T> = (&'static str, fn(&mut T) -> &mut f64);
+
 fn key_of(name: &str) -> [&str; 2] {
     match Param::parse(name) {
         Some(p) if p.is_model() => ["params", name],

@@ -225,6 +225,7 @@ pub fn parse(text: &str, file: &str, stem: &str) -> Result<SweepSpec, SpecError>
         eta_k_exponent: shape.eta_k_exponent,
         ..solver::parse(&ctx, top, model)?
     };
+    check_read(&ctx, top, &grid, &solver)?;
     grid::check_points(&ctx, &grid, &params, &solver)?;
     let refine = refine::parse(&ctx, top, &grid)?;
     classify::parse(&ctx, top)?;
@@ -238,6 +239,47 @@ pub fn parse(text: &str, file: &str, stem: &str) -> Result<SweepSpec, SpecError>
         refine,
         source: text.to_string(),
     })
+}
+
+/// Refuses a setting given in the `solver` section, or swept by a grid axis, that the spec's
+/// runs do not read (`SolverSettings::first_unread`): it would be accepted and ignored.
+fn check_read(
+    ctx: &Ctx,
+    top: &serde_yaml::Mapping,
+    grid: &Grid,
+    solver: &SolverSettings,
+) -> Result<(), SpecError> {
+    let refuse = |path: &[&str], value: String, why: &str| {
+        ctx.err(
+            path,
+            value,
+            format!("a setting these runs read; they do not read this one: {why}"),
+        )
+    };
+    if let Some(m) = top.get("solver").and_then(|v| v.as_mapping()) {
+        let given: Vec<&str> = solver::keys()
+            .into_iter()
+            .filter(|k| m.contains_key(*k))
+            .collect();
+        if let Some((key, why)) = solver.first_unread(&given) {
+            return Err(refuse(
+                &["solver", key],
+                m.get(key).map(show).unwrap_or_default(),
+                why,
+            ));
+        }
+    }
+    let swept: Vec<&str> = grid
+        .plane()
+        .params()
+        .into_iter()
+        .filter(|p| !p.is_model())
+        .map(|p| p.name())
+        .collect();
+    match solver.first_unread(&swept) {
+        Some((key, why)) => Err(refuse(&["grid", key], "an axis".into(), why)),
+        None => Ok(()),
+    }
 }
 
 /// The key path of a YAML parser's "[section: ]duplicate entry with key \"K\"" error.
@@ -331,13 +373,17 @@ mod tests {
     #[test]
     fn ode_model_has_its_own_defaults() {
         let s = parse(
-            &format!("model: ode\n{GOOD}").replace("  dt: 0.02\n", ""),
+            &format!("model: ode\n{GOOD}").replace("  n: 64\n  dt: 0.02\n", "  t_max: 100\n"),
             "t.yaml",
             "t",
         )
         .unwrap();
         assert_eq!(s.solver.model, ModelKind::Ode);
         assert_eq!(s.solver.dt, 0.05);
+        // The ODE model has no grid: a grid size is refused, not ignored.
+        let e = parse(&format!("model: ode\n{GOOD}"), "t.yaml", "t").unwrap_err();
+        assert_eq!((e.path.as_str(), e.line), ("solver.n", Some(7)));
+        assert!(e.allowed.contains("no grid"), "{}", e.allowed);
         let e = parse(&format!("model: fem\n{GOOD}"), "t.yaml", "t").unwrap_err();
         assert_eq!((e.path.as_str(), e.line), ("model", Some(1)));
     }

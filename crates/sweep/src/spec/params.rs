@@ -5,7 +5,7 @@
 //! Only the types are read here; the ranges are checked by `ModelParams::validate` and
 //! `limits::check_run` (the solver's one source of truth) at the grid's points,
 //! [`super::grid::check_points`].
-use super::context::Ctx;
+use super::context::{Ctx, NumberField};
 use crate::error::SpecError;
 use droplet_solver::model::params::ModelParams;
 use serde_yaml::Mapping;
@@ -15,6 +15,17 @@ pub(super) struct ShapeModes {
     pub modes: usize,
     pub eta_k_exponent: f64,
 }
+
+/// The model parameters of the section, each the key of its field's name.
+const NUMBERS: [NumberField<ModelParams>; 7] = [
+    ("eta_t", |p| &mut p.eta_t),
+    ("kappa2", |p| &mut p.kappa2),
+    ("eta2", |p| &mut p.eta2),
+    ("radius", |p| &mut p.radius),
+    ("sigma", |p| &mut p.sigma),
+    ("box_len", |p| &mut p.box_len),
+    ("mass", |p| &mut p.mass),
+];
 
 /// The `params` section: the model parameters and the shape modes.
 pub(super) fn parse(ctx: &Ctx, top: &Mapping) -> Result<(ModelParams, ShapeModes), SpecError> {
@@ -26,10 +37,11 @@ pub(super) fn parse(ctx: &Ctx, top: &Mapping) -> Result<(ModelParams, ShapeModes
     let Some(v) = top.get("params") else {
         return Ok((params, shape));
     };
-    let keys = [
-        "eta_t", "kappa2", "eta2", "radius", "sigma", "box_len", "mass",
-    ];
-    let all = [&keys[..], &["modes", "eta_k_exponent"]].concat();
+    let all: Vec<&str> = NUMBERS
+        .iter()
+        .map(|(k, _)| *k)
+        .chain(["modes", "eta_k_exponent"])
+        .collect();
     let m = ctx.mapping(v, &["params"], &all)?;
     if let Some(x) = m.get("modes") {
         shape.modes = ctx.number(
@@ -48,14 +60,6 @@ pub(super) fn parse(ctx: &Ctx, top: &Mapping) -> Result<(ModelParams, ShapeModes
             "a number p: eta_k = eta2 (k/2)^p for the shape modes k >= 3 (0: the default)",
         )?;
     }
-    ctx.numbers(m, "params", &keys, |key, val| match key {
-        "eta_t" => params.eta_t = val,
-        "kappa2" => params.kappa2 = val,
-        "eta2" => params.eta2 = val,
-        "radius" => params.radius = val,
-        "sigma" => params.sigma = val,
-        "box_len" => params.box_len = val,
-        _ => params.mass = val,
-    })?;
+    ctx.numbers(m, "params", &NUMBERS, &mut params)?;
     Ok((params, shape))
 }

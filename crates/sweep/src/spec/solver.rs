@@ -3,31 +3,35 @@
 //! `droplet_solver::contract::limits::check_run`, the same checks `droplet simulate` makes, run
 //! at the grid's points ([`super::grid::check_points`]) with the offending field mapped back to
 //! its key.
-use super::context::{show, Ctx};
+use super::context::{show, Ctx, NumberField};
 use crate::error::SpecError;
 use droplet_solver::{
     contract::settings::ModelKind, contract::settings::SolverSettings, stepping::SchemeKind,
 };
 use serde_yaml::Mapping;
 
-/// The keys of the section.
-const KEYS: [&str; 15] = [
-    "scheme",
-    "steady",
-    "stop_beside_saddle",
-    "leap_departures",
-    "landing",
-    "orientation_flow",
-    "run_on",
-    "n",
-    "dt",
-    "tol",
-    "dt_max",
-    "t_max",
-    "steady_tol",
-    "steady_window",
-    "h0",
+/// The keys of the section read by name (a scheme, an integer, a choice).
+const NAMED: [&str; 3] = ["scheme", "n", "steady"];
+
+/// The numeric settings of the section, each the key of its field's name.
+const NUMBERS: [NumberField<SolverSettings>; 7] = [
+    ("dt", |s| &mut s.dt),
+    ("tol", |s| &mut s.tol),
+    ("dt_max", |s| &mut s.dt_max),
+    ("t_max", |s| &mut s.t_max),
+    ("steady_tol", |s| &mut s.steady_tol),
+    ("steady_window", |s| &mut s.steady_window),
+    ("h0", |s| &mut s.h0),
 ];
+
+/// Every key of the section.
+pub(super) fn keys() -> Vec<&'static str> {
+    NAMED
+        .into_iter()
+        .chain(FLAGS.iter().map(|(k, ..)| *k))
+        .chain(NUMBERS.iter().map(|(k, _)| *k))
+        .collect()
+}
 
 /// The on/off settings: each key, what `true` means, and its field.
 type Flag = (
@@ -91,7 +95,7 @@ pub(super) fn parse(
         ModelKind::Ode => SolverSettings::ode(),
     };
     if let Some(v) = top.get("solver") {
-        let m = ctx.mapping(v, &["solver"], &KEYS)?;
+        let m = ctx.mapping(v, &["solver"], &keys())?;
         if let Some(x) = m.get("scheme") {
             solver.scheme = x
                 .as_str()
@@ -118,15 +122,93 @@ pub(super) fn parse(
             })?;
         }
         flags(ctx, m, &mut solver)?;
-        ctx.numbers(m, "solver", &KEYS[7..], |key, val| match key {
-            "dt" => solver.dt = val,
-            "tol" => solver.tol = val,
-            "dt_max" => solver.dt_max = val,
-            "t_max" => solver.t_max = val,
-            "steady_tol" => solver.steady_tol = val,
-            "steady_window" => solver.steady_window = val,
-            _ => solver.h0 = val,
-        })?;
+        ctx.numbers(m, "solver", &NUMBERS, &mut solver)?;
     }
     Ok(solver)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use droplet_solver::model::params::ModelParams;
+    use serde_json::Value as Json;
+
+    /// The fields of `after` that differ from `before` (as serialised).
+    fn changed<T: serde::Serialize>(before: &T, after: &T) -> Vec<String> {
+        let (Json::Object(b), Json::Object(a)) = (
+            serde_json::to_value(before).unwrap(),
+            serde_json::to_value(after).unwrap(),
+        ) else {
+            panic!("not objects")
+        };
+        let mut keys: Vec<String> = b.keys().chain(a.keys()).cloned().collect();
+        keys.sort();
+        keys.dedup();
+        keys.into_iter().filter(|k| b.get(k) != a.get(k)).collect()
+    }
+
+    /// A value for `key` other than its default for `model`, of the key's type.
+    fn other_value(key: &str, model: ModelKind) -> &'static str {
+        match key {
+            "scheme" => "paper-fd",
+            "n" => "128",
+            "steady" if model == ModelKind::Ode => "newton",
+            "steady" => "test",
+            "stop_beside_saddle" | "leap_departures" => "true",
+            "landing" | "orientation_flow" | "run_on" => "false",
+            _ => "0.0123",
+        }
+    }
+
+    #[test]
+    fn every_solver_key_sets_the_field_of_its_own_name_and_no_other() {
+        let keys = keys();
+        assert_eq!(keys.len(), 15, "{keys:?}");
+        for key in keys {
+            let for_model = |model| {
+                let text = format!("solver:\n  {key}: {}\n", other_value(key, model));
+                let top: serde_yaml::Value = serde_yaml::from_str(&text).unwrap();
+                let ctx = Ctx {
+                    file: "t.yaml",
+                    text: &text,
+                };
+                let got = parse(&ctx, top.as_mapping().unwrap(), model).unwrap();
+                let base = match model {
+                    ModelKind::Pde => SolverSettings::default(),
+                    ModelKind::Ode => SolverSettings::ode(),
+                };
+                changed(&base, &got)
+            };
+            for model in [ModelKind::Pde, ModelKind::Ode] {
+                let fields = for_model(model);
+                if key == "scheme" {
+                    // The paper's scheme brings its own grid, step and ending (documented).
+                    assert!(fields.contains(&"scheme".to_string()), "{key}: {fields:?}");
+                    assert!(fields
+                        .iter()
+                        .all(|f| ["scheme", "n", "dt", "tol", "steady"].contains(&f.as_str())));
+                } else {
+                    assert_eq!(fields, [key], "solver.{key} with model {model:?}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn every_params_key_sets_the_field_of_its_own_name_and_no_other() {
+        for key in [
+            "eta_t", "kappa2", "eta2", "radius", "sigma", "box_len", "mass",
+        ] {
+            let text = format!("params:\n  {key}: 0.0123\n");
+            let top: serde_yaml::Value = serde_yaml::from_str(&text).unwrap();
+            let ctx = Ctx {
+                file: "t.yaml",
+                text: &text,
+            };
+            let (got, shape) =
+                super::super::params::parse(&ctx, top.as_mapping().unwrap()).unwrap();
+            assert_eq!(changed(&ModelParams::default(), &got), [key]);
+            assert_eq!((shape.modes, shape.eta_k_exponent), (2, 0.0));
+        }
+    }
 }

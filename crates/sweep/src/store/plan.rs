@@ -60,6 +60,8 @@ impl Plan {
         let (mut params, mut settings) = (self.params, self.settings);
         self.plane
             .apply(self.points[point], &mut params, &mut settings);
+        // What the run reads, and only that, is what it is keyed and recorded with.
+        let settings = settings.honoured();
         let ic = &self.ics[ic_index];
         Task {
             point,
@@ -133,9 +135,22 @@ fn no_higher_modes(higher: &&[[f64; 2]]) -> bool {
 }
 
 /// Content key of a run: SHA-256 of the model parameters, the initial condition's values
-/// (every mode it gives), the solver settings and the solver's numerics version. Equal runs
-/// in two sweeps share it.
+/// (every mode it gives), the solver settings the run reads (`SolverSettings::honoured`: a
+/// PDE run's key holds no `h0`, a K-mode run's no `tol`) and the solver's numerics version.
+/// Equal runs in two sweeps share it.
 pub fn run_key(params: &ModelParams, ic: &InitialCondition, settings: &SolverSettings) -> String {
+    written_key(params, ic, &settings.honoured())
+}
+
+/// The key of a run with `settings` hashed as they are written, unread settings included:
+/// the key stored runs had before keys held only what a run reads. A stored run whose file
+/// has this name, and whose [`run_key`] differs, is renamed to the latter
+/// (`Store::rekey`), never recomputed.
+pub fn written_key(
+    params: &ModelParams,
+    ic: &InitialCondition,
+    settings: &SolverSettings,
+) -> String {
     let json = key_material(params, ic, settings);
     let digest = Sha256::digest(json.as_bytes());
     digest.iter().take(16).map(|b| format!("{b:02x}")).collect()
@@ -249,6 +264,20 @@ mod tests {
         };
         assert_ne!(with(0.1), with(-0.1));
         assert!(!key_material(&p, &ic, &s).contains("ic_higher"));
+        // What a run does not read is not part of its key: a PDE run's h0 (the spec bug set
+        // it to n), a K-mode run's tol. A run that sets neither keeps its key.
+        assert_eq!(k, run_key(&p, &ic, &SolverSettings { h0: 192.0, ..s }));
+        assert_eq!(k, written_key(&p, &ic, &s));
+        assert_ne!(k, written_key(&p, &ic, &SolverSettings { h0: 192.0, ..s }));
+        assert_eq!(
+            run_key(&p, &ic, &k4),
+            run_key(&p, &ic, &SolverSettings { tol: 1e-6, ..k4 })
+        );
+        let ode = SolverSettings::ode();
+        assert_ne!(
+            run_key(&p, &ic, &ode),
+            run_key(&p, &ic, &SolverSettings { h0: 0.2, ..ode })
+        );
     }
 
     #[test]

@@ -12,6 +12,7 @@ use droplet_solver::{
 };
 use fs2::FileExt;
 use serde::{Deserialize, Serialize};
+use sha2::{Digest, Sha256};
 use std::collections::HashMap;
 use std::fs::{self, File, OpenOptions};
 use std::path::{Path, PathBuf};
@@ -25,6 +26,34 @@ pub struct RunRecord {
     pub settings: SolverSettings,
     pub solver_version: String,
     pub outcome: RunOutcome,
+}
+
+/// A record as its file holds it: the run and the digest of its outcome, so that an outcome
+/// edited by hand (a class, a status) is told from one the sweep wrote.
+#[derive(Serialize)]
+struct Sealed<'a> {
+    #[serde(flatten)]
+    record: &'a RunRecord,
+    digest: String,
+}
+
+/// A record file read back; `digest` is absent in files written before records were sealed.
+#[derive(Deserialize)]
+struct Unsealed {
+    #[serde(flatten)]
+    record: RunRecord,
+    #[serde(default)]
+    digest: Option<String>,
+}
+
+/// The digest of a run's outcome: SHA-256 of its JSON, first 16 bytes in hex.
+fn digest_of(outcome: &RunOutcome) -> String {
+    let json = serde_json::to_vec(outcome).expect("outcomes serialise");
+    Sha256::digest(&json)
+        .iter()
+        .take(16)
+        .map(|b| format!("{b:02x}"))
+        .collect()
 }
 
 /// What the store holds for one key.
@@ -52,6 +81,11 @@ pub struct Store {
     dir: PathBuf,
     runs: PathBuf,
     _locks: Vec<File>,
+    /// Only sealed records are valid: true once the store is opened to be written (its
+    /// records upgraded); a read-only view also accepts records not yet sealed.
+    sealed_only: bool,
+    /// Records of earlier releases upgraded when the store was opened ([`Self::upgrade`]).
+    upgraded: usize,
 }
 
 /// Name of the directory-wide lock file.
@@ -109,6 +143,8 @@ impl Store {
             dir: dir.to_path_buf(),
             runs,
             _locks: Vec::new(),
+            sealed_only: false,
+            upgraded: 0,
         })
     }
 
@@ -125,7 +161,15 @@ impl Store {
     fn with_lock(mut self, lock: File) -> Result<Self, SweepError> {
         self._locks.push(lock);
         self.remove_temporaries();
+        self.upgraded = self.upgrade()?;
+        self.sealed_only = true;
         Ok(self)
+    }
+
+    /// How many stored records of earlier releases were upgraded (sealed, or re-keyed) when
+    /// this store was opened to be written ([`Self::upgrade`]).
+    pub fn upgraded(&self) -> usize {
+        self.upgraded
     }
 
     /// Opens an existing sweep directory while nothing else works on it, its lock taken
@@ -149,6 +193,8 @@ impl Store {
             dir: dir.to_path_buf(),
             runs,
             _locks: Vec::new(),
+            sealed_only: false,
+            upgraded: 0,
         })
     }
 
@@ -192,12 +238,26 @@ impl Store {
             Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Stored::Missing,
             Err(e) => return Stored::Corrupt(format!("cannot be read: {e}")),
         };
-        let rec: RunRecord = match serde_json::from_slice(&bytes) {
-            Ok(r) => r,
+        let (rec, digest) = match serde_json::from_slice::<Unsealed>(&bytes) {
+            Ok(u) => (u.record, u.digest),
             Err(e) => {
                 return Stored::Corrupt(format!("not a run record ({} bytes): {e}", bytes.len()))
             }
         };
+        match digest {
+            Some(d) if d == digest_of(&rec.outcome) => {}
+            Some(_) => {
+                return Stored::Corrupt(
+                    "its outcome does not match its digest (edited after the run wrote it)".into(),
+                )
+            }
+            None if !self.sealed_only => {}
+            None => {
+                return Stored::Corrupt(
+                    "it has no digest of its outcome (edited, or written before records were sealed and not yet upgraded)".into(),
+                )
+            }
+        }
         let content_key = crate::store::plan::run_key(&rec.params, &rec.ic, &rec.settings);
         if rec.key != key
             || rec.solver_version
@@ -210,6 +270,70 @@ impl Store {
             ));
         }
         Stored::Valid(Box::new(rec))
+    }
+
+    /// Upgrades the records of earlier releases in place; returns how many it changed:
+    /// - a record without the digest of its outcome (written before records were sealed) is
+    ///   sealed as it is (an edit made before that cannot be told; every later one can);
+    /// - a record whose file is named by its settings as they were written
+    /// ([`crate::store::plan::written_key`]) while its key is now another
+    ///   ([`crate::store::plan::run_key`]: settings it does not read left out, such as the
+    ///   `h0` that a spec-parsing bug once set to `n` in every PDE run). Its result is
+    ///   the one its new key asks for, so it is re-keyed, never recomputed; its record keeps
+    ///   the settings it read.
+    ///
+    /// Called when a store is opened to be written, before any run is checked.
+    fn upgrade(&self) -> Result<usize, SweepError> {
+        let Ok(entries) = fs::read_dir(&self.runs) else {
+            return Ok(0);
+        };
+        let mut renamed = 0;
+        for e in entries.flatten() {
+            let name = e.file_name().to_string_lossy().into_owned();
+            let Some(stem) = name.strip_suffix(".json") else {
+                continue;
+            };
+            let Ok(bytes) = fs::read(e.path()) else {
+                continue;
+            };
+            let Ok(Unsealed {
+                record: mut rec,
+                digest,
+            }) = serde_json::from_slice::<Unsealed>(&bytes)
+            else {
+                continue;
+            };
+            let current = droplet_solver::solver_version(rec.settings.model, rec.settings.modes);
+            let key = crate::store::plan::run_key(&rec.params, &rec.ic, &rec.settings);
+            let written = crate::store::plan::written_key(&rec.params, &rec.ic, &rec.settings);
+            if rec.key != stem || rec.solver_version != current || written != stem {
+                // Of another numerics, or corrupt: `check` decides.
+                continue;
+            }
+            if key == stem {
+                if digest.is_none() {
+                    // Written before records were sealed: sealed as it is.
+                    self.save(&rec)?;
+                    renamed += 1;
+                }
+                continue;
+            }
+            if digest.is_some_and(|d| d != digest_of(&rec.outcome)) {
+                continue;
+            }
+            rec.key = key;
+            rec.settings = rec.settings.honoured();
+            if !self.path_of(&rec.key).exists() {
+                self.save(&rec)?;
+            }
+            match fs::remove_file(e.path()) {
+                Err(err) if err.kind() != std::io::ErrorKind::NotFound => {
+                    return Err(SweepError::io(&e.path(), err))
+                }
+                _ => renamed += 1,
+            }
+        }
+        Ok(renamed)
     }
 
     /// Moves the file of `key` to `DIR/corrupt/<key>.<unix seconds>.json` (never deleted, so
@@ -260,9 +384,13 @@ impl Store {
         }
     }
 
-    /// Persists a finished run atomically.
+    /// Persists a finished run atomically, sealed with the digest of its outcome.
     pub fn save(&self, record: &RunRecord) -> Result<(), SweepError> {
-        let json = serde_json::to_vec(record).expect("records serialise");
+        let sealed = Sealed {
+            record,
+            digest: digest_of(&record.outcome),
+        };
+        let json = serde_json::to_vec(&sealed).expect("records serialise");
         write_atomic(&self.path_of(&record.key), &json).map(|_| ())
     }
 
@@ -443,6 +571,73 @@ mod tests {
         }
         store.save(&rec).unwrap();
         assert_eq!(store.check(&key), Stored::Valid(Box::new(rec)));
+    }
+
+    #[test]
+    fn a_run_keyed_by_a_setting_it_does_not_read_is_renamed_not_recomputed() {
+        let dir = tempfile::tempdir().unwrap();
+        let store = Store::open_locked(dir.path()).unwrap();
+        let mut old = record();
+        // As the spec bug wrote it: h0 = n in a PDE run, keyed with it.
+        old.settings.h0 = 192.0;
+        old.key = crate::store::plan::written_key(&old.params, &old.ic, &old.settings);
+        // Written unsealed, as releases before records were sealed wrote them.
+        let file = dir.path().join("runs").join(format!("{}.json", old.key));
+        std::fs::write(&file, serde_json::to_vec(&old).unwrap()).unwrap();
+        let new_key = record().key;
+        assert_ne!(old.key, new_key);
+        assert!(matches!(store.check(&old.key), Stored::Corrupt(_)));
+        assert_eq!(store.check(&new_key), Stored::Missing);
+        drop(store);
+        let store = Store::open_locked(dir.path()).unwrap();
+        assert_eq!(store.upgraded(), 1);
+        assert_eq!(store.check(&old.key), Stored::Missing);
+        // The same outcome under the new key, with the settings the run read.
+        let Stored::Valid(got) = store.check(&new_key) else {
+            panic!("not re-keyed")
+        };
+        assert_eq!(*got, record());
+        // Nothing more to rename; a corrupt file is left for `check`.
+        std::fs::write(dir.path().join("runs/abc.json"), b"{").unwrap();
+        assert_eq!(store.upgrade().unwrap(), 0);
+        assert!(dir.path().join("runs/abc.json").exists());
+    }
+
+    #[test]
+    fn an_edited_outcome_is_corrupt_and_an_unsealed_record_is_sealed_at_the_next_open() {
+        let dir = tempfile::tempdir().unwrap();
+        let store = Store::open_locked(dir.path()).unwrap();
+        let rec = record();
+        store.save(&rec).unwrap();
+        let file = dir.path().join("runs").join(format!("{}.json", rec.key));
+        let text = std::fs::read_to_string(&file).unwrap();
+        assert!(text.contains("\"digest\":"));
+        // A class and a status changed by hand.
+        let edited = text
+            .replace("\"class\":\"MD\"", "\"class\":\"IC\"")
+            .replace("\"status\":\"steady\"", "\"status\":\"t_max\"");
+        assert_ne!(edited, text);
+        std::fs::write(&file, &edited).unwrap();
+        let Stored::Corrupt(reason) = store.check(&rec.key) else {
+            panic!("an edited outcome was accepted")
+        };
+        assert!(reason.contains("digest"), "{reason}");
+        // Its digest removed too: refused by a store opened to be written.
+        std::fs::write(
+            &file,
+            serde_json::to_vec(&RunRecord { ..rec.clone() }).unwrap(),
+        )
+        .unwrap();
+        assert!(matches!(store.check(&rec.key), Stored::Corrupt(_)));
+        // A read-only view accepts it; the next open to write seals it.
+        assert!(matches!(
+            Store::open_read(dir.path()).unwrap().check(&rec.key),
+            Stored::Valid(_)
+        ));
+        drop(store);
+        let store = Store::open_locked(dir.path()).unwrap();
+        assert_eq!(store.upgraded(), 1);
+        assert_eq!(store.check(&rec.key), Stored::Valid(Box::new(rec)));
     }
 
     #[test]

@@ -8,6 +8,7 @@ use crate::spec::SweepSpec;
 use crate::store::plan::Plan;
 use crate::store::run_store::RunRecord;
 use crate::store::run_store::Store;
+use droplet_solver::contract::settings::SolverSettings;
 use polars::prelude::*;
 use sha2::{Digest, Sha256};
 use std::collections::HashMap;
@@ -86,6 +87,28 @@ pub fn runs_frame(
         .filter_map(|t| records.get(&t.key).map(|r| (t, r)))
         .collect();
     let f = |g: &dyn Fn(&RunRecord) -> f64| rows.iter().map(|(_, r)| g(r)).collect::<Vec<f64>>();
+    // A setting's column is null in the rows of runs that do not read it
+    // (`SolverSettings::unread_reason`): a row records only what made its run.
+    fn read<T>(
+        rows: &[(crate::store::plan::Task, &RunRecord)],
+        g: &dyn Fn(&SolverSettings) -> Option<T>,
+    ) -> Vec<Option<T>> {
+        rows.iter().map(|(_, r)| g(&r.settings)).collect()
+    }
+    let read_f64 = |name: &str, g: &dyn Fn(&SolverSettings) -> f64| {
+        let v: Vec<Option<f64>> = rows
+            .iter()
+            .map(|(_, r)| r.settings.reads(name).then(|| g(&r.settings)))
+            .collect();
+        Column::new(name.into(), v)
+    };
+    let read_bool = |name: &str, g: &dyn Fn(&SolverSettings) -> bool| {
+        let v: Vec<Option<bool>> = rows
+            .iter()
+            .map(|(_, r)| r.settings.reads(name).then(|| g(&r.settings)))
+            .collect();
+        Column::new(name.into(), v)
+    };
     let mut cols = vec![
         Column::new(
             "point".into(),
@@ -111,55 +134,31 @@ pub fn runs_frame(
                 .map(|(_, r)| r.settings.model.as_str().to_string())
                 .collect(),
         ),
-        f64_col("h0", f(&|r| r.settings.h0)),
-        str_col(
-            "scheme",
-            rows.iter()
-                .map(|(_, r)| r.settings.scheme.to_string())
-                .collect(),
+        read_f64("h0", &|s| s.h0),
+        Column::new(
+            "scheme".into(),
+            read(&rows, &|s| s.reads("scheme").then(|| s.scheme.to_string())),
         ),
         Column::new(
             "n".into(),
-            rows.iter()
-                .map(|(_, r)| r.settings.n as u32)
-                .collect::<Vec<u32>>(),
+            read(&rows, &|s| s.reads("n").then_some(s.n as u32)),
         ),
         f64_col("dt", f(&|r| r.settings.dt)),
-        f64_col("tol", f(&|r| r.settings.tol)),
-        f64_col("dt_max", f(&|r| r.settings.dt_max)),
+        read_f64("tol", &|s| s.tol),
+        read_f64("dt_max", &|s| s.dt_max),
         f64_col("t_max", f(&|r| r.settings.t_max)),
         f64_col("steady_tol", f(&|r| r.settings.steady_tol)),
-        f64_col("steady_window", f(&|r| r.settings.steady_window)),
+        read_f64("steady_window", &|s| s.steady_window),
         str_col(
             "steady",
             rows.iter()
                 .map(|(_, r)| r.settings.steady.as_str().to_string())
                 .collect(),
         ),
-        Column::new(
-            "stop_beside_saddle".into(),
-            rows.iter()
-                .map(|(_, r)| r.settings.stop_beside_saddle)
-                .collect::<Vec<bool>>(),
-        ),
-        Column::new(
-            "leap_departures".into(),
-            rows.iter()
-                .map(|(_, r)| r.settings.leap_departures)
-                .collect::<Vec<bool>>(),
-        ),
-        Column::new(
-            "landing".into(),
-            rows.iter()
-                .map(|(_, r)| r.settings.landing)
-                .collect::<Vec<bool>>(),
-        ),
-        Column::new(
-            "run_on".into(),
-            rows.iter()
-                .map(|(_, r)| r.settings.run_on)
-                .collect::<Vec<bool>>(),
-        ),
+        read_bool("stop_beside_saddle", &|s| s.stop_beside_saddle),
+        read_bool("leap_departures", &|s| s.leap_departures),
+        read_bool("landing", &|s| s.landing),
+        read_bool("run_on", &|s| s.run_on),
         str_col(
             "status",
             rows.iter()

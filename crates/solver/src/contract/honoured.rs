@@ -1,0 +1,205 @@
+//! What a run honours: which solver settings a run of a given model, scheme, shape modes and
+//! ending reads, and the settings with every unread one at its kind's base value (what a run
+//! is keyed by and recorded with). The spec, every command and the tables ask here, so that a
+//! setting is never accepted and then ignored, and two runs that differ only in settings they
+//! do not read are one run.
+use crate::contract::ending::SteadyMethod;
+use crate::contract::settings::{ModelKind, SolverSettings};
+use crate::stepping::SchemeKind;
+
+impl SolverSettings {
+    /// The settings a run of this kind starts from: the ODE model's, the paper's scheme's or
+    /// the default spectral ones. A setting the run does not read has this value in its key.
+    fn base(&self) -> Self {
+        match (self.model, self.scheme) {
+            (ModelKind::Ode, _) => Self::ode(),
+            (ModelKind::Pde, SchemeKind::PaperFd) => Self::paper_fd(),
+            (ModelKind::Pde, SchemeKind::Spectral) => Self::default(),
+        }
+    }
+
+    /// Why a run with these settings does not read the setting `field` (its key in a spec's
+    /// `solver` section, and its column in `runs.parquet`), or `None` when it reads it. This
+    /// is the one account of what a run honours: the spec, every command and the tables use it.
+    pub fn unread_reason(&self, field: &str) -> Option<&'static str> {
+        let ode = self.model == ModelKind::Ode;
+        let k_modes = !ode && self.modes > 2;
+        let newton = self.steady == SteadyMethod::Newton;
+        let adaptive_two = !ode && !k_modes && self.scheme == SchemeKind::Spectral;
+        match field {
+            "h0" if !ode => Some("h0 is the reduced (ODE) model's cubic coefficient; a PDE run does not read it (model: ode uses it)"),
+            "n" | "scheme" if ode => Some("the ODE model has no grid and no scheme: it takes RK4 steps dt"),
+            "tol" | "dt_max" if ode => Some("the ODE model takes fixed RK4 steps dt"),
+            "tol" | "dt_max" if k_modes => Some("runs with modes > 2 take fixed steps dt (exponential Euler, or the paper's forward Euler)"),
+            "tol" | "dt_max" if !adaptive_two => Some("the paper's scheme takes fixed steps dt"),
+            "dt_max" if !self.adaptive() => Some("tol = 0 gives fixed steps dt; dt_max caps adaptive steps only"),
+            "landing" | "orientation_flow" | "stop_beside_saddle" | "leap_departures" | "run_on" if !newton => Some("it acts in the Newton finish; steady = test ends a run by the paper's test alone"),
+            "landing" | "orientation_flow" | "stop_beside_saddle" | "leap_departures" if k_modes => Some("runs with modes > 2 end by the Newton finish alone, without the landing, the orientation flow, the saddle stop or the leap (2-mode runs only)"),
+            "steady_window" if k_modes => Some("runs with modes > 2 are steady when every rate is below steady_tol; steady_window is the 2-mode test's window"),
+            "pinned" if ode || k_modes => Some("only a 2-mode PDE run can hold its centre fixed"),
+            _ => None,
+        }
+    }
+
+    /// True when a run with these settings reads `field` ([`Self::unread_reason`]).
+    pub fn reads(&self, field: &str) -> bool {
+        self.unread_reason(field).is_none()
+    }
+
+    /// These settings with every setting the run does not read at the value of its kind's
+    /// base settings ([`Self::unread_reason`]): what a run is keyed by and recorded with. Two
+    /// settings that differ only where the run does not read them give one run. (A PDE run's
+    /// `h0`, once set to `n` by a spec-parsing bug, is such a setting.)
+    pub fn honoured(&self) -> Self {
+        let base = self.base();
+        let mut out = *self;
+        let keep = |field: &str| self.reads(field);
+        if !keep("h0") {
+            out.h0 = base.h0;
+        }
+        if !keep("n") {
+            out.n = base.n;
+        }
+        if !keep("scheme") {
+            out.scheme = base.scheme;
+        }
+        if !keep("tol") {
+            out.tol = base.tol;
+        }
+        if !keep("dt_max") {
+            out.dt_max = base.dt_max;
+        }
+        if !keep("steady_window") {
+            out.steady_window = base.steady_window;
+        }
+        if !keep("pinned") {
+            out.pinned = base.pinned;
+        }
+        if !keep("landing") {
+            out.landing = base.landing;
+        }
+        if !keep("orientation_flow") {
+            out.orientation_flow = base.orientation_flow;
+        }
+        if !keep("stop_beside_saddle") {
+            out.stop_beside_saddle = base.stop_beside_saddle;
+        }
+        if !keep("leap_departures") {
+            out.leap_departures = base.leap_departures;
+        }
+        if !keep("run_on") {
+            out.run_on = base.run_on;
+        }
+        out
+    }
+
+    /// The first of the settings a user gave (`given`: spec keys, or the fields of
+    /// command-line options) that these settings do not read, with the reason: it would be
+    /// accepted and ignored, so the spec and every command refuse it.
+    pub fn first_unread<'a>(&self, given: &[&'a str]) -> Option<(&'a str, &'static str)> {
+        given
+            .iter()
+            .find_map(|&field| self.unread_reason(field).map(|why| (field, why)))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every setting a spec's `solver` section or a command may give.
+    const FIELDS: [&str; 14] = [
+        "h0",
+        "n",
+        "scheme",
+        "dt",
+        "tol",
+        "dt_max",
+        "t_max",
+        "steady_tol",
+        "steady_window",
+        "landing",
+        "orientation_flow",
+        "stop_beside_saddle",
+        "leap_departures",
+        "run_on",
+    ];
+
+    fn k_modes(k: usize) -> SolverSettings {
+        SolverSettings {
+            modes: k,
+            ..SolverSettings::default()
+        }
+    }
+
+    #[test]
+    fn a_two_mode_newton_run_reads_everything_but_h0() {
+        let s = SolverSettings::default();
+        let unread: Vec<&str> = FIELDS.into_iter().filter(|f| !s.reads(f)).collect();
+        assert_eq!(unread, ["h0"]);
+        assert!(SolverSettings::ode().reads("h0"));
+        assert!(!SolverSettings::ode().reads("n") && !SolverSettings::ode().reads("landing"));
+    }
+
+    #[test]
+    fn settings_a_run_does_not_read_give_the_same_honoured_settings() {
+        let base = k_modes(3);
+        let changed = SolverSettings {
+            tol: 1e-5,
+            dt_max: 0.1,
+            landing: false,
+            orientation_flow: false,
+            steady_window: 0.5,
+            h0: 192.0,
+            ..base
+        };
+        assert_ne!(changed, base);
+        assert_eq!(changed.honoured(), base.honoured());
+        // What the run reads stays.
+        let other = SolverSettings { dt: 0.01, ..base };
+        assert_ne!(other.honoured(), base.honoured());
+        // A PDE run's h0 (the spec bug set it to n) is not part of it; an ODE run's is.
+        let pde = SolverSettings {
+            h0: 192.0,
+            ..SolverSettings::default()
+        };
+        assert_eq!(pde.honoured(), SolverSettings::default());
+        let ode = SolverSettings {
+            h0: 0.2,
+            ..SolverSettings::ode()
+        };
+        assert_eq!(ode.honoured().h0, 0.2);
+        // Honouring is idempotent and keeps a valid setting valid.
+        for s in [changed, pde, ode, SolverSettings::paper_fd()] {
+            assert_eq!(s.honoured().honoured(), s.honoured());
+            assert!(s.honoured().validate().is_ok(), "{s:?}");
+        }
+    }
+
+    #[test]
+    fn a_given_setting_that_is_not_read_is_named_with_the_reason() {
+        let (field, why) = k_modes(3).first_unread(&["dt", "tol"]).unwrap();
+        assert!(field == "tol" && why.contains("fixed steps dt"), "{why}");
+        assert!(k_modes(3)
+            .first_unread(&["dt", "t_max", "run_on"])
+            .is_none());
+        let test = SolverSettings {
+            steady: SteadyMethod::Test,
+            ..SolverSettings::default()
+        };
+        let (_, why) = test.first_unread(&["landing"]).unwrap();
+        assert!(why.contains("Newton finish"), "{why}");
+        let (_, why) = SolverSettings::default().first_unread(&["h0"]).unwrap();
+        assert!(why.contains("ODE"), "{why}");
+        let fixed = SolverSettings {
+            tol: 0.0,
+            ..SolverSettings::default()
+        };
+        assert!(fixed.first_unread(&["tol"]).is_none());
+        assert!(fixed.first_unread(&["dt_max"]).is_some());
+        assert_eq!(
+            SolverSettings::paper_fd().honoured().scheme,
+            SchemeKind::PaperFd
+        );
+    }
+}
