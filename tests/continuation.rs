@@ -269,7 +269,7 @@ fn boundaries_at_several_grid_sizes_give_each_curves_shift_from_the_previous_one
     assert_eq!(table.height(), curves.len());
     assert!(out.join("boundaries_by_n.png").is_file());
     // Bad lists are refused, naming the option.
-    for bad in ["64,65", "64,abc", "64,2048"] {
+    for bad in ["64,65", "64,abc", "64,8192", "64,64"] {
         let o = run(&["boundaries", "--n", bad, "--out", o]);
         assert_eq!(o.status.code(), Some(2), "{bad}");
         assert!(String::from_utf8_lossy(&o.stderr).contains("--n"), "{bad}");

@@ -152,7 +152,10 @@ fn a_run_beside_a_saddle_lands_on_its_attractor_or_stays_unsettled() {
     ]);
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2), "{err}");
-    assert!(err.contains("stop_beside_saddle"), "{err}");
+    assert!(
+        err.contains("--stop-beside-saddle") && err.contains("Newton finish"),
+        "{err}"
+    );
 }
 
 #[test]

@@ -51,22 +51,30 @@ pub struct Args {
     /// Output directory (a sweep's directory redraws its phase map).
     #[arg(long, default_value = "out/boundaries")]
     out: PathBuf,
-    /// Print one JSON object (keys: eta_t, kappa2 (the window), plane [x, y], n, seconds,
+    /// Print one JSON object (keys: eta_t, kappa2 (the window), plane [x, y], n, modes, seconds,
     /// curves [{model, curve, points, <x> [..], <y> [..]}], files; for a list of N: eta_t,
     /// kappa2, ns, seconds [..], curves [{curve, n, points, shift}], files).
     #[arg(long)]
     json: bool,
 }
 
+/// Narrowest window: each boundary point is solved to about 1e-10 and drawn with its
+/// neighbours, so a narrower window shows no curve at all, only the solver's noise.
+const MIN_WIDTH: f64 = 1e-6;
+
 fn range(text: &str, flag: &str) -> Result<(f64, f64), CliError> {
-    let bad = || CliError::usage(format!("invalid --{flag} `{text}`: LO,HI with 0 < LO < HI"));
+    let bad = || {
+        CliError::usage(format!(
+            "invalid --{flag} `{text}`: LO,HI with 0 < LO < HI and HI - LO >= {MIN_WIDTH:e}"
+        ))
+    };
     let parts: Vec<f64> = text
         .split(',')
         .map(|p| p.trim().parse::<f64>())
         .collect::<Result<_, _>>()
         .map_err(|_| bad())?;
     match parts[..] {
-        [lo, hi] if lo.is_finite() && hi.is_finite() && lo > 0.0 && lo < hi => {
+        [lo, hi] if lo.is_finite() && hi.is_finite() && lo > 0.0 && hi - lo >= MIN_WIDTH => {
             super::line::within_limit(&format!("--{flag} HI"), hi)?;
             Ok((lo, hi))
         }
@@ -116,11 +124,17 @@ pub fn run(a: Args) -> Result<(), CliError> {
         study.grid_words()
     );
     let done = study.run()?;
-    if let Some((missing, points)) = done.missing.filter(|m| m.0 > 0) {
-        errln!(
+    match done.missing.filter(|m| m.0 > 0) {
+        Some((missing, points)) if done.from_tables => errln!(
+            "warning: {missing} of {points} points of {} lack a usable stored run (older \
+             numerics, or unreadable): its phase map was redrawn from its tables",
+            a.out.display()
+        ),
+        Some((missing, points)) => errln!(
             "warning: {}",
             super::plot::missing_message(missing, points, &a.out)
-        );
+        ),
+        None => {}
     }
     report(&study, &done, a.json);
     Ok(())
@@ -149,7 +163,8 @@ fn report(
             .collect();
         print_json(&serde_json::json!({
             "eta_t": [study.eta_t.0, study.eta_t.1], "kappa2": [study.kappa2.0, study.kappa2.1],
-            "plane": [xn, yn], "n": study.n, "seconds": done.seconds, "curves": curves,
+            "plane": [xn, yn], "n": study.n, "modes": study.modes, "seconds": done.seconds,
+            "curves": curves,
             "files": done.files,
         }));
     } else {
@@ -182,14 +197,14 @@ fn report(
     }
 }
 
-/// `--n N` or `--n N1,N2,...`: each an even integer from 16 to 1024.
+/// `--n N` or `--n N1,N2,...`: each an even integer from 16 to 4096, each given once.
 fn grid_sizes(text: &str) -> Result<Vec<usize>, CliError> {
     let ns = text
         .split(',')
         .map(|p| {
             p.trim().parse::<usize>().map_err(|_| {
                 CliError::usage(format!(
-                    "invalid --n `{text}`: an even integer from 16 to 1024, or a list N1,N2,..."
+                    "invalid --n `{text}`: an even integer from 16 to 4096, or a list N1,N2,..."
                 ))
             })
         })
@@ -199,8 +214,13 @@ fn grid_sizes(text: &str) -> Result<Vec<usize>, CliError> {
             "invalid --n `{text}`: at most 8 grid sizes"
         )));
     }
-    for &n in &ns {
+    for (i, &n) in ns.iter().enumerate() {
         super::check_grid(n)?;
+        if ns[..i].contains(&n) {
+            return Err(CliError::usage(format!(
+                "invalid --n `{text}`: {n} is given twice (each grid size once)"
+            )));
+        }
     }
     Ok(ns)
 }

@@ -129,15 +129,15 @@ impl From<droplet_solver::error::SolverError> for CliError {
     }
 }
 
-/// Checks `--n` for the root-finding commands (stability, continue, boundaries).
+/// Checks `--n` for the root-finding commands (stability, continue, boundaries, truncation):
+/// the one grid limit every command has (`droplet_solver::model::grid::check_n`).
 pub fn check_grid(n: usize) -> Result<(), CliError> {
-    if (16..=1024).contains(&n) && n.is_multiple_of(2) {
-        Ok(())
-    } else {
-        Err(CliError::usage(format!(
-            "invalid --n {n}: an even integer from 16 to 1024"
-        )))
-    }
+    droplet_solver::model::grid::check_n(n).map_err(|_| {
+        CliError::usage(format!(
+            "invalid --n {n}: an even integer from 16 to {}",
+            droplet_solver::model::grid::MAX_N
+        ))
+    })
 }
 
 /// Parses `--axis`: the mirror line a state lies on.

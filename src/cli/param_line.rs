@@ -57,7 +57,19 @@ impl ParamLineArgs {
             }
             _ => unreachable!("clap requires one"),
         };
+        // The paper's lines fix eta_t (--eta-t) or kappa2 (--kappa2) by an option of their own.
+        let fixed = match (self.param.is_some(), self.eta_t, self.kappa2) {
+            (false, Some(_), _) => Some(ModelParam::EtaT),
+            (false, None, Some(_)) => Some(ModelParam::Kappa2),
+            _ => None,
+        };
         for (p, x) in self.settings()? {
+            if Some(p) == fixed {
+                return Err(CliError::usage(format!(
+                    "invalid --set {p}={x}: {p} is given by --{} too; give it once",
+                    p.name().replace('_', "-")
+                )));
+            }
             if p == varied {
                 return Err(CliError::usage(format!(
                     "invalid --set {p}={x}: {p} is the varied parameter (--from, --to)"

@@ -200,6 +200,13 @@ struct Report {
 
 pub fn run(a: Args) -> Result<(), CliError> {
     let (params, settings) = model_of(&a)?;
+    let most = droplet_solver::contract::limits::MAX_MODES;
+    if !(2..=most).contains(&a.modes) {
+        return Err(CliError::usage(format!(
+            "invalid --modes {}: an integer from 2 (the paper's a2, b2) to {most}",
+            a.modes
+        )));
+    }
     let ic = InitialCondition::parse(&a.ic)?;
     ic.check_modes(a.modes)
         .map_err(|e| CliError::usage(format!("invalid --ic with --modes {}: {e}", a.modes)))?;

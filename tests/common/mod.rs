@@ -17,15 +17,16 @@ pub fn read(path: &Path) -> DataFrame {
 }
 
 /// Rewrites one string column of a Parquet table: `f(row, old) -> new` (a false label for
-/// `droplet audit` to catch).
+/// `droplet audit` to catch), keeping its metadata (the spec a map's tables carry).
 #[allow(dead_code)]
 pub fn edit(path: &Path, column: &str, f: impl Fn(usize, Option<&str>) -> Option<String>) {
+    use droplet_sweep::tables::sweep_tables::{read_metadata, write_parquet};
+    let meta: Vec<(String, String)> = read_metadata(path).unwrap().into_iter().collect();
     let mut df = read(path);
     let old = df.column(column).unwrap().str().unwrap().clone();
     let new: Vec<Option<String>> = (0..df.height()).map(|i| f(i, old.get(i))).collect();
     df.with_column(Column::new(column.into(), new)).unwrap();
-    let file = std::fs::File::create(path).unwrap();
-    ParquetWriter::new(file).finish(&mut df).unwrap();
+    write_parquet(&mut df, path, meta).unwrap();
 }
 
 /// A table without its wall-clock column (the one value that differs between two runs).

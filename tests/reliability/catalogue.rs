@@ -26,6 +26,19 @@ fn case(what: &'static str, args: &[&str], code: i32, says: &'static [&'static s
     }
 }
 
+impl Case {
+    /// This case with `from` replaced by `to` in its spec, and the words it must say.
+    fn replaced(mut self, from: &str, to: &str, says: &'static [&'static str]) -> Self {
+        for a in &mut self.args {
+            if a.starts_with("SPEC:") {
+                assert!(a.contains(from), "{}", self.what);
+                *a = a.replacen(from, to, 1);
+            }
+        }
+        Self { says, ..self }
+    }
+}
+
 /// `c`, which must return within one second.
 fn fast(c: Case) -> Case {
     Case { within: 1.0, ..c }
@@ -197,20 +210,20 @@ fn catalogue() -> Vec<Case> {
         simc(
             "adaptive paper-fd",
             &["--scheme", "paper-fd", "--tol", "1e-4"],
-            &["`tol`"],
+            &["--tol", "fixed steps"],
             5.0,
         ),
         simc("unknown scheme", &["--scheme", "rk4"], &["rk4"], 5.0),
         simc(
             "stop beside a saddle with the paper's test",
             &["--steady", "test", "--stop-beside-saddle"],
-            &["stop_beside_saddle", "steady = newton"],
+            &["--stop-beside-saddle", "Newton finish"],
             5.0,
         ),
         simc(
             "leap departures with the paper's test",
             &["--steady", "test", "--leap-departures"],
-            &["leap_departures", "steady = newton"],
+            &["--leap-departures", "Newton finish"],
             5.0,
         ),
         simc(
@@ -246,7 +259,7 @@ fn catalogue() -> Vec<Case> {
                 "solver:",
                 "solver:\n  steady: test\n  stop_beside_saddle: true",
             ),
-            &["solver.stop_beside_saddle", "steady = newton"],
+            &["solver.stop_beside_saddle", "Newton finish"],
         ),
         spec_case(
             "spec leap_departures not true or false",
@@ -585,6 +598,94 @@ fn catalogue() -> Vec<Case> {
             says: &["`name`", "a name of 1048576 characters", "at most 100"],
             within: 1.0,
         }),
+        // Reliability round 4: an initial speed that overflows the first step (it hung the
+        // K-mode eigenvalues), settings a run would ignore, values that would change a Slurm
+        // script, and checks that disagreed between commands.
+        fast(simc(
+            "K-mode IC at speed 1e308",
+            &["--modes", "3", "--n", "64", "--t-max", "1", "--no-run-on", "--ic", "custom:1e308,0,0.1,0,0,0"],
+            &["initial speed", "at most 10"],
+            1.0,
+        )),
+        spec_case(
+            "spec IC at speed 1e308",
+            ("name: m\n", "name: m\ninitial_conditions: ['custom:1e308,0,0.1,0']\n"),
+            &["initial_conditions", "initial speed"],
+        ),
+        fast(simc("--tol with --modes 3", &["--modes", "3", "--n", "64", "--tol", "1e-5"], &["--tol", "does not read", "fixed steps"], 1.0)),
+        fast(simc("--dt-max with --modes 3", &["--modes", "3", "--n", "64", "--dt-max", "0.1"], &["--dt-max", "does not read"], 1.0)),
+        fast(simc("--no-landing with --modes 3", &["--modes", "3", "--n", "64", "--no-landing"], &["--no-landing", "2-mode runs only"], 1.0)),
+        fast(simc("--no-run-on with paper-fd", &["--scheme", "paper-fd", "--no-run-on"], &["--no-run-on", "Newton finish"], 1.0)),
+        fast(simc("--dt-max with fixed steps", &["--tol", "0", "--dt-max", "0.5"], &["--dt-max", "fixed steps"], 1.0)),
+        fast(simc("--modes 0", &["--modes", "0"], &["--modes 0", "from 2"], 1.0)),
+        fast(simc("--modes 1", &["--modes", "1"], &["--modes 1", "from 2"], 1.0)),
+        spec_case("spec h0 for a PDE run", ("dt: 0.05", "dt: 0.05\n  h0: 0.2"), &["solver.h0", "ODE"]),
+        spec_case(
+            "spec tol with params.modes 3",
+            ("name: m\n", "name: m\nparams: {modes: 3}\n"),
+            &[],
+        )
+        .replaced("  t_max: 10\n", "  t_max: 10\n  tol: 1.0e-5\n", &["solver.tol", "modes > 2"]),
+        spec_case(
+            "spec grid tol with params.modes 3",
+            ("kappa2: [0.11]\n", "kappa2: [0.11]\n  tol: [1.0e-4, 1.0e-5]\nparams: {modes: 3}\n"),
+            &["grid.tol", "modes > 2"],
+        ),
+        spec_case(
+            "spec landing with steady test",
+            ("dt: 0.05", "dt: 0.05\n  steady: test\n  landing: false"),
+            &["solver.landing", "Newton finish"],
+        ),
+        spec_case("spec n with model ode", ("name: m\n", "name: m\nmodel: ode\n"), &["solver.n", "no grid"]),
+        spec_case("spec params.modes 1", ("name: m\n", "name: m\nparams: {modes: 1}\n"), &["params.modes", "from 2"]),
+        fast(case(
+            "slurm partition with a newline",
+            &["slurm", "SPEC:name: m\ngrid: {eta_t: [0.08], kappa2: [0.11]}\n", "--shards", "2", "--partition", "p\necho INJECTED", "--out", "DIR/out"],
+            2,
+            &["--partition", "cannot be written into a Slurm script"],
+        )),
+        fast(case(
+            "slurm time with a blank",
+            &["slurm", "SPEC:name: m\ngrid: {eta_t: [0.08], kappa2: [0.11]}\n", "--shards", "2", "--time", "1:00 --wrap=x", "--out", "DIR/out"],
+            2,
+            &["--time", "blanks"],
+        )),
+        fast(case(
+            "slurm 100000 shards for 4 runs",
+            &["slurm", "SPEC:name: m\ngrid: {eta_t: [0.08], kappa2: [0.11]}\n", "--shards", "100000", "--out", "DIR/out"],
+            2,
+            &["--shards 100000", "4 runs"],
+        )),
+        fast(case(
+            "boundaries --n 64,64",
+            &["boundaries", "--n", "64,64", "--out", "DIR/b"],
+            2,
+            &["--n", "given twice"],
+        )),
+        fast(case(
+            "boundaries --n 8192",
+            &["boundaries", "--n", "8192", "--out", "DIR/b"],
+            2,
+            &["--n 8192", "16 to 4096"],
+        )),
+        fast(case(
+            "stability --n 8192",
+            &["stability", "--eta-t", "0.085", "--kappa2", "0.13", "--n", "8192"],
+            2,
+            &["--n 8192", "16 to 4096"],
+        )),
+        fast(case(
+            "boundaries window 1e-300..1e-299",
+            &["boundaries", "--eta-t", "1e-300,1e-299", "--out", "DIR/b"],
+            2,
+            &["--eta-t", "HI - LO"],
+        )),
+        fast(case(
+            "continue --kappa2 with --set kappa2",
+            &["continue", "--kappa2", "0.13", "--set", "kappa2=0.2", "--from", "0.07", "--to", "0.1", "--n", "64", "--out", "DIR/c"],
+            2,
+            &["--set kappa2=0.2", "give it once"],
+        )),
         case("unknown command", &["fly"], 2, &["fly"]),
         case("no command", &[], 2, &["Usage"]),
     ]
@@ -650,7 +751,7 @@ fn malformed_and_extreme_inputs_exit_with_their_code_name_the_problem_and_never_
         ));
     }
     // Nothing was left in the scratch directory by a refused command but its own inputs.
-    for written in ["out", "b", "c", "ode", "h0"] {
+    for written in ["out", "b", "c", "ode", "h0", "PWNED"] {
         assert!(!d.join(written).exists(), "{written} was created");
     }
     assert!(cases.len() >= 50);

@@ -8,14 +8,16 @@
 //! - an oversized spec is refused before anything is written;
 //! - SIGKILL at many moments, then resume: tables identical to an uninterrupted sweep;
 //! - stale temporaries of interrupted table and picture writes are removed by the next run;
-//! - a whole sweep and a shard never work on one directory at the same time.
+//! - a whole sweep and a shard never work on one directory at the same time;
+//! - `droplet audit` fails a map with a run missing, duplicated, foreign or mislabelled.
 //!
 //! With `DROPLET_RELIABILITY_DIR` set, the catalogue and kill tests write their counts there
 //! (`inputs.md`, `kills.md`): the README's reliability section quotes them.
 //!
 //! One binary, one file per concern: `catalogue` (bad input), `store` (corrupt runs, resume
 //! after kills, temporaries, locks), `output` (a full disk, a closed pipe, pictures and
-//! messages).
+//! messages), `audit` (complete maps only).
+mod audit;
 mod catalogue;
 #[path = "../common/mod.rs"]
 mod common;

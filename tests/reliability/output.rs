@@ -167,14 +167,27 @@ fn plot_draws_one_consistent_snapshot_and_says_when_points_are_missing() {
     assert_eq!(r.status.code(), Some(2), "{err}");
     assert!(err.contains("in use by another droplet process"), "{err}");
     assert_eq!(std::fs::metadata(&png).unwrap().modified().unwrap(), before);
-    // An unreadable run: the picture shows the point as missing, and plot says so (exit 1).
+    // An unreadable run in a finished map: plot says so (exit 1) and leaves the map's own
+    // picture as it is.
     let files = run_files(&out);
     std::fs::write(&files[0], b"{ not json").unwrap();
     let r = run(&["plot", o]);
     let err = String::from_utf8_lossy(&r.stderr);
     assert_eq!(r.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("1 of 6 points") && err.contains("nothing was drawn"),
+        "{err}"
+    );
+    assert_eq!(std::fs::metadata(&png).unwrap().modified().unwrap(), before);
+    // Without tables (a sweep interrupted before its end) the picture shows the point as
+    // missing, and plot says so (exit 1).
+    std::fs::remove_file(out.join("points.parquet")).unwrap();
+    let r = run(&["plot", o]);
+    let err = String::from_utf8_lossy(&r.stderr);
+    assert_eq!(r.status.code(), Some(1), "{err}");
     assert!(err.contains("1 of 6 points are drawn as missing"), "{err}");
     assert!(err.contains("droplet status"), "{err}");
+    assert_ne!(std::fs::metadata(&png).unwrap().modified().unwrap(), before);
 }
 
 #[test]

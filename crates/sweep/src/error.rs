@@ -48,6 +48,14 @@ pub enum SweepError {
     Invalid(String),
     #[error("{} of {} runs are missing or unreadable in {} (e.g. {}); no tables written; re-run the sweep (or the shard) to recompute them", .0.runs_missing, .0.runs_total, .0.output.display(), .0.missing_examples.first().map(String::as_str).unwrap_or("-"))]
     Incomplete(Box<crate::merge_report::MergeReport>),
+    /// A finished map (its tables are there) whose stored runs no longer give every point: a
+    /// picture from them would replace the map's own with one of missing points.
+    #[error("{missing} of {points} points of {} lack a usable stored run (unfinished, unreadable, or of an older numerics), though its tables hold a finished map; nothing was drawn, so its pictures stay as they are (`droplet status {0}` counts the runs; `droplet sweep` on it recomputes them)", .dir.display())]
+    StaleRuns {
+        dir: PathBuf,
+        missing: usize,
+        points: usize,
+    },
     /// A shard of a refined sweep's level started before the levels below it were finished.
     #[error("level {level} cannot start in {}: level {earlier} has {missing} of its runs missing or unreadable, and level {level}'s points follow from them; run level {earlier}'s shards first (--level {earlier})", .output.display())]
     LevelNotReady {

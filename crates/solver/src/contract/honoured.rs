@@ -94,12 +94,35 @@ impl SolverSettings {
     }
 
     /// The first of the settings a user gave (`given`: spec keys, or the fields of
-    /// command-line options) that these settings do not read, with the reason: it would be
-    /// accepted and ignored, so the spec and every command refuse it.
+    /// command-line options) that these settings do not read and that differs from the value
+    /// the run goes by (`tol: 0` for the paper's scheme is what it does, not ignored), with
+    /// the reason: it would be accepted and ignored, so the spec and every command refuse it.
     pub fn first_unread<'a>(&self, given: &[&'a str]) -> Option<(&'a str, &'static str)> {
-        given
-            .iter()
-            .find_map(|&field| self.unread_reason(field).map(|why| (field, why)))
+        let honoured = self.honoured();
+        given.iter().find_map(|&field| {
+            let why = self.unread_reason(field)?;
+            self.differs(&honoured, field).then_some((field, why))
+        })
+    }
+
+    /// True when `field` has another value in `other`.
+    fn differs(&self, other: &Self, field: &str) -> bool {
+        match field {
+            "h0" => self.h0 != other.h0,
+            "n" => self.n != other.n,
+            "scheme" => self.scheme != other.scheme,
+            "tol" => self.tol != other.tol,
+            "dt_max" => self.dt_max != other.dt_max,
+            "steady_window" => self.steady_window != other.steady_window,
+            "pinned" => self.pinned != other.pinned,
+            "landing" => self.landing != other.landing,
+            "orientation_flow" => self.orientation_flow != other.orientation_flow,
+            "stop_beside_saddle" => self.stop_beside_saddle != other.stop_beside_saddle,
+            "leap_departures" => self.leap_departures != other.leap_departures,
+            "run_on" => self.run_on != other.run_on,
+            // Every other setting is read by every run ([`Self::unread_reason`]).
+            _ => false,
+        }
     }
 }
 
@@ -178,7 +201,11 @@ mod tests {
 
     #[test]
     fn a_given_setting_that_is_not_read_is_named_with_the_reason() {
-        let (field, why) = k_modes(3).first_unread(&["dt", "tol"]).unwrap();
+        let k3 = SolverSettings {
+            tol: 1e-5,
+            ..k_modes(3)
+        };
+        let (field, why) = k3.first_unread(&["dt", "tol"]).unwrap();
         assert!(field == "tol" && why.contains("fixed steps dt"), "{why}");
         assert!(k_modes(3)
             .first_unread(&["dt", "t_max", "run_on"])
@@ -187,16 +214,31 @@ mod tests {
             steady: SteadyMethod::Test,
             ..SolverSettings::default()
         };
-        let (_, why) = test.first_unread(&["landing"]).unwrap();
+        // The value the run goes by is no setting ignored; another one is.
+        assert!(test.first_unread(&["landing"]).is_none());
+        let off = SolverSettings {
+            landing: false,
+            ..test
+        };
+        let (_, why) = off.first_unread(&["landing"]).unwrap();
         assert!(why.contains("Newton finish"), "{why}");
-        let (_, why) = SolverSettings::default().first_unread(&["h0"]).unwrap();
+        let h0 = SolverSettings {
+            h0: 0.2,
+            ..SolverSettings::default()
+        };
+        let (_, why) = h0.first_unread(&["h0"]).unwrap();
         assert!(why.contains("ODE"), "{why}");
         let fixed = SolverSettings {
             tol: 0.0,
             ..SolverSettings::default()
         };
         assert!(fixed.first_unread(&["tol"]).is_none());
-        assert!(fixed.first_unread(&["dt_max"]).is_some());
+        let capped = SolverSettings {
+            dt_max: 0.5,
+            ..fixed
+        };
+        assert!(capped.first_unread(&["dt_max"]).is_some());
+        assert!(SolverSettings::paper_fd().first_unread(&["tol"]).is_none());
         assert_eq!(
             SolverSettings::paper_fd().honoured().scheme,
             SchemeKind::PaperFd

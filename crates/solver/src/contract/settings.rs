@@ -278,12 +278,7 @@ impl SolverSettings {
             self.steady_window,
             "a finite number >= dt",
         )?;
-        require(
-            (16..=4096).contains(&self.n) && self.n.is_multiple_of(2),
-            "n",
-            self.n as f64,
-            "an even integer from 16 to 4096",
-        )?;
+        crate::model::grid::check_n(self.n)?;
         require(self.h0 > 0.0, "h0", self.h0, "a finite number > 0")?;
         if self.steady == SteadyMethod::Newton
             && (self.model != ModelKind::Pde || self.scheme != SchemeKind::Spectral || self.pinned)

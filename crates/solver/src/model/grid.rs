@@ -25,15 +25,24 @@ pub struct Grid {
     pub ky_d: Vec<f64>,
 }
 
+/// Most grid points per side any command accepts (runs, roots, audits alike): at `N = 4096`
+/// one field is 128 MiB, and the droplet's interface is resolved from `N = 192` on.
+pub const MAX_N: usize = 4096;
+
+/// The one check of a grid size: an even integer from 16 to [`MAX_N`].
+pub fn check_n(n: usize) -> Result<(), SolverError> {
+    require(
+        (16..=MAX_N).contains(&n) && n.is_multiple_of(2),
+        "n",
+        n as f64,
+        format!("an even integer from 16 to {MAX_N}"),
+    )
+}
+
 impl Grid {
     /// A grid of `n x n` points on a box of side `len`.
     pub fn new(n: usize, len: f64) -> Result<Self, SolverError> {
-        require(
-            n >= 16 && n.is_multiple_of(2) && n <= 8192,
-            "n",
-            n as f64,
-            "an even integer between 16 and 8192",
-        )?;
+        check_n(n)?;
         require(len > 0.0, "box_len", len, "a finite number > 0")?;
         let dk = 2.0 * std::f64::consts::PI / len;
         let signed = |j: usize| -> f64 {

@@ -28,6 +28,7 @@
 //!
 //! May use: `spec`, `store`, `map`, `tables`. Used by: the CLI.
 
+mod completeness;
 mod point_model;
 
 use crate::error::SweepError;
@@ -105,8 +106,10 @@ pub struct Contradiction {
 pub struct Audit {
     pub points: usize,
     pub runs: usize,
-    /// Points whose label has no contradiction.
+    /// Points whose label has no contradiction (with a sample: none among the checks made).
     pub points_clean: usize,
+    /// With a sample: the points whose stable states were checked (`None`: every point).
+    pub sampled: Option<usize>,
     /// Distinct steady states whose eigenvalues were computed (resting disks included).
     pub states_checked: usize,
     pub contradictions: Vec<Contradiction>,
@@ -134,20 +137,6 @@ fn audit_point(
     states: &mut usize,
 ) -> Vec<Contradiction> {
     let mut out = Vec::new();
-    let expected = expected_label(runs);
-    if let Some(r) = runs.first().filter(|_| expected != label) {
-        out.push(Contradiction {
-            point: r.point,
-            eta_t: r.params.eta_t,
-            kappa2: r.params.kappa2,
-            label: label.to_string(),
-            ic: "-".into(),
-            class: None,
-            kind: Kind::LabelMismatch,
-            detail: format!("the points table says {label}, its runs give {expected}"),
-            key: "-".into(),
-        });
-    }
     let mut point = PointStates {
         model,
         disk: None,
@@ -256,20 +245,6 @@ fn unsettled_detail(r: &Row) -> String {
     )
 }
 
-/// The label a point's runs give ([`crate::map::point_class`]: the classes of the runs that ended
-/// steady).
-fn expected_label(runs: &[&Row]) -> String {
-    let classes: BTreeSet<StateClass> = runs
-        .iter()
-        .filter(|r| r.status == RunStatus::Steady.as_str())
-        .filter_map(|r| r.class)
-        .collect();
-    let count = |status: &str| runs.iter().filter(|r| r.status == status).count();
-    let diverged = count(RunStatus::Diverged.as_str());
-    let unsettled = runs.len() - count(RunStatus::Steady.as_str()) - diverged;
-    crate::map::point_class::label_of(&classes, runs.len(), diverged, unsettled)
-}
-
 /// The runs by point; only maps of the PDE model with the spectral scheme (their steady
 /// equations and eigenvalues are what the audit computes).
 fn by_point(rows: Vec<Row>) -> Result<BTreeMap<u32, Vec<Row>>, SweepError> {
@@ -287,10 +262,41 @@ fn by_point(rows: Vec<Row>) -> Result<BTreeMap<u32, Vec<Row>>, SweepError> {
     Ok(out)
 }
 
+/// A fixed random sample of a map's points: `points` of them, drawn by `seed` (the same
+/// sample for the same map and seed, on any machine).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Sample {
+    pub points: usize,
+    pub seed: u64,
+}
+
+impl Sample {
+    /// The `points` of `all` with the smallest SHA-256 of `(seed, point)`.
+    fn draw(&self, all: impl Iterator<Item = u32>) -> BTreeSet<u32> {
+        use sha2::{Digest, Sha256};
+        let mut ranked: Vec<([u8; 32], u32)> = all
+            .map(|p| {
+                let mut h = Sha256::new();
+                h.update(self.seed.to_le_bytes());
+                h.update(p.to_le_bytes());
+                (h.finalize().into(), p)
+            })
+            .collect();
+        ranked.sort();
+        ranked
+            .into_iter()
+            .take(self.points)
+            .map(|(_, p)| p)
+            .collect()
+    }
+}
+
 /// Audits the map in `dir` (its `runs.parquet` and `points.parquet`), with the steady
 /// equations and eigenvalues of its model: the paper's 2-mode model, or the general one with
-/// the map's shape modes `2..K` (`params.modes`).
-pub fn audit(dir: &Path) -> Result<Audit, SweepError> {
+/// the map's shape modes `2..K` (`params.modes`). Completeness and labels are checked at every
+/// point; the stable states at every point, or with `sample` at that sample of points (the
+/// full audit of a large map takes minutes; a sample shows a stale or edited map in seconds).
+pub fn audit(dir: &Path, sample: Option<Sample>) -> Result<Audit, SweepError> {
     let runs_path = dir.join(tables::RUNS);
     let runs = by_point(tables::runs(&runs_path)?)?;
     let points = tables::points(&dir.join(tables::POINTS))?;
@@ -307,7 +313,7 @@ pub fn audit(dir: &Path) -> Result<Audit, SweepError> {
         .iter()
         .map(|ic| ic.name.clone())
         .collect();
-    let complete = completeness(&points, &runs, &ics);
+    let complete = completeness::completeness(&points, &runs, &ics);
     let labelled: BTreeMap<u32, String> = points.into_iter().map(|p| (p.point, p.label)).collect();
     let modes = runs.values().flatten().map(|r| r.modes).max().unwrap_or(2);
     let law = runs
@@ -332,6 +338,19 @@ pub fn audit(dir: &Path) -> Result<Audit, SweepError> {
     let groups: Vec<(&String, Vec<&Row>)> = runs
         .iter()
         .filter_map(|(p, rows)| Some((labelled.get(p)?, rows.iter().collect())))
+        .collect();
+    let mismatched: Vec<Contradiction> = groups
+        .iter()
+        .filter_map(|(label, rows)| completeness::label_mismatch(rows, label))
+        .collect();
+    let drawn = sample.map(|s| s.draw(groups.iter().filter_map(|(_, r)| Some(r.first()?.point))));
+    let groups: Vec<(&String, Vec<&Row>)> = groups
+        .into_iter()
+        .filter(|(_, rows)| {
+            drawn
+                .as_ref()
+                .is_none_or(|d| rows.first().is_some_and(|r| d.contains(&r.point)))
+        })
         .collect();
     if let Some(first) = groups.first().and_then(|(_, r)| r.first()) {
         // Fails here, not in a worker, if the solver cannot be made.
@@ -370,8 +389,10 @@ pub fn audit(dir: &Path) -> Result<Audit, SweepError> {
         )
         .collect();
     let states_checked = results.iter().map(|(_, s)| s).sum();
+    let states_points = groups.len();
     let contradictions: Vec<Contradiction> = complete
         .into_iter()
+        .chain(mismatched)
         .chain(results.into_iter().flat_map(|(c, _)| c))
         .collect();
     let flawed: BTreeSet<u32> = contradictions
@@ -383,90 +404,8 @@ pub fn audit(dir: &Path) -> Result<Audit, SweepError> {
         points: labelled.len(),
         runs: runs.values().map(Vec::len).sum(),
         points_clean: labelled.len().saturating_sub(flawed.len()),
+        sampled: drawn.map(|_| states_points),
         states_checked,
         contradictions,
     })
-}
-
-/// Whether every point of the points table has exactly one run of each of the spec's
-/// initial conditions `ics`, and no run is of another condition or of a point it does not
-/// list: a map with a run deleted, duplicated or foreign is not certified, whatever its
-/// other runs show. (A point's label is then also checked against the runs it has.)
-fn completeness(
-    points: &[tables::PointRow],
-    runs: &BTreeMap<u32, Vec<Row>>,
-    ics: &[String],
-) -> Vec<Contradiction> {
-    let mut out = Vec::new();
-    let mut flag = |(point, eta_t, kappa2): (u32, f64, f64),
-                    label: &str,
-                    ic: &str,
-                    kind: Kind,
-                    detail: String,
-                    key: &str| {
-        out.push(Contradiction {
-            point,
-            eta_t,
-            kappa2,
-            label: label.to_string(),
-            ic: ic.to_string(),
-            class: None,
-            kind,
-            detail,
-            key: key.to_string(),
-        })
-    };
-    let listed: BTreeSet<u32> = points.iter().map(|p| p.point).collect();
-    for (p, rows) in runs.iter().filter(|(p, _)| !listed.contains(p)) {
-        for r in rows {
-            let detail = format!("a run of point {p}, which points.parquet does not list");
-            let at = (*p, r.params.eta_t, r.params.kappa2);
-            flag(at, "-", &r.ic, Kind::UnknownRun, detail, &r.key);
-        }
-    }
-    for point in points {
-        let rows = runs.get(&point.point).map_or(&[][..], Vec::as_slice);
-        // A point without runs is named by its coordinates in the sweep's plane.
-        let (eta_t, kappa2) = rows
-            .first()
-            .map_or((point.x, point.y), |r| (r.params.eta_t, r.params.kappa2));
-        let at = (point.point, eta_t, kappa2);
-        for ic in ics {
-            let of_ic: Vec<&Row> = rows.iter().filter(|r| &r.ic == ic).collect();
-            match of_ic.len() {
-                1 => {}
-                0 => flag(
-                    at,
-                    &point.label,
-                    ic,
-                    Kind::MissingRun,
-                    format!(
-                        "point {} has no run from initial condition {ic}",
-                        point.point
-                    ),
-                    "-",
-                ),
-                n => flag(
-                    at,
-                    &point.label,
-                    ic,
-                    Kind::DuplicateRun,
-                    format!(
-                        "point {} has {n} runs from initial condition {ic}",
-                        point.point
-                    ),
-                    &of_ic[1].key,
-                ),
-            }
-        }
-        for r in rows.iter().filter(|r| !ics.contains(&r.ic)) {
-            let detail = format!(
-                "initial condition {} is not one of the spec's ({})",
-                r.ic,
-                ics.join(", ")
-            );
-            flag(at, &point.label, &r.ic, Kind::UnknownRun, detail, &r.key);
-        }
-    }
-    out
 }

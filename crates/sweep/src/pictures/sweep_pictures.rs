@@ -29,28 +29,48 @@ pub struct Drawn {
 
 /// Draws `phase_map.png` / `.svg` of the sweep in `dir` (points without all runs: `missing`),
 /// from one consistent snapshot: refused while a sweep or shard works on `dir`. A directory
-/// with no run store (a committed result) is drawn from its tables.
+/// with no run store (a committed result) is drawn from its tables. A finished map (tables
+/// written) whose stored runs lack a point is refused, its pictures left as they are.
 pub fn plot(dir: &Path) -> Result<Drawn, SweepError> {
     if crate::tables::read::is_tables_only(dir) {
-        let spec = crate::tables::read::stored_spec(&dir.join(crate::tables::read::POINTS))?;
-        let drawing = MapDrawing::from_tables(dir)?;
-        let files = draw(dir, &spec, &drawing)?;
-        return Ok(Drawn {
-            files,
-            points: drawing.points.len(),
-            missing: 0,
-        });
+        return plot_tables(dir);
     }
-    let store = Store::open_idle(dir)?;
+    plot_in(&Store::open_idle(dir)?)
+}
+
+/// The pictures of the finished map in `dir` drawn from its tables alone.
+pub fn plot_tables(dir: &Path) -> Result<Drawn, SweepError> {
+    let spec = crate::tables::read::stored_spec(&dir.join(crate::tables::read::POINTS))?;
+    let drawing = MapDrawing::from_tables(dir)?;
+    let files = draw(dir, &spec, &drawing)?;
+    Ok(Drawn {
+        files,
+        points: drawing.points.len(),
+        missing: 0,
+    })
+}
+
+/// [`plot`] of the sweep whose store `store` the caller holds open to write (its lock taken).
+pub fn plot_in(store: &Store) -> Result<Drawn, SweepError> {
+    let dir = store.dir();
     let spec = crate::spec::load_stored(dir)?;
-    let plan = crate::map::levels::stored_plan(&spec, &store)?;
+    let plan = crate::map::levels::stored_plan(&spec, store)?;
     let records = store.load_many(plan.tasks().map(|t| t.key));
     let map = PhaseMap::new(&plan, &records);
+    let missing = map.points.iter().filter(|p| !p.complete()).count();
+    if missing > 0 && dir.join(crate::tables::read::POINTS).is_file() {
+        // A finished map's pictures are never replaced by a picture of missing points.
+        return Err(SweepError::StaleRuns {
+            dir: dir.to_path_buf(),
+            missing,
+            points: map.points.len(),
+        });
+    }
     let files = plot_records(dir, &spec, &plan, &records, &map)?;
     Ok(Drawn {
         files,
         points: map.points.len(),
-        missing: map.points.iter().filter(|p| !p.complete()).count(),
+        missing,
     })
 }
 

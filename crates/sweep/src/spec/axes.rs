@@ -94,8 +94,8 @@ impl Param {
             Param::MASS => (x >= 0.0, "finite numbers >= 0 (0 = overdamped)"),
             Param::Tol => (x >= 0.0, "finite numbers >= 0 (0 = fixed step)"),
             Param::N => (
-                x > 0.0 && x.fract() == 0.0 && x <= 4096.0,
-                "even integers from 16 to 4096",
+                x > 0.0 && x.fract() == 0.0 && x <= droplet_solver::model::grid::MAX_N as f64,
+                "even integers from 16 to 4096 (model::grid::MAX_N)",
             ),
             _ => (x > 0.0, "finite numbers > 0"),
         }

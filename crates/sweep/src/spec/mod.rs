@@ -253,7 +253,7 @@ fn check_read(
         ctx.err(
             path,
             value,
-            format!("a setting these runs read; they do not read this one: {why}"),
+            format!("refused: these runs do not read it ({why})"),
         )
     };
     if let Some(m) = top.get("solver").and_then(|v| v.as_mapping()) {
@@ -269,17 +269,14 @@ fn check_read(
             ));
         }
     }
-    let swept: Vec<&str> = grid
-        .plane()
-        .params()
-        .into_iter()
-        .filter(|p| !p.is_model())
-        .map(|p| p.name())
-        .collect();
-    match solver.first_unread(&swept) {
-        Some((key, why)) => Err(refuse(&["grid", key], "an axis".into(), why)),
-        None => Ok(()),
+    // An axis of a setting the runs do not read gives the same run at each of its values.
+    let swept = grid.plane().params().into_iter().filter(|p| !p.is_model());
+    for key in swept.map(|p| p.name()) {
+        if let Some(why) = solver.unread_reason(key) {
+            return Err(refuse(&["grid", key], "an axis".into(), why));
+        }
     }
+    Ok(())
 }
 
 /// The key path of a YAML parser's "[section: ]duplicate entry with key \"K\"" error.

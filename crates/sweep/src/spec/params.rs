@@ -47,7 +47,10 @@ pub(super) fn parse(ctx: &Ctx, top: &Mapping) -> Result<(ModelParams, ShapeModes
         shape.modes = ctx.number(
             x,
             &["params", "modes"],
-            |k| k.fract() == 0.0 && (0.0..=1e6).contains(&k),
+            |k| {
+                k.fract() == 0.0
+                    && (2.0..=droplet_solver::contract::limits::MAX_MODES as f64).contains(&k)
+            },
             "an integer K from 2 to 16: shape modes 2..K (2: the paper's)",
         )? as usize;
     }

@@ -368,10 +368,22 @@ impl Store {
             };
             missing += 1;
             if examples.len() < 20 {
-                examples.push(format!(
-                    "{ETA_T} = {}, {KAPPA2} = {}, ic = {}{why}",
-                    t.params.eta_t, t.params.kappa2, t.ic.name
-                ));
+                // The point by its own axes (any swept parameter), then the paper's plane
+                // where no axis gives it.
+                let plane = &plan.plane;
+                let at = plan.points[t.point];
+                let axes = [Some(plane.x), plane.y, plane.z];
+                let mut parts: Vec<String> = axes
+                    .iter()
+                    .zip(at)
+                    .filter_map(|(p, x)| p.map(|p| format!("{} = {x}", p.name())))
+                    .collect();
+                for (name, value) in [(ETA_T, t.params.eta_t), (KAPPA2, t.params.kappa2)] {
+                    if !axes.iter().flatten().any(|p| p.name() == name) {
+                        parts.push(format!("{name} = {value}"));
+                    }
+                }
+                examples.push(format!("{}, ic = {}{why}", parts.join(", "), t.ic.name));
             }
         }
         MergeReport {

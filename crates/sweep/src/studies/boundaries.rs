@@ -66,6 +66,9 @@ pub struct BoundariesWritten {
     pub seconds: f64,
     /// The redrawn sweep map's points drawn as missing, and its points (a sweep in `out`).
     pub missing: Option<(usize, usize)>,
+    /// The map was drawn from its tables: a finished map whose stored runs no longer give
+    /// `missing` of its points (older numerics, unreadable); its pictures show the tables.
+    pub from_tables: bool,
 }
 
 impl BoundaryStudy {
@@ -249,6 +252,14 @@ impl BoundaryStudy {
     /// Computes the boundaries and writes `boundaries.parquet` and `boundaries.png/.svg`
     /// (and the sweep's redrawn pictures) into `out`.
     pub fn run(&self) -> Result<BoundariesWritten, SweepError> {
+        // A sweep's directory is held from the start: refused while a sweep works in it,
+        // before anything is computed or written.
+        let held = match &self.sweep_spec {
+            Some(_) if !crate::tables::read::is_tables_only(&self.out) => {
+                Some(crate::store::run_store::Store::open_idle(&self.out)?)
+            }
+            _ => None,
+        };
         crate::store::atomic::create_output_dir(&self.out)?;
         let started = Instant::now();
         let curves = match (&self.pair, &self.across) {
@@ -299,9 +310,23 @@ impl BoundaryStudy {
             )?
         };
         files.push(path);
-        let mut missing = None;
+        let (mut missing, mut from_tables) = (None, false);
         if self.sweep_spec.is_some() {
-            let map = crate::pictures::sweep_pictures::plot(&self.out)?;
+            use crate::pictures::sweep_pictures::{plot, plot_in, plot_tables};
+            let map = match held.as_ref().map(plot_in) {
+                Some(Err(SweepError::StaleRuns {
+                    missing: m, points, ..
+                })) => {
+                    from_tables = true;
+                    crate::pictures::sweep_pictures::Drawn {
+                        missing: m,
+                        points,
+                        ..plot_tables(&self.out)?
+                    }
+                }
+                Some(drawn) => drawn?,
+                None => plot(&self.out)?,
+            };
             missing = Some((map.missing, map.points));
             for f in map.files {
                 if !files.contains(&f) {
@@ -314,6 +339,7 @@ impl BoundaryStudy {
             files,
             seconds,
             missing,
+            from_tables,
         })
     }
 }

@@ -60,23 +60,7 @@ impl ContinuationStudy {
     /// and `kappa2`; on a line in another parameter `eta_t`, `kappa2` and every other
     /// parameter that differs from its default.
     pub fn fixed(&self) -> Vec<(&'static str, f64)> {
-        let (b, varied) = (&self.line.base, self.line.parameter);
-        match varied {
-            ModelParam::EtaT => vec![("kappa2", b.kappa2)],
-            ModelParam::Kappa2 => vec![("eta_t", b.eta_t)],
-            _ => {
-                let default = ModelParams::default();
-                ModelParam::ALL
-                    .into_iter()
-                    .filter(|&p| p != varied)
-                    .filter(|&p| {
-                        matches!(p, ModelParam::EtaT | ModelParam::Kappa2)
-                            || p.get(b) != p.get(&default)
-                    })
-                    .map(|p| (p.name(), p.get(b)))
-                    .collect()
-            }
-        }
+        fixed_parameters(&self.line.base, self.line.parameter)
     }
 
     /// The fixed parameters in words: `eta_t = 0.085, kappa2 = 0.13`.
@@ -159,6 +143,7 @@ impl ContinuationStudy {
             &branches,
             &description,
             self.line.n,
+            &self.line.base,
         )?;
         let mut files = crate::pictures::branch_pictures::continuation(
             &self.out,
@@ -190,4 +175,19 @@ impl ContinuationStudy {
             imprecise,
         })
     }
+}
+
+/// The parameters a line in `varied` holds fixed, as its files' names and tables give them:
+/// the other of `eta_t` and `kappa2` (both on a line in another parameter), then every other
+/// parameter that differs from its default (`--set sigma=0.05` on the paper's line is a line
+/// of its own, never the default line's files).
+pub(crate) fn fixed_parameters(b: &ModelParams, varied: ModelParam) -> Vec<(&'static str, f64)> {
+    let default = ModelParams::default();
+    let plane = |p: ModelParam| matches!(p, ModelParam::EtaT | ModelParam::Kappa2);
+    ModelParam::ALL
+        .into_iter()
+        .filter(|&p| p != varied)
+        .filter(|&p| plane(p) || p.get(b) != p.get(&default))
+        .map(|p| (p.name(), p.get(b)))
+        .collect()
 }

@@ -40,11 +40,24 @@ impl ModeContinuationStudy {
         }
     }
 
-    /// The files' stem: `continuation_modes<K>_<fixed>_<value>`.
+    /// The files' stem: `continuation_modes<K>_<fixed>_<value>`, then every other parameter
+    /// that differs from its default and the friction law's exponent when it is not 0
+    /// (`_eta_k_exponent_<p>`): a line of other parameters never takes another's files.
     pub fn stem(&self) -> String {
-        let (name, value) = self.fixed();
-        let value = format!("{value:.9e}").parse::<f64>().unwrap_or(value);
-        format!("continuation_modes{}_{name}_{value}", self.line.k_max)
+        let short = |v: f64| format!("{v:.9e}").parse::<f64>().unwrap_or(v);
+        let mut parts = vec![format!("continuation_modes{}", self.line.k_max)];
+        for (name, value) in
+            crate::studies::continuation::fixed_parameters(&self.line.base, self.line.parameter)
+        {
+            parts.push(format!("{name}_{}", short(value)));
+        }
+        if self.line.eta_k_exponent != 0.0 {
+            parts.push(format!(
+                "eta_k_exponent_{}",
+                short(self.line.eta_k_exponent)
+            ));
+        }
+        parts.join("_")
     }
 
     /// Follows the branch, then writes `<stem>.parquet` and `<stem>.png/.svg` into `out`.
@@ -68,6 +81,7 @@ impl ModeContinuationStudy {
             &branch,
             &description,
             self.line.n,
+            &self.line.base,
         )?;
         let (lines, markers, vlines) = drawing(&branch);
         let mut files = vs_parameter(

@@ -87,6 +87,7 @@ pub fn write(
     branches: &[Branch],
     line: &str,
     n: usize,
+    params: &droplet_solver::model::params::ModelParams,
 ) -> Result<[PathBuf; 2], SweepError> {
     let rows: Vec<(&Branch, &BranchPoint)> = branches
         .iter()
@@ -122,6 +123,11 @@ pub fn write(
     let mut meta = metadata(None);
     meta.push(("line".into(), line.to_string()));
     meta.push(("n".into(), n.to_string()));
+    // Every model parameter of the line at its start, the varied one included.
+    meta.push((
+        "params".into(),
+        serde_json::to_string(params).expect("parameters serialise"),
+    ));
     meta.push((
         "ends".into(),
         branches

@@ -24,6 +24,7 @@ pub fn write(
     branch: &ModeBranch,
     line: &str,
     n: usize,
+    params: &droplet_solver::model::params::ModelParams,
 ) -> Result<PathBuf, SweepError> {
     let pts = &branch.points;
     let f = |g: &dyn Fn(&ModeBranchPoint) -> f64| pts.iter().map(g).collect::<Vec<f64>>();
@@ -69,6 +70,11 @@ pub fn write(
     let mut meta = metadata(None);
     meta.push(("line".into(), line.to_string()));
     meta.push(("n".into(), n.to_string()));
+    // Every model parameter of the line at its start, the varied one included.
+    meta.push((
+        "params".into(),
+        serde_json::to_string(params).expect("parameters serialise"),
+    ));
     meta.push(("modes".into(), branch.k_max.to_string()));
     meta.push(("eta_k_exponent".into(), branch.eta_k_exponent.to_string()));
     meta.push((
