@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Brings up a private single-node Slurm cluster on localhost for droplet's end-to-end test
-# (tests/slurm.rs), following design.md Sect. 5: its own state/spool/log/pid directory, its
+# (tests/suite/slurm.rs), following design.md Sect. 5: its own state/spool/log/pid directory, its
 # own munge socket and key, non-default ports, SLURM_CONF pointing at it; nothing in /etc is
 # touched. Installs Debian's slurm-wlm and munge when missing (needs root).
 #

@@ -5,7 +5,7 @@
 //! # Map of the crate
 //!
 //! Each folder holds one concern and uses only the folders listed before it (checked by
-//! `tests/module_graph.rs`):
+//! `tests/suite/module_graph.rs`):
 //!
 //! | folder | what it holds |
 //! |---|---|

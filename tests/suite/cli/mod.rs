@@ -1,10 +1,7 @@
-//! End-to-end tests through the `droplet` binary, one file per group of commands (one test
-//! binary): `sweep` (sweep, merge, resume, specs), `axes` (sweeps in any parameter), `simulate`,
+//! End-to-end tests through the `droplet` binary, one file per group of commands: `sweep` (sweep, merge, resume, specs), `axes` (sweeps in any parameter), `simulate`,
 //! `ode`, `commands` (bench, help), `truncation` (the K-mode model), `modes` (K-mode sweeps).
 mod axes;
 mod commands;
-#[path = "../common/mod.rs"]
-mod common;
 mod modes;
 mod ode;
 mod simulate;

@@ -14,17 +14,15 @@
 //! With `DROPLET_RELIABILITY_DIR` set, the catalogue and kill tests write their counts there
 //! (`inputs.md`, `kills.md`): the README's reliability section quotes them.
 //!
-//! One binary, one file per concern: `catalogue` (bad input), `store` (corrupt runs, resume
+//! One file per concern: `catalogue` (bad input), `store` (corrupt runs, resume
 //! after kills, temporaries, locks), `output` (a full disk, a closed pipe, pictures and
 //! messages), `audit` (complete maps only).
 mod audit;
 mod catalogue;
-#[path = "../common/mod.rs"]
-mod common;
 mod output;
 mod store;
 
-use common::table_without_wall;
+use crate::common::table_without_wall;
 use std::path::{Path, PathBuf};
 
 /// Writes a report section when `DROPLET_RELIABILITY_DIR` is set.

@@ -1,7 +1,7 @@
 //! Output under trouble: a full disk, a closed stdout, a picture drawn while runs are missing,
 //! and plain messages from `boundaries` and `stability`.
+use super::{run_files, TINY};
 use crate::common::{droplet, json, run, sweep, write_spec};
-use crate::{run_files, TINY};
 use std::process::Stdio;
 use std::time::Duration;
 

@@ -1,9 +1,9 @@
 //! `droplet sweep`, `merge` and their directories: the smoke sweep's tables and picture, resume
 //! after kills, one sweep per directory, malformed specs, shards merged.
+use crate::cli::TINY;
 use crate::common::{
     droplet, json, read, run, sweep_in_background, table_without_wall, write_spec,
 };
-use crate::TINY;
 use polars::prelude::*;
 use std::process::Stdio;
 use std::time::Duration;

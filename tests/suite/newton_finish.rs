@@ -1,8 +1,7 @@
 //! `steady: newton` (the default) and `steady: test` end to end: no false steady state just
 //! below the onset of motion, the paper's behaviour kept and flagged, the spec key.
-mod common;
 
-use common::{json, run, write_spec};
+use crate::common::{json, run, write_spec};
 
 fn simulate(ic: &str, steady: &str) -> serde_json::Value {
     // N = 128: the onset of motion is at eta_t = 0.076486 (continuation), 0.0015 above; the
@@ -77,7 +76,7 @@ fn the_steady_key_is_read_checked_and_in_the_tables() {
             out.to_str().unwrap(),
         ]);
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-        let runs = common::read(&out.join("runs.parquet"));
+        let runs = crate::common::read(&out.join("runs.parquet"));
         let col = |name: &str| {
             runs.column(name)
                 .unwrap()
@@ -171,16 +170,16 @@ fn the_stop_beside_saddle_key_is_read_checked_and_in_the_tables() {
         ("true", "test", "solver.stop_beside_saddle"),
     ] {
         let bad = write_spec(dir.path(), "bad.yaml", &spec(value, steady));
-        let o = common::sweep(&bad, &dir.path().join("b"), &[]);
+        let o = crate::common::sweep(&bad, &dir.path().join("b"), &[]);
         let err = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(2), "{err}");
         assert!(err.contains(key) && err.contains("bad.yaml"), "{err}");
     }
     let good = write_spec(dir.path(), "good.yaml", &spec("true", "newton"));
     let out = dir.path().join("g");
-    let o = common::sweep(&good, &out, &[]);
+    let o = crate::common::sweep(&good, &out, &[]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let runs = common::read(&out.join("runs.parquet"));
+    let runs = crate::common::read(&out.join("runs.parquet"));
     let status = runs.column("status").unwrap().str().unwrap().get(0);
     assert_eq!(status, Some("saddle"));
     let flag = runs
@@ -190,7 +189,7 @@ fn the_stop_beside_saddle_key_is_read_checked_and_in_the_tables() {
         .unwrap()
         .get(0);
     assert_eq!(flag, Some(true));
-    let points = common::read(&out.join("points.parquet"));
+    let points = crate::common::read(&out.join("points.parquet"));
     let n_unsettled = points.column("n_unsettled").unwrap().u32().unwrap().get(0);
     assert_eq!(n_unsettled, Some(1));
 }
@@ -230,7 +229,7 @@ fn the_leap_departures_key_is_read_checked_and_in_the_tables() {
         ("true", ", tol: 0"),
     ] {
         let bad = write_spec(dir.path(), "bad.yaml", &spec(value, extra));
-        let o = common::sweep(&bad, &dir.path().join("b"), &[]);
+        let o = crate::common::sweep(&bad, &dir.path().join("b"), &[]);
         let err = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(2), "{err}");
         assert!(
@@ -240,9 +239,9 @@ fn the_leap_departures_key_is_read_checked_and_in_the_tables() {
     }
     let good = write_spec(dir.path(), "good.yaml", &spec("true", ""));
     let out = dir.path().join("g");
-    let o = common::sweep(&good, &out, &[]);
+    let o = crate::common::sweep(&good, &out, &[]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let runs = common::read(&out.join("runs.parquet"));
+    let runs = crate::common::read(&out.join("runs.parquet"));
     let flag = runs
         .column("leap_departures")
         .unwrap()

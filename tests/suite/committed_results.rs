@@ -1,9 +1,8 @@
 //! `droplet status` and `droplet plot` on a committed result directory: one with the tables
 //! and pictures of a finished map but no run store (`runs/`). Both work from the tables, and
 //! `plot` redraws the committed picture byte for byte.
-mod common;
 
-use common::{droplet, json, read};
+use crate::common::{droplet, json, read};
 use std::path::Path;
 
 /// A copy of `results/<name>` without its `runs/`.

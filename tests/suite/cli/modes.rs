@@ -1,6 +1,6 @@
 //! Sweeps of the paper's general model with shape modes 2..K (`params.modes: K`): the runs
 //! table's extra amplitudes, the K-mode runs against `simulate --modes K`, and bad input.
-use crate::axes::floats;
+use crate::cli::axes::floats;
 use crate::common::{edit, json, read, run, sweep, write_spec};
 
 /// Four points at N = 96 (where the x-axis MD state is stable in rotation): MD at Fig. 1c,
@@ -78,7 +78,7 @@ fn a_sweep_with_three_modes_runs_the_k_mode_model_and_tables_its_amplitudes() {
         "8",
         "--json",
     ]));
-    let pde = crate::truncation::pde_curves(&b);
+    let pde = crate::cli::truncation::pde_curves(&b);
     assert_eq!(
         pde,
         [

@@ -1,7 +1,7 @@
 //! The catalogue of malformed and extreme inputs: each exits with its documented code, names
 //! what is wrong, never panics and returns within seconds.
+use super::report;
 use crate::common::{droplet, write_spec};
-use crate::report;
 use std::process::Stdio;
 use std::time::Instant;
 

@@ -1,7 +1,7 @@
 //! Corrupt stored runs, an oversized spec, resume after SIGKILL, stale temporaries, and the
 //! lock between a sweep and a shard.
+use super::{report, run_files, tables_equal, TINY};
 use crate::common::{droplet, json, kill_at_random_moments, run, sweep, write_spec};
-use crate::{report, run_files, tables_equal, TINY};
 use std::path::{Path, PathBuf};
 use std::process::Stdio;
 use std::time::{Duration, Instant};

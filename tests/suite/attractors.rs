@@ -2,9 +2,8 @@
 //! slow flow reaches (checked against long time stepping in results/landing), a run that
 //! does not settle has no class, and `droplet audit` proves every label of a map (and
 //! catches a false one).
-mod common;
 
-use common::{edit, json, read, run, write_spec};
+use crate::common::{edit, json, read, run, write_spec};
 use std::path::Path;
 
 /// `simulate --json` at N = 192 with the defaults and `extra`.
@@ -183,6 +182,24 @@ fn audit(dir: &Path) -> (Option<i32>, serde_json::Value) {
     )
 }
 
+/// `droplet audit DIR --sample POINTS --seed 42 --json`.
+fn audit_sample(dir: &Path, points: usize) -> (Option<i32>, serde_json::Value) {
+    let p = points.to_string();
+    let o = run(&[
+        "audit",
+        dir.to_str().unwrap(),
+        "--sample",
+        &p,
+        "--seed",
+        "42",
+        "--json",
+    ]);
+    (
+        o.status.code(),
+        serde_json::from_slice(&o.stdout).expect("one JSON object"),
+    )
+}
+
 #[test]
 fn audit_passes_a_settled_map_and_fails_a_false_label() {
     let dir = tempfile::tempdir().unwrap();
@@ -296,8 +313,28 @@ fn every_committed_map_passes_the_audit() {
             // The reduced model's maps: its own stable states, not the PDE's.
             continue;
         }
-        let (code, report) = audit(&dir);
+        // Completeness and labels at every point, the stable states at a seeded sample of
+        // 12 points (the full audit of every point is `results/audit.sh`, recorded in each
+        // map's audit.json, checked below).
+        let (code, report) = audit_sample(&dir, 12);
         let name = dir.file_name().unwrap().to_str().unwrap().to_string();
+        let record: serde_json::Value = serde_json::from_str(
+            &std::fs::read_to_string(dir.join("audit.json"))
+                .unwrap_or_else(|_| panic!("{name}: no audit.json (results/audit.sh)")),
+        )
+        .unwrap();
+        assert_eq!(
+            record["points"], report["points"],
+            "{name}: audit.json is of another map"
+        );
+        assert_eq!(
+            record["runs"], report["runs"],
+            "{name}: audit.json is of another map"
+        );
+        assert!(
+            record["sampled"].is_null(),
+            "{name}: audit.json is a sample's"
+        );
         let allowed = UNSETTLED
             .iter()
             .find(|(n, _)| *n == name)
@@ -310,6 +347,15 @@ fn every_committed_map_passes_the_audit() {
         );
         let unsettled = kinds.get("unsettled").map_or(0, |n| n.as_u64().unwrap());
         assert_eq!(unsettled, allowed, "{name}: {report}");
+        assert_eq!(
+            record["contradictions"], allowed,
+            "{name}: the full audit: {record}"
+        );
+        assert_eq!(
+            report["sampled"],
+            12.min(report["points"].as_u64().unwrap()),
+            "{name}"
+        );
         assert_eq!(code, Some(if allowed == 0 { 0 } else { 1 }), "{name}");
         audited.push(name);
     }

@@ -1,8 +1,7 @@
 //! `droplet continue` and `droplet boundaries` end to end: branches, events, tables,
 //! pictures, a sweep's phase map redrawn with the boundaries, and bad input.
-mod common;
 
-use common::{json, read, run};
+use crate::common::{json, read, run};
 
 #[test]
 fn continue_follows_md_through_its_fold_to_the_onset_of_motion() {

@@ -2,8 +2,9 @@
 //! the refined map reproduces the ODE's analytic boundaries to its finest step, a refined
 //! sweep killed and resumed gives the uninterrupted tables, and a uniform and a refined sweep
 //! share their runs in one directory.
-mod common;
-use common::{json, kill_at_random_moments, read, run, sweep, table_without_wall, write_spec};
+use crate::common::{
+    json, kill_at_random_moments, read, run, sweep, table_without_wall, write_spec,
+};
 use droplet_sweep::tables::boundaries;
 use polars::prelude::*;
 use std::collections::HashMap;

@@ -500,7 +500,7 @@ fn a_refined_three_axis_ode_sweep_refines_each_slice_on_its_own_and_resumes_equa
 /// A small PDE map in `(mass, kappa2)`: the CLI tests' TINY (N = 32, fixed steps, seconds)
 /// with `mass` for `eta_t`.
 fn tiny_mass() -> String {
-    crate::TINY
+    crate::cli::TINY
         .replace("name: tiny\n", "name: tiny-mass\nparams: {eta_t: 0.09}\n")
         .replace("  eta_t: [0.07, 0.09, 0.11]\n", "  mass: [0.05, 0.2]\n")
 }

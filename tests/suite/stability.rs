@@ -1,8 +1,7 @@
 //! `droplet stability` end to end: steady states as roots, their eigenvalues, and agreement
 //! with time stepping.
-mod common;
 
-use common::{json, run};
+use crate::common::{json, run};
 
 fn stability(args: &[&str]) -> serde_json::Value {
     let mut all = vec!["stability"];

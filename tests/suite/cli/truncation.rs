@@ -1,6 +1,6 @@
 //! `droplet truncation`: the K-mode model's results against the 2-mode commands
 //! (`stability`, `continue`) at K = 2, and what the third mode changes.
-use crate::axes::floats;
+use crate::cli::axes::floats;
 use crate::common::{json, read, run};
 
 /// `droplet stability ARGS --json`.

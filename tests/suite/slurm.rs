@@ -6,9 +6,8 @@
 //! `SLURM_CONF` into its env file; `.ci/run` does that and sets `DROPLET_SLURM_TEST=1`, which
 //! makes this test mandatory. Without `SLURM_CONF` (and without that variable) it prints why
 //! it is skipped and passes.
-mod common;
 
-use common::{droplet, table_without_wall};
+use crate::common::{droplet, table_without_wall};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use std::time::{Duration, Instant};
