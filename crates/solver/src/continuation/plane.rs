@@ -379,7 +379,8 @@ mod tests {
     fn in_the_paper_plane_the_curves_are_the_paper_planes() {
         let (e, k) = ((0.07, 0.10), (0.10, 0.17));
         let base = ModelParams::at(e.0, k.0);
-        let n = 192;
+        // N = 96: the two computations of one curve agree at any grid (at N = 192 too, 3x slower).
+        let n = 96;
         let paper = boundaries(&Window {
             base,
             n,

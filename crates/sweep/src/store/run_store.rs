@@ -276,7 +276,7 @@ impl Store {
     /// - a record without the digest of its outcome (written before records were sealed) is
     ///   sealed as it is (an edit made before that cannot be told; every later one can);
     /// - a record whose file is named by its settings as they were written
-    /// ([`crate::store::plan::written_key`]) while its key is now another
+    ///   ([`crate::store::plan::written_key`]) while its key is now another
     ///   ([`crate::store::plan::run_key`]: settings it does not read left out, such as the
     ///   `h0` that a spec-parsing bug once set to `n` in every PDE run). Its result is
     ///   the one its new key asks for, so it is re-keyed, never recomputed; its record keeps
@@ -328,7 +328,7 @@ impl Store {
             }
             match fs::remove_file(e.path()) {
                 Err(err) if err.kind() != std::io::ErrorKind::NotFound => {
-                    return Err(SweepError::io(&e.path(), err))
+                    return Err(SweepError::io(e.path(), err))
                 }
                 _ => renamed += 1,
             }
