@@ -16,10 +16,12 @@
 //!
 //! One file per concern: `catalogue` (bad input), `store` (corrupt runs, resume
 //! after kills, temporaries, locks), `output` (a full disk, a closed pipe, pictures and
-//! messages), `audit` (complete maps only).
+//! messages), `audit` (complete maps only), `round4` (edited and re-keyed stored runs, a full
+//! stderr, directories in use, continuation files of their own).
 mod audit;
 mod catalogue;
 mod output;
+mod round4;
 mod store;
 
 use crate::common::table_without_wall;
