@@ -6,8 +6,10 @@ use std::path::PathBuf;
 ///
 /// Draw OUT/phase_map.png and OUT/phase_map.svg (paper Fig. 2a colours) from a sweep's runs;
 /// points whose runs are not all finished (or are unreadable) are drawn as `missing`, and
-/// then the command says so and exits 1. Refused while a sweep works on OUT: its own
-/// pictures are drawn when it ends.
+/// then the command says so and exits 1. A finished map (its tables written) whose stored
+/// runs lack points (unreadable, or of an older numerics) is not redrawn: plot says so and
+/// exits 1, its pictures as they were. Refused while a sweep works on OUT: its own pictures
+/// are drawn when it ends.
 #[derive(clap::Args)]
 pub struct Args {
     /// The sweep's output directory.
