@@ -335,22 +335,18 @@ pub fn audit(dir: &Path, sample: Option<Sample>) -> Result<Audit, SweepError> {
         )));
     }
     let modes = (modes, law);
+    let mismatched: Vec<Contradiction> = runs
+        .iter()
+        .filter_map(|(p, rows)| {
+            let rows: Vec<&Row> = rows.iter().collect();
+            completeness::label_mismatch(&rows, labelled.get(p)?)
+        })
+        .collect();
+    let drawn = sample.map(|s| s.draw(runs.keys().copied().filter(|p| labelled.contains_key(p))));
     let groups: Vec<(&String, Vec<&Row>)> = runs
         .iter()
+        .filter(|(p, _)| drawn.as_ref().is_none_or(|d| d.contains(p)))
         .filter_map(|(p, rows)| Some((labelled.get(p)?, rows.iter().collect())))
-        .collect();
-    let mismatched: Vec<Contradiction> = groups
-        .iter()
-        .filter_map(|(label, rows)| completeness::label_mismatch(rows, label))
-        .collect();
-    let drawn = sample.map(|s| s.draw(groups.iter().filter_map(|(_, r)| Some(r.first()?.point))));
-    let groups: Vec<(&String, Vec<&Row>)> = groups
-        .into_iter()
-        .filter(|(_, rows)| {
-            drawn
-                .as_ref()
-                .is_none_or(|d| rows.first().is_some_and(|r| d.contains(&r.point)))
-        })
         .collect();
     if let Some(first) = groups.first().and_then(|(_, r)| r.first()) {
         // Fails here, not in a worker, if the solver cannot be made.

@@ -144,16 +144,23 @@ pub fn run_key(params: &ModelParams, ic: &InitialCondition, settings: &SolverSet
 
 /// The key of a run with `settings` hashed as they are written, unread settings included:
 /// the key stored runs had before keys held only what a run reads. A stored run whose file
-/// has this name, and whose [`run_key`] differs, is renamed to the latter
-/// (`Store::rekey`), never recomputed.
+/// has this name, and whose [`run_key`] differs, is renamed to the latter when the store is
+/// opened to be written (`Store::upgrade`), never recomputed.
 pub fn written_key(
     params: &ModelParams,
     ic: &InitialCondition,
     settings: &SolverSettings,
 ) -> String {
-    let json = key_material(params, ic, settings);
-    let digest = Sha256::digest(json.as_bytes());
-    digest.iter().take(16).map(|b| format!("{b:02x}")).collect()
+    short_hash(key_material(params, ic, settings).as_bytes())
+}
+
+/// SHA-256 of `bytes`, its first 16 bytes in hex: a run's key, and its outcome's digest.
+pub(crate) fn short_hash(bytes: &[u8]) -> String {
+    Sha256::digest(bytes)
+        .iter()
+        .take(16)
+        .map(|b| format!("{b:02x}"))
+        .collect()
 }
 
 /// The text [`run_key`] hashes.

@@ -12,7 +12,6 @@ use droplet_solver::{
 };
 use fs2::FileExt;
 use serde::{Deserialize, Serialize};
-use sha2::{Digest, Sha256};
 use std::collections::HashMap;
 use std::fs::{self, File, OpenOptions};
 use std::path::{Path, PathBuf};
@@ -48,12 +47,7 @@ struct Unsealed {
 
 /// The digest of a run's outcome: SHA-256 of its JSON, first 16 bytes in hex.
 fn digest_of(outcome: &RunOutcome) -> String {
-    let json = serde_json::to_vec(outcome).expect("outcomes serialise");
-    Sha256::digest(&json)
-        .iter()
-        .take(16)
-        .map(|b| format!("{b:02x}"))
-        .collect()
+    crate::store::plan::short_hash(&serde_json::to_vec(outcome).expect("outcomes serialise"))
 }
 
 /// What the store holds for one key.

@@ -77,6 +77,18 @@ pub(crate) fn str_col(name: &str, v: Vec<String>) -> Column {
     Column::new(name.into(), v)
 }
 
+/// A setting's values over `rows`, null in the rows of runs that do not read it
+/// (`SolverSettings::unread_reason`): a row records only what made its run.
+fn read<T>(
+    rows: &[(crate::store::plan::Task, &RunRecord)],
+    field: &str,
+    value: impl Fn(&SolverSettings) -> T,
+) -> Vec<Option<T>> {
+    rows.iter()
+        .map(|(_, r)| r.settings.reads(field).then(|| value(&r.settings)))
+        .collect()
+}
+
 /// The runs table for `plan` from the stored `records` (runs not stored are left out).
 pub fn runs_frame(
     plan: &Plan,
@@ -87,28 +99,6 @@ pub fn runs_frame(
         .filter_map(|t| records.get(&t.key).map(|r| (t, r)))
         .collect();
     let f = |g: &dyn Fn(&RunRecord) -> f64| rows.iter().map(|(_, r)| g(r)).collect::<Vec<f64>>();
-    // A setting's column is null in the rows of runs that do not read it
-    // (`SolverSettings::unread_reason`): a row records only what made its run.
-    fn read<T>(
-        rows: &[(crate::store::plan::Task, &RunRecord)],
-        g: &dyn Fn(&SolverSettings) -> Option<T>,
-    ) -> Vec<Option<T>> {
-        rows.iter().map(|(_, r)| g(&r.settings)).collect()
-    }
-    let read_f64 = |name: &str, g: &dyn Fn(&SolverSettings) -> f64| {
-        let v: Vec<Option<f64>> = rows
-            .iter()
-            .map(|(_, r)| r.settings.reads(name).then(|| g(&r.settings)))
-            .collect();
-        Column::new(name.into(), v)
-    };
-    let read_bool = |name: &str, g: &dyn Fn(&SolverSettings) -> bool| {
-        let v: Vec<Option<bool>> = rows
-            .iter()
-            .map(|(_, r)| r.settings.reads(name).then(|| g(&r.settings)))
-            .collect();
-        Column::new(name.into(), v)
-    };
     let mut cols = vec![
         Column::new(
             "point".into(),
@@ -134,31 +124,37 @@ pub fn runs_frame(
                 .map(|(_, r)| r.settings.model.as_str().to_string())
                 .collect(),
         ),
-        read_f64("h0", &|s| s.h0),
+        Column::new("h0".into(), read(&rows, "h0", |s| s.h0)),
         Column::new(
             "scheme".into(),
-            read(&rows, &|s| s.reads("scheme").then(|| s.scheme.to_string())),
+            read(&rows, "scheme", |s| s.scheme.to_string()),
         ),
-        Column::new(
-            "n".into(),
-            read(&rows, &|s| s.reads("n").then_some(s.n as u32)),
-        ),
+        Column::new("n".into(), read(&rows, "n", |s| s.n as u32)),
         f64_col("dt", f(&|r| r.settings.dt)),
-        read_f64("tol", &|s| s.tol),
-        read_f64("dt_max", &|s| s.dt_max),
+        Column::new("tol".into(), read(&rows, "tol", |s| s.tol)),
+        Column::new("dt_max".into(), read(&rows, "dt_max", |s| s.dt_max)),
         f64_col("t_max", f(&|r| r.settings.t_max)),
         f64_col("steady_tol", f(&|r| r.settings.steady_tol)),
-        read_f64("steady_window", &|s| s.steady_window),
+        Column::new(
+            "steady_window".into(),
+            read(&rows, "steady_window", |s| s.steady_window),
+        ),
         str_col(
             "steady",
             rows.iter()
                 .map(|(_, r)| r.settings.steady.as_str().to_string())
                 .collect(),
         ),
-        read_bool("stop_beside_saddle", &|s| s.stop_beside_saddle),
-        read_bool("leap_departures", &|s| s.leap_departures),
-        read_bool("landing", &|s| s.landing),
-        read_bool("run_on", &|s| s.run_on),
+        Column::new(
+            "stop_beside_saddle".into(),
+            read(&rows, "stop_beside_saddle", |s| s.stop_beside_saddle),
+        ),
+        Column::new(
+            "leap_departures".into(),
+            read(&rows, "leap_departures", |s| s.leap_departures),
+        ),
+        Column::new("landing".into(), read(&rows, "landing", |s| s.landing)),
+        Column::new("run_on".into(), read(&rows, "run_on", |s| s.run_on)),
         str_col(
             "status",
             rows.iter()
