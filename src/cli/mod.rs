@@ -35,6 +35,7 @@ mod mode_simulate;
 mod ode;
 mod param_line;
 mod plot;
+mod run_settings;
 mod simulate;
 mod slurm;
 mod stability;

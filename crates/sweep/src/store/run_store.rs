@@ -6,49 +6,13 @@ use crate::merge_report::MergeReport;
 use crate::spec::axes::{ETA_T, KAPPA2};
 use crate::store::atomic::{create_output_dir, write_atomic};
 use crate::store::plan::Plan;
-use droplet_solver::{
-    contract::outcome::RunOutcome, contract::settings::SolverSettings,
-    model::initial::InitialCondition, model::params::ModelParams,
-};
+pub use crate::store::record_file::RunRecord;
+use crate::store::record_file::{digest_of, seal, unseal};
 use fs2::FileExt;
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 use std::collections::HashMap;
 use std::fs::{self, File, OpenOptions};
 use std::path::{Path, PathBuf};
-
-/// A finished run as persisted.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct RunRecord {
-    pub key: String,
-    pub params: ModelParams,
-    pub ic: InitialCondition,
-    pub settings: SolverSettings,
-    pub solver_version: String,
-    pub outcome: RunOutcome,
-}
-
-/// A record as its file holds it: the run and the digest of its outcome, so that an outcome
-/// edited by hand (a class, a status) is told from one the sweep wrote.
-#[derive(Serialize)]
-struct Sealed<'a> {
-    #[serde(flatten)]
-    record: &'a RunRecord,
-    digest: String,
-}
-
-/// A record file read back; `digest` is absent in files written before records were sealed.
-#[derive(Deserialize)]
-struct Unsealed {
-    #[serde(flatten)]
-    record: RunRecord,
-    #[serde(default)]
-    digest: Option<String>,
-}
-
-/// The digest of a run's outcome: SHA-256 of its JSON, first 16 bytes in hex.
-fn digest_of(outcome: &RunOutcome) -> String {
-    crate::store::plan::short_hash(&serde_json::to_vec(outcome).expect("outcomes serialise"))
-}
 
 /// What the store holds for one key.
 #[derive(Debug, Clone, PartialEq)]
@@ -232,8 +196,8 @@ impl Store {
             Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Stored::Missing,
             Err(e) => return Stored::Corrupt(format!("cannot be read: {e}")),
         };
-        let (rec, digest) = match serde_json::from_slice::<Unsealed>(&bytes) {
-            Ok(u) => (u.record, u.digest),
+        let (rec, digest) = match unseal(&bytes) {
+            Ok(r) => r,
             Err(e) => {
                 return Stored::Corrupt(format!("not a run record ({} bytes): {e}", bytes.len()))
             }
@@ -290,11 +254,7 @@ impl Store {
             let Ok(bytes) = fs::read(e.path()) else {
                 continue;
             };
-            let Ok(Unsealed {
-                record: mut rec,
-                digest,
-            }) = serde_json::from_slice::<Unsealed>(&bytes)
-            else {
+            let Ok((mut rec, digest)) = unseal(&bytes) else {
                 continue;
             };
             let current = droplet_solver::solver_version(rec.settings.model, rec.settings.modes);
@@ -392,12 +352,7 @@ impl Store {
 
     /// Persists a finished run atomically, sealed with the digest of its outcome.
     pub fn save(&self, record: &RunRecord) -> Result<(), SweepError> {
-        let sealed = Sealed {
-            record,
-            digest: digest_of(&record.outcome),
-        };
-        let json = serde_json::to_vec(&sealed).expect("records serialise");
-        write_atomic(&self.path_of(&record.key), &json).map(|_| ())
+        write_atomic(&self.path_of(&record.key), &seal(record)).map(|_| ())
     }
 
     /// True when a valid run `key` is stored.
@@ -471,6 +426,10 @@ impl Store {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use droplet_solver::{
+        contract::outcome::RunOutcome, contract::settings::SolverSettings,
+        model::initial::InitialCondition, model::params::ModelParams,
+    };
 
     fn record() -> RunRecord {
         let (params, ic, settings) = (
