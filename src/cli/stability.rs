@@ -246,7 +246,7 @@ fn with_modes(
         .residual(&z)
         .iter()
         .fold(0.0f64, |m, r| m.max(r.abs()));
-    let verdict = ModeLinearization::at(&mut solver, &z).verdict(&mut solver);
+    let verdict = ModeLinearization::at(&mut solver, &z).verdict();
     let report = Report {
         state: a.state,
         axis: a.axis.clone(),

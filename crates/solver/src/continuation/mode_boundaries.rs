@@ -224,9 +224,7 @@ fn mc_line(w: &ModeWindow, onset_eta_t: f64) -> Result<Vec<(f64, f64)>, SolverEr
     let mut stable = |i: usize| {
         let (eta, k, z) = &line[i];
         solver.set_control(*eta, *k);
-        ModeLinearization::at(&mut solver, z)
-            .verdict(&mut solver)
-            .stable()
+        ModeLinearization::at(&mut solver, z).verdict().stable()
     };
     let kept = match line.len() {
         0 => 0,
@@ -367,7 +365,7 @@ mod tests {
                 z[0].abs() < 1e-10 && z[2].abs() < 1e-10,
                 "on the diagonal: {z:?}"
             );
-            ModeLinearization::at(solver, &z).verdict(solver).unstable
+            ModeLinearization::at(solver, &z).verdict().unstable
         };
         let (above, below) = (
             unstable(&mut solver, onset + 2e-4),

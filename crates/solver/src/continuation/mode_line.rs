@@ -100,7 +100,7 @@ fn with_stability(
                 },
                 fold,
             };
-            point.verdict = ModeLinearization::at(solver, &point.z()).verdict(solver);
+            point.verdict = ModeLinearization::at(solver, &point.z()).verdict();
             point
         })
         .collect()

@@ -11,7 +11,7 @@
 //! field). Every eigenvalue with `Re lambda > -1` solves `det T(lambda) = 0`,
 //! `T(lambda) = lambda M - E - C (lambda - D)^(-1) B`, a `2K x 2K` matrix of single sums over
 //! the modes. The roots are found by Newton on `det T` divided by the roots already found
-//! (its logarithmic derivative by central differences), started from the eigenvalues of the
+//! (its logarithmic derivative `tr(T^(-1) T')`, exact), started from the eigenvalues of the
 //! `lambda = 0` problem `M^(-1) (E + C (-D)^(-1) B)`.
 use crate::model::modes::Modes;
 use crate::roots::mode_solver::{fill_operator, ModeSolver};
@@ -30,6 +30,9 @@ pub struct ModeLinearization {
     b: Vec<Vec<C64>>,
     e: Vec<Vec<f64>>,
     m: Vec<f64>,
+    /// The forces on the frozen shape as functionals of a field's half spectrum
+    /// ([`force_functionals`]), `[k][i]`: `dim` values per stored mode.
+    c: Vec<C64>,
 }
 
 impl ModeLinearization {
@@ -92,61 +95,92 @@ impl ModeLinearization {
         }
         let mut m = vec![p.mass, p.mass];
         m.extend((2..=k_max).chain(2..=k_max).map(|k| solver.eta(k)));
+        let c = force_functionals(solver, &m0);
         Self {
             z0: z0.to_vec(),
             d,
             b,
             e,
             m,
+            c,
         }
     }
 
-    /// `C (lambda - D)^(-1) B`: the forces of the response fields (the real and imaginary
-    /// parts of each, half spectra `(g1 + g2) b / 2` and `-i (g1 - g2) b / 2` with
-    /// `g1 = (lambda - d)^(-1)`, `g2 = (conj lambda - d)^(-1)`).
-    fn response(&self, solver: &mut ModeSolver, lambda: C64) -> Vec<Vec<C64>> {
+    /// `C (lambda - D)^(-1) B`: the forces of the response fields. The field `(lambda - D)^(-1)
+    /// b` of a real perturbation is not real; its real and imaginary parts are the half
+    /// spectra `(g1 + g2) b / 2` and `-i (g1 - g2) b / 2` (`g1 = (lambda - d)^(-1)`,
+    /// `g2 = (conj lambda - d)^(-1)`), and with the forces' functionals `c` this is
+    /// `(S(lambda) + conj S(conj lambda)) / 2`, `S_ij(l) = Sum_k c_ik b_jk / (l - d_k)`: one
+    /// pass over the spectrum per column, no transform.
+    /// With `slope`, its derivative in `lambda` too, `-C (lambda - D)^(-2) B` (the same
+    /// reflection: `(S'(lambda) + conj S'(conj lambda)) / 2`).
+    fn response(&self, lambda: C64, slope: bool) -> (Vec<Vec<C64>>, Vec<Vec<C64>>) {
         let dim = self.z0.len();
-        let m0 = Modes::of_state(&self.z0);
-        let k_max = m0.k_max();
-        let (area, lo, hi) = solver.sample(&m0);
-        let mut r = vec![vec![C64::default(); dim]; dim];
-        let half_i = C64::new(0.0, -0.5);
-        let mut re = vec![C64::default(); self.d.len()];
-        let mut im = vec![C64::default(); self.d.len()];
+        let zero = C64::default();
+        let g: Vec<(C64, C64)> = self
+            .d
+            .iter()
+            .map(|d| ((lambda - d).inv(), (lambda.conj() - d).inv()))
+            .collect();
+        let mut r = vec![vec![zero; dim]; dim];
+        let mut dr = vec![vec![zero; if slope { dim } else { 0 }]; dim];
+        let mut acc = vec![zero; 4 * dim];
         for (j, b) in self.b.iter().enumerate() {
-            for (((d, b), re), im) in self.d.iter().zip(b).zip(&mut re).zip(&mut im) {
-                let (g1, g2) = ((lambda - d).inv(), (lambda.conj() - d).inv());
-                *re = 0.5 * (g1 + g2) * b;
-                *im = half_i * (g1 - g2) * b;
+            acc.fill(zero);
+            let (pq, dpq) = acc.split_at_mut(2 * dim);
+            let (p, q) = pq.split_at_mut(dim);
+            let (dp, dq) = dpq.split_at_mut(dim);
+            for (((g1, g2), b), c) in g.iter().zip(b).zip(self.c.chunks_exact(dim)) {
+                let (t1, t2) = (g1 * b, g2 * b);
+                for ((p, q), c) in p.iter_mut().zip(q.iter_mut()).zip(c) {
+                    *p += t1 * c;
+                    *q += t2 * c;
+                }
+                if slope {
+                    let (u1, u2) = (t1 * g1, t2 * g2);
+                    for ((p, q), c) in dp.iter_mut().zip(dq.iter_mut()).zip(c) {
+                        *p -= u1 * c;
+                        *q -= u2 * c;
+                    }
+                }
             }
-            solver.gradient(&re, lo, hi);
-            let fr = solver.sums(k_max, lo, hi, area).to_vec();
-            solver.gradient(&im, lo, hi);
-            let fi = solver.sums(k_max, lo, hi, area).to_vec();
             for i in 0..dim {
-                r[i][j] = C64::new(fr[i], fi[i]);
+                r[i][j] = 0.5 * (p[i] + q[i].conj());
+                if slope {
+                    dr[i][j] = 0.5 * (dp[i] + dq[i].conj());
+                }
             }
         }
-        r
+        (r, dr)
     }
 
     /// `T(lambda) = lambda M - E - C (lambda - D)^(-1) B`.
-    pub fn t_matrix(&self, solver: &mut ModeSolver, lambda: C64) -> DMatrix<C64> {
-        let r = self.response(solver, lambda);
+    pub fn t_matrix(&self, lambda: C64) -> DMatrix<C64> {
+        self.t_and_slope(lambda, false).0
+    }
+
+    /// `T(lambda)` and, with `slope`, `T'(lambda) = M + C (lambda - D)^(-2) B` (else empty).
+    fn t_and_slope(&self, lambda: C64, slope: bool) -> (DMatrix<C64>, DMatrix<C64>) {
+        let (r, dr) = self.response(lambda, slope);
         let dim = self.z0.len();
-        DMatrix::from_fn(dim, dim, |i, j| {
-            let diag = if i == j {
-                lambda * self.m[i]
+        let diag = |i: usize, j: usize, x: C64| {
+            if i == j {
+                x * self.m[i]
             } else {
                 C64::default()
-            };
-            diag - self.e[i][j] - r[i][j]
-        })
+            }
+        };
+        let t = DMatrix::from_fn(dim, dim, |i, j| diag(i, j, lambda) - self.e[i][j] - r[i][j]);
+        let dt = match slope {
+            true => DMatrix::from_fn(dim, dim, |i, j| diag(i, j, C64::new(1.0, 0.0)) - dr[i][j]),
+            false => DMatrix::zeros(0, 0),
+        };
+        (t, dt)
     }
 
     /// `-T(0)`: the Jacobian of the steady force balance with the steady field following `z`.
-    pub fn jacobian0(&self, solver: &mut ModeSolver) -> Vec<Vec<f64>> {
-        let t = self.t_matrix(solver, C64::default());
+    pub fn jacobian0(&self) -> Vec<Vec<f64>> {
+        let t = self.t_matrix(C64::default());
         let dim = self.z0.len();
         (0..dim)
             .map(|i| (0..dim).map(|j| -t[(i, j)].re).collect())
@@ -155,14 +189,18 @@ impl ModeLinearization {
 
     /// The eigenvalues with `Re lambda > -1`, sorted by decreasing real part; one `NaN` when
     /// the state or its response is not finite (counted as growing by [`Self::verdict`]).
-    pub fn eigenvalues(&self, solver: &mut ModeSolver) -> Vec<C64> {
+    pub fn eigenvalues(&self) -> Vec<C64> {
         let dim = self.z0.len();
-        let r0 = self.response(solver, C64::default());
+        let (r0, _) = self.response(C64::default(), false);
         let k0 = DMatrix::from_fn(dim, dim, |i, j| (self.e[i][j] + r0[i][j].re) / self.m[i]);
         let Some(guesses) = crate::numerics::eigen::complex_eigenvalues(&k0) else {
             return vec![C64::new(f64::NAN, 0.0)];
         };
-        let det = |s: &mut ModeSolver, l: C64| self.t_matrix(s, l).determinant();
+        // `(det T)' / det T = tr(T^(-1) T')`; `None` where `T` is singular (a root).
+        let log_slope = |l: C64| {
+            let (t, dt) = self.t_and_slope(l, true);
+            t.lu().solve(&dt).map(|x| x.trace())
+        };
         let mut found: Vec<C64> = Vec::new();
         for guess in guesses.iter().chain(&guesses) {
             if found.len() == dim {
@@ -170,15 +208,15 @@ impl ModeLinearization {
             }
             let mut lambda = C64::new(guess.re.max(-0.99), guess.im);
             let mut converged = false;
+            // Iterations in a row that Newton pushed out to `Re lambda <= -1`, where no root
+            // is sought: after three the guess is given up (its root lies there).
+            let mut pushed_out = 0;
             for _ in 0..60 {
-                let h = 1e-6;
-                let f0 = det(solver, lambda);
-                if f0.norm() == 0.0 {
+                let Some(slope) = log_slope(lambda) else {
                     converged = true;
                     break;
-                }
-                let slope = (det(solver, lambda + h) - det(solver, lambda - h)) / (2.0 * h);
-                let log_d = slope / f0 - found.iter().map(|r| (lambda - r).inv()).sum::<C64>();
+                };
+                let log_d = slope - found.iter().map(|r| (lambda - r).inv()).sum::<C64>();
                 let mut step = log_d.inv();
                 if !step.is_finite() {
                     break;
@@ -187,7 +225,15 @@ impl ModeLinearization {
                     step *= 0.2 / step.norm();
                 }
                 lambda -= step;
-                lambda.re = lambda.re.max(-0.999);
+                if lambda.re < -0.999 {
+                    lambda.re = -0.999;
+                    pushed_out += 1;
+                    if pushed_out == 3 {
+                        break;
+                    }
+                } else {
+                    pushed_out = 0;
+                }
                 if step.norm() < 1e-11 {
                     converged = true;
                     break;
@@ -200,6 +246,57 @@ impl ModeLinearization {
         found.sort_by(|a, b| b.re.total_cmp(&a.re));
         found
     }
+}
+
+/// The forces of [`ModeSolver::sums`] on the shape `m` (`(Fx, Fy, G^(a)_k.., G^(b)_k..)`, `dim
+/// = 2K`) as real-linear functionals of a field's normalised half spectrum `u`:
+/// `F_i(u) = Sum_k Re(c_ik u_k)`, returned `[k][i]`. Each force is `Sum_x wx_i ux + wy_i uy`
+/// over the grid, with weights `Theta` times the modes' `w_k`; for a real weight field `w`,
+/// `Sum_x w IFFT(X) = Sum_k m_k Re(X_k conj(W_k))` over the half spectrum (`W` its transform,
+/// `m_k = 1` on the columns `kx = 0` and `N/2`, 2 elsewhere), and `X = i k u` for a
+/// derivative.
+fn force_functionals(solver: &mut ModeSolver, m: &Modes) -> Vec<C64> {
+    let (_, lo, hi) = solver.sample(m);
+    let grid = solver.grid().clone();
+    let (n, k_max) = (grid.n, m.k_max());
+    let dim = 2 * k_max;
+    let (da, r0) = (-grid.dx * grid.dx, solver.params().radius);
+    let (mut wx, mut wy) = (vec![vec![0.0; n * n]; dim], vec![vec![0.0; n * n]; dim]);
+    let theta = solver.theta();
+    for iy in lo..=hi {
+        let y = grid.coord(iy);
+        for ix in lo..=hi {
+            let i = iy * n + ix;
+            let t = da * theta[i];
+            if t == 0.0 {
+                continue;
+            }
+            let x = grid.coord(ix);
+            wx[0][i] = t;
+            wy[1][i] = t;
+            // `(Re, Im)` of `(x + i y)^(k-1)`, as in the sums.
+            let (mut re, mut im) = (x, y);
+            for j in 0..k_max - 1 {
+                let s = t * r0.powi(-(j as i32));
+                (wx[2 + j][i], wy[2 + j][i]) = (s * re, -s * im);
+                (wx[k_max + 1 + j][i], wy[k_max + 1 + j][i]) = (s * im, s * re);
+                (re, im) = (re * x - im * y, re * y + im * x);
+            }
+        }
+    }
+    let mut c = vec![C64::default(); grid.spectral_len() * dim];
+    for (i, (wx, wy)) in wx.iter_mut().zip(&mut wy).enumerate() {
+        let (tx, ty) = (solver.transform(wx, lo, hi), solver.transform(wy, lo, hi));
+        for jx in 0..=n / 2 {
+            let weight = if jx == 0 || 2 * jx == n { 1.0 } else { 2.0 };
+            for jy in 0..n {
+                let k = jx * n + jy;
+                let g = grid.kx_d[jx] * tx[k].conj() + grid.ky_d[jy] * ty[k].conj();
+                c[k * dim + i] = C64::new(0.0, weight) * g;
+            }
+        }
+    }
+    c
 }
 
 /// The stability of a `K`-mode state: its eigenvalues, the rotation mode set aside.
@@ -235,8 +332,8 @@ impl ModeVerdict {
 
 impl ModeLinearization {
     /// The unit null vector of `T(lambda)` (its smallest singular vector).
-    pub fn mode(&self, solver: &mut ModeSolver, lambda: C64) -> Vec<C64> {
-        let t = self.t_matrix(solver, lambda);
+    pub fn mode(&self, lambda: C64) -> Vec<C64> {
+        let t = self.t_matrix(lambda);
         let svd = t.svd(false, true);
         let v_t = svd.v_t.expect("asked for");
         let (i, _) = svd
@@ -251,8 +348,8 @@ impl ModeLinearization {
     /// The verdict: the rotation mode is the real eigenvalue, within 0.05 of zero, whose mode
     /// is the state's infinitesimal rotation `(-vy, vx, -k b_k, k a_k)` (overlap above 0.9); the
     /// others decide.
-    pub fn verdict(&self, solver: &mut ModeSolver) -> ModeVerdict {
-        let eig = self.eigenvalues(solver);
+    pub fn verdict(&self) -> ModeVerdict {
+        let eig = self.eigenvalues();
         let z = &self.z0;
         let k_max = (z.len() - 2) / 2 + 1;
         let mut g = vec![-z[1], z[0]];
@@ -261,8 +358,8 @@ impl ModeLinearization {
         let gn = g.iter().map(|x| x * x).sum::<f64>().sqrt();
         let mut rotation = None;
         if gn > 1e-9 {
-            let overlap = |s: &mut ModeSolver, l: C64| {
-                let v = self.mode(s, l);
+            let overlap = |l: C64| {
+                let v = self.mode(l);
                 let dot: C64 = v.iter().zip(&g).map(|(a, b)| a * b).sum();
                 let vn = v.iter().map(|c| c.norm_sqr()).sum::<f64>().sqrt();
                 dot.norm() / (vn * gn)
@@ -270,7 +367,7 @@ impl ModeLinearization {
             rotation = eig
                 .iter()
                 .filter(|l| l.im.abs() < 1e-9 && l.re.abs() < 0.05)
-                .map(|l| (*l, overlap(solver, *l)))
+                .map(|l| (*l, overlap(*l)))
                 .filter(|(_, o)| *o > 0.9)
                 .max_by(|a, b| a.1.total_cmp(&b.1))
                 .map(|(l, _)| l.re);
@@ -316,11 +413,45 @@ mod tests {
         let (mut two, mut solver, z) = fig1c_two_mode_md(64);
         let want = Linearization::at(&mut two, z).eigenvalues();
         let lin = ModeLinearization::at(&mut solver, &z);
-        let got = lin.eigenvalues(&mut solver);
+        let got = lin.eigenvalues();
         assert_eq!(got.len(), want.len(), "{got:?} vs {want:?}");
         for (g, w) in got.iter().zip(&want) {
             // Measured: 1e-10.
             assert!((g - w).norm() < 1e-8, "{got:?} vs {want:?}");
+        }
+    }
+
+    #[test]
+    fn the_force_functionals_are_the_forces_of_the_fields_gradient() {
+        // K = 3, a shape off every mirror line, and a field with every coefficient set:
+        // `Sum_k Re(c_ik u_k)` against the sums over the grid of the field's gradient.
+        let p = ModelParams::at(0.085, 0.112);
+        let mut solver = ModeSolver::new(p, 64).unwrap();
+        let m = Modes::of_state(&[0.3, 0.05, -0.15, 0.03, 0.02, -0.01]);
+        let c = force_functionals(&mut solver, &m);
+        let len = solver.grid().spectral_len();
+        let u: Vec<C64> = (0..len)
+            .map(|k| {
+                C64::new(
+                    ((k * 7919) % 101) as f64 - 50.0,
+                    ((k * 104_729) % 89) as f64 - 44.0,
+                )
+            })
+            .map(|x| x * 1e-3)
+            .collect();
+        let (area, lo, hi) = solver.sample(&m);
+        solver.gradient(&u, lo, hi);
+        let want = solver.sums(3, lo, hi, area).to_vec();
+        for (i, w) in want.iter().enumerate() {
+            let got: f64 = u
+                .iter()
+                .zip(c.chunks_exact(6))
+                .map(|(u, c)| (u * c[i]).re)
+                .sum();
+            assert!(
+                (got - w).abs() < 1e-10 * w.abs().max(1.0),
+                "{i}: {got} vs {w}"
+            );
         }
     }
 
@@ -331,7 +462,7 @@ mod tests {
         let mut solver = ModeSolver::new(p, 64).unwrap();
         let z = [0.3, 0.05, -0.15, 0.03, 0.02, -0.01];
         let lin = ModeLinearization::at(&mut solver, &z);
-        let j0 = lin.jacobian0(&mut solver);
+        let j0 = lin.jacobian0();
         let fd = fd_jacobian(&mut |y: &[f64]| solver.residual(y), &z, 1e-6);
         for i in 0..z.len() {
             for j in 0..z.len() {
@@ -349,7 +480,7 @@ mod tests {
     fn the_verdict_finds_the_rotation_mode_and_agrees_with_two_modes() {
         let (mut two, mut solver, z) = fig1c_two_mode_md(96);
         let want = crate::roots::verdict::assess(&Linearization::at(&mut two, z), z);
-        let got = ModeLinearization::at(&mut solver, &z).verdict(&mut solver);
+        let got = ModeLinearization::at(&mut solver, &z).verdict();
         assert_eq!(got.stable(), want.stable(), "{got:?} {want:?}");
         match (got.rotation, want.rotation) {
             (Some(a), Some(b)) => assert!((a - b).abs() < 1e-8, "{got:?} {want:?}"),

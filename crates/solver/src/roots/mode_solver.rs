@@ -236,6 +236,19 @@ impl ModeSolver {
         1.0 / (area * (self.grid.n * self.grid.n) as f64)
     }
 
+    /// `Theta` of the last [`Self::sample`] (row-major `N x N`, rows `lo..=hi`).
+    pub(crate) fn theta(&self) -> &[f64] {
+        &self.theta
+    }
+
+    /// The unnormalised transform (`[kx][ky]`) of a real field whose rows outside `lo..=hi`
+    /// are zero; those rows of `real` are clobbered.
+    pub(crate) fn transform(&mut self, real: &mut [f64], lo: usize, hi: usize) -> Vec<Complex64> {
+        let mut spec = vec![Complex64::default(); self.grid.spectral_len()];
+        self.fft.forward(real, &mut spec, lo, hi);
+        spec
+    }
+
     /// The last [`Self::source`]'s normalised half spectrum (raw after
     /// [`Self::theta_spectrum`]).
     pub(crate) fn source_spectrum(&self) -> &[Complex64] {

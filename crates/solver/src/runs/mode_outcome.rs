@@ -79,7 +79,7 @@ fn root_near(run: &mut ModeStepper, z: &[f64]) -> Option<Root> {
     if !x.iter().all(|v| v.is_finite()) {
         return None;
     }
-    let verdict = ModeLinearization::at(solver, &x).verdict(solver);
+    let verdict = ModeLinearization::at(solver, &x).verdict();
     Some(Root { z: x, verdict })
 }
 

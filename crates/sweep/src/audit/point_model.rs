@@ -126,7 +126,7 @@ struct KModes {
 
 impl KModes {
     fn growth(&mut self, z: &[f64]) -> Growth {
-        let v = ModeLinearization::at(&mut self.solver, z).verdict(&mut self.solver);
+        let v = ModeLinearization::at(&mut self.solver, z).verdict();
         Growth {
             unstable: v.unstable,
             max_re: v.leading(),

@@ -57,7 +57,7 @@ fn row(
     let mut solver = ModeSolver::new(at, n)?;
     let fig1c = md_state(&mut solver, k_max)?;
     let z = droplet_solver::roots::mode_solver::on_x_axis(fig1c.v, &fig1c.a);
-    let fig1c_verdict = ModeLinearization::at(&mut solver, &z).verdict(&mut solver);
+    let fig1c_verdict = ModeLinearization::at(&mut solver, &z).verdict();
     let fig1c_seconds = started.elapsed().as_secs_f64();
     let deformation = Modes {
         a: fig1c.a.clone(),
