@@ -22,6 +22,7 @@ use crate::model::params::ModelParams;
 use crate::model::shape::ShapeParams;
 use crate::numerics::fft2::PrunedFft2;
 use crate::numerics::newton::{self, NewtonOptions};
+use crate::roots::forces_memo::ForcesMemo;
 use rustfft::num_complex::Complex64;
 
 /// The forces on a `K`-mode droplet.
@@ -118,6 +119,8 @@ pub struct ModeSolver {
     axis: f64,
     /// The friction law's exponent ([`crate::model::mode_friction`]).
     eta_k_exponent: f64,
+    /// The forces of the last droplets the residuals asked for.
+    memo: ForcesMemo,
 }
 
 impl ModeSolver {
@@ -139,6 +142,7 @@ impl ModeSolver {
             uy: vec![0.0; n * n],
             axis: 0.0,
             eta_k_exponent: 0.0,
+            memo: ForcesMemo::default(),
             grid,
         })
     }
@@ -318,6 +322,17 @@ impl ModeSolver {
         f
     }
 
+    /// [`Self::forces`] for a residual: a droplet asked for before is not solved again (and
+    /// then the solver's field is not its field).
+    fn kept_forces(&mut self, vx: f64, vy: f64, m: &Modes) -> ModeForces {
+        if let Some(f) = self.memo.get(vx, vy, m) {
+            return f;
+        }
+        let f = self.forces(vx, vy, m);
+        self.memo.keep(vx, vy, m, &f);
+        f
+    }
+
     /// The forces of the steady field of the droplet `m` moving at `(vx, vy)`.
     pub fn forces(&mut self, vx: f64, vy: f64, m: &Modes) -> ModeForces {
         let (area, lo, hi) = self.source(m);
@@ -346,7 +361,7 @@ impl ModeSolver {
     /// `-eta_t v + F`, `G_k^(a) - kappa_k a_k`, `G_k^(b) - kappa_k b_k`, in that order.
     pub fn residual(&mut self, z: &[f64]) -> Vec<f64> {
         let m = Modes::of_state(z);
-        let f = self.forces(z[0], z[1], &m);
+        let f = self.kept_forces(z[0], z[1], &m);
         let mut r = vec![
             -self.params.eta_t * z[0] + f.fx,
             -self.params.eta_t * z[1] + f.fy,
@@ -412,7 +427,7 @@ impl ModeSolver {
             a: y[1..].to_vec(),
             b: vec![0.0; y.len() - 1],
         };
-        let f = self.forces(y[0], 0.0, &m);
+        let f = self.kept_forces(y[0], 0.0, &m);
         let mut r = vec![-self.params.eta_t * y[0] + f.fx];
         for (j, (g, a)) in f.ga.iter().zip(&m.a).enumerate() {
             r.push(g - self.kappa(j + 2) * a);

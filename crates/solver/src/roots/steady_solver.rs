@@ -21,13 +21,25 @@ pub struct SteadySolver {
     grid: Grid,
     fft: PrunedFft2,
     shapes: ShapeTransform,
-    /// The shape `(a2, b2)` whose transforms `ph`, `yh` hold, and its area: a residual at a
-    /// new velocity and the same shape (half of a Jacobian's columns) transforms nothing.
-    shape_of: Option<(f64, f64, f64)>,
-    ph: Vec<Complex64>,
-    yh: Vec<Complex64>,
+    /// The transforms of the last shapes, the newest first: a residual at a new velocity
+    /// or new `(eta_t, kappa2)` and a shape seen just before (most columns of a nested
+    /// difference Jacobian) transforms nothing.
+    transformed: Vec<Transformed>,
     w: Vec<Complex64>,
 }
+
+/// The packed transforms `ph`, `yh` of the shape `(a2, b2)` and its area.
+struct Transformed {
+    a2: f64,
+    b2: f64,
+    area: f64,
+    ph: Vec<Complex64>,
+    yh: Vec<Complex64>,
+}
+
+/// Shapes whose transforms a solver keeps: a state and its two neighbours in one amplitude
+/// (a central difference), and one more.
+const SHAPES_KEPT: usize = 4;
 
 /// A mirror line of the periodic square box on which [`SteadySolver::newton_on`] works: the
 /// steady states symmetric about it form a 2-unknown problem (speed along it, one shape
@@ -70,9 +82,7 @@ impl SteadySolver {
             params,
             fft: PrunedFft2::new(n),
             shapes: ShapeTransform::new(&grid, shape),
-            shape_of: None,
-            ph: vec![z; len],
-            yh: vec![z; len],
+            transformed: Vec::with_capacity(SHAPES_KEPT),
             w: vec![z; len],
             grid,
         })
@@ -99,10 +109,11 @@ impl SteadySolver {
                 let denom = Complex64::new(1.0 + kx * kx + ky * ky, -kv);
                 let i = jx * n + jy;
                 // Theta_hat = Re of the packed transform.
-                self.w[i] = Complex64::new(self.ph[i].re * norm, 0.0) / denom;
+                self.w[i] = Complex64::new(self.transformed[0].ph[i].re * norm, 0.0) / denom;
             }
         }
-        let f = spectral_forces(&self.grid, &self.w, &self.ph, &self.yh, area);
+        let t = &self.transformed[0];
+        let f = spectral_forces(&self.grid, &self.w, &t.ph, &t.yh, area);
         (&self.w, f)
     }
 
@@ -110,7 +121,8 @@ impl SteadySolver {
     /// `Y Theta`, raw, `[kx][ky]`; see [`crate::model::forces`]) and its area `A`.
     pub fn shape_spectra(&mut self, a2: f64, b2: f64) -> (Vec<Complex64>, Vec<Complex64>, f64) {
         let area = self.transform(a2, b2);
-        (self.ph.clone(), self.yh.clone(), area)
+        let t = &self.transformed[0];
+        (t.ph.clone(), t.yh.clone(), area)
     }
 
     pub fn params(&self) -> &ModelParams {
@@ -141,7 +153,7 @@ impl SteadySolver {
             };
             self.shapes = ShapeTransform::new(&grid, shape);
             self.grid = grid;
-            self.shape_of = None;
+            self.transformed.clear();
         }
         self.params = params;
         Ok(())
@@ -154,16 +166,31 @@ impl SteadySolver {
         self.params.kappa2 = kappa2;
     }
 
-    /// Transforms the shape `(a2, b2)` into `ph`, `yh` unless they hold it; its area.
+    /// Makes the transforms of the shape `(a2, b2)` the newest of [`Self::transformed`],
+    /// computing them unless they are kept; its area.
     fn transform(&mut self, a2: f64, b2: f64) -> f64 {
-        match self.shape_of {
-            Some((a, b, area)) if a == a2 && b == b2 => area,
-            _ => {
-                let area = self.shapes.transform(a2, b2, &mut self.ph, &mut self.yh);
-                self.shape_of = Some((a2, b2, area));
-                area
+        let kept = &mut self.transformed;
+        match kept.iter().position(|t| t.a2 == a2 && t.b2 == b2) {
+            Some(i) => kept[..=i].rotate_right(1),
+            None => {
+                let mut t = if kept.len() == SHAPES_KEPT {
+                    kept.pop().expect("full")
+                } else {
+                    let len = self.grid.spectral_len();
+                    Transformed {
+                        a2,
+                        b2,
+                        area: 0.0,
+                        ph: vec![Complex64::default(); len],
+                        yh: vec![Complex64::default(); len],
+                    }
+                };
+                t.area = self.shapes.transform(a2, b2, &mut t.ph, &mut t.yh);
+                (t.a2, t.b2) = (a2, b2);
+                kept.insert(0, t);
             }
         }
+        kept[0].area
     }
 
     /// The steady field in real space (co-moving, droplet at the grid centre; row-major,
