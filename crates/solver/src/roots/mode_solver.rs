@@ -120,7 +120,7 @@ pub struct ModeSolver {
     /// The friction law's exponent ([`crate::model::mode_friction`]).
     eta_k_exponent: f64,
     /// The forces of the last droplets the residuals asked for.
-    memo: ForcesMemo,
+    memo: ForcesMemo<(f64, f64, Modes), ModeForces>,
 }
 
 impl ModeSolver {
@@ -325,11 +325,12 @@ impl ModeSolver {
     /// [`Self::forces`] for a residual: a droplet asked for before is not solved again (and
     /// then the solver's field is not its field).
     fn kept_forces(&mut self, vx: f64, vy: f64, m: &Modes) -> ModeForces {
-        if let Some(f) = self.memo.get(vx, vy, m) {
+        let droplet = (vx, vy, m.clone());
+        if let Some(f) = self.memo.get(&droplet) {
             return f;
         }
         let f = self.forces(vx, vy, m);
-        self.memo.keep(vx, vy, m, &f);
+        self.memo.keep(&droplet, &f);
         f
     }
 

@@ -13,6 +13,7 @@ use crate::model::shape::ShapeParams;
 use crate::model::shape_transform::ShapeTransform;
 use crate::numerics::fft2::PrunedFft2;
 use crate::numerics::newton::{self, NewtonOptions};
+use crate::roots::forces_memo::ForcesMemo;
 use rustfft::num_complex::Complex64;
 
 /// Evaluates steady fields and force-balance residuals on an `N x N` co-moving grid.
@@ -26,6 +27,8 @@ pub struct SteadySolver {
     /// difference Jacobian) transforms nothing.
     transformed: Vec<Transformed>,
     w: Vec<Complex64>,
+    /// The forces of the last droplets `(vx, vy, a2, b2)` asked for.
+    memo: ForcesMemo<[f64; 4], Forces>,
 }
 
 /// The packed transforms `ph`, `yh` of the shape `(a2, b2)` and its area.
@@ -84,6 +87,7 @@ impl SteadySolver {
             shapes: ShapeTransform::new(&grid, shape),
             transformed: Vec::with_capacity(SHAPES_KEPT),
             w: vec![z; len],
+            memo: ForcesMemo::default(),
             grid,
         })
     }
@@ -154,6 +158,7 @@ impl SteadySolver {
             self.shapes = ShapeTransform::new(&grid, shape);
             self.grid = grid;
             self.transformed.clear();
+            self.memo.clear();
         }
         self.params = params;
         Ok(())
@@ -204,9 +209,16 @@ impl SteadySolver {
         out
     }
 
-    /// Forces exerted by the steady field of a droplet `(a2, b2)` moving at `(vx, vy)`.
+    /// Forces exerted by the steady field of a droplet `(a2, b2)` moving at `(vx, vy)` (a
+    /// droplet asked for shortly before is not solved again).
     pub fn forces(&mut self, vx: f64, vy: f64, a2: f64, b2: f64) -> Forces {
-        self.field_and_forces(vx, vy, a2, b2).1
+        let droplet = [vx, vy, a2, b2];
+        if let Some(f) = self.memo.get(&droplet) {
+            return f;
+        }
+        let f = self.field_and_forces(vx, vy, a2, b2).1;
+        self.memo.keep(&droplet, &f);
+        f
     }
 
     /// Force-balance residual `(-eta_t vx + Fx, Ga - kappa2 a2)` for motion along x, `b2 = 0`.
