@@ -147,20 +147,27 @@ pub fn boundaries(w: &Window) -> Result<Vec<Boundary>, SolverError> {
     let (e0, e1) = w.eta_t;
     let (k0, k1) = w.kappa2;
     let k_shape = th.kappa2_a2.max(th.kappa2_b2);
-    let mut out = vec![
-        Boundary {
+    // The resting disk's onsets are straight lines, drawn where they cross the window: the
+    // onset of motion above the disk's deformation onsets (below them the disk deforms).
+    let inside = |x: f64, (lo, hi): (f64, f64)| (lo..=hi).contains(&x);
+    let mut out = Vec::new();
+    if inside(th.eta_t, w.eta_t) && k_shape.max(k0) < k1 {
+        out.push(Boundary {
             name: "IC onset of motion",
             points: vec![(th.eta_t, k_shape.max(k0)), (th.eta_t, k1)],
-        },
-        Boundary {
-            name: "IC onset of deformation (b2, diagonal)",
-            points: vec![(th.eta_t.max(e0), th.kappa2_b2), (e1, th.kappa2_b2)],
-        },
-        Boundary {
-            name: "IC onset of deformation (a2, axis)",
-            points: vec![(th.eta_t.max(e0), th.kappa2_a2), (e1, th.kappa2_a2)],
-        },
-    ];
+        });
+    }
+    for (name, k) in [
+        ("IC onset of deformation (b2, diagonal)", th.kappa2_b2),
+        ("IC onset of deformation (a2, axis)", th.kappa2_a2),
+    ] {
+        if inside(k, w.kappa2) && th.eta_t.max(e0) < e1 {
+            out.push(Boundary {
+                name,
+                points: vec![(th.eta_t.max(e0), k), (e1, k)],
+            });
+        }
+    }
     let mid = 0.5 * (k0 + k1);
     let starts = [
         0.13f64.clamp(k0, k1),
