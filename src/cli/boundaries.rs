@@ -62,7 +62,9 @@ pub struct Args {
 /// neighbours, so a narrower window shows no curve at all, only the solver's noise.
 const MIN_WIDTH: f64 = 1e-6;
 
-fn range(text: &str, flag: &str) -> Result<(f64, f64), CliError> {
+/// A window `--FLAG LO,HI`: `0 < LO < HI`, at least [`MIN_WIDTH`] wide, within the
+/// parameters' limit.
+pub(super) fn range(text: &str, flag: &str) -> Result<(f64, f64), CliError> {
     let bad = || {
         CliError::usage(format!(
             "invalid --{flag} `{text}`: LO,HI with 0 < LO < HI and HI - LO >= {MIN_WIDTH:e}"

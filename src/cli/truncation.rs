@@ -1,5 +1,6 @@
 //! `droplet truncation`: the paper's results with shape modes 2..K, for several K.
-use super::{print_json, CliError};
+use super::{boundaries::range, print_json, CliError};
+use droplet_sweep::studies::boundaries::FIG2A_WINDOW;
 use droplet_sweep::studies::truncation::{run as run_study, BAND_LINE, FIG1C};
 use std::path::PathBuf;
 
@@ -15,13 +16,14 @@ use std::path::PathBuf;
 /// motion at kappa2 = 0.13; the MD branch along eta_t at kappa2 = 0.13 and its fold, the right
 /// edge of the IC/MD bistable band; and the phase boundaries of the Fig. 2a window for the
 /// states on the x axis (the onsets of motion and of the axis deformation, ID's onset of
-/// motion, the MD fold curve; a fold or an onset is where a real eigenvalue crosses zero).
+/// motion, the MD fold curve; a fold or an onset is where a real eigenvalue crosses zero;
+/// --eta-t and --kappa2 choose another window).
 /// Writes DIR/truncation.parquet (one row per K), DIR/truncation_boundaries.parquet (curves named `K = k: <boundary>`), DIR/truncation.png/.svg
 /// (the Fig. 1c droplet's outline for each K) and DIR/truncation_boundaries.png/.svg (the
 /// boundaries for every K over each other). About 25 s per K at N = 192 (100 s for K = 6).
 #[derive(clap::Args)]
 #[command(
-    after_help = "Examples:\n  droplet truncation --out results/truncation                 # K = 2, 3, 4, 6 at N = 192\n  droplet truncation --modes 2,3 --n 96 --json --out out/trunc"
+    after_help = "Examples:\n  droplet truncation --out results/truncation                 # K = 2, 3, 4, 6 at N = 192\n  droplet truncation --modes 2,3 --n 96 --json --out out/trunc\n  droplet truncation --modes 2,4 --eta-t 0.075,0.085 --kappa2 0.12,0.14   # boundaries in a smaller window"
 )]
 pub struct Args {
     /// The numbers of modes K to compare (modes 2..K each), e.g. 2,3,4,6: each from 2 to 16
@@ -32,10 +34,17 @@ pub struct Args {
     /// Grid points per side.
     #[arg(long, default_value_t = 192)]
     n: usize,
+    /// eta_t window LO,HI of the boundaries (default: the Fig. 2a window's, 0.07,0.10).
+    #[arg(long, value_name = "LO,HI")]
+    eta_t: Option<String>,
+    /// kappa2 window LO,HI of the boundaries (default: the Fig. 2a window's, 0.10,0.17).
+    #[arg(long, value_name = "LO,HI")]
+    kappa2: Option<String>,
     /// Output directory.
     #[arg(long, default_value = "out/truncation")]
     out: PathBuf,
-    /// Print one JSON object (keys: n, fig1c [eta_t, kappa2], band_kappa2, rows [{k_max,
+    /// Print one JSON object (keys: n, fig1c [eta_t, kappa2], band_kappa2, eta_t and kappa2
+    /// (the boundaries' window), rows [{k_max,
     /// v, s, deformation, a [a2..aK], stable, leading (largest real part but the rotation
     /// mode), eigenvalues [[re, im]], rotation, fig1c_seconds, onset_eta_t, fold_eta_t, fold_v,
     /// band_width, fold_seconds, boundaries_seconds}], files).
@@ -65,6 +74,14 @@ fn modes(text: &str) -> Result<Vec<usize>, CliError> {
 pub fn run(a: Args) -> Result<(), CliError> {
     let ks = modes(&a.modes)?;
     super::check_grid(a.n)?;
+    let window = (
+        a.eta_t
+            .as_deref()
+            .map_or(Ok(FIG2A_WINDOW.0), |t| range(t, "eta-t"))?,
+        a.kappa2
+            .as_deref()
+            .map_or(Ok(FIG2A_WINDOW.1), |t| range(t, "kappa2"))?,
+    );
     let base = droplet_solver::model::params::ModelParams::default();
     for &k in &ks {
         droplet_solver::contract::limits::check_modes(&base, a.n, k)?;
@@ -73,7 +90,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
         "truncation: K = {ks:?} at N = {} (about 25 s per K at N = 192)",
         a.n
     );
-    let done = run_study(&a.out, &ks, a.n)?;
+    let done = run_study(&a.out, &ks, a.n, window)?;
     if a.json {
         let rows: Vec<_> = done
             .rows
@@ -96,6 +113,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
             .collect();
         print_json(&serde_json::json!({
             "n": a.n, "fig1c": [FIG1C.0, FIG1C.1], "band_kappa2": BAND_LINE.0,
+            "eta_t": [window.0 .0, window.0 .1], "kappa2": [window.1 .0, window.1 .1],
             "rows": rows, "files": done.files,
         }));
     } else {

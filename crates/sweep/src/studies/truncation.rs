@@ -15,7 +15,6 @@
 //! outline for each `K`, and the rows returned for the CLI.
 use crate::error::SweepError;
 use crate::pictures::map_figure::{boundary_picture, outline_picture, Curve, CURVE_COLOURS};
-use crate::studies::boundaries::FIG2A_WINDOW;
 use crate::tables::boundaries::NamedCurve;
 use crate::tables::truncation::TruncationRow;
 use droplet_solver::continuation::mode_boundaries::{mode_boundaries, ModeWindow};
@@ -47,6 +46,7 @@ fn row(
     k_max: usize,
     n: usize,
     base: &ModelParams,
+    (window_eta_t, window_kappa2): Window,
 ) -> Result<(TruncationRow, Vec<NamedCurve>), SweepError> {
     let started = Instant::now();
     let at = ModelParams {
@@ -84,17 +84,16 @@ fn row(
     })?;
     let fold_seconds = started.elapsed().as_secs_f64();
     let started = Instant::now();
-    let (eta_t, kappa2) = FIG2A_WINDOW;
     let window = ModeWindow {
         base: ModelParams {
-            eta_t: eta_t.0,
-            kappa2: kappa2.0,
+            eta_t: window_eta_t.0,
+            kappa2: window_kappa2.0,
             ..*base
         },
         n,
         k_max,
-        eta_t,
-        kappa2,
+        eta_t: window_eta_t,
+        kappa2: window_kappa2,
         id_samples: 30,
     };
     let curves = mode_boundaries(&window)?
@@ -150,9 +149,19 @@ fn outlines(rows: &[TruncationRow], base: &ModelParams) -> Vec<Curve> {
         .collect()
 }
 
+/// The `(eta_t, kappa2)` window of the boundaries, each `(lo, hi)`.
+pub type Window = ((f64, f64), (f64, f64));
+
 /// Runs the study for each `K` of `modes` at grid size `n` (the other parameters the
-/// defaults) and writes `truncation.parquet` and `truncation.png/.svg` into `out`.
-pub fn run(out: &Path, modes: &[usize], n: usize) -> Result<TruncationWritten, SweepError> {
+/// defaults), the boundaries in `window` (the paper's study: the Fig. 2a window,
+/// [`crate::studies::boundaries::FIG2A_WINDOW`]), and writes
+/// `truncation.parquet` and `truncation.png/.svg` into `out`.
+pub fn run(
+    out: &Path,
+    modes: &[usize],
+    n: usize,
+    window: Window,
+) -> Result<TruncationWritten, SweepError> {
     let base = ModelParams::default();
     for &k in modes {
         droplet_solver::contract::limits::check_modes(&base, n, k)?;
@@ -161,7 +170,7 @@ pub fn run(out: &Path, modes: &[usize], n: usize) -> Result<TruncationWritten, S
     let mut rows = Vec::new();
     let mut boundaries: Vec<NamedCurve> = Vec::new();
     for &k in modes {
-        let (r, curves) = row(k, n, &base)?;
+        let (r, curves) = row(k, n, &base, window)?;
         rows.push(r);
         boundaries.extend(curves);
     }
@@ -197,8 +206,8 @@ pub fn run(out: &Path, modes: &[usize], n: usize) -> Result<TruncationWritten, S
         "truncation_boundaries",
         &format!("Phase boundaries with shape modes 2..K (x-axis states), N = {n}"),
         &drawn,
-        FIG2A_WINDOW.0,
-        FIG2A_WINDOW.1,
+        window.0,
+        window.1,
     )?);
     let curves = outlines(&rows, &base);
     files.extend(outline_picture(
