@@ -2,6 +2,7 @@
 use polars::prelude::*;
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Output, Stdio};
+use std::sync::OnceLock;
 
 /// The `droplet` binary under test.
 pub fn droplet() -> Command {
@@ -133,4 +134,45 @@ pub fn sweep(spec: &Path, out: &Path, extra: &[&str]) -> Output {
     ];
     args.extend_from_slice(extra);
     run(&args)
+}
+
+/// The smoke sweep (`sweeps/smoke.yaml`: 16 points x 4 initial conditions at N = 96), run
+/// once per test process by `droplet sweep ... --json`: its directory and the summary it
+/// printed. Shared read-only; a test that writes into a sweep directory copies it first
+/// ([`copy_sweep`]).
+#[allow(dead_code)]
+pub fn smoke_sweep() -> &'static (PathBuf, serde_json::Value) {
+    static SMOKE: OnceLock<(PathBuf, serde_json::Value)> = OnceLock::new();
+    SMOKE.get_or_init(|| {
+        // Kept for the whole process (a static is never dropped), under cargo's own
+        // directory for the tests' temporary files.
+        let dir = tempfile::Builder::new()
+            .prefix("smoke-")
+            .tempdir_in(env!("CARGO_TARGET_TMPDIR"))
+            .unwrap()
+            .keep();
+        let out = dir.join("smoke");
+        let summary = json(&run(&[
+            "sweep",
+            "sweeps/smoke.yaml",
+            "--out",
+            out.to_str().unwrap(),
+            "--json",
+        ]));
+        (out, summary)
+    })
+}
+
+/// Copies a sweep directory (its tables, pictures and stored runs) to `to`.
+#[allow(dead_code)]
+pub fn copy_sweep(from: &Path, to: &Path) {
+    std::fs::create_dir_all(to.join("runs")).unwrap();
+    for dir in [from.to_path_buf(), from.join("runs")] {
+        for e in std::fs::read_dir(&dir).unwrap().flatten() {
+            if e.file_type().unwrap().is_file() {
+                let rel = e.path().strip_prefix(from).unwrap().to_path_buf();
+                std::fs::copy(e.path(), to.join(rel)).unwrap();
+            }
+        }
+    }
 }

@@ -63,10 +63,8 @@ fn continue_follows_md_through_its_fold_to_the_onset_of_motion() {
 fn boundaries_are_written_and_drawn_over_a_sweeps_map() {
     let dir = tempfile::tempdir().unwrap();
     let sweep = dir.path().join("smoke");
+    crate::common::copy_sweep(&crate::common::smoke_sweep().0, &sweep);
     let s = sweep.to_str().unwrap();
-    assert!(run(&["sweep", "sweeps/smoke.yaml", "--out", s])
-        .status
-        .success());
     let j = json(&run(&[
         "boundaries",
         "--out",

@@ -151,7 +151,8 @@ fn smoke_sweep_as_a_slurm_array_merges_to_the_single_process_tables() {
     let spec = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("sweeps/smoke.yaml");
     let spec = spec.to_str().unwrap();
     let dir = tempfile::tempdir().unwrap();
-    let single = single_process(spec, dir.path());
+    // The single-process sweep of the same spec, shared with the other tests.
+    let single = crate::common::smoke_sweep().0.clone();
     let limit = Duration::from_secs(600);
 
     // 1. `droplet slurm --submit`: an array of 3 shards, then the merge job (afterany).

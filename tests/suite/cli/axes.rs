@@ -207,11 +207,13 @@ fn disk_onset(eta_t: f64, kappa2: f64, set: &str, n: &str) -> f64 {
 fn boundaries_over_a_radius_eta_t_sweep_are_continued_in_the_pair() {
     // Radius moves the states: the curves are continued in (radius, eta_t) itself. At R = 1
     // the onset of motion is the paper plane's; at every point it is the disk's threshold.
+    // kappa2 = 0.16, where the onset is a supercritical pitchfork: no MD fold to trace
+    // (at kappa2 = 0.13 the fold's curve is three quarters of the cost).
     let dir = tempfile::tempdir().unwrap();
     let (out, _) = boundaries_over(
         dir.path(),
         "re",
-        "params: {kappa2: 0.13}\ngrid:\n  radius: [0.95, 1.0, 1.05]\n  eta_t: [0.07, 0.08, 0.09]\n",
+        "params: {kappa2: 0.16}\ngrid:\n  radius: [0.95, 1.0, 1.05]\n  eta_t: [0.07, 0.08, 0.09]\n",
         "96",
         ("radius", "eta_t"),
     );
@@ -234,7 +236,7 @@ fn boundaries_over_a_radius_eta_t_sweep_are_continued_in_the_pair() {
         "--eta-t",
         "0.07,0.09",
         "--kappa2",
-        "0.12,0.14",
+        "0.15,0.17",
         "--n",
         "96",
         "--json",
@@ -253,7 +255,7 @@ fn boundaries_over_a_radius_eta_t_sweep_are_continued_in_the_pair() {
     let crossing = w[0].1 + (w[1].1 - w[0].1) * (1.0 - w[0].0) / (w[1].0 - w[0].0);
     assert!((crossing - at_one).abs() < 1e-6, "{crossing} vs {at_one}");
     let (r, e) = onset[onset.len() / 2];
-    let th = disk_onset(e, 0.13, &format!("radius={r}"), "96");
+    let th = disk_onset(e, 0.16, &format!("radius={r}"), "96");
     assert!((th - e).abs() < 1e-8, "{th} vs {e} at R = {r}");
     // The reduced model's curves are where its boundaries cross the line at each radius.
     let b = read(&table);
@@ -264,14 +266,16 @@ fn boundaries_over_a_radius_eta_t_sweep_are_continued_in_the_pair() {
 
 #[test]
 fn boundaries_in_a_plane_of_two_non_paper_parameters_are_continued_in_it() {
-    // (radius, sigma) at eta_t = 0.077, kappa2 = 0.13: the disk starts to move where its
-    // threshold reaches 0.077 (R near 1.02), and the MD fold crosses the window too.
+    // (radius, sigma) at eta_t = 0.077, kappa2 = 0.14: the disk starts to move where its
+    // threshold reaches 0.077 (R near 1.02), and the MD fold crosses the window too. N = 96
+    // (half the cost of N = 128); at kappa2 = 0.13 the coarse grid's anisotropy would bring
+    // the disk's axis deformation onset into the window as well.
     let dir = tempfile::tempdir().unwrap();
     let (out, b) = boundaries_over(
         dir.path(),
         "rs",
-        "params: {eta_t: 0.077, kappa2: 0.13}\ngrid:\n  radius: [0.95, 1.0, 1.05]\n  sigma: [0.03, 0.04, 0.05]\n",
-        "128",
+        "params: {eta_t: 0.077, kappa2: 0.14}\ngrid:\n  radius: [0.95, 1.0, 1.05]\n  sigma: [0.03, 0.04, 0.05]\n",
+        "96",
         ("radius", "sigma"),
     );
     let names: Vec<&str> = b["curves"]
@@ -295,7 +299,7 @@ fn boundaries_in_a_plane_of_two_non_paper_parameters_are_continued_in_it() {
     );
     // Each of three points is where the disk's own threshold is 0.077.
     for &(r, s) in [first, onset[onset.len() / 2], last].iter() {
-        let th = disk_onset(0.077, 0.13, &format!("radius={r},sigma={s}"), "128");
+        let th = disk_onset(0.077, 0.14, &format!("radius={r},sigma={s}"), "96");
         assert!((th - 0.077).abs() < 1e-8, "{th} at R = {r}, sigma = {s}");
     }
     let fold = pde_curve(&table, "MD saddle-node (x axis)", ("radius", "sigma"));
@@ -314,11 +318,11 @@ fn boundaries_in_a_plane_of_two_non_paper_parameters_are_continued_in_it() {
         "--to",
         "0.09",
         "--set",
-        &format!("kappa2=0.13,radius={r},sigma={s}"),
+        &format!("kappa2=0.14,radius={r},sigma={s}"),
         "--branch",
         "md",
         "--n",
-        "128",
+        "96",
         "--json",
     ]));
     let sn = c["events"]

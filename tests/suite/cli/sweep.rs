@@ -10,16 +10,7 @@ use std::time::Duration;
 
 #[test]
 fn smoke_sweep_produces_typed_tables_and_a_picture() {
-    let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("smoke");
-    let o = run(&[
-        "sweep",
-        "sweeps/smoke.yaml",
-        "--out",
-        out.to_str().unwrap(),
-        "--json",
-    ]);
-    let summary = json(&o);
+    let (out, summary) = crate::common::smoke_sweep();
     assert_eq!(summary["runs"], 64);
     assert_eq!(summary["points"], 16);
     let runs = read(&out.join("runs.parquet"));

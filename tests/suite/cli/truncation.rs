@@ -39,16 +39,23 @@ fn refused(base: &[&str], cases: &[(&[&str], &str)]) {
 fn two_modes_are_the_two_mode_commands_and_a_third_changes_the_moving_state() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("trunc");
+    // The boundaries in a window around the band's line (kappa2 = 0.13), where the fold
+    // curves are checked: the full Fig. 2a window traces every curve at 4x the cost.
     let t = json(&run(&[
         "truncation",
         "--modes",
         "2,3",
         "--n",
         "96",
+        "--eta-t",
+        "0.075,0.085",
+        "--kappa2",
+        "0.125,0.135",
         "--json",
         "--out",
         out.to_str().unwrap(),
     ]));
+    assert_eq!(t["kappa2"], serde_json::json!([0.125, 0.135]), "{t}");
     let rows = t["rows"].as_array().unwrap();
     assert_eq!(rows.len(), 2, "{t}");
     let (two, three) = (&rows[0], &rows[1]);
