@@ -41,7 +41,11 @@ pub struct Args {
     /// anything is written. Raise it deliberately for very large sweeps.
     #[arg(long, value_name = "RUNS", default_value_t = droplet_sweep::store::plan::DEFAULT_MAX_RUNS)]
     max_runs: u64,
-    /// Print a JSON summary instead of text.
+    /// Print a JSON summary instead of text (keys: name, output, points, runs, shard, level,
+    /// computed, reused, corrupt, upgraded, wall_s, jobs, point_classes, run_statuses,
+    /// dt_warnings, run_time_s and profile (the computed runs' time and its parts:
+    /// stepping_s, newton_s, eigen_s, landing_s, flow_s, leap_s, diagnosis_s, newton_solves,
+    /// eigen_problems, field_solves, fields), tables).
     #[arg(long)]
     json: bool,
 }
@@ -103,6 +107,9 @@ pub fn run(a: Args) -> Result<(), CliError> {
             .map(|(k, v)| format!("{k}: {v}"))
             .collect();
         outln!("point classes: {}", classes.join(", "));
+        if summary.computed > 0 {
+            outln!("{}", run_time_line(&summary));
+        }
         if summary.dt_warnings > 0 {
             errln!(
                 "warning: {} fixed-step runs took steps too large to trust (column max_step_error > {:e} in runs.parquet); lower dt or use adaptive stepping (solver.tol)",
@@ -115,4 +122,25 @@ pub fn run(a: Args) -> Result<(), CliError> {
         }
     }
     Ok(())
+}
+
+/// The computed runs' time and its parts in one line (docs/performance.md).
+fn run_time_line(s: &droplet_sweep::execution::execute::SweepSummary) -> String {
+    let p = &s.profile;
+    let t = s.run_time_s.max(1e-300);
+    let pct = |x: f64| 100.0 * x / t;
+    let other = (s.run_time_s - p.total_s()).max(0.0) + p.leap_s + p.diagnosis_s;
+    format!(
+        "run time {:.1} s over {} runs: stepping {:.0} %, Newton {:.0} %, eigenvalues {:.0} %, \
+         landing {:.0} %, orientation flow {:.0} %, other {:.0} %; {} steady field solves",
+        s.run_time_s,
+        s.computed,
+        pct(p.stepping_s),
+        pct(p.newton_s),
+        pct(p.eigen_s),
+        pct(p.landing_s),
+        pct(p.flow_s),
+        pct(other),
+        p.field_solves
+    )
 }

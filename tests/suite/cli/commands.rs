@@ -1,4 +1,4 @@
-//! `droplet bench --quick` and the top-level help.
+//! `droplet bench --quick`, `droplet bench --map` and the top-level help.
 use crate::common::{json, read, run};
 use polars::prelude::*;
 
@@ -97,5 +97,83 @@ fn top_level_help_lists_each_command_in_one_short_line() {
     assert!(
         text.contains("Refused while a sweep works on OUT"),
         "{text}"
+    );
+}
+
+#[test]
+fn bench_map_profiles_a_seeded_sample_of_a_committed_map() {
+    // Six runs of the committed smoke map (N = 96) computed again and profiled: each ends as
+    // the map's run did, its parts add up to no more than its time, and the same seed draws
+    // the same runs.
+    let dir = tempfile::tempdir().unwrap();
+    let profile = |name: &str| {
+        let out = dir.path().join(name);
+        let j = json(&run(&[
+            "bench",
+            "--map",
+            "results/smoke",
+            "--sample",
+            "6",
+            "--seed",
+            "3",
+            "--out",
+            out.to_str().unwrap(),
+            "--json",
+        ]));
+        (out, j)
+    };
+    let (out, j) = profile("a");
+    assert_eq!(
+        (j["runs"].as_u64(), j["map_runs"].as_u64()),
+        (Some(6), Some(64)),
+        "{j}"
+    );
+    let total = &j["total"];
+    assert_eq!(total["same_end"], 6, "{j}");
+    assert!(j["changed"].as_array().unwrap().is_empty(), "{j}");
+    let parts = &total["profile"];
+    let seconds: f64 = [
+        "stepping_s",
+        "newton_s",
+        "eigen_s",
+        "landing_s",
+        "flow_s",
+        "leap_s",
+        "diagnosis_s",
+    ]
+    .iter()
+    .map(|k| parts[k].as_f64().unwrap())
+    .sum();
+    let wall = total["wall_s"].as_f64().unwrap();
+    assert!(
+        seconds <= wall + 1e-9 && parts["stepping_s"].as_f64().unwrap() > 0.0,
+        "{j}"
+    );
+    assert!(parts["newton_solves"].as_u64().unwrap() >= 6, "{j}");
+    // Groups by ending and by level cover every run once.
+    for groups in ["by_ending", "by_level"] {
+        let n: u64 = j[groups]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|g| g["runs"].as_u64().unwrap())
+            .sum();
+        assert_eq!(n, 6, "{groups}: {j}");
+    }
+    let df = read(&out.join("map_profile.parquet"));
+    assert_eq!(df.height(), 6);
+    let runs_of = |df: &DataFrame| {
+        let p = df.column("point").unwrap().u32().unwrap().clone();
+        let ic = df.column("ic").unwrap().str().unwrap().clone();
+        let mut v: Vec<(u32, String)> = (0..df.height())
+            .map(|i| (p.get(i).unwrap(), ic.get(i).unwrap().to_string()))
+            .collect();
+        v.sort();
+        v
+    };
+    let (again, _) = profile("b");
+    assert_eq!(
+        runs_of(&df),
+        runs_of(&read(&again.join("map_profile.parquet")))
     );
 }

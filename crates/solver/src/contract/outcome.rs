@@ -155,6 +155,10 @@ pub struct RunOutcome {
     /// `series` (empty for 2-mode runs and unrecorded ones).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub higher_series: Vec<Vec<f64>>,
+    /// Where the run's time went ([`crate::contract::profile`]): measured, not part of its
+    /// result, so never stored.
+    #[serde(skip)]
+    pub profile: crate::contract::profile::RunProfile,
 }
 
 /// A fixed-step run whose largest embedded error estimate per step exceeds this took steps

@@ -131,6 +131,7 @@ pub fn simulate(
         b2: y[3],
     };
     let (v, s) = (state.speed(), state.deformation());
+    let wall_s = started.elapsed().as_secs_f64();
     Ok(RunOutcome {
         status,
         class: (status == RunStatus::Steady).then(|| StateClass::of(v, s)),
@@ -142,7 +143,7 @@ pub fn simulate(
         steps,
         rejected: 0,
         max_step_error: None,
-        wall_s: started.elapsed().as_secs_f64(),
+        wall_s,
         ended_by: (status == RunStatus::Steady).then_some(crate::contract::ending::Ending::Test),
         diagnosis: None,
         t_leapt: 0.0,
@@ -155,6 +156,11 @@ pub fn simulate(
         higher_modes: Vec::new(),
         series: Vec::new(),
         higher_series: Vec::new(),
+        // The reduced model's run is its time stepping.
+        profile: crate::contract::profile::RunProfile {
+            stepping_s: wall_s,
+            ..Default::default()
+        },
     })
 }
 

@@ -336,6 +336,7 @@ impl ModeSolver {
 
     /// The forces of the steady field of the droplet `m` moving at `(vx, vy)`.
     pub fn forces(&mut self, vx: f64, vy: f64, m: &Modes) -> ModeForces {
+        crate::contract::profile::field_solve();
         let (area, lo, hi) = self.source(m);
         // u_hat = source / (1 + k^2 - i k.v) = -source / D.
         fill_operator(&self.grid, vx, vy, &mut self.d);

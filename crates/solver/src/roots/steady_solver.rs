@@ -101,6 +101,7 @@ impl SteadySolver {
         a2: f64,
         b2: f64,
     ) -> (&[Complex64], Forces) {
+        crate::contract::profile::field_solve();
         let n = self.grid.n;
         let area = self.transform(a2, b2);
         let norm = 1.0 / (area * (n * n) as f64);

@@ -2,6 +2,7 @@
 //! on time, on the step cap or on a step too small to meet the error estimate; and its time
 //! series, one row every `every` time units (and the state after a leap).
 use crate::contract::outcome::{RunStatus, SeriesRow};
+use crate::contract::profile::{self, Part};
 use crate::contract::settings::SolverSettings;
 use crate::model::state::DropletState;
 use crate::stepping::step_control::PiController;
@@ -57,6 +58,7 @@ impl Clock {
         cfg: &SolverSettings,
         next_record: Option<f64>,
     ) -> Step {
+        let _timed = profile::enter(Part::Stepping);
         if !self.adaptive {
             if self.steps >= self.max_steps {
                 return Step::Stop(RunStatus::TMax);

@@ -3,6 +3,7 @@
 //! asked.
 use crate::contract::ending::{Ending, SteadyMethod};
 use crate::contract::outcome::{RunOutcome, RunStatus, Unsettled};
+use crate::contract::profile::{self, Part};
 use crate::contract::settings::{ModelKind, SolverSettings};
 use crate::contract::stop_rule::{diverged, SteadyTest};
 use crate::error::SolverError;
@@ -78,6 +79,7 @@ impl Run {
     /// steps longer than the window.
     pub fn execute(&mut self) -> RunOutcome {
         let started = Instant::now();
+        profile::start();
         let cfg = self.settings;
         let mut clock = Clock::new(&cfg);
         let mut rec = Recorder::new(self.record_every, &self.scheme.state(), clock.slack);
@@ -128,6 +130,7 @@ impl Run {
                 }
                 // Leaps only in adaptive runs (a fixed-step run's time is its step count).
                 Decision::Leap(leap) if cfg.adaptive() => {
+                    let _timed = profile::enter(Part::Leap);
                     let leapt = finish
                         .as_mut()
                         .and_then(|f| f.root_field(leap.root).ok())
@@ -209,11 +212,13 @@ impl Run {
             higher_modes: Vec::new(),
             series,
             higher_series: Vec::new(),
+            profile: profile::finish(),
         }
     }
 
     /// Why a run did not finish: what a Newton try from its final state `z` finds (spectral runs only; one try, about 0.1 s at N = 192).
     fn diagnose(&self, finish: Option<&mut NewtonFinish>, z: [f64; 4]) -> Diagnosis {
+        let _timed = profile::enter(Part::Diagnosis);
         if self.settings.scheme != SchemeKind::Spectral || self.settings.pinned {
             return Diagnosis {
                 text: "not diagnosed (the steady equations are the spectral scheme's)".into(),

@@ -61,6 +61,7 @@
 //! ([`crate::runs::leap`]) instead of stepping through the exponential.
 use crate::contract::ending::Ending;
 use crate::contract::outcome::Unsettled;
+use crate::contract::profile::{self, Part};
 use crate::contract::settings::SolverSettings;
 use crate::error::SolverError;
 use crate::model::params::ModelParams;
@@ -204,11 +205,15 @@ impl NewtonFinish {
             fd_step: 1e-6,
             max_step: vec![f64::INFINITY, f64::INFINITY, 0.2, 0.2],
         };
-        let root = solver.root_from(z, &opts)?;
+        let root = {
+            let _timed = profile::enter(Part::Newton);
+            solver.root_from(z, &opts)?
+        };
         let known = self.assessed.iter().find(|(z, _)| same_root(z, &root));
         let verdict = match known {
             Some((_, v)) => v.clone(),
             None => {
+                let _timed = profile::enter(Part::Eigen);
                 let v = assess(&Linearization::at(solver, root), root);
                 self.assessed.push((root, v.clone()));
                 v

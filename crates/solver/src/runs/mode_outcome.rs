@@ -20,6 +20,7 @@
 //! endings of 2-mode runs, and pinned runs. Time series: [`simulate_modes_recorded`].
 use crate::contract::ending::Ending;
 use crate::contract::outcome::{RunOutcome, RunStatus, SeriesRow, Unsettled};
+use crate::contract::profile::{self, Part};
 use crate::contract::settings::SolverSettings;
 use crate::error::SolverError;
 use crate::model::classify::StateClass;
@@ -73,12 +74,15 @@ fn root_near(run: &mut ModeStepper, z: &[f64]) -> Option<Root> {
         max_step: vec![0.2; z.len()],
     };
     let solver = run.solver_mut();
+    let timed = profile::enter(Part::Newton);
     let x = crate::numerics::newton::solve(|y| solver.residual(y), z, &opts)
         .ok()?
         .x;
+    drop(timed);
     if !x.iter().all(|v| v.is_finite()) {
         return None;
     }
+    let _timed = profile::enter(Part::Eigen);
     let verdict = ModeLinearization::at(solver, &x).verdict();
     Some(Root { z: x, verdict })
 }
@@ -191,6 +195,7 @@ pub fn simulate_modes_recorded(
     every: Option<f64>,
 ) -> Result<RunOutcome, SolverError> {
     let started = Instant::now();
+    profile::start();
     params.validate()?;
     settings.validate()?;
     crate::contract::limits::check_run(params, settings)?;
@@ -209,6 +214,7 @@ pub fn simulate_modes_recorded(
         SchemeKind::PaperFd => paper_fd(params, &z0, settings, &mut rec)?,
     };
     out.wall_s = started.elapsed().as_secs_f64();
+    out.profile = profile::finish();
     if let Some(rec) = rec {
         (out.series, out.higher_series) = (rec.rows, rec.higher);
     }
@@ -239,7 +245,10 @@ fn newton_finished(
         if let Some(rec) = rec.as_mut() {
             rec.sample(&run.snapshot(), false);
         }
-        let rate = run.rate();
+        let rate = {
+            let _timed = profile::enter(Part::Stepping);
+            run.rate()
+        };
         if left_model(&run.z, rate) {
             status = RunStatus::Diverged;
             break;
@@ -274,6 +283,7 @@ fn newton_finished(
         if run.t >= give_up - 1e-9 * settings.dt {
             break;
         }
+        let _timed = profile::enter(Part::Stepping);
         run.advance();
     }
     if let Some(rec) = rec.as_mut() {
@@ -367,6 +377,7 @@ fn outcome(at: &Snapshot, status: RunStatus, ended_by: Option<Ending>, found: Fo
         higher_modes,
         series: Vec::new(),
         higher_series: Vec::new(),
+        profile: Default::default(),
     }
 }
 

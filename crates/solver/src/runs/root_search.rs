@@ -4,6 +4,7 @@
 //! ([`NewtonFinish::landing_root`]), the stable one of two roots a run turning between mirror
 //! lines is caught between ([`NewtonFinish::turn_root`]), and the root on the nearest mirror
 //! line ([`NewtonFinish::aligned_root`]).
+use crate::contract::profile::{self, Part};
 use crate::runs::finding::Finding;
 use crate::runs::finish::{same_root, NewtonFinish, MAX_SETTLED};
 use crate::runs::landing::{landings, rotated};
@@ -134,7 +135,11 @@ impl NewtonFinish {
 
     /// [`Self::landing_root`] along the slow flow alone (no [`Self::turn_root`]).
     pub fn flow_root(&mut self, z: [f64; 4], lean_shrinking: bool) -> Option<Finding> {
-        for landing in landings(self.steady_solver().ok()?, z) {
+        let found = {
+            let _timed = profile::enter(Part::Landing);
+            landings(self.steady_solver().ok()?, z)
+        };
+        for landing in found {
             let Ok(near) = self.root_near(landing.on_line) else {
                 continue;
             };
@@ -224,7 +229,9 @@ impl NewtonFinish {
         let Ok(solver) = self.steady_solver() else {
             return true;
         };
+        let timed = profile::enter(Part::Flow);
         scan.extend(solver, &near.z, lean);
+        drop(timed);
         match known {
             Some(i) => self.flows[i].2 = scan,
             None => self.flows.push((near.z, side, scan)),
@@ -253,7 +260,11 @@ impl NewtonFinish {
         {
             return found.clone();
         }
-        let z = match flow_zero(self.steady_solver().ok()?, &near.z, lean, away) {
+        let zero = {
+            let _timed = profile::enter(Part::Flow);
+            flow_zero(self.steady_solver().ok()?, &near.z, lean, away)
+        };
+        let z = match zero {
             Ok(z) => z,
             Err(failed_at) => {
                 self.turns.push((near.z, lean, failed_at, None));

@@ -262,34 +262,7 @@ fn by_point(rows: Vec<Row>) -> Result<BTreeMap<u32, Vec<Row>>, SweepError> {
     Ok(out)
 }
 
-/// A fixed random sample of a map's points: `points` of them, drawn by `seed` (the same
-/// sample for the same map and seed, on any machine).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Sample {
-    pub points: usize,
-    pub seed: u64,
-}
-
-impl Sample {
-    /// The `points` of `all` with the smallest SHA-256 of `(seed, point)`.
-    fn draw(&self, all: impl Iterator<Item = u32>) -> BTreeSet<u32> {
-        use sha2::{Digest, Sha256};
-        let mut ranked: Vec<([u8; 32], u32)> = all
-            .map(|p| {
-                let mut h = Sha256::new();
-                h.update(self.seed.to_le_bytes());
-                h.update(p.to_le_bytes());
-                (h.finalize().into(), p)
-            })
-            .collect();
-        ranked.sort();
-        ranked
-            .into_iter()
-            .take(self.points)
-            .map(|(_, p)| p)
-            .collect()
-    }
-}
+pub use crate::map::sample::Sample;
 
 /// Audits the map in `dir` (its `runs.parquet` and `points.parquet`), with the steady
 /// equations and eigenvalues of its model: the paper's 2-mode model, or the general one with

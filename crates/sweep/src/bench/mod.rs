@@ -1,10 +1,12 @@
 //! The work-precision benchmark (`droplet bench`): the cases and methods (`plan`, each method
 //! of a typed `family`), their fine references computed once (`references`), the timed rows
 //! and their scores (`scoring`), a whole benchmark run from references to files (`run`), its
-//! Parquet table (`table`) and its picture (`precision_plot`).
+//! Parquet table (`table`) and its picture (`precision_plot`); and a map's run time part by
+//! part, on the map's own runs computed again (`map_profile`, `droplet bench --map`).
 //!
 //! May use: every folder but `audit` and `studies`. Used by: the CLI.
 pub mod family;
+pub mod map_profile;
 pub mod plan;
 pub mod precision_plot;
 pub mod references;

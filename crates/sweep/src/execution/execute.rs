@@ -10,6 +10,7 @@ use crate::store::plan::{plan, Plan, Task};
 use crate::store::run_store::{CorruptRun, RunRecord, Store, Stored};
 use crate::store::shard::{indices_of, Shard};
 use crate::tables::sweep_tables;
+use droplet_solver::contract::profile::RunProfile;
 use droplet_solver::runs::driver::simulate;
 use rayon::prelude::*;
 use serde::Serialize;
@@ -64,6 +65,10 @@ pub struct SweepSummary {
     pub run_statuses: BTreeMap<String, usize>,
     /// Fixed-step runs whose step looked too large (`RunOutcome::dt_warning`).
     pub dt_warnings: usize,
+    /// The run time of the runs computed by this invocation (the sum of their `wall_s`) and
+    /// where it went ([`droplet_solver::contract::profile`]).
+    pub run_time_s: f64,
+    pub profile: RunProfile,
     pub tables: Vec<PathBuf>,
 }
 
@@ -82,10 +87,61 @@ pub fn run_task(task: &Task) -> Result<RunRecord, SweepError> {
 }
 
 /// What running one set of a plan's runs did.
+#[derive(Default)]
 struct Ran {
     computed: usize,
     reused: usize,
     corrupt: Vec<CorruptRun>,
+    /// The computed runs' time and its parts.
+    run_time_s: f64,
+    profile: RunProfile,
+}
+
+impl Ran {
+    fn add(&mut self, o: Ran) {
+        self.computed += o.computed;
+        self.reused += o.reused;
+        self.corrupt.extend(o.corrupt);
+        self.run_time_s += o.run_time_s;
+        self.profile.add(&o.profile);
+    }
+}
+
+/// The counts and pace of one set of runs in progress: the progress bar's message.
+#[derive(Default)]
+struct Pace {
+    labels: BTreeMap<String, usize>,
+    done: usize,
+    run_time_s: f64,
+    profile: RunProfile,
+}
+
+impl Pace {
+    /// Class counts, then the mean run time of this set's runs so far and the time left at
+    /// that pace on `jobs` threads for the `left` runs to go.
+    fn message(&self, left: usize, jobs: usize) -> String {
+        let counts = self
+            .labels
+            .iter()
+            .map(|(k, v)| format!("{k} {v}"))
+            .collect::<Vec<_>>()
+            .join(", ");
+        let mean = self.run_time_s / self.done.max(1) as f64;
+        format!(
+            "{counts}; {mean:.2} s/run, {} left at this pace",
+            clock(mean * left as f64 / jobs.max(1) as f64)
+        )
+    }
+}
+
+/// Seconds as `1h02m03s`, `2m03s` or `3s`.
+fn clock(s: f64) -> String {
+    let s = s.max(0.0).round() as u64;
+    match (s / 3600, s / 60 % 60, s % 60) {
+        (0, 0, sec) => format!("{sec}s"),
+        (0, m, sec) => format!("{m}m{sec:02}s"),
+        (h, m, sec) => format!("{h}h{m:02}m{sec:02}s"),
+    }
 }
 
 /// Runs the runs `mine` of `plan` that are not validly stored (a corrupt one is moved aside
@@ -113,40 +169,43 @@ fn run_pending(
     }
     let reused = mine.len() - pending.len();
     let pb = progress_bar(mine.len() as u64, reused as u64, progress, what);
-    let counts: Mutex<BTreeMap<String, usize>> = Mutex::new(BTreeMap::new());
+    let pace: Mutex<Pace> = Mutex::new(Pace::default());
+    let jobs = pool.current_num_threads();
     pool.install(|| {
         pending
             .par_iter()
             .try_for_each(|&i| -> Result<(), SweepError> {
                 let record = run_task(&plan.task(i))?;
                 store.save(&record)?;
-                let label = match record.outcome.class {
+                let out = &record.outcome;
+                let label = match out.class {
                     Some(c)
-                        if record.outcome.status
-                            == droplet_solver::contract::outcome::RunStatus::Steady =>
+                        if out.status == droplet_solver::contract::outcome::RunStatus::Steady =>
                     {
                         c.as_str().to_string()
                     }
-                    _ => record.outcome.status.as_str().to_string(),
+                    _ => out.status.as_str().to_string(),
                 };
-                let mut c = counts.lock().expect("no panics while held");
-                *c.entry(label).or_default() += 1;
-                let msg = c
-                    .iter()
-                    .map(|(k, v)| format!("{k} {v}"))
-                    .collect::<Vec<_>>()
-                    .join(", ");
-                drop(c);
+                let mut p = pace.lock().expect("no panics while held");
+                *p.labels.entry(label).or_default() += 1;
+                p.done += 1;
+                p.run_time_s += out.wall_s;
+                p.profile.add(&out.profile);
+                let msg = p.message(pending.len() - p.done, jobs);
+                drop(p);
                 pb.set_message(msg);
                 pb.inc(1);
                 Ok(())
             })
     })?;
     pb.finish_and_clear();
+    let pace = pace.into_inner().expect("no panics while held");
     Ok(Ran {
         computed: pending.len(),
         reused,
         corrupt,
+        run_time_s: pace.run_time_s,
+        profile: pace.profile,
     })
 }
 
@@ -163,11 +222,7 @@ fn run_refined(
     progress: bool,
     shard: Option<(Shard, u32)>,
 ) -> Result<(Plan, Vec<usize>, Ran), SweepError> {
-    let mut total = Ran {
-        computed: 0,
-        reused: 0,
-        corrupt: Vec::new(),
-    };
+    let mut total = Ran::default();
     let mut mine = Vec::new();
     let plan = crate::map::levels::walk(spec, lattice, store, |level, plan, runs| {
         let runs = match shard {
@@ -197,9 +252,7 @@ fn run_refined(
             progress,
             &format!("level {level} runs"),
         )?;
-        total.computed += ran.computed;
-        total.reused += ran.reused;
-        total.corrupt.extend(ran.corrupt);
+        total.add(ran);
         mine.extend(runs);
         Ok(shard.is_none())
     })?;
@@ -329,6 +382,8 @@ pub fn run_sweep(
         point_classes,
         run_statuses,
         dt_warnings,
+        run_time_s: ran.run_time_s,
+        profile: ran.profile,
         tables,
     })
 }

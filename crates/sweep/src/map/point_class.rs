@@ -129,6 +129,7 @@ mod tests {
                 higher_modes: vec![],
                 series: vec![],
                 higher_series: vec![],
+                profile: Default::default(),
             },
         }
     }

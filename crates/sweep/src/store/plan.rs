@@ -224,8 +224,9 @@ pub fn plan_nodes(spec: &SweepSpec, lattice: &Lattice, nodes: &[(Node, u32, f64)
     )
 }
 
-/// A plan of arbitrary points with the spec's initial conditions, parameters and settings.
-fn point_set(
+/// A plan of arbitrary points with the spec's initial conditions, parameters and settings:
+/// the runs of `points` as the sweep of `spec` runs them (a map's runs computed again).
+pub fn point_set(
     spec: &SweepSpec,
     points: Vec<Point>,
     levels: Vec<u32>,

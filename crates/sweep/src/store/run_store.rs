@@ -463,6 +463,7 @@ mod tests {
                 higher_modes: vec![],
                 series: vec![],
                 higher_series: vec![],
+                profile: Default::default(),
             },
         }
     }

@@ -39,6 +39,8 @@ pub struct RunRow {
     pub wall_s: f64,
     pub unsettled: Option<String>,
     pub heading: Option<String>,
+    /// How a steady run ended (`steady_by_newton`, ...; `None` in tables without the column).
+    pub ended_by: Option<String>,
     pub key: String,
 }
 
@@ -163,9 +165,10 @@ pub fn runs(path: &Path) -> Result<Vec<RunRow>, SweepError> {
             .unwrap_or_default()
     };
     let (point, n) = (u32s(&df, "point")?, u32s(&df, "n")?);
-    let (unsettled, heading) = (
+    let (unsettled, heading, ended_by) = (
         optional_strings(&df, "unsettled")?,
         optional_strings(&df, "heading")?,
+        optional_strings(&df, "ended_by")?,
     );
     let modes = u32s_or(&df, "modes", 2)?;
     let eta_k_exponent = match df.column("eta_k_exponent") {
@@ -215,6 +218,7 @@ pub fn runs(path: &Path) -> Result<Vec<RunRow>, SweepError> {
             wall_s: f("wall_s", i),
             unsettled: unsettled[i].clone(),
             heading: heading[i].clone(),
+            ended_by: ended_by[i].clone(),
             key: t("key", i),
         })
         .collect())
