@@ -63,7 +63,13 @@ use contract::settings::ModelKind;
 /// 9: with the flow, a landing from a departure (the run far from the root's family, its
 /// lean shrinking) does not end by a turn from a root unstable in rotation: the lean it
 /// arrives with is not known yet, and the run steps on.
-pub const SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-9");
+/// 10: the same decisions at half the steady field solves: the Newton finish solves near a
+/// root it found before by the chord method with that root's Jacobian, remembers what
+/// Newton found from a root turned by each angle of the turn search, and keeps the
+/// landing's walks for its later tries; the landing's zero is located by Illinois instead of
+/// bisection and its shape solves start with the last derivative (roots equal to about
+/// 1e-10 in `v` and `s`; results/map-profile).
+pub const SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-10");
 
 /// Version of the reduced ODE model's numerics (2: unstable states no longer end a run;
 /// 3: a run that does not end steady has no class).

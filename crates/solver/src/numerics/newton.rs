@@ -70,9 +70,20 @@ pub fn lu_solve(a: Vec<Vec<f64>>, b: &[f64]) -> Option<Vec<f64>> {
 /// Solves `f(x) = 0` from `x0`. Each step is the Newton step scaled down to respect
 /// `opts.max_step`.
 pub fn solve(
+    f: impl FnMut(&[f64]) -> Vec<f64>,
+    x0: &[f64],
+    opts: &NewtonOptions,
+) -> Result<NewtonResult, SolverError> {
+    solve_keeping(f, x0, opts, &mut None)
+}
+
+/// [`solve`], leaving in `last` the Jacobian of its last step (taken at the iterate before
+/// the solution: a Jacobian for the [`chord`] method near the same root).
+pub fn solve_keeping(
     mut f: impl FnMut(&[f64]) -> Vec<f64>,
     x0: &[f64],
     opts: &NewtonOptions,
+    last: &mut Option<Vec<Vec<f64>>>,
 ) -> Result<NewtonResult, SolverError> {
     let mut x = x0.to_vec();
     let mut r = f(&x);
@@ -94,6 +105,7 @@ pub fn solve(
         }
         let jac = fd_jacobian(&mut f, &x, opts.fd_step);
         let minus_r: Vec<f64> = r.iter().map(|v| -v).collect();
+        *last = Some(jac.clone());
         let dx = lu_solve(jac, &minus_r).ok_or_else(|| failed(norm, it))?;
         let scale = dx
             .iter()

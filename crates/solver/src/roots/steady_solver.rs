@@ -258,16 +258,42 @@ impl SteadySolver {
         z: [f64; 4],
         opts: &NewtonOptions,
     ) -> Result<[f64; 4], SolverError> {
+        self.root_near(z, opts, &mut KeptJacobians::default())
+    }
+
+    /// [`Self::root_from`], first by the chord method with a Jacobian `kept` from an earlier
+    /// solve near `z` (one field solve a step instead of nine), by Newton when there is none
+    /// or the chord steps do not converge; a Newton solve's last Jacobian is kept.
+    pub fn root_near(
+        &mut self,
+        z: [f64; 4],
+        opts: &NewtonOptions,
+        kept: &mut KeptJacobians,
+    ) -> Result<[f64; 4], SolverError> {
         let p = self.params;
-        let sol = newton::solve(
-            |x| {
-                let f = self.forces(x[0], x[1], x[2], x[3]);
-                dynamics::force_balance(&p, [x[0], x[1], x[2], x[3]], &f).to_vec()
-            },
-            &z,
-            opts,
-        )?;
-        Ok([sol.x[0], sol.x[1], sol.x[2], sol.x[3]])
+        let mut balance = |x: &[f64]| {
+            let f = self.forces(x[0], x[1], x[2], x[3]);
+            dynamics::force_balance(&p, [x[0], x[1], x[2], x[3]], &f).to_vec()
+        };
+        let chord = NewtonOptions {
+            max_iter: 40,
+            ..opts.clone()
+        };
+        let chorded = kept
+            .near(&z)
+            .and_then(|jac| newton::chord(&mut balance, &z, jac, &chord).ok());
+        let x = match chorded {
+            Some(sol) => sol.x,
+            None => {
+                let mut last = None;
+                let sol = newton::solve_keeping(&mut balance, &z, opts, &mut last);
+                if let (Ok(sol), Some(jac)) = (&sol, last) {
+                    kept.keep(&sol.x, jac);
+                }
+                sol?.x
+            }
+        };
+        Ok([x[0], x[1], x[2], x[3]])
     }
 
     /// [`Self::newton`] on either mirror axis ([`crate::numerics::newton::solve`]: central differences
@@ -319,5 +345,44 @@ impl SteadySolver {
 
     pub fn grid(&self) -> &Grid {
         &self.grid
+    }
+}
+
+/// The Jacobians of the force balance at the last few roots Newton found, for the chord
+/// method from a nearby start ([`SteadySolver::root_near`]): a run's later tries usually
+/// start near a root found before.
+#[derive(Debug, Clone, Default)]
+pub struct KeptJacobians {
+    entries: Vec<([f64; 4], Vec<Vec<f64>>)>,
+}
+
+impl KeptJacobians {
+    /// Roots whose Jacobians are kept.
+    const KEPT: usize = 4;
+    /// Largest distance (max over the unknowns) of a start from a kept root for its Jacobian
+    /// to be tried.
+    const REACH: f64 = 0.05;
+
+    /// The Jacobian kept at the root nearest `z`, if within [`Self::REACH`].
+    pub fn near(&self, z: &[f64; 4]) -> Option<&[Vec<f64>]> {
+        let distance = |at: &[f64; 4]| {
+            at.iter()
+                .zip(z)
+                .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()))
+        };
+        self.entries
+            .iter()
+            .map(|(at, jac)| (distance(at), jac))
+            .filter(|(d, _)| *d <= Self::REACH)
+            .min_by(|a, b| a.0.total_cmp(&b.0))
+            .map(|(_, jac)| jac.as_slice())
+    }
+
+    /// Keeps the Jacobian `jac` of the root `at` (the oldest dropped beyond [`Self::KEPT`]).
+    pub fn keep(&mut self, at: &[f64], jac: Vec<Vec<f64>>) {
+        if self.entries.len() == Self::KEPT {
+            self.entries.remove(0);
+        }
+        self.entries.push(([at[0], at[1], at[2], at[3]], jac));
     }
 }

@@ -68,7 +68,7 @@ use crate::model::params::ModelParams;
 use crate::model::state::max_distance;
 use crate::numerics::newton::NewtonOptions;
 use crate::roots::linearisation::Linearization;
-use crate::roots::steady_solver::SteadySolver;
+use crate::roots::steady_solver::{KeptJacobians, SteadySolver};
 use crate::roots::verdict::{assess, Verdict};
 use crate::runs::finding::{Diagnosis, Finding};
 use crate::runs::leap::{leap, Leap, Sighting};
@@ -149,6 +149,15 @@ pub struct NewtonFinish {
     pub(super) trigger: f64,
     pub(super) window: f64,
     pub(super) next_try: f64,
+    /// The force balance's Jacobians at the roots found, for the chord method.
+    pub(super) jacobians: KeptJacobians,
+    /// What Newton found from a root turned by each angle of
+    /// [`crate::runs::orientation::TURN_SEARCH`], per root and side (lean > 0): `None` for
+    /// an angle not tried yet, `Some(None)` where Newton did not converge.
+    #[allow(clippy::type_complexity)]
+    pub(super) turn_searches: Vec<([f64; 4], bool, Vec<Option<Option<Finding>>>)>,
+    /// The walks of the landing's tries along the families ([`crate::runs::landing::Walks`]).
+    pub(super) walks: crate::runs::landing::Walks,
 }
 
 impl NewtonFinish {
@@ -174,6 +183,9 @@ impl NewtonFinish {
             trigger: TRIGGER_FACTOR * steady_tol,
             window,
             next_try: 0.0,
+            jacobians: KeptJacobians::default(),
+            turn_searches: Vec::new(),
+            walks: Default::default(),
         }
     }
 
@@ -207,7 +219,7 @@ impl NewtonFinish {
         };
         let root = {
             let _timed = profile::enter(Part::Newton);
-            solver.root_from(z, &opts)?
+            solver.root_near(z, &opts, &mut self.jacobians)?
         };
         let known = self.assessed.iter().find(|(z, _)| same_root(z, &root));
         let verdict = match known {

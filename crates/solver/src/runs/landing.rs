@@ -40,6 +40,7 @@
 //! not grow on the way, and confirms the flow's root on its line ([`Landing::on_line`]),
 //! letting the run turn from there if that root is unstable in rotation
 //! ([`crate::runs::finish`], numerics 7).
+use crate::numerics::bracket::illinois;
 use crate::roots::steady_solver::{MirrorAxis, SteadySolver};
 use std::f64::consts::{FRAC_1_SQRT_2, FRAC_PI_4};
 
@@ -132,6 +133,9 @@ pub struct SlowFlow<'a> {
     axis: MirrorAxis,
     /// Samples taken.
     pub samples: usize,
+    /// The shape balance's derivative in the shape amplitude at the last sample: the
+    /// next sample's Newton steps start with it (it changes little between samples).
+    slope: Option<f64>,
 }
 
 impl<'a> SlowFlow<'a> {
@@ -140,24 +144,37 @@ impl<'a> SlowFlow<'a> {
             solver,
             axis,
             samples: 0,
+            slope: None,
         }
     }
 
-    /// The family's shape amplitude `c*(v)` at speed `v` (the shape balance solved by Newton
-    /// from `c0`, central differences), or `None` if it does not converge.
+    /// The family's shape amplitude `c*(v)` at speed `v` (the shape balance solved from
+    /// `c0` by Newton steps with the derivative of the last sample, taken again by central
+    /// differences whenever a step does not shrink the residual tenfold), or `None` if it does not
+    /// converge.
     pub fn shape_at(&mut self, v: f64, c0: f64) -> Option<f64> {
         let h = 1e-7;
         let mut c = c0;
+        let mut before = f64::INFINITY;
         for _ in 0..60 {
             let r = self.solver.residual_on(self.axis, v, c)[1];
             if r.abs() < 1e-13 {
                 return Some(c);
             }
-            let d = (self.solver.residual_on(self.axis, v, c + h)[1]
-                - self.solver.residual_on(self.axis, v, c - h)[1])
-                / (2.0 * h);
+            let d = match self.slope {
+                Some(d) if r.abs() <= 0.1 * before => d,
+                _ => {
+                    let d = (self.solver.residual_on(self.axis, v, c + h)[1]
+                        - self.solver.residual_on(self.axis, v, c - h)[1])
+                        / (2.0 * h);
+                    self.slope = Some(d);
+                    d
+                }
+            };
+            before = r.abs();
             let step = -r / d;
             if !step.is_finite() {
+                self.slope = None;
                 return None;
             }
             c += step.clamp(-0.005, 0.005);
@@ -203,23 +220,73 @@ fn step_size(x: f64, f: f64, prev: Option<(f64, f64)>) -> f64 {
 /// speed family; one whose drift decays stays on the shape family). Each is a landing the
 /// walk found (see the module's certificate); the caller takes the first whose root it
 /// confirms stable.
-pub fn landings(solver: &mut SteadySolver, z: [f64; 4]) -> Vec<Landing> {
+pub fn landings(solver: &mut SteadySolver, z: [f64; 4], walks: &mut Walks) -> Vec<Landing> {
     let speed = z[0].hypot(z[1]);
-    let moving = (speed > 0.0).then(|| land_moving(solver, z)).flatten();
+    let moving = (speed > 0.0)
+        .then(|| land_moving(solver, z, walks))
+        .flatten();
     let resting = (speed <= RESTING_SPEED)
-        .then(|| land_resting(solver, z))
+        .then(|| land_resting(solver, z, walks))
         .flatten();
     moving.into_iter().chain(resting).collect()
 }
 
-/// The first of [`landings`].
+/// The first of [`landings`] (no walks kept).
 pub fn land(solver: &mut SteadySolver, z: [f64; 4]) -> Option<Landing> {
-    landings(solver, z).into_iter().next()
+    landings(solver, z, &mut Walks::default())
+        .into_iter()
+        .next()
 }
 
-fn land_moving(solver: &mut SteadySolver, z: [f64; 4]) -> Option<Landing> {
+/// The walks a run's landing tries made along a family: from the coordinate `from` the way
+/// `dir` to the zero `to` (where the family's shape is `c_to`), no zero between. A later try
+/// from a coordinate between `from` and `to`, drifting the same way, lands on the same zero:
+/// the certificate of the walk holds for it (a run's tries follow it along the family).
+#[derive(Debug, Clone, Default)]
+pub struct Walks {
+    done: Vec<Walk>,
+}
+
+#[derive(Debug, Clone, Copy)]
+struct Walk {
+    axis: MirrorAxis,
+    coordinate: Coordinate,
+    dir: f64,
+    from: f64,
+    to: f64,
+    c_to: f64,
+}
+
+impl Walks {
+    /// The zero and its shape of a walk on `axis`'s `coordinate` family that passed `x`
+    /// going the way `dir`.
+    fn passed(
+        &self,
+        axis: MirrorAxis,
+        coordinate: Coordinate,
+        dir: f64,
+        x: f64,
+    ) -> Option<(f64, f64)> {
+        self.done
+            .iter()
+            .find(|w| {
+                w.axis == axis
+                    && w.coordinate == coordinate
+                    && w.dir == dir
+                    && (x - w.from) * dir >= 0.0
+                    && (w.to - x) * dir > 0.0
+            })
+            .map(|w| (w.to, w.c_to))
+    }
+
+    fn keep(&mut self, walk: Walk) {
+        self.done.push(walk);
+    }
+}
+
+fn land_moving(solver: &mut SteadySolver, z: [f64; 4], walks: &mut Walks) -> Option<Landing> {
     let [near, other] = lines_near(z[1].atan2(z[0]));
-    land_moving_on(solver, z, near).or_else(|| land_moving_on(solver, z, other))
+    land_moving_on(solver, z, near, walks).or_else(|| land_moving_on(solver, z, other, walks))
 }
 
 /// [`land_moving`] on one mirror line (`(axis, psi, lean)` of [`lines_near`]).
@@ -227,6 +294,7 @@ fn land_moving_on(
     solver: &mut SteadySolver,
     z: [f64; 4],
     (axis, psi, lean): (MirrorAxis, f64, f64),
+    walks: &mut Walks,
 ) -> Option<Landing> {
     let here = rotated(&z, -psi);
     let v_run = z[0].hypot(z[1]);
@@ -241,6 +309,39 @@ fn land_moving_on(
     if (c_fam - c_run).abs() > FAMILY_TOL || g_run == 0.0 {
         return None;
     }
+    let dir = g_run.signum();
+    let (to, c_to) = match walks.passed(axis, Coordinate::Speed, dir, v_run) {
+        Some(known) => known,
+        None => {
+            let (to, c_to) = walk_speed(&mut flow, (v_run, g_run, c_fam))?;
+            walks.keep(Walk {
+                axis,
+                coordinate: Coordinate::Speed,
+                dir,
+                from: v_run,
+                to,
+                c_to,
+            });
+            (to, c_to)
+        }
+    };
+    let line_root = on_line(axis, to, c_to);
+    Some(Landing {
+        z: rotated(&rotated(&line_root, lean), psi),
+        on_line: rotated(&line_root, psi),
+        coordinate: Coordinate::Speed,
+        from: v_run,
+        to,
+        samples: flow.samples,
+    })
+}
+
+/// The walk along the speed family from the run's sample `(v, g, c)`, the way `g` points, to
+/// the next zero of `g` (see the module's certificate): the zero and the family's shape there.
+fn walk_speed(
+    flow: &mut SlowFlow<'_>,
+    (v_run, g_run, c_fam): (f64, f64, f64),
+) -> Option<(f64, f64)> {
     let dir = g_run.signum();
     let (mut v, mut g, mut c) = (v_run, g_run, c_fam);
     let mut prev: Option<(f64, f64)> = None;
@@ -260,53 +361,45 @@ fn land_moving_on(
         }
         if gn == 0.0 || gn.signum() != dir {
             // A zero in (v, next]: bisection on the bracket, the shape tracked.
-            break bisect(&mut flow, (v, g, c), (next, gn, cn))?;
+            break bisect(flow, (v, g, c), (next, gn, cn))?;
         }
         prev = Some((v, g));
         (v, g, c) = (next, gn, cn);
     };
-    let line_root = on_line(axis, to, c_to);
-    Some(Landing {
-        z: rotated(&rotated(&line_root, lean), psi),
-        on_line: rotated(&line_root, psi),
-        coordinate: Coordinate::Speed,
-        from: v_run,
-        to,
-        samples: flow.samples,
-    })
+    Some((to, c_to))
 }
 
-/// A zero of `g` between two samples of opposite sign (or a zero sample), to 1e-10 in `v`.
-fn bisect(
-    flow: &mut SlowFlow<'_>,
-    mut a: (f64, f64, f64),
-    mut b: (f64, f64, f64),
-) -> Option<(f64, f64)> {
+/// A zero of `g` between two samples `(v, g, c)` of opposite sign (or a zero sample), to
+/// 1e-10 in `v` (Illinois, the shape tracked from sample to sample): the zero and the
+/// family's shape there.
+fn bisect(flow: &mut SlowFlow<'_>, a: (f64, f64, f64), b: (f64, f64, f64)) -> Option<(f64, f64)> {
     if b.1 == 0.0 {
         return Some((b.0, b.2));
     }
-    while (b.0 - a.0).abs() > 1e-10 {
-        let m = 0.5 * (a.0 + b.0);
-        let (gm, cm) = flow.drift(m, a.2)?;
-        if gm == 0.0 {
-            return Some((m, cm));
+    let mut sampled = vec![(a.0, a.2), (b.0, b.2)];
+    let mut drift = |v: f64| {
+        let guess = sampled.last().expect("two samples").1;
+        match flow.drift(v, guess) {
+            Some((g, c)) => {
+                sampled.push((v, c));
+                g
+            }
+            None => f64::NAN,
         }
-        if gm.signum() == a.1.signum() {
-            a = (m, gm, cm);
-        } else {
-            b = (m, gm, cm);
-        }
-    }
-    Some((b.0, b.2))
+    };
+    let zero = illinois(&mut drift, (a.0, a.1), (b.0, b.1), 1e-10)?;
+    let &(_, c) = sampled.iter().rev().find(|(v, _)| *v == zero)?;
+    Some((zero, c))
 }
 
-fn land_resting(solver: &mut SteadySolver, z: [f64; 4]) -> Option<Landing> {
+fn land_resting(solver: &mut SteadySolver, z: [f64; 4], walks: &mut Walks) -> Option<Landing> {
     let s_run = z[2].hypot(z[3]);
     if s_run == 0.0 {
         return None;
     }
     let [near, other] = lines_near(0.5 * z[3].atan2(z[2]));
-    land_resting_on(solver, s_run, near).or_else(|| land_resting_on(solver, s_run, other))
+    land_resting_on(solver, s_run, near, walks)
+        .or_else(|| land_resting_on(solver, s_run, other, walks))
 }
 
 /// [`land_resting`] on one mirror line (`(axis, psi, lean)` of [`lines_near`]): the
@@ -315,12 +408,43 @@ fn land_resting_on(
     solver: &mut SteadySolver,
     s_run: f64,
     (axis, psi, lean): (MirrorAxis, f64, f64),
+    walks: &mut Walks,
 ) -> Option<Landing> {
     let mut flow = SlowFlow::new(solver, axis);
     let h_run = flow.shape_drive(s_run);
     if h_run == 0.0 {
         return None;
     }
+    let dir = h_run.signum();
+    let to = match walks.passed(axis, Coordinate::Shape, dir, s_run) {
+        Some((to, _)) => to,
+        None => {
+            let to = walk_shape(&mut flow, (s_run, h_run))?;
+            walks.keep(Walk {
+                axis,
+                coordinate: Coordinate::Shape,
+                dir,
+                from: s_run,
+                to,
+                c_to: to,
+            });
+            to
+        }
+    };
+    let line_root = on_line(axis, 0.0, to);
+    Some(Landing {
+        z: rotated(&rotated(&line_root, lean), psi),
+        on_line: rotated(&line_root, psi),
+        coordinate: Coordinate::Shape,
+        from: s_run,
+        to,
+        samples: flow.samples,
+    })
+}
+
+/// The walk along the shape family at rest from the run's sample `(c, h)`, the way `h`
+/// points, to the next zero of `h`.
+fn walk_shape(flow: &mut SlowFlow<'_>, (s_run, h_run): (f64, f64)) -> Option<f64> {
     let dir = h_run.signum();
     let (mut c, mut h) = (s_run, h_run);
     let mut prev: Option<(f64, f64)> = None;
@@ -337,30 +461,13 @@ fn land_resting_on(
             break next;
         }
         if hn.signum() != dir {
-            let (mut a, mut b) = ((c, h), (next, hn));
-            while (b.0 - a.0).abs() > 1e-10 {
-                let m = 0.5 * (a.0 + b.0);
-                let hm = flow.shape_drive(m);
-                if hm.signum() == a.1.signum() {
-                    a = (m, hm);
-                } else {
-                    b = (m, hm);
-                }
-            }
-            break b.0;
+            // The zero in (c, next], to 1e-10 (Illinois).
+            break illinois(&mut |x| flow.shape_drive(x), (c, h), (next, hn), 1e-10)?;
         }
         prev = Some((c, h));
         (c, h) = (next, hn);
     };
-    let line_root = on_line(axis, 0.0, to);
-    Some(Landing {
-        z: rotated(&rotated(&line_root, lean), psi),
-        on_line: rotated(&line_root, psi),
-        coordinate: Coordinate::Shape,
-        from: s_run,
-        to,
-        samples: flow.samples,
-    })
+    Some(to)
 }
 
 #[cfg(test)]

@@ -91,8 +91,8 @@ impl NewtonFinish {
         // box's next mirror line, 45 degrees away. Newton from the state turned by growing
         // angles finds the nearest first.
         let quarter = std::f64::consts::FRAC_PI_4;
-        for degrees in TURN_SEARCH {
-            let Ok(other) = self.root_near(rotated(&near.z, side * degrees.to_radians())) else {
+        for (i, degrees) in TURN_SEARCH.into_iter().enumerate() {
+            let Some(other) = self.turned_root(&near.z, side, i, degrees) else {
                 continue;
             };
             // A root the run turns to differs from `near` by the box's anisotropy only (its
@@ -117,6 +117,38 @@ impl NewtonFinish {
         (near, false)
     }
 
+    /// The root Newton finds from the root `near` turned by `degrees` (the `i`-th of
+    /// [`TURN_SEARCH`]) to the side `side` (+1 or -1), as an earlier try found it from the
+    /// same root (to 1e-9) if one did: a run's tries beside one root search the same turns.
+    fn turned_root(
+        &mut self,
+        near: &[f64; 4],
+        side: f64,
+        i: usize,
+        degrees: f64,
+    ) -> Option<Finding> {
+        let known = self
+            .turn_searches
+            .iter()
+            .position(|(root, s, _)| *s == (side > 0.0) && same_root(root, near));
+        if let Some(found) = known.and_then(|k| self.turn_searches[k].2[i].clone()) {
+            return found;
+        }
+        let found = self
+            .root_near(rotated(near, side * degrees.to_radians()))
+            .ok();
+        let k = match known {
+            Some(k) => k,
+            None => {
+                self.turn_searches
+                    .push((*near, side > 0.0, vec![None; TURN_SEARCH.len()]));
+                self.turn_searches.len() - 1
+            }
+        };
+        self.turn_searches[k].2[i] = Some(found.clone());
+        found
+    }
+
     /// The stable root the run at `z` lands on along its slow flow
     /// ([`crate::runs::landing`]): the flow's root on its mirror line, confirmed by Newton on
     /// all four equations (the same speed and deformation to 1e-6, on the line) and by its
@@ -137,7 +169,9 @@ impl NewtonFinish {
     pub fn flow_root(&mut self, z: [f64; 4], lean_shrinking: bool) -> Option<Finding> {
         let found = {
             let _timed = profile::enter(Part::Landing);
-            landings(self.steady_solver().ok()?, z)
+            self.steady_solver().ok()?;
+            let solver = self.solver.as_mut().expect("made above");
+            landings(solver, z, &mut self.walks)
         };
         for landing in found {
             let Ok(near) = self.root_near(landing.on_line) else {
