@@ -8,8 +8,8 @@ use droplet_solver::model::{initial::InitialCondition, params::ModelParams};
 use droplet_solver::roots::{mode_field::lab_field, mode_solver::ModeSolver};
 use droplet_sweep::pictures::run_figure;
 
-/// `--modes K` with K > 2: the K-mode model from the IC (modes 3..K at rest) at fixed steps
-/// --dt, ended by the Newton finish, or by the steady test with --scheme paper-fd
+/// `--modes K` with K > 2: the K-mode model from the IC (modes 3..K at rest), stepped as a
+/// 2-mode run is and ended by the Newton finish, or by the steady test with --scheme paper-fd
 /// (`droplet_solver::runs::mode_outcome`, as a sweep with `params.modes: K` runs it).
 pub fn run(
     a: &Args,

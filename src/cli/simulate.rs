@@ -123,13 +123,15 @@ pub struct Args {
     #[arg(long)]
     pub(super) picture: Option<PathBuf>,
     /// Shape modes 2..K (the paper's general model; default 2, the paper's). With K > 2 the
-    /// K-mode model is time-stepped by exponential Euler (first order, fixed steps --dt) from
-    /// the IC (modes 3..K as --ic custom gives them, else 0; field 0), ended like a 2-mode
-    /// run by the Newton finish: steady on a root of the 2K force balances whose eigenvalues
-    /// all decay, else unsettled at 4 t_max (as a sweep with params.modes: K runs it). Its
+    /// K-mode model is time-stepped by ETD2RK in the droplet's frame (adaptive steps under
+    /// --tol and --dt-max as a 2-mode run, or fixed steps --dt with --tol 0) from the IC
+    /// (modes 3..K as --ic custom gives them, else 0; field 0), ended like a 2-mode run by
+    /// the Newton finish: steady on a root of the 2K force balances whose eigenvalues all
+    /// decay, else unsettled where a 2-mode run gives up (as a sweep with params.modes: K
+    /// runs it). Its
     /// --series gains a3..aK, b3..bK; --picture draws every mode (the field: the steady field of the final state). With --scheme paper-fd: the paper's forward Euler with every
-    /// mode to t_max, ended by the steady test (every rate below --steady-tol). No pinning,
-    /// adaptive steps or landing.
+    /// mode to t_max, ended by the steady test (every rate below --steady-tol). No pinning
+    /// or landing.
     #[arg(long, default_value_t = 2)]
     pub(super) modes: usize,
     /// With --modes K > 2: the friction law of the modes k >= 3, eta_k = eta2 (k/2)^P

@@ -183,7 +183,7 @@ fn bad_modes_in_a_spec_exit_2_naming_params_modes() {
 #[test]
 fn the_papers_scheme_runs_k_modes_as_a_sweep_and_as_the_spectral_scheme_does() {
     // Modes 2..3 from IC i at N = 96 to t = 10 (both fields start at 0): the paper's forward
-    // Euler on the lab grid and the spectral exponential Euler in the droplet's frame, two
+    // Euler on the lab grid and the spectral ETD2RK (adaptive) in the droplet's frame, two
     // discretisations, agree to their O(dx^2) on v, a2 and the mode 3 the motion drives
     // (measured: 0.1 %, 2.7 % and 7 %; the forces' second order is tested in the solver). The sweep's run is `simulate --scheme paper-fd`'s, to the last digit.
     let sim = |scheme: &str| {

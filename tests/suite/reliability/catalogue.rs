@@ -612,8 +612,8 @@ fn catalogue() -> Vec<Case> {
             ("name: m\n", "name: m\ninitial_conditions: ['custom:1e308,0,0.1,0']\n"),
             &["initial_conditions", "initial speed"],
         ),
-        fast(simc("--tol with --modes 3", &["--modes", "3", "--n", "64", "--tol", "1e-5"], &["--tol", "does not read", "fixed steps"], 1.0)),
-        fast(simc("--dt-max with --modes 3", &["--modes", "3", "--n", "64", "--dt-max", "0.1"], &["--dt-max", "does not read"], 1.0)),
+        fast(simc("--tol with --modes 3 and paper-fd", &["--modes", "3", "--n", "64", "--scheme", "paper-fd", "--tol", "1e-5"], &["--tol", "fixed step"], 1.0)),
+        fast(simc("--dt-max with --modes 3 and --tol 0", &["--modes", "3", "--n", "64", "--tol", "0", "--dt-max", "0.1"], &["--dt-max", "fixed steps"], 1.0)),
         fast(simc("--no-landing with --modes 3", &["--modes", "3", "--n", "64", "--no-landing"], &["--no-landing", "2-mode runs only"], 1.0)),
         fast(simc("--no-run-on with paper-fd", &["--scheme", "paper-fd", "--no-run-on"], &["--no-run-on", "Newton finish"], 1.0)),
         fast(simc("--dt-max with fixed steps", &["--tol", "0", "--dt-max", "0.5"], &["--dt-max", "fixed steps"], 1.0)),
@@ -621,16 +621,11 @@ fn catalogue() -> Vec<Case> {
         fast(simc("--modes 1", &["--modes", "1"], &["--modes 1", "from 2"], 1.0)),
         spec_case("spec h0 for a PDE run", ("dt: 0.05", "dt: 0.05\n  h0: 0.2"), &["solver.h0", "ODE"]),
         spec_case(
-            "spec tol with params.modes 3",
+            "spec landing with params.modes 3",
             ("name: m\n", "name: m\nparams: {modes: 3}\n"),
             &[],
         )
-        .replaced("  t_max: 10\n", "  t_max: 10\n  tol: 1.0e-5\n", &["solver.tol", "modes > 2"]),
-        spec_case(
-            "spec grid tol with params.modes 3",
-            ("kappa2: [0.11]\n", "kappa2: [0.11]\n  tol: [1.0e-4, 1.0e-5]\nparams: {modes: 3}\n"),
-            &["grid.tol", "modes > 2"],
-        ),
+        .replaced("  t_max: 10\n", "  t_max: 10\n  landing: false\n", &["solver.landing", "modes > 2"]),
         spec_case(
             "spec landing with steady test",
             ("dt: 0.05", "dt: 0.05\n  steady: test\n  landing: false"),

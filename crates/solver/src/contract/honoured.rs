@@ -25,13 +25,12 @@ impl SolverSettings {
         let ode = self.model == ModelKind::Ode;
         let k_modes = !ode && self.modes > 2;
         let newton = self.steady == SteadyMethod::Newton;
-        let adaptive_two = !ode && !k_modes && self.scheme == SchemeKind::Spectral;
+        let spectral = !ode && self.scheme == SchemeKind::Spectral;
         match field {
             "h0" if !ode => Some("h0 is the reduced (ODE) model's cubic coefficient; a PDE run does not read it (model: ode uses it)"),
             "n" | "scheme" if ode => Some("the ODE model has no grid and no scheme: it takes RK4 steps dt"),
             "tol" | "dt_max" if ode => Some("the ODE model takes fixed RK4 steps dt"),
-            "tol" | "dt_max" if k_modes => Some("runs with modes > 2 take fixed steps dt (exponential Euler, or the paper's forward Euler)"),
-            "tol" | "dt_max" if !adaptive_two => Some("the paper's scheme takes fixed steps dt"),
+            "tol" | "dt_max" if !spectral => Some("the paper's scheme takes fixed steps dt"),
             "dt_max" if !self.adaptive() => Some("tol = 0 gives fixed steps dt; dt_max caps adaptive steps only"),
             "landing" | "orientation_flow" | "stop_beside_saddle" | "leap_departures" | "run_on" if !newton => Some("it acts in the Newton finish; steady = test ends a run by the paper's test alone"),
             "landing" | "orientation_flow" | "stop_beside_saddle" | "leap_departures" if k_modes => Some("runs with modes > 2 end by the Newton finish alone, without the landing, the orientation flow, the saddle stop or the leap (2-mode runs only)"),
@@ -168,8 +167,6 @@ mod tests {
     fn settings_a_run_does_not_read_give_the_same_honoured_settings() {
         let base = k_modes(3);
         let changed = SolverSettings {
-            tol: 1e-5,
-            dt_max: 0.1,
             landing: false,
             orientation_flow: false,
             steady_window: 0.5,
@@ -179,8 +176,16 @@ mod tests {
         assert_ne!(changed, base);
         assert_eq!(changed.honoured(), base.honoured());
         // What the run reads stays.
-        let other = SolverSettings { dt: 0.01, ..base };
-        assert_ne!(other.honoured(), base.honoured());
+        for other in [
+            SolverSettings { dt: 0.01, ..base },
+            SolverSettings { tol: 1e-5, ..base },
+            SolverSettings {
+                dt_max: 0.1,
+                ..base
+            },
+        ] {
+            assert_ne!(other.honoured(), base.honoured());
+        }
         // A PDE run's h0 (the spec bug set it to n) is not part of it; an ODE run's is.
         let pde = SolverSettings {
             h0: 192.0,
@@ -202,13 +207,17 @@ mod tests {
     #[test]
     fn a_given_setting_that_is_not_read_is_named_with_the_reason() {
         let k3 = SolverSettings {
-            tol: 1e-5,
+            landing: false,
             ..k_modes(3)
         };
-        let (field, why) = k3.first_unread(&["dt", "tol"]).unwrap();
-        assert!(field == "tol" && why.contains("fixed steps dt"), "{why}");
+        let (field, why) = k3.first_unread(&["dt", "tol", "landing"]).unwrap();
+        assert!(
+            field == "landing" && why.contains("Newton finish alone"),
+            "{why}"
+        );
+        // K-mode runs step as 2-mode runs do: fixed or adaptive.
         assert!(k_modes(3)
-            .first_unread(&["dt", "t_max", "run_on"])
+            .first_unread(&["dt", "tol", "dt_max", "t_max", "run_on"])
             .is_none());
         let test = SolverSettings {
             steady: SteadyMethod::Test,

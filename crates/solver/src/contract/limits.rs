@@ -33,24 +33,12 @@ pub fn adaptive_step_cap(settings: &SolverSettings) -> u64 {
 }
 
 /// What a `K`-mode run (`modes` > 2, [`crate::runs::mode_outcome`]) can do: the modes the
-/// grid resolves ([`check_modes`]), fixed steps, a free centre and none of the 2-mode runs'
-/// optional endings; the spectral scheme with the Newton finish, or the paper's scheme with
-/// its test.
+/// grid resolves ([`check_modes`]), its steps as a 2-mode run's
+/// ([`SolverSettings::check_steps`]), a free centre and none of the 2-mode runs' optional
+/// endings; the spectral scheme with the Newton finish, or the paper's scheme with its test.
 fn check_k_mode_run(params: &ModelParams, settings: &SolverSettings) -> Result<(), SolverError> {
     check_modes(params, settings.n, settings.modes)?;
     let k = settings.modes as f64;
-    let steps = settings.give_up_at() / settings.dt;
-    require(
-        steps <= MAX_STEPS,
-        "dt",
-        settings.dt,
-        format!(
-            "a step giving at most {MAX_STEPS:e} steps to t = {} (a K-mode run takes fixed \
-             steps dt to t_max, run on to 4 t_max unless run_on is off; this one gives \
-             {steps:.3e}); raise dt or lower t_max",
-            settings.give_up_at()
-        ),
-    )?;
     // The spectral run is ended by the Newton finish; the paper's scheme by its test alone
     // (its end is not a root of the spectral steady solver).
     let (steady, ending) = match settings.scheme {
@@ -69,8 +57,8 @@ fn check_k_mode_run(params: &ModelParams, settings: &SolverSettings) -> Result<(
             "modes",
             k,
             format!(
-                "2 with the setting '{name}' given: a K-mode run of the {} scheme takes \
-                 fixed steps dt and is ended by {ending} (steady: {})",
+                "2 with the setting '{name}' given: a K-mode run of the {} scheme is ended \
+                 by {ending} (steady: {})",
                 settings.scheme,
                 steady.as_str()
             ),

@@ -196,11 +196,10 @@ impl SolverSettings {
 
     /// The time at which a run not yet steady is given up: `t_max`; with `run_on` and the
     /// Newton finish, [`RUN_ON_FAR`] times it (adaptive steps) or [`RUN_ON`] times it (fixed
-    /// steps, and `K`-mode runs).
+    /// steps), for every number of shape modes.
     pub fn give_up_at(&self) -> f64 {
         let runs_on = self.run_on && self.steady == SteadyMethod::Newton;
-        // K-mode runs take fixed steps.
-        match (runs_on, self.adaptive() && self.modes == 2) {
+        match (runs_on, self.adaptive()) {
             (true, true) => RUN_ON_FAR * self.t_max,
             (true, false) => RUN_ON * self.t_max,
             (false, _) => self.t_max,

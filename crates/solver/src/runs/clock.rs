@@ -6,7 +6,7 @@ use crate::contract::profile::{self, Part};
 use crate::contract::settings::SolverSettings;
 use crate::model::state::DropletState;
 use crate::stepping::step_control::PiController;
-use crate::stepping::Scheme;
+use crate::stepping::Stepper;
 
 /// The outcome of one pass of the time loop's stepping.
 pub(super) enum Step {
@@ -51,10 +51,11 @@ impl Clock {
         }
     }
 
-    /// One step of `scheme`, landing on `next_record` (adaptive steps), or why the run stops.
-    pub(super) fn step(
+    /// One step of `scheme` (of any number of shape modes), landing on `next_record`
+    /// (adaptive steps), or why the run stops.
+    pub(super) fn step<S: Stepper + ?Sized>(
         &mut self,
-        scheme: &mut dyn Scheme,
+        scheme: &mut S,
         cfg: &SolverSettings,
         next_record: Option<f64>,
     ) -> Step {

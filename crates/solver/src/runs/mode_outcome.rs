@@ -1,23 +1,26 @@
 //! A run of the paper's general model with shape modes `2..K` (setting `modes`, `K > 2`) to a
-//! [`RunOutcome`], as the sweep runs it, at the fixed step `dt`, with either scheme:
+//! [`RunOutcome`], as the sweep runs it, with either scheme:
 //!
-//! - spectral (default): the exponential-Euler time stepper of [`crate::runs::mode_run`],
-//!   ended like a 2-mode run with the Newton finish (`steady: newton`): once the largest rate
-//!   `|dz/dt|` falls below [`crate::runs::finish::TRIGGER_FACTOR`] steady tolerances (or below
-//!   the steady tolerance, the test), Newton on all `2K` force balances from the run's state;
-//!   the run ends `steady` on the root when every eigenvalue of its `2K x 2K` eigenproblem
-//!   decays (the near-neutral rotation mode included, as for 2-mode runs) and the run is
-//!   within [`crate::runs::finish::MAX_SETTLED`] of it. A run not steady by where it is given
-//!   up (`t_max`, run on to 4 `t_max`) is unsettled: beside an unstable root, converging to
-//!   a stable one (with its class as `heading`), or with no root near.
+//! - spectral (default): the ETD2RK stepper of [`crate::runs::mode_run`] on the run's clock
+//!   ([`crate::runs::clock`]: adaptive steps under `tol` and `dt_max` as 2-mode runs take
+//!   them, or fixed steps `dt` with `tol: 0`), ended like a 2-mode run with the Newton finish
+//!   (`steady: newton`): once the largest rate `|dz/dt|` falls below
+//!   [`crate::runs::finish::TRIGGER_FACTOR`] steady tolerances (or below the steady
+//!   tolerance, the test), Newton on all `2K` force balances from the run's state; the run
+//!   ends `steady` on the root when every eigenvalue of its `2K x 2K` eigenproblem decays
+//!   (the near-neutral rotation mode included, as for 2-mode runs) and the run is within
+//!   [`crate::runs::finish::MAX_SETTLED`] of it. A run not steady by where it is given up
+//!   (`t_max`, run on as 2-mode runs are) is unsettled: beside an unstable root, converging
+//!   to a stable one (with its class as `heading`), or with no root near.
 //! - `paper-fd`: the paper's forward-Euler finite differences ([`crate::stepping::mode_fd`])
-//!   to `t_max`, ended by the test alone (`steady: test`; every rate below the steady
-//!   tolerance), as the paper ended its runs; not diagnosed when it does not settle.
+//!   at fixed steps `dt` to `t_max`, ended by the test alone (`steady: test`; every rate
+//!   below the steady tolerance), as the paper ended its runs; not diagnosed when it does not
+//!   settle.
 //!
 //! The class is the paper's, from `v` and `s = |a2|` (mode 2 alone); the higher amplitudes
 //! `a_3..a_K, b_3..b_K` are in [`RunOutcome::higher_modes`]. Not here (refused by
-//! [`crate::contract::limits::check_run`]): adaptive steps, the landing and the other
-//! endings of 2-mode runs, and pinned runs. Time series: [`simulate_modes_recorded`].
+//! [`crate::contract::limits::check_run`]): the landing and the other endings of 2-mode
+//! runs, and pinned runs. Time series: [`simulate_modes_recorded`].
 use crate::contract::ending::Ending;
 use crate::contract::outcome::{RunOutcome, RunStatus, SeriesRow, Unsettled};
 use crate::contract::profile::{self, Part};
@@ -29,6 +32,7 @@ use crate::model::params::ModelParams;
 use crate::model::state::DropletState;
 use crate::numerics::newton::NewtonOptions;
 use crate::roots::mode_linearisation::{ModeLinearization, ModeVerdict};
+use crate::runs::clock::{Clock, Step};
 use crate::runs::finish::{MAX_SETTLED, TRIGGER_FACTOR};
 use crate::runs::mode_run::ModeStepper;
 use crate::runs::orientation::{angle_to, LEAN_FLOOR};
@@ -151,8 +155,8 @@ impl ModeFd {
 type Found = (Option<Unsettled>, Option<StateClass>, Option<String>);
 
 /// The time series of a `K`-mode run: `(t, x, y, vx, vy, a2, b2, v, s)` and the higher
-/// amplitudes `a_3..a_K, b_3..b_K` every `every` time units (the first step at or past each
-/// sample time; fixed steps), and the end.
+/// amplitudes `a_3..a_K, b_3..b_K` every `every` time units (adaptive steps land on each
+/// sample time; fixed steps record the first step at or past it), and the end.
 struct ModeRecorder {
     every: f64,
     next: f64,
@@ -228,20 +232,20 @@ fn left_model(z: &[f64], rate: f64) -> bool {
     !rate.is_finite() || z.iter().any(|x| !x.is_finite()) || z[2].hypot(z[k + 1]) >= 1.0
 }
 
-/// The spectral run at fixed steps, ended by the Newton finish.
+/// The spectral run on the clock (adaptive or fixed steps), ended by the Newton finish.
 fn newton_finished(
     params: &ModelParams,
     z0: &[f64],
     settings: &SolverSettings,
     rec: &mut Option<ModeRecorder>,
 ) -> Result<RunOutcome, SolverError> {
-    let mut run = ModeStepper::new(params, settings.n, z0, settings.dt)?;
+    let mut run = ModeStepper::new(params, settings.n, z0)?;
     run.set_eta_k_exponent(settings.eta_k_exponent);
-    let give_up = settings.give_up_at();
+    let mut clock = Clock::new(settings);
     let trigger = TRIGGER_FACTOR * settings.steady_tol;
     let mut next_try = 0.0;
-    let (mut status, mut ended_by, mut end_root) = (RunStatus::TMax, None, None);
-    loop {
+    let (mut ended_by, mut end_root) = (None, None);
+    let status = loop {
         if let Some(rec) = rec.as_mut() {
             rec.sample(&run.snapshot(), false);
         }
@@ -250,8 +254,7 @@ fn newton_finished(
             run.rate()
         };
         if left_model(&run.z, rate) {
-            status = RunStatus::Diverged;
-            break;
+            break RunStatus::Diverged;
         }
         if rate < trigger && run.t >= next_try {
             let z = run.z.clone();
@@ -264,14 +267,13 @@ fn newton_finished(
                                 .min(MAX_SETTLED)
                                 + 1e-9 =>
                 {
-                    status = RunStatus::Steady;
                     ended_by = Some(if rate < settings.steady_tol {
                         Ending::Test
                     } else {
                         Ending::Newton
                     });
                     end_root = Some(r.z);
-                    break;
+                    break RunStatus::Steady;
                 }
                 _ => {
                     next_try = run.t + (0.25 * run.t).max(10.0);
@@ -280,12 +282,12 @@ fn newton_finished(
                 }
             }
         }
-        if run.t >= give_up - 1e-9 * settings.dt {
-            break;
+        // Adaptive steps land on the recorder's times.
+        match clock.step(&mut run, settings, rec.as_ref().map(|r| r.next)) {
+            Step::Taken | Step::Retry => {}
+            Step::Stop(why) => break why,
         }
-        let _timed = profile::enter(Part::Stepping);
-        run.advance();
-    }
+    };
     if let Some(rec) = rec.as_mut() {
         rec.sample(&run.snapshot(), true);
     }
@@ -295,7 +297,7 @@ fn newton_finished(
         _ => diagnose(&mut run),
     };
     let at = run.snapshot();
-    Ok(outcome(
+    let mut out = outcome(
         &Snapshot {
             z: end_root.as_deref().unwrap_or(at.z),
             ..at
@@ -303,7 +305,9 @@ fn newton_finished(
         status,
         ended_by,
         found,
-    ))
+    );
+    (out.rejected, out.max_step_error) = (clock.rejected, clock.max_step_error);
+    Ok(out)
 }
 
 /// The paper's scheme at fixed steps `dt` to `t_max`, ended by the test alone: steady when

@@ -40,7 +40,7 @@ use crate::model::shape_transform::ShapeTransform;
 use crate::model::state::DropletState;
 use crate::numerics::fft2::PrunedFft2;
 use crate::stepping::etd::SeparableExp;
-use crate::stepping::{Attempt, Field, Scheme};
+use crate::stepping::{Attempt, Field, Scheme, Stepper};
 use rustfft::num_complex::Complex64;
 
 /// Packed transforms of one droplet shape (`p`: `Theta + X Theta`, `y`: `Y Theta`), its
@@ -246,11 +246,7 @@ impl ComovingEtd {
     }
 }
 
-impl Scheme for ComovingEtd {
-    fn state(&self) -> DropletState {
-        self.state
-    }
-
+impl Stepper for ComovingEtd {
     fn attempt(&mut self, h: f64, max_error: f64) -> Attempt {
         let half = self.predict(h);
         let (next, corrector_velocity) = self.correct_scalars(&half);
@@ -267,6 +263,12 @@ impl Scheme for ComovingEtd {
             accepted: true,
             error: Some(error),
         }
+    }
+}
+
+impl Scheme for ComovingEtd {
+    fn state(&self) -> DropletState {
+        self.state
     }
 
     fn leap(

@@ -5,7 +5,8 @@
 //!   fixed or adaptive steps; `spectral_pass` its one spectral pass per stage; `etd` the
 //!   exponential time-differencing coefficients; `step_control` the PI step-size controller.
 //! - `paper_fd`: the paper's forward-Euler finite differences (the baseline); `mode_fd` the
-//!   same scheme for the general model with shape modes `2..K`.
+//!   same scheme for the general model with shape modes `2..K` (whose ETD2RK stepper is
+//!   [`crate::runs::mode_run::ModeStepper`], a [`Stepper`] as the 2-mode schemes are).
 //!
 //! May use: `numerics`, `model`. Used by: `contract` (the scheme setting), `runs`.
 pub mod comoving_etd;
@@ -77,10 +78,9 @@ pub struct Attempt {
     pub error: Option<f64>,
 }
 
-/// One integrator: advance the droplet and its field by a step.
-pub trait Scheme: Send {
-    /// Current droplet state.
-    fn state(&self) -> DropletState;
+/// What the clock of a run ([`crate::runs::clock`]) steps: a droplet and its field, of any
+/// number of shape modes.
+pub trait Stepper: Send {
     /// Attempts a step of `h`. It is taken unless the scheme's embedded error estimate
     /// exceeds `max_error`; a refused step leaves the scheme unchanged. Schemes without an
     /// estimate always take the step.
@@ -89,6 +89,13 @@ pub trait Scheme: Send {
     fn step(&mut self, h: f64) {
         self.attempt(h, f64::INFINITY);
     }
+}
+
+/// One integrator of the 2-mode droplet: a [`Stepper`] whose state is a [`DropletState`],
+/// with its field, mass and the leap along a linear mode.
+pub trait Scheme: Stepper {
+    /// Current droplet state.
+    fn state(&self) -> DropletState;
     /// `Integral u dA`.
     fn mass(&self) -> f64;
     /// The concentration in the lab frame.

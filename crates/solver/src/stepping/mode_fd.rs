@@ -205,7 +205,7 @@ impl ModeFd {
 mod tests {
     use super::*;
     use crate::model::state::DropletState;
-    use crate::stepping::{paper_fd::PaperFd, Scheme};
+    use crate::stepping::{paper_fd::PaperFd, Scheme, Stepper};
 
     #[test]
     fn two_modes_step_as_the_papers_scheme() {

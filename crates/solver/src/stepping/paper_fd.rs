@@ -7,7 +7,7 @@ use crate::model::grid::Grid;
 use crate::model::params::ModelParams;
 use crate::model::shape::ShapeParams;
 use crate::model::state::DropletState;
-use crate::stepping::{Attempt, Field, Scheme};
+use crate::stepping::{Attempt, Field, Scheme, Stepper};
 
 /// Explicit finite-difference integrator on the lab grid.
 pub struct PaperFd {
@@ -102,11 +102,7 @@ impl PaperFd {
     }
 }
 
-impl Scheme for PaperFd {
-    fn state(&self) -> DropletState {
-        self.state
-    }
-
+impl Stepper for PaperFd {
     /// Forward Euler has no embedded estimate: every attempt is taken.
     fn attempt(&mut self, h: f64, _max_error: f64) -> Attempt {
         self.euler_step(h);
@@ -114,6 +110,12 @@ impl Scheme for PaperFd {
             accepted: true,
             error: None,
         }
+    }
+}
+
+impl Scheme for PaperFd {
+    fn state(&self) -> DropletState {
+        self.state
     }
 
     fn mass(&self) -> f64 {

@@ -11,7 +11,7 @@ use droplet_solver::continuation::{
 use droplet_solver::model::param::ModelParam;
 use droplet_solver::roots::named_state::ic_thresholds;
 use droplet_solver::roots::steady_solver::{MirrorAxis, SteadySolver};
-use droplet_solver::stepping::{comoving_etd::ComovingEtd, Scheme};
+use droplet_solver::stepping::{comoving_etd::ComovingEtd, Scheme, Stepper};
 use droplet_solver::{
     contract::settings::SolverSettings, model::initial::InitialCondition,
     model::params::ModelParams, model::state::DropletState, runs::driver::simulate,

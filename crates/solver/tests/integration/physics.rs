@@ -1,7 +1,7 @@
 //! Physics checks of the solver: analytic solutions, conservation, symmetry, convergence,
 //! exact fixed points, and agreement of time integration with the Newton steady state.
 use droplet_solver::numerics::bessel::ik;
-use droplet_solver::stepping::{comoving_etd::ComovingEtd, paper_fd::PaperFd, Scheme};
+use droplet_solver::stepping::{comoving_etd::ComovingEtd, paper_fd::PaperFd, Scheme, Stepper};
 use droplet_solver::{
     contract::outcome::RunStatus, contract::settings::SolverSettings,
     model::initial::InitialCondition, model::params::ModelParams, model::state::DropletState,
