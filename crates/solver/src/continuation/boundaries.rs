@@ -20,25 +20,13 @@
 //!   must change between MD and MC.
 use crate::continuation::fold_curve::md_fold_curve;
 use crate::continuation::plane::PlaneAxis;
+use crate::continuation::window::Window;
 use crate::error::SolverError;
 use crate::model::param::ModelParam;
-use crate::model::params::ModelParams;
 use crate::reduced::boundaries::Boundary;
 use crate::roots::linearisation::Linearization;
 use crate::roots::named_state::ic_thresholds;
 use crate::roots::steady_solver::{MirrorAxis, SteadySolver};
-
-/// The window and resolution of [`boundaries`].
-#[derive(Debug, Clone)]
-pub struct Window {
-    /// Model parameters (`eta_t` and `kappa2` are varied).
-    pub base: ModelParams,
-    pub n: usize,
-    pub eta_t: (f64, f64),
-    pub kappa2: (f64, f64),
-    /// Samples of the ID onset line in `kappa2`.
-    pub id_samples: usize,
-}
 
 /// Largest eigenvalue of a real 2 x 2 matrix with real eigenvalues (else its real part).
 fn top_eigenvalue(m: [[f64; 2]; 2]) -> f64 {
@@ -143,6 +131,9 @@ pub fn mc_line(w: &Window, onset_eta_t: f64) -> Result<Vec<(f64, f64)>, SolverEr
 
 /// Every boundary in the window (see the module doc), named like the reduced model's.
 pub fn boundaries(w: &Window) -> Result<Vec<Boundary>, SolverError> {
+    if w.modes != 2 {
+        return crate::continuation::mode_boundaries::mode_boundaries(w);
+    }
     let th = ic_thresholds(&w.base, w.n)?;
     let (e0, e1) = w.eta_t;
     let (k0, k1) = w.kappa2;

@@ -3,7 +3,8 @@
 //! ([`arclength`]) of the co-moving force balance of one family ([`problem`]), the stability
 //! verdict of every state with the near-neutral rotation mode set aside ([`crate::roots::verdict`]), the
 //! bifurcation points along a branch ([`branch`], located by [`events`]), and their continuation in both parameters,
-//! the PDE's own phase boundaries: in the paper's plane ([`boundaries`]) and in a plane of any
+//! the PDE's own phase boundaries: in a window of the paper's plane ([`window`], [`boundaries`],
+//! at any number of shape modes) and in a plane of any
 //! two model parameters ([`plane`]), traced as zero sets ([`level_set`]) or continued
 //! ([`fold_curve`]); the MD branch of the `K`-mode model and its fold ([`mode_branch`]), the branch along a
 //! line with its stability ([`mode_line`]) and its boundaries ([`mode_boundaries`]).
@@ -22,3 +23,4 @@ pub mod mode_line;
 pub mod plane;
 pub mod polyline;
 pub mod problem;
+pub mod window;

@@ -27,6 +27,7 @@
 //!   turn flips).
 use crate::continuation::fold_curve::{fold_options, fold_walk};
 use crate::continuation::mode_branch::{id_state, md_fold, rest_shape, ModeLine};
+use crate::continuation::window::Window;
 use crate::error::SolverError;
 use crate::model::classify::CLASS_THRESHOLD;
 use crate::model::param::ModelParam;
@@ -36,20 +37,6 @@ use crate::reduced::boundaries::Boundary;
 use crate::roots::mode_linearisation::ModeLinearization;
 use crate::roots::mode_solver::ModeSolver;
 use crate::roots::mode_thresholds::drift_threshold;
-
-/// The window and resolution of [`mode_boundaries`].
-#[derive(Debug, Clone)]
-pub struct ModeWindow {
-    /// The other parameters (`eta_t`, `kappa2` are varied).
-    pub base: ModelParams,
-    pub n: usize,
-    /// Modes `2..=k_max`.
-    pub k_max: usize,
-    pub eta_t: (f64, f64),
-    pub kappa2: (f64, f64),
-    /// Samples of the ID onset line in `kappa2`.
-    pub id_samples: usize,
-}
 
 /// The determinant of a square matrix (nalgebra's LU).
 fn det(a: Vec<Vec<f64>>) -> f64 {
@@ -62,10 +49,10 @@ fn det(a: Vec<Vec<f64>>) -> f64 {
 /// where ID is found (with mode 2 alone, then adding one mode at a time) to where Newton
 /// loses it (none when the window lies above `top`), for the ID whose minor axis is the mirror line at angle `axis` to x (0: the
 /// axis ID; `pi / 4`: the diagonal ID, [`ModeSolver::set_axis`]).
-fn id_line(w: &ModeWindow, top: f64, axis: f64) -> Result<Vec<(f64, f64)>, SolverError> {
+fn id_line(w: &Window, top: f64, axis: f64) -> Result<Vec<(f64, f64)>, SolverError> {
     let mut solver = ModeSolver::new(w.base, w.n)?;
     solver.set_axis(axis);
-    let k_max = w.k_max;
+    let k_max = w.modes;
     let (lo, hi) = (w.kappa2.0, top.min(w.kappa2.1));
     // The window lies above where this ID meets the disk.
     if hi <= lo {
@@ -108,7 +95,7 @@ fn id_line(w: &ModeWindow, top: f64, axis: f64) -> Result<Vec<(f64, f64)>, Solve
 }
 
 /// The MD fold curve: continued both ways from the fold on the middle `kappa2`.
-fn fold_curve(w: &ModeWindow) -> Result<Vec<(f64, f64)>, SolverError> {
+fn fold_curve(w: &Window) -> Result<Vec<(f64, f64)>, SolverError> {
     let mid = 0.5 * (w.kappa2.0 + w.kappa2.1);
     let line = ModeLine {
         base: ModelParams {
@@ -117,7 +104,7 @@ fn fold_curve(w: &ModeWindow) -> Result<Vec<(f64, f64)>, SolverError> {
             ..w.base
         },
         n: w.n,
-        k_max: w.k_max,
+        k_max: w.modes,
         parameter: ModelParam::EtaT,
         from: w.eta_t.0,
         to: w.eta_t.1,
@@ -131,7 +118,7 @@ fn fold_curve(w: &ModeWindow) -> Result<Vec<(f64, f64)>, SolverError> {
         Err(e) => return Err(e),
     };
     let mut solver = ModeSolver::new(w.base, w.n)?;
-    let k_max = w.k_max;
+    let k_max = w.modes;
     let (e, k) = (w.eta_t, w.kappa2);
     let control = |y: &[f64]| {
         (
@@ -186,9 +173,9 @@ fn mc_state(x: &[f64]) -> Vec<f64> {
 /// part of the branch, and no label changes there. The stability is decided at the line's
 /// two ends and by bisection between them (one change of stability along the line; each
 /// verdict is a `2K x 2K` eigenproblem with the field, seconds at N = 192).
-fn mc_line(w: &ModeWindow, onset_eta_t: f64) -> Result<Vec<(f64, f64)>, SolverError> {
+fn mc_line(w: &Window, onset_eta_t: f64) -> Result<Vec<(f64, f64)>, SolverError> {
     let mut solver = ModeSolver::new(w.base, w.n)?;
-    let k_max = w.k_max;
+    let k_max = w.modes;
     let opts = NewtonOptions {
         tol: 1e-12,
         max_iter: 30,
@@ -247,10 +234,11 @@ fn mc_line(w: &ModeWindow, onset_eta_t: f64) -> Result<Vec<(f64, f64)>, SolverEr
     Ok(line[..kept].iter().map(|(e, k, _)| (*e, *k)).collect())
 }
 
-/// The `K`-mode model's boundaries in the window (see the module doc), named like the
-/// 2-mode model's.
-pub fn mode_boundaries(w: &ModeWindow) -> Result<Vec<Boundary>, SolverError> {
-    crate::contract::limits::check_modes(&w.base, w.n, w.k_max)?;
+/// The `K`-mode model's boundaries in the window (see the module doc; `K = w.modes`), named
+/// like the 2-mode model's. [`crate::continuation::boundaries::boundaries`] comes here for
+/// `K > 2`; with `K = 2` this general computation gives the 2-mode curves (tested).
+pub fn mode_boundaries(w: &Window) -> Result<Vec<Boundary>, SolverError> {
+    crate::contract::limits::check_modes(&w.base, w.n, w.modes)?;
     let (e0, e1) = w.eta_t;
     let (k0, k1) = w.kappa2;
     let mut disk = ModeSolver::new(
@@ -260,9 +248,9 @@ pub fn mode_boundaries(w: &ModeWindow) -> Result<Vec<Boundary>, SolverError> {
         },
         w.n,
     )?;
-    let low = disk.disk_thresholds(w.k_max);
+    let low = disk.disk_thresholds(w.modes);
     disk.set_control(w.base.eta_t, k1);
-    let high = disk.disk_thresholds(w.k_max);
+    let high = disk.disk_thresholds(w.modes);
     let shape_onset = low.kappa2[0];
     let diagonal_onset = low.kappa2_b[0];
     type Curve = Result<Vec<(f64, f64)>, SolverError>;
@@ -321,7 +309,7 @@ pub fn mode_boundaries(w: &ModeWindow) -> Result<Vec<Boundary>, SolverError> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::continuation::boundaries::{boundaries, Window};
+    use crate::continuation::boundaries::boundaries;
     use crate::continuation::polyline::distance_to_polyline;
 
     #[test]
@@ -331,10 +319,10 @@ mod tests {
         // diagonal ID (Newton on all 2K balances from the turned axis ID, so the frame turned
         // back is not used) either side of it: one more growing mode below it.
         let k = 0.105;
-        let w = ModeWindow {
+        let w = Window {
             base: ModelParams::at(0.08, k),
             n: 96,
-            k_max: 4,
+            modes: 4,
             eta_t: (0.06, 0.1),
             kappa2: (k, k + 1e-3),
             id_samples: 2,
@@ -385,10 +373,10 @@ mod tests {
         let (e, k) = ((0.07, 0.1), (0.1, 0.17));
         let base = ModelParams::at(0.07, 0.1);
         let n = 96;
-        let mine = mode_boundaries(&ModeWindow {
+        let mine = mode_boundaries(&Window {
             base,
             n,
-            k_max: 2,
+            modes: 2,
             eta_t: e,
             kappa2: k,
             id_samples: 30,
@@ -397,6 +385,7 @@ mod tests {
         let two = boundaries(&Window {
             base,
             n,
+            modes: 2,
             eta_t: e,
             kappa2: k,
             id_samples: 30,

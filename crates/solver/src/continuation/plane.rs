@@ -368,8 +368,9 @@ pub fn boundaries_in(w: &PlaneWindow) -> Result<Vec<Boundary>, SolverError> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::continuation::boundaries::{boundaries, Window};
+    use crate::continuation::boundaries::boundaries;
     use crate::continuation::polyline::distance_to_polyline;
+    use crate::continuation::window::Window;
 
     /// In the paper's plane every curve continued in the pair lies on the paper plane's
     /// curve of the same name, computed there by other means (the thresholds as numbers, the
@@ -384,6 +385,7 @@ mod tests {
         let paper = boundaries(&Window {
             base,
             n,
+            modes: 2,
             eta_t: e,
             kappa2: k,
             id_samples: 60,

@@ -2,9 +2,10 @@
 //! and its response to small perturbations, the one-parameter fold against the
 //! two-parameter fold curve, and the branches' meeting points against the exact thresholds.
 use droplet_solver::continuation::arclength::ArclengthOptions;
-use droplet_solver::continuation::boundaries::{id_onset, mc_line, Window};
+use droplet_solver::continuation::boundaries::{id_onset, mc_line};
 use droplet_solver::continuation::fold_curve::md_fold_curve;
 use droplet_solver::continuation::plane::PlaneAxis;
+use droplet_solver::continuation::window::Window;
 use droplet_solver::continuation::{
     branch::follow, branch::Branch, branch::BranchPoint, branch::Line, problem::Family,
 };
@@ -186,6 +187,7 @@ fn the_mc_onset_line_is_where_the_moving_branch_has_s_at_the_threshold() {
     let w = Window {
         base: ModelParams::at(0.07, 0.16),
         n,
+        modes: 2,
         eta_t: (0.07, 0.1),
         kappa2: (0.16, 0.17),
         id_samples: 3,

@@ -212,27 +212,16 @@ impl BoundaryStudy {
     /// The full model's boundaries (`pde`, at grid size `n`) and the reduced model's (`ode`)
     /// in the paper-plane window, at the parameters `base`.
     fn curves_at(&self, base: &ModelParams, n: usize) -> Result<Vec<NamedCurve>, SweepError> {
-        let window = droplet_solver::continuation::boundaries::Window {
-            base: *base,
-            n,
-            eta_t: self.eta_t,
-            kappa2: self.kappa2,
-            id_samples: self.samples,
-        };
-        let pde = if self.modes > 2 {
-            droplet_solver::continuation::mode_boundaries::mode_boundaries(
-                &droplet_solver::continuation::mode_boundaries::ModeWindow {
-                    base: *base,
-                    n,
-                    k_max: self.modes,
-                    eta_t: self.eta_t,
-                    kappa2: self.kappa2,
-                    id_samples: self.samples,
-                },
-            )?
-        } else {
-            droplet_solver::continuation::boundaries::boundaries(&window)?
-        };
+        let pde = droplet_solver::continuation::boundaries::boundaries(
+            &droplet_solver::continuation::window::Window {
+                base: *base,
+                n,
+                modes: self.modes,
+                eta_t: self.eta_t,
+                kappa2: self.kappa2,
+                id_samples: self.samples,
+            },
+        )?;
         Ok(NamedCurve::from_boundaries(ModelKind::Pde, &pde)
             .into_iter()
             .chain(self.ode_curves_at(base))

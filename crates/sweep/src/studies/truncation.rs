@@ -17,8 +17,9 @@ use crate::error::SweepError;
 use crate::pictures::map_figure::{boundary_picture, outline_picture, Curve, CURVE_COLOURS};
 use crate::tables::boundaries::NamedCurve;
 use crate::tables::truncation::TruncationRow;
-use droplet_solver::continuation::mode_boundaries::{mode_boundaries, ModeWindow};
+use droplet_solver::continuation::mode_boundaries::mode_boundaries;
 use droplet_solver::continuation::mode_branch::{md_fold, md_state, ModeLine};
+use droplet_solver::continuation::window::Window;
 use droplet_solver::contract::settings::ModelKind;
 use droplet_solver::model::modes::Modes;
 use droplet_solver::model::param::ModelParam;
@@ -46,7 +47,7 @@ fn row(
     k_max: usize,
     n: usize,
     base: &ModelParams,
-    (window_eta_t, window_kappa2): Window,
+    (window_eta_t, window_kappa2): ((f64, f64), (f64, f64)),
 ) -> Result<(TruncationRow, Vec<NamedCurve>), SweepError> {
     let started = Instant::now();
     let at = ModelParams {
@@ -84,14 +85,16 @@ fn row(
     })?;
     let fold_seconds = started.elapsed().as_secs_f64();
     let started = Instant::now();
-    let window = ModeWindow {
+    // The general computation at every K, K = 2 included, so that the models are compared
+    // by one method.
+    let window = Window {
         base: ModelParams {
             eta_t: window_eta_t.0,
             kappa2: window_kappa2.0,
             ..*base
         },
         n,
-        k_max,
+        modes: k_max,
         eta_t: window_eta_t,
         kappa2: window_kappa2,
         id_samples: 30,
@@ -149,18 +152,16 @@ fn outlines(rows: &[TruncationRow], base: &ModelParams) -> Vec<Curve> {
         .collect()
 }
 
-/// The `(eta_t, kappa2)` window of the boundaries, each `(lo, hi)`.
-pub type Window = ((f64, f64), (f64, f64));
-
 /// Runs the study for each `K` of `modes` at grid size `n` (the other parameters the
-/// defaults), the boundaries in `window` (the paper's study: the Fig. 2a window,
+/// defaults), the boundaries in the window `(eta_t, kappa2)`, each `(lo, hi)` (the paper's
+/// study: the Fig. 2a window,
 /// [`crate::studies::boundaries::FIG2A_WINDOW`]), and writes
 /// `truncation.parquet` and `truncation.png/.svg` into `out`.
 pub fn run(
     out: &Path,
     modes: &[usize],
     n: usize,
-    window: Window,
+    window: ((f64, f64), (f64, f64)),
 ) -> Result<TruncationWritten, SweepError> {
     let base = ModelParams::default();
     for &k in modes {
