@@ -5,11 +5,13 @@
 //! - `adaptive`: adaptive ETD2RK stepping against fixed steps and its tolerance;
 //! - `continuation`: continuation against the time stepper, the fold curve against the
 //!   one-parameter folds, the branches' meeting points against the exact thresholds;
+//! - `modes`: the model with shape modes 2..K, its runs against its own MD fold;
 //! - `newton_finish`: the Newton finish against time stepping alone;
 //! - `physics`: analytic solutions, conservation, symmetry, convergence, exact fixed points;
 //! - `stress`: random parameters in and beyond the paper's window end with a status.
 mod adaptive;
 mod continuation;
+mod modes;
 mod newton_finish;
 mod physics;
 mod stress;
