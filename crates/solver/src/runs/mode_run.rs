@@ -183,18 +183,15 @@ impl ModeStepper {
     }
 }
 
-impl Stepper for ModeStepper {
-    fn attempt(&mut self, h: f64, max_error: f64) -> Attempt {
-        self.ensure_start();
-        let AtStart {
-            forces: f0, area, ..
-        } = self.start.as_ref().expect("forces at the start");
+impl ModeStepper {
+    /// The field's ETD1 predictor `a = e w + h phi1 N(w, z)` into `a_hat`, keeping `N(w, z)`
+    /// in `n0` (the solver's buffers hold the present state's `Theta`, of area `area`).
+    fn predict_field(&mut self, h: f64, area: f64) {
         let grid = self.solver.grid();
         self.exp.update(h, &grid.kx, &grid.ky);
         let (n, inv_h) = (grid.n, 1.0 / h);
-        // The field's predictor, keeping N(w, z) for the corrector.
         let (vx, vy) = (self.z[0], self.z[1]);
-        let scale = self.solver.source_scale(*area);
+        let scale = self.solver.source_scale(area);
         let source = self.solver.source_spectrum();
         for (jx, (kxd, ax)) in grid.kx_d.iter().zip(&self.exp.ax).enumerate() {
             let row = jx * n..(jx + 1) * n;
@@ -219,36 +216,14 @@ impl Stepper for ModeStepper {
                 *a = *u * cf.e + *n0 * cf.p1;
             }
         }
-        // The mechanics' predictor and the forces there.
-        let coefs: Vec<EtdCoef> = self.rate_of.iter().map(|r| EtdCoef::new(-r, h)).collect();
-        let z_a: Vec<f64> = (0..self.z.len())
-            .map(|j| coefs[j].predict(self.z[j], f0[j] / self.inertia[j]))
-            .collect();
-        let (f_a, area_a) = Self::forces_of(&mut self.solver, &self.a_hat, &z_a);
-        let start = self.start.as_mut().expect("forces at the start");
-        start.buffers = false;
-        let f0 = &start.forces;
-        let next: Vec<f64> = (0..self.z.len())
-            .map(|j| {
-                let m = self.inertia[j];
-                coefs[j].correct(z_a[j], f0[j] / m, f_a[j] / m)
-            })
-            .collect();
-        let error = next
-            .iter()
-            .zip(&z_a)
-            .map(|(c, p)| (c - p).abs())
-            .fold(0.0f64, |e, d| if d.is_nan() { f64::NAN } else { e.max(d) });
-        if max_error.is_finite() && (error.is_nan() || error > max_error) {
-            return Attempt {
-                accepted: false,
-                error: Some(error),
-            };
-        }
-        // The field's corrector with N(a, z_a).
+    }
+
+    /// The field's corrector `w = a + h phi2 (N(a, z_a) - N(w, z))` for the predictor moving
+    /// at `(vx, vy)` (the solver's buffers hold the predictor's `Theta`, of area `area`).
+    fn correct_field(&mut self, h: f64, (vx, vy): (f64, f64), area: f64) {
         let grid = self.solver.grid();
-        let (vxa, vya) = (z_a[0], z_a[1]);
-        let scale = self.solver.source_scale(area_a);
+        let (n, inv_h) = (grid.n, 1.0 / h);
+        let scale = self.solver.source_scale(area);
         let source = self.solver.source_spectrum();
         for (jx, (kxd, ax)) in grid.kx_d.iter().zip(&self.exp.ax).enumerate() {
             let row = jx * n..(jx + 1) * n;
@@ -265,14 +240,54 @@ impl Stepper for ModeStepper {
                 .zip(ins)
             {
                 let cf = SeparableExp::coef(*ax, *ay, *ic, h, inv_h);
-                let kv = kxd * vxa + kyd * vya;
+                let kv = kxd * vx + kyd * vy;
                 let na = Complex64::new(-kv * a.im + scale * s.re, kv * a.re + scale * s.im);
                 *u = *a + (na - *n0) * cf.p2;
             }
         }
+    }
+}
+
+impl Stepper for ModeStepper {
+    fn attempt(&mut self, h: f64, max_error: f64) -> Attempt {
+        self.ensure_start();
+        let area = self.start.as_ref().expect("forces at the start").area;
+        self.predict_field(h, area);
+        // The mechanics' predictor and the forces there.
+        let coefs: Vec<EtdCoef> = self.rate_of.iter().map(|r| EtdCoef::new(-r, h)).collect();
+        let start = self.start.as_mut().expect("forces at the start");
+        let f0 = &start.forces;
+        let z_a: Vec<f64> = (0..self.z.len())
+            .map(|j| coefs[j].predict(self.z[j], f0[j] / self.inertia[j]))
+            .collect();
+        let (f_a, area_a) = Self::forces_of(&mut self.solver, &self.a_hat, &z_a);
+        start.buffers = false;
+        let next: Vec<f64> = (0..self.z.len())
+            .map(|j| {
+                let m = self.inertia[j];
+                coefs[j].correct(z_a[j], f0[j] / m, f_a[j] / m)
+            })
+            .collect();
+        // The largest |corrector - predictor|, NaN if any is.
+        let error = next.iter().zip(&z_a).fold(0.0f64, |e, (c, p)| {
+            let d = (c - p).abs();
+            if e.is_nan() || d.is_nan() {
+                f64::NAN
+            } else {
+                e.max(d)
+            }
+        });
+        if max_error.is_finite() && (error.is_nan() || error > max_error) {
+            return Attempt {
+                accepted: false,
+                error: Some(error),
+            };
+        }
+        let (v0, v_a) = ((self.z[0], self.z[1]), (z_a[0], z_a[1]));
+        self.correct_field(h, v_a, area_a);
         // The centre by the trapezoidal rule (ETD2RK with rate 0).
-        self.x += 0.5 * h * (vx + vxa);
-        self.y += 0.5 * h * (vy + vya);
+        self.x += 0.5 * h * (v0.0 + v_a.0);
+        self.y += 0.5 * h * (v0.1 + v_a.1);
         self.z = next;
         self.start = None;
         self.t += h;
