@@ -32,7 +32,10 @@ fn with_four_modes_the_ic_md_band_ends_at_the_four_mode_fold() {
     // 0.0775 the moving conditions i and ii reach MD and the resting iii and iv stay IC
     // (bistable IC/MD). The same holds at N = 192 (results/k-mode-steps).
     let (two, four) = (fold(2), fold(4));
-    assert!(four > 0.0775 && four < 0.0786 && two > 0.0786, "{two} {four}");
+    assert!(
+        four > 0.0775 && four < 0.0786 && two > 0.0786,
+        "{two} {four}"
+    );
     use StateClass::{IC, MD};
     for (eta_t, classes) in [(0.0786, [IC, IC, IC, IC]), (0.0775, [MD, MD, IC, IC])] {
         for (ic, class) in ["i", "ii", "iii", "iv"].into_iter().zip(classes) {
