@@ -64,10 +64,11 @@ fn a_sweep_with_three_modes_runs_the_k_mode_model_and_tables_its_amplitudes() {
     assert_eq!(from_points, from_runs);
     assert_eq!(from_points.len(), 4);
     assert!(points.column("deformation_i").is_ok() && points.column("b3_i").is_ok());
-    // `droplet boundaries` onto the map draws the 3-mode model's curves (the disk's onsets
-    // and the diagonal ID's onset of motion; the axis ID meets the disk below the window, at
-    // kappa2 = 0.1097 at N = 96; no MD on this window's middle line, so no fold curve, and its
-    // MC onset lies left of the window).
+    // `droplet boundaries` onto the map draws the 3-mode model's curves that cross its
+    // window (0.085-0.1 x 0.112-0.16): the disk's diagonal deformation onset and the diagonal
+    // ID's onset of motion. Not drawn: the disk's onset of motion (eta_t = 0.0765) and its
+    // MC onset lie left of the window; the axis deformation onset and the axis ID meet below
+    // it, at kappa2 = 0.1097 at N = 96; no MD on the window's middle line, so no fold curve.
     let b = json(&run(&[
         "boundaries",
         "--out",
@@ -82,9 +83,7 @@ fn a_sweep_with_three_modes_runs_the_k_mode_model_and_tables_its_amplitudes() {
     assert_eq!(
         pde,
         [
-            "IC onset of motion",
             "IC onset of deformation (b2, diagonal)",
-            "IC onset of deformation (a2, axis)",
             "ID onset of motion (diagonal ID)"
         ],
         "{b}"

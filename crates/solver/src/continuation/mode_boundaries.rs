@@ -6,7 +6,8 @@
 //!   the box ([`ModeSolver::disk_thresholds`]), at the window's bottom and top.
 //! - **IC onset of deformation (a2, axis)** and **(b2, diagonal)**: the disk's mode-2
 //!   thresholds (modes decouple at the circle but for the box's weak `k +- 4` coupling, left
-//!   out); the onset of motion starts from the higher of the two.
+//!   out); the onset of motion starts from the higher of the two. Each of the disk's lines is
+//!   drawn only where it crosses the window, as the 2-mode model's.
 //! - **ID onset of motion (axis ID)**: the resting deformed state elongated along y (`v = 0`,
 //!   its odd modes 0 by the mirror `x -> -x`) solved by Newton at each `kappa2`, and the `eta_t`
 //!   at which its drift along x, its minor axis (the speed and the odd modes), has a zero
@@ -269,21 +270,37 @@ pub fn mode_boundaries(w: &Window) -> Result<Vec<Boundary>, SolverError> {
             mc.join().expect("the MC line's thread panicked"),
         )
     });
+    // The resting disk's onsets are straight lines (the onset of motion all but straight),
+    // drawn where they cross the window, as the 2-mode model's: the onset of motion above
+    // the disk's deformation onsets (below them the disk deforms).
+    let inside = |x: f64, (lo, hi): (f64, f64)| (lo..=hi).contains(&x);
+    let bottom = shape_onset.max(diagonal_onset).max(k0);
+    let motion = inside(low.eta_t, w.eta_t) || inside(high.eta_t, w.eta_t);
+    let deformation = |k: f64| inside(k, w.kappa2) && low.eta_t.max(e0) < e1;
     let mut out = vec![
         Boundary {
             name: "IC onset of motion",
-            points: vec![
-                (low.eta_t, shape_onset.max(diagonal_onset).max(k0)),
-                (high.eta_t, k1),
-            ],
+            points: if motion && bottom < k1 {
+                vec![(low.eta_t, bottom), (high.eta_t, k1)]
+            } else {
+                Vec::new()
+            },
         },
         Boundary {
             name: "IC onset of deformation (b2, diagonal)",
-            points: vec![(low.eta_t.max(e0), diagonal_onset), (e1, diagonal_onset)],
+            points: if deformation(diagonal_onset) {
+                vec![(low.eta_t.max(e0), diagonal_onset), (e1, diagonal_onset)]
+            } else {
+                Vec::new()
+            },
         },
         Boundary {
             name: "IC onset of deformation (a2, axis)",
-            points: vec![(low.eta_t.max(e0), shape_onset), (e1, shape_onset)],
+            points: if deformation(shape_onset) {
+                vec![(low.eta_t.max(e0), shape_onset), (e1, shape_onset)]
+            } else {
+                Vec::new()
+            },
         },
         Boundary {
             name: "ID onset of motion (diagonal ID)",
@@ -366,6 +383,30 @@ mod tests {
         );
         // The box tells the two IDs apart.
         assert!((onset - axis[0].0).abs() > 1e-6, "{onset} vs {}", axis[0].0);
+    }
+
+    #[test]
+    fn the_disks_lines_are_drawn_only_where_they_cross_the_window() {
+        // The truncation test's window around kappa2 = 0.13 at N = 96: it holds the onset of
+        // motion (0.0765) and lies above the deformation onsets (about 0.119), so the only
+        // line of the resting disk is the onset of motion, as with the 2-mode computation.
+        let w = Window {
+            base: ModelParams::at(0.075, 0.125),
+            n: 96,
+            modes: 2,
+            eta_t: (0.075, 0.085),
+            kappa2: (0.125, 0.135),
+            id_samples: 4,
+        };
+        let names = |b: Vec<Boundary>| -> Vec<&'static str> {
+            let mut v: Vec<_> = b.iter().map(|c| c.name).collect();
+            v.sort_unstable();
+            v
+        };
+        let mine = names(mode_boundaries(&w).unwrap());
+        let disk: Vec<_> = mine.iter().filter(|n| n.starts_with("IC onset")).collect();
+        assert_eq!(disk, [&"IC onset of motion"], "{mine:?}");
+        assert_eq!(mine, names(boundaries(&w).unwrap()));
     }
 
     #[test]
