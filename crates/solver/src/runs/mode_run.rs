@@ -183,14 +183,24 @@ impl ModeStepper {
     }
 }
 
+/// Which half of an ETD2RK step a pass over the field's spectrum takes.
+#[derive(Clone, Copy)]
+enum Stage {
+    /// The ETD1 predictor `a = e w + h phi1 N(w, z)` into `a_hat`, keeping `N(w, z)` in `n0`.
+    Predict,
+    /// The corrector `w = a + h phi2 (N(a, z_a) - N(w, z))` into the field.
+    Correct,
+}
+
 impl ModeStepper {
-    /// The field's ETD1 predictor `a = e w + h phi1 N(w, z)` into `a_hat`, keeping `N(w, z)`
-    /// in `n0` (the solver's buffers hold the present state's `Theta`, of area `area`).
-    fn predict_field(&mut self, h: f64, area: f64) {
+    /// One pass of `stage` over the spectrum for a step of `h`, with the droplet of that stage
+    /// moving at `(vx, vy)` and the solver's buffers holding its `Theta`, of area `area`.
+    fn field_pass(&mut self, stage: Stage, h: f64, (vx, vy): (f64, f64), area: f64) {
         let grid = self.solver.grid();
-        self.exp.update(h, &grid.kx, &grid.ky);
+        if let Stage::Predict = stage {
+            self.exp.update(h, &grid.kx, &grid.ky);
+        }
         let (n, inv_h) = (grid.n, 1.0 / h);
-        let (vx, vy) = (self.z[0], self.z[1]);
         let scale = self.solver.source_scale(area);
         let source = self.solver.source_spectrum();
         for (jx, (kxd, ax)) in grid.kx_d.iter().zip(&self.exp.ax).enumerate() {
@@ -200,49 +210,29 @@ impl ModeStepper {
                 .iter()
                 .zip(&self.exp.ay)
                 .zip(&self.inv_c[row.clone()]);
-            let outs = self.n0[row.clone()]
+            let stages = self.n0[row.clone()]
                 .iter_mut()
                 .zip(&mut self.a_hat[row.clone()]);
             for (((u, s), ((kyd, ay), ic)), (n0, a)) in self.u[row.clone()]
-                .iter()
-                .zip(&source[row])
-                .zip(modes)
-                .zip(outs)
-            {
-                let cf = SeparableExp::coef(*ax, *ay, *ic, h, inv_h);
-                let kv = kxd * vx + kyd * vy;
-                // i k.v u + s.
-                *n0 = Complex64::new(-kv * u.im + scale * s.re, kv * u.re + scale * s.im);
-                *a = *u * cf.e + *n0 * cf.p1;
-            }
-        }
-    }
-
-    /// The field's corrector `w = a + h phi2 (N(a, z_a) - N(w, z))` for the predictor moving
-    /// at `(vx, vy)` (the solver's buffers hold the predictor's `Theta`, of area `area`).
-    fn correct_field(&mut self, h: f64, (vx, vy): (f64, f64), area: f64) {
-        let grid = self.solver.grid();
-        let (n, inv_h) = (grid.n, 1.0 / h);
-        let scale = self.solver.source_scale(area);
-        let source = self.solver.source_spectrum();
-        for (jx, (kxd, ax)) in grid.kx_d.iter().zip(&self.exp.ax).enumerate() {
-            let row = jx * n..(jx + 1) * n;
-            let modes = grid
-                .ky_d
-                .iter()
-                .zip(&self.exp.ay)
-                .zip(&self.inv_c[row.clone()]);
-            let ins = self.a_hat[row.clone()].iter().zip(&self.n0[row.clone()]);
-            for (((u, s), ((kyd, ay), ic)), (a, n0)) in self.u[row.clone()]
                 .iter_mut()
                 .zip(&source[row])
                 .zip(modes)
-                .zip(ins)
+                .zip(stages)
             {
                 let cf = SeparableExp::coef(*ax, *ay, *ic, h, inv_h);
                 let kv = kxd * vx + kyd * vy;
-                let na = Complex64::new(-kv * a.im + scale * s.re, kv * a.re + scale * s.im);
-                *u = *a + (na - *n0) * cf.p2;
+                match stage {
+                    Stage::Predict => {
+                        // i k.v u + s.
+                        *n0 = Complex64::new(-kv * u.im + scale * s.re, kv * u.re + scale * s.im);
+                        *a = *u * cf.e + *n0 * cf.p1;
+                    }
+                    Stage::Correct => {
+                        let na =
+                            Complex64::new(-kv * a.im + scale * s.re, kv * a.re + scale * s.im);
+                        *u = *a + (na - *n0) * cf.p2;
+                    }
+                }
             }
         }
     }
@@ -252,7 +242,7 @@ impl Stepper for ModeStepper {
     fn attempt(&mut self, h: f64, max_error: f64) -> Attempt {
         self.ensure_start();
         let area = self.start.as_ref().expect("forces at the start").area;
-        self.predict_field(h, area);
+        self.field_pass(Stage::Predict, h, (self.z[0], self.z[1]), area);
         // The mechanics' predictor and the forces there.
         let coefs: Vec<EtdCoef> = self.rate_of.iter().map(|r| EtdCoef::new(-r, h)).collect();
         let start = self.start.as_mut().expect("forces at the start");
@@ -284,7 +274,7 @@ impl Stepper for ModeStepper {
             };
         }
         let (v0, v_a) = ((self.z[0], self.z[1]), (z_a[0], z_a[1]));
-        self.correct_field(h, v_a, area_a);
+        self.field_pass(Stage::Correct, h, v_a, area_a);
         // The centre by the trapezoidal rule (ETD2RK with rate 0).
         self.x += 0.5 * h * (v0.0 + v_a.0);
         self.y += 0.5 * h * (v0.1 + v_a.1);
