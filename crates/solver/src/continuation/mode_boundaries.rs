@@ -27,7 +27,7 @@
 //!   axis ID (for `K = 2`, as in the 2-mode model; from `K = 4` also through mode 4, which the
 //!   turn flips).
 use crate::continuation::fold_curve::{fold_options, fold_walk};
-use crate::continuation::mode_branch::{id_state, md_fold, rest_shape, ModeLine};
+use crate::continuation::mode_branch::{id_state, md_fold, md_state, rest_shape, ModeLine};
 use crate::continuation::window::Window;
 use crate::error::SolverError;
 use crate::model::classify::CLASS_THRESHOLD;
@@ -111,11 +111,17 @@ fn fold_curve(w: &Window) -> Result<Vec<(f64, f64)>, SolverError> {
         to: w.eta_t.1,
         eta_k_exponent: 0.0,
     };
+    // No moving state at the middle line's start (the window's left edge is at rest there:
+    // Newton from the 2-mode state finds the disk, or nothing): no fold curve in this window.
+    // A failure further along the branch is the command's error.
+    let mut start = ModeSolver::new(line.base, line.n)?;
+    if md_state(&mut start, line.k_max).is_err() {
+        return Ok(Vec::new());
+    }
     let fold = match md_fold(&line) {
         Ok(Some(fold)) => fold,
-        // No fold on the middle line, or no moving state at its start (the window's left
-        // edge is at rest there): no fold curve in this window.
-        Ok(None) | Err(SolverError::RestingRoot { .. }) => return Ok(Vec::new()),
+        // No fold on the middle line: no fold curve in this window.
+        Ok(None) => return Ok(Vec::new()),
         Err(e) => return Err(e),
     };
     let mut solver = ModeSolver::new(w.base, w.n)?;
@@ -407,6 +413,25 @@ mod tests {
         let disk: Vec<_> = mine.iter().filter(|n| n.starts_with("IC onset")).collect();
         assert_eq!(disk, [&"IC onset of motion"], "{mine:?}");
         assert_eq!(mine, names(boundaries(&w).unwrap()));
+    }
+
+    #[test]
+    fn a_window_at_rest_on_its_middle_line_has_no_fold_curve() {
+        // Modes 2..3 at N = 64, right of the onset of motion and above kappa2 = 0.14: no
+        // moving state at the middle line's start (Newton from the 2-mode state fails there).
+        // That is a window without a fold curve, not a failed computation (it was one).
+        let w = Window {
+            base: ModelParams::at(0.08, 0.14),
+            n: 64,
+            modes: 3,
+            eta_t: (0.08, 0.1),
+            kappa2: (0.14, 0.17),
+            id_samples: 4,
+        };
+        let curves = mode_boundaries(&w).unwrap();
+        let names: Vec<_> = curves.iter().map(|c| c.name).collect();
+        assert!(!names.contains(&"MD saddle-node (x axis)"), "{names:?}");
+        assert!(names.contains(&"ID onset of motion (axis ID)"), "{names:?}");
     }
 
     #[test]
