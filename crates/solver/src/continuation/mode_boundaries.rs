@@ -27,7 +27,7 @@
 //!   axis ID (for `K = 2`, as in the 2-mode model; from `K = 4` also through mode 4, which the
 //!   turn flips).
 use crate::continuation::fold_curve::{fold_options, fold_walk};
-use crate::continuation::mode_branch::{id_state, md_fold, md_state, rest_shape, ModeLine};
+use crate::continuation::mode_branch::{id_state, md_fold_from, md_state, rest_shape, ModeLine};
 use crate::continuation::window::Window;
 use crate::error::SolverError;
 use crate::model::classify::CLASS_THRESHOLD;
@@ -115,10 +115,10 @@ fn fold_curve(w: &Window) -> Result<Vec<(f64, f64)>, SolverError> {
     // Newton from the 2-mode state finds the disk, or nothing): no fold curve in this window.
     // A failure further along the branch is the command's error.
     let mut start = ModeSolver::new(line.base, line.n)?;
-    if md_state(&mut start, line.k_max).is_err() {
+    let Ok(st) = md_state(&mut start, line.k_max) else {
         return Ok(Vec::new());
-    }
-    let fold = match md_fold(&line) {
+    };
+    let fold = match md_fold_from(&line, start, &st) {
         Ok(Some(fold)) => fold,
         // No fold on the middle line: no fold curve in this window.
         Ok(None) => return Ok(Vec::new()),

@@ -179,6 +179,16 @@ pub(crate) fn fold_point(
 pub fn md_fold(line: &ModeLine) -> Result<Option<ModeFold>, SolverError> {
     let mut solver = ModeSolver::new(line.base, line.n)?;
     let st = md_state(&mut solver, line.k_max)?;
+    md_fold_from(line, solver, &st)
+}
+
+/// [`md_fold`] from the MD state `st` at the line's start, found by `solver` (its
+/// parameters the line's `base`).
+pub fn md_fold_from(
+    line: &ModeLine,
+    mut solver: ModeSolver,
+    st: &ModeState,
+) -> Result<Option<ModeFold>, SolverError> {
     let span = line.to - line.from;
     let base = line.base;
     let parameter = line.parameter;
