@@ -307,14 +307,13 @@ fn final_state_of(
         && !settings.pinned)
         .then(|| {
             let mut f = droplet_solver::runs::finish::NewtonFinish::new(params, settings);
-            f.root_near(out.state.monitored())
-                .ok()
-                .map(|found| FinalState {
-                    stable: found.stable(),
-                    slowest_eigenvalue: found.slowest(),
-                    unstable: found.verdict.unstable,
-                    note: found.describe(&out.state.monitored()),
-                })
+            let z = out.unknowns();
+            f.root_near(&z).ok().map(|found| FinalState {
+                stable: found.stable(),
+                slowest_eigenvalue: found.slowest(),
+                unstable: found.verdict.unstable,
+                note: found.describe(&z),
+            })
         })
         .flatten()
 }

@@ -290,7 +290,7 @@ fn on_diagonal(
     solver: &mut droplet_solver::roots::mode_solver::ModeSolver,
     z: &[f64],
 ) -> Option<Vec<f64>> {
-    let turned = droplet_solver::roots::mode_solver::turned(z, std::f64::consts::FRAC_PI_4);
+    let turned = droplet_solver::model::state::turned(z, std::f64::consts::FRAC_PI_4);
     let opts = droplet_solver::numerics::newton::NewtonOptions {
         tol: 1e-11,
         max_iter: 30,

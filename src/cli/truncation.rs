@@ -99,7 +99,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
                 serde_json::json!({
                     "k_max": r.k_max, "v": r.fig1c.v, "s": r.fig1c.a[0].abs(),
                     "deformation": r.deformation, "a": r.fig1c.a,
-                    "stable": r.fig1c_verdict.stable(), "leading": r.fig1c_verdict.leading(),
+                    "stable": r.fig1c_verdict.stable(), "leading": r.fig1c_verdict.max_re,
                     "eigenvalues": r.fig1c_verdict.eigenvalues,
                     "rotation": r.fig1c_verdict.rotation,
                     "fig1c_seconds": r.fig1c_seconds, "onset_eta_t": r.disk.eta_t,

@@ -79,8 +79,10 @@ pub const ODE_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numeri
 /// (`runs::mode_run`) on top of [`SOLVER_VERSION`]; 2: the field's advection and source
 /// explicit over a step, as in the production scheme's predictor (same fixed points); 3:
 /// ETD2RK with its error estimate on the 2-mode runs' clock, adaptive steps under `tol` and
-/// `dt_max` by default (was exponential Euler at fixed steps `dt`), run on as 2-mode runs.
-pub const MODES_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-9+modes-3");
+/// `dt_max` by default (was exponential Euler at fixed steps `dt`), run on as 2-mode runs; 4:
+/// the 2-mode runs' Newton finish (its orientation check, turn search and diagnosis) and
+/// verdict (`roots::verdict::assess`) at every `K`.
+pub const MODES_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-9+modes-4");
 
 /// The numerics version of a model's runs with shape modes `2..=modes`, part of their cache
 /// key: a change to one model's results invalidates its stored runs only.

@@ -121,7 +121,7 @@ pub fn mc_line(w: &Window, onset_eta_t: f64) -> Result<Vec<(f64, f64)>, SolverEr
         guess = [v, eta];
         solver.set_control(eta, k);
         let z = [v, 0.0, c, 0.0];
-        if !crate::roots::verdict::assess(&Linearization::at(&mut solver, z), z).stable() {
+        if !crate::roots::verdict::assess(&Linearization::at(&mut solver, z), &z).stable() {
             break;
         }
         pts.push((eta, k));

@@ -359,7 +359,7 @@ mod tests {
         let shape = id_state(&mut solver, 4, -0.3).unwrap();
         let unstable = |solver: &mut ModeSolver, eta: f64| {
             solver.set_control(eta, k);
-            let z = crate::roots::mode_solver::turned(
+            let z = crate::model::state::turned(
                 &crate::roots::mode_solver::on_x_axis(0.0, &shape),
                 diagonal,
             );

@@ -10,8 +10,9 @@
 use crate::continuation::arclength::{start, ArclengthOptions, Stepper};
 use crate::continuation::mode_branch::{fold_point, md_state, ModeLine};
 use crate::error::SolverError;
-use crate::roots::mode_linearisation::{ModeLinearization, ModeVerdict};
+use crate::roots::mode_linearisation::ModeLinearization;
 use crate::roots::mode_solver::ModeSolver;
+use crate::roots::verdict::Verdict;
 
 /// One state of the branch.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
@@ -25,7 +26,7 @@ pub struct ModeBranchPoint {
     /// `a_k` for `k = 2..=K` (`b_k = 0` on the x axis).
     pub a: Vec<f64>,
     /// Its stability, the rotation mode set aside.
-    pub verdict: ModeVerdict,
+    pub verdict: Verdict,
     /// A fold of the branch (a saddle-node in the varied parameter).
     pub fold: bool,
 }
@@ -93,10 +94,11 @@ fn with_stability(
                 kappa2: p.kappa2,
                 v: y[0],
                 a: y[1..k].to_vec(),
-                verdict: ModeVerdict {
+                verdict: Verdict {
                     eigenvalues: Vec::new(),
                     rotation: None,
                     unstable: 0,
+                    max_re: -1.0,
                 },
                 fold,
             };

@@ -262,7 +262,7 @@ fn mc_curve(w: &PlaneWindow, (v, x, y): (f64, f64, f64)) -> Result<Vec<(f64, f64
     let mut stable = |u: &[f64]| {
         w.place(&mut check, u[1], u[2]) && {
             let z = [u[0], 0.0, c, 0.0];
-            assess(&Linearization::at(&mut check, z), z).stable()
+            assess(&Linearization::at(&mut check, z), &z).stable()
         }
     };
     let inside =

@@ -220,7 +220,7 @@ impl Problem {
     pub fn verdict(&mut self, y: &[f64]) -> Verdict {
         self.set(*y.last().expect("q"));
         let z = self.state(y);
-        assess(&Linearization::at(&mut self.solver, z), z)
+        assess(&Linearization::at(&mut self.solver, z), &z)
     }
 
     /// A root of the family at the parameter value `value`, by Newton from the reduced model's

@@ -33,7 +33,7 @@ impl SolverSettings {
             "tol" | "dt_max" if !spectral => Some("the paper's scheme takes fixed steps dt"),
             "dt_max" if !self.adaptive() => Some("tol = 0 gives fixed steps dt; dt_max caps adaptive steps only"),
             "landing" | "orientation_flow" | "stop_beside_saddle" | "leap_departures" | "run_on" if !newton => Some("it acts in the Newton finish; steady = test ends a run by the paper's test alone"),
-            "landing" | "orientation_flow" | "stop_beside_saddle" | "leap_departures" if k_modes => Some("runs with modes > 2 end by the Newton finish alone, without the landing, the orientation flow, the saddle stop or the leap (2-mode runs only)"),
+            "landing" | "orientation_flow" | "stop_beside_saddle" | "leap_departures" if k_modes => Some("runs with modes > 2 end by the Newton finish and its turn search, without the landing, the orientation flow, the saddle stop or the leap (2-mode runs only)"),
             "steady_window" if k_modes => Some("runs with modes > 2 are steady when every rate is below steady_tol; steady_window is the 2-mode test's window"),
             "pinned" if ode || k_modes => Some("only a 2-mode PDE run can hold its centre fixed"),
             _ => None,
@@ -212,7 +212,7 @@ mod tests {
         };
         let (field, why) = k3.first_unread(&["dt", "tol", "landing"]).unwrap();
         assert!(
-            field == "landing" && why.contains("Newton finish alone"),
+            field == "landing" && why.contains("Newton finish and its turn search"),
             "{why}"
         );
         // K-mode runs step as 2-mode runs do: fixed or adaptive.

@@ -35,19 +35,19 @@ pub fn adaptive_step_cap(settings: &SolverSettings) -> u64 {
 /// What a `K`-mode run (`modes` > 2, [`crate::runs::mode_outcome`]) can do: the modes the
 /// grid resolves ([`check_modes`]), its steps as a 2-mode run's
 /// ([`SolverSettings::check_steps`]), a free centre and none of the 2-mode runs' optional
-/// endings; the spectral scheme with the Newton finish, or the paper's scheme with its test.
+/// endings; the spectral scheme with the Newton finish or the paper's test, or the paper's
+/// scheme with its test.
 fn check_k_mode_run(params: &ModelParams, settings: &SolverSettings) -> Result<(), SolverError> {
     check_modes(params, settings.n, settings.modes)?;
     let k = settings.modes as f64;
-    // The spectral run is ended by the Newton finish; the paper's scheme by its test alone
-    // (its end is not a root of the spectral steady solver).
-    let (steady, ending) = match settings.scheme {
-        SchemeKind::Spectral => (SteadyMethod::Newton, "the Newton finish"),
-        SchemeKind::PaperFd => (SteadyMethod::Test, "the steady test"),
-    };
+    // The paper's scheme is ended by its test alone (its end is not a root of the spectral
+    // steady solver).
     let unsupported = [
         (settings.pinned, "pinned"),
-        (settings.steady != steady, "steady"),
+        (
+            settings.scheme == SchemeKind::PaperFd && settings.steady != SteadyMethod::Test,
+            "steady",
+        ),
         (settings.stop_beside_saddle, "stop_beside_saddle"),
         (settings.leap_departures, "leap_departures"),
     ];
@@ -58,9 +58,9 @@ fn check_k_mode_run(params: &ModelParams, settings: &SolverSettings) -> Result<(
             k,
             format!(
                 "2 with the setting '{name}' given: a K-mode run of the {} scheme is ended \
-                 by {ending} (steady: {})",
+                 by the Newton finish without the 2-mode runs' saddle stop and leap \
+                 (steady: newton, spectral scheme only), or by the paper's test (steady: test)",
                 settings.scheme,
-                steady.as_str()
             ),
         )?;
     }

@@ -166,6 +166,18 @@ pub struct RunOutcome {
 pub const STEP_ERROR_LIMIT: f64 = 1e-2;
 
 impl RunOutcome {
+    /// The co-moving unknowns of the end state, `(vx, vy, a_2..a_K, b_2..b_K)` (for the
+    /// paper's 2-mode runs `(vx, vy, a2, b2)`).
+    pub fn unknowns(&self) -> Vec<f64> {
+        let (a, b) = self.higher_modes.split_at(self.higher_modes.len() / 2);
+        let st = &self.state;
+        let mut z = vec![st.vx, st.vy, st.a2];
+        z.extend(a);
+        z.push(st.b2);
+        z.extend(b);
+        z
+    }
+
     /// Why `dt` looks too large for this fixed-step run, if it does (adaptive runs keep the
     /// estimate below their `tol`; schemes without an estimate are not judged).
     pub fn dt_warning(&self, settings: &SolverSettings) -> Option<String> {

@@ -36,11 +36,66 @@ impl DropletState {
     }
 }
 
-/// The distance of two monitored states `(vx, vy, a2, b2)`: the largest difference of a
-/// component (the paper's steady test's norm).
-pub fn max_distance(a: &[f64; 4], b: &[f64; 4]) -> f64 {
+/// The distance of two co-moving states `(vx, vy, a_2..a_K, b_2..b_K)` (for `K = 2` the
+/// monitored `(vx, vy, a2, b2)`): the largest difference of a component (the paper's steady
+/// test's norm).
+pub fn max_distance(a: &[f64], b: &[f64]) -> f64 {
     a.iter()
         .zip(b)
         .map(|(x, y)| (x - y).abs())
         .fold(0.0, f64::max)
+}
+
+/// The co-moving unknowns `(vx, vy, a_2..a_K, b_2..b_K)` of the droplet `z` turned by `phi`:
+/// the velocity by `phi`, shape mode `k` by `k phi` (`r(theta) -> r(theta - phi)`). For
+/// `K = 2`, `(vx, vy, a2, b2)`: the velocity once, the mode-2 shape twice.
+pub fn turned(z: &[f64], phi: f64) -> Vec<f64> {
+    let k_max = z.len() / 2;
+    let (c, s) = (phi.cos(), phi.sin());
+    let mut out = z.to_vec();
+    out[0] = c * z[0] - s * z[1];
+    out[1] = s * z[0] + c * z[1];
+    for k in 2..=k_max {
+        let (a, b) = (z[k], z[k_max - 1 + k]);
+        let (ck, sk) = ((k as f64 * phi).cos(), (k as f64 * phi).sin());
+        out[k] = ck * a - sk * b;
+        out[k_max - 1 + k] = sk * a + ck * b;
+    }
+    out
+}
+
+/// The 2-mode unknowns `(vx, vy, a2, b2)` of a state of `K = 2`.
+pub fn four(z: &[f64]) -> [f64; 4] {
+    z.try_into().expect("a state of the 2-mode model")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn turning_a_state_turns_its_motion_once_and_shape_mode_k_k_times() {
+        let z = vec![0.5, 0.1, -0.2, 0.03, 0.01, 0.05, -0.02, 0.004];
+        // Two turns add; a full turn is the identity.
+        let twice = turned(&turned(&z, 0.3), 0.4);
+        let once = turned(&z, 0.7);
+        assert!(twice.iter().zip(&once).all(|(a, b)| (a - b).abs() < 1e-15));
+        let full = turned(&z, 2.0 * std::f64::consts::PI);
+        assert!(full.iter().zip(&z).all(|(a, b)| (a - b).abs() < 1e-15));
+        // K = 2, 90 degrees: the velocity turns a quarter, the mode-2 shape changes sign.
+        let r = turned(&[0.5, 0.1, -0.2, 0.05], std::f64::consts::FRAC_PI_2);
+        let expect = [-0.1, 0.5, 0.2, -0.05];
+        assert!(
+            r.iter().zip(&expect).all(|(a, b)| (a - b).abs() < 1e-15),
+            "{r:?}"
+        );
+        // An x-axis state of K = 4 turned by 45 degrees lies on the diagonal mirror: a2 = 0,
+        // b3 = -a3, b4 = 0.
+        let d = turned(
+            &[0.4, 0.0, -0.25, 0.04, 0.01, 0.0, 0.0, 0.0],
+            std::f64::consts::FRAC_PI_4,
+        );
+        assert!((d[0] - d[1]).abs() < 1e-15 && d[2].abs() < 1e-15);
+        assert!((d[3] + d[6]).abs() < 1e-15 && d[7].abs() < 1e-15, "{d:?}");
+    }
 }

@@ -380,6 +380,16 @@ fn null_vector(a: &[[C64; 4]; 4]) -> [C64; 4] {
     std::array::from_fn(|j| v_t[(k, j)].conj())
 }
 
+impl crate::roots::verdict::Spectrum for Linearization {
+    fn eigenvalues(&self) -> Vec<C64> {
+        Linearization::eigenvalues(self)
+    }
+
+    fn mode(&self, lambda: C64) -> Vec<C64> {
+        Linearization::mode(self, lambda).to_vec()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -15,6 +15,7 @@
 //! `lambda = 0` problem `M^(-1) (E + C (-D)^(-1) B)`.
 use crate::model::modes::Modes;
 use crate::roots::mode_solver::{fill_operator, ModeSolver};
+use crate::roots::verdict::{assess, Spectrum, Verdict};
 use nalgebra::DMatrix;
 use rustfft::num_complex::Complex64;
 
@@ -299,37 +300,6 @@ fn force_functionals(solver: &mut ModeSolver, m: &Modes) -> Vec<C64> {
     c
 }
 
-/// The stability of a `K`-mode state: its eigenvalues, the rotation mode set aside.
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
-pub struct ModeVerdict {
-    /// `[re, im]`, by decreasing real part.
-    pub eigenvalues: Vec<[f64; 2]>,
-    /// The near-neutral rotation mode's eigenvalue (a moving or deformed state), if found.
-    pub rotation: Option<f64>,
-    /// Eigenvalues with a positive real part, the rotation mode excluded.
-    pub unstable: usize,
-}
-
-impl ModeVerdict {
-    pub fn stable(&self) -> bool {
-        self.unstable == 0
-    }
-
-    /// The largest real part, the rotation mode excluded (`-1` when none is above it).
-    pub fn leading(&self) -> f64 {
-        let mut skipped = false;
-        self.eigenvalues
-            .iter()
-            .filter(|l| {
-                let rotation = !skipped && Some(l[0]) == self.rotation && l[1].abs() < 1e-9;
-                skipped |= rotation;
-                !rotation
-            })
-            .map(|l| l[0])
-            .fold(-1.0, f64::max)
-    }
-}
-
 impl ModeLinearization {
     /// The unit null vector of `T(lambda)` (its smallest singular vector).
     pub fn mode(&self, lambda: C64) -> Vec<C64> {
@@ -345,49 +315,19 @@ impl ModeLinearization {
         v_t.row(i).iter().map(|c| c.conj()).collect()
     }
 
-    /// The verdict: the rotation mode is the real eigenvalue, within 0.05 of zero, whose mode
-    /// is the state's infinitesimal rotation `(-vy, vx, -k b_k, k a_k)` (overlap above 0.9); the
-    /// others decide.
-    pub fn verdict(&self) -> ModeVerdict {
-        let eig = self.eigenvalues();
-        let z = &self.z0;
-        let k_max = (z.len() - 2) / 2 + 1;
-        let mut g = vec![-z[1], z[0]];
-        g.extend((2..=k_max).map(|k| -(k as f64) * z[k_max - 1 + k]));
-        g.extend((2..=k_max).map(|k| k as f64 * z[k]));
-        let gn = g.iter().map(|x| x * x).sum::<f64>().sqrt();
-        let mut rotation = None;
-        if gn > 1e-9 {
-            let overlap = |l: C64| {
-                let v = self.mode(l);
-                let dot: C64 = v.iter().zip(&g).map(|(a, b)| a * b).sum();
-                let vn = v.iter().map(|c| c.norm_sqr()).sum::<f64>().sqrt();
-                dot.norm() / (vn * gn)
-            };
-            rotation = eig
-                .iter()
-                .filter(|l| l.im.abs() < 1e-9 && l.re.abs() < 0.05)
-                .map(|l| (*l, overlap(*l)))
-                .filter(|(_, o)| *o > 0.9)
-                .max_by(|a, b| a.1.total_cmp(&b.1))
-                .map(|(l, _)| l.re);
-        }
-        let mut skipped = false;
-        let unstable = eig
-            .iter()
-            .filter(|l| {
-                if !skipped && Some(l.re) == rotation && l.im.abs() < 1e-9 {
-                    skipped = true;
-                    return false;
-                }
-                l.re > 0.0 || !l.re.is_finite()
-            })
-            .count();
-        ModeVerdict {
-            eigenvalues: eig.iter().map(|l| [l.re, l.im]).collect(),
-            rotation,
-            unstable,
-        }
+    /// The verdict ([`assess`]): the rotation mode told apart by its shape, the others decide.
+    pub fn verdict(&self) -> Verdict {
+        assess(self, &self.z0)
+    }
+}
+
+impl Spectrum for ModeLinearization {
+    fn eigenvalues(&self) -> Vec<C64> {
+        ModeLinearization::eigenvalues(self)
+    }
+
+    fn mode(&self, lambda: C64) -> Vec<C64> {
+        ModeLinearization::mode(self, lambda)
     }
 }
 
@@ -479,7 +419,7 @@ mod tests {
     #[test]
     fn the_verdict_finds_the_rotation_mode_and_agrees_with_two_modes() {
         let (mut two, mut solver, z) = fig1c_two_mode_md(96);
-        let want = crate::roots::verdict::assess(&Linearization::at(&mut two, z), z);
+        let want = crate::roots::verdict::assess(&Linearization::at(&mut two, z), &z);
         let got = ModeLinearization::at(&mut solver, &z).verdict();
         assert_eq!(got.stable(), want.stable(), "{got:?} {want:?}");
         match (got.rotation, want.rotation) {

@@ -20,6 +20,7 @@ use crate::model::grid::Grid;
 use crate::model::modes::Modes;
 use crate::model::params::ModelParams;
 use crate::model::shape::ShapeParams;
+use crate::model::state::turned;
 use crate::numerics::fft2::PrunedFft2;
 use crate::numerics::newton::{self, NewtonOptions};
 use crate::roots::forces_memo::ForcesMemo;
@@ -77,23 +78,6 @@ pub fn on_x_axis(v: f64, a: &[f64]) -> Vec<f64> {
     z.extend(a.iter().copied());
     z.extend(std::iter::repeat_n(0.0, a.len()));
     z
-}
-
-/// The unknowns `(vx, vy, a_2..a_K, b_2..b_K)` of the droplet `z` turned by `phi`: the
-/// velocity by `phi`, shape mode `k` by `k phi` (`r(theta) -> r(theta - phi)`).
-pub fn turned(z: &[f64], phi: f64) -> Vec<f64> {
-    let k_max = z.len() / 2;
-    let (c, s) = (phi.cos(), phi.sin());
-    let mut out = z.to_vec();
-    out[0] = c * z[0] - s * z[1];
-    out[1] = s * z[0] + c * z[1];
-    for k in 2..=k_max {
-        let (a, b) = (z[k], z[k_max - 1 + k]);
-        let (ck, sk) = ((k as f64 * phi).cos(), (k as f64 * phi).sin());
-        out[k] = ck * a - sk * b;
-        out[k_max - 1 + k] = sk * a + ck * b;
-    }
-    out
 }
 
 /// Evaluates steady fields and force balances of `K`-mode droplets on an `N x N` grid.
@@ -458,28 +442,8 @@ impl ModeSolver {
 mod tests {
     use super::*;
     use crate::model::modes::w_fields;
+    use crate::model::state::turned;
 
-    #[test]
-    fn turning_a_k_mode_state_turns_mode_k_k_times() {
-        let z = vec![0.5, 0.1, -0.2, 0.03, 0.01, 0.05, -0.02, 0.004];
-        // Two turns add; a full turn is the identity; with K = 2 it is the 2-mode turn.
-        let twice = turned(&turned(&z, 0.3), 0.4);
-        let once = turned(&z, 0.7);
-        assert!(twice.iter().zip(&once).all(|(a, b)| (a - b).abs() < 1e-15));
-        let full = turned(&z, 2.0 * std::f64::consts::PI);
-        assert!(full.iter().zip(&z).all(|(a, b)| (a - b).abs() < 1e-15));
-        let two = turned(&[0.5, 0.1, -0.2, 0.05], 0.7);
-        let expect = crate::runs::landing::rotated(&[0.5, 0.1, -0.2, 0.05], 0.7);
-        assert!(two.iter().zip(&expect).all(|(a, b)| (a - b).abs() < 1e-15));
-        // An x-axis state turned by 45 degrees lies on the diagonal mirror: a2 = 0, b3 = -a3,
-        // b4 = 0.
-        let d = turned(
-            &on_x_axis(0.4, &[-0.25, 0.04, 0.01]),
-            std::f64::consts::FRAC_PI_4,
-        );
-        assert!((d[0] - d[1]).abs() < 1e-15 && d[2].abs() < 1e-15);
-        assert!((d[3] + d[6]).abs() < 1e-15 && d[7].abs() < 1e-15, "{d:?}");
-    }
     #[test]
     fn on_the_diagonal_axis_newton_finds_the_turned_state_of_all_2k_balances() {
         // Fig. 1c with modes 2..3 at N = 96: Newton on the x-axis unknowns with the axis at

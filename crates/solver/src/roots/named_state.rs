@@ -131,7 +131,7 @@ pub fn find(
         }
     };
     let z = on_axis(axis, v, shape);
-    let verdict = assess(&Linearization::at(&mut solver, z), z);
+    let verdict = assess(&Linearization::at(&mut solver, z), &z);
     Ok(NamedState {
         z,
         residual,

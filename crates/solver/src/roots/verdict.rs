@@ -11,7 +11,6 @@
 //! it is reported as `rotation` and left out of the decision. A mode counts as the rotation
 //! when it is real and parallel to `g` (|cos| >= 0.9): it lies in the antisymmetric block of a
 //! mirror-symmetric state, whose other mode is orthogonal to `g` in the free plane.
-use crate::roots::linearisation::Linearization;
 use rustfft::num_complex::Complex64;
 use serde::Serialize;
 
@@ -67,14 +66,29 @@ impl Verdict {
     }
 }
 
-/// The rotation generator at `z = (vx, vy, a2, b2)`.
-pub fn rotation_generator(z: [f64; 4]) -> [f64; 4] {
-    let [vx, vy, a2, b2] = z;
-    [-vy, vx, -2.0 * b2, 2.0 * a2]
+/// A linearisation a verdict reads: its eigenvalues and the mode of each (the 2-mode
+/// `4 x 4` problem, [`crate::roots::linearisation::Linearization`], or the general `2K x 2K`
+/// one with shape modes `2..K`, [`crate::roots::mode_linearisation::ModeLinearization`]).
+pub trait Spectrum {
+    /// Eigenvalues with `Re > -1`, decreasing real part.
+    fn eigenvalues(&self) -> Vec<Complex64>;
+    /// The eigenmode of `lambda` over the unknowns `(vx, vy, a_2..a_K, b_2..b_K)`.
+    fn mode(&self, lambda: Complex64) -> Vec<Complex64>;
 }
 
-/// Eigenvalues, rotation mode and count of unstable ones at the state `z` of `lin`.
-pub fn assess(lin: &Linearization, z: [f64; 4]) -> Verdict {
+/// The rotation generator at `z = (vx, vy, a_2..a_K, b_2..b_K)`: the velocity turns once,
+/// shape mode `k` `k` times, `g = (-vy, vx, -k b_k, k a_k)` (for `K = 2`,
+/// `(-vy, vx, -2 b2, 2 a2)`).
+pub fn rotation_generator(z: &[f64]) -> Vec<f64> {
+    let k_max = z.len() / 2;
+    let mut g = vec![-z[1], z[0]];
+    g.extend((2..=k_max).map(|k| -(k as f64) * z[k_max - 1 + k]));
+    g.extend((2..=k_max).map(|k| k as f64 * z[k]));
+    g
+}
+
+/// Eigenvalues, rotation mode and count of unstable ones at the state `z` of `lin` (any `K`).
+pub fn assess(lin: &impl Spectrum, z: &[f64]) -> Verdict {
     let eigenvalues = lin.eigenvalues();
     let g = rotation_generator(z);
     let g_norm = g.iter().map(|x| x * x).sum::<f64>().sqrt();
@@ -113,6 +127,7 @@ pub fn assess(lin: &Linearization, z: [f64; 4]) -> Verdict {
 mod tests {
     use super::*;
     use crate::model::params::ModelParams;
+    use crate::roots::linearisation::Linearization;
     use crate::roots::steady_solver::SteadySolver;
 
     #[test]
@@ -123,7 +138,7 @@ mod tests {
         let mut s = SteadySolver::new(p, 192).unwrap();
         let st = s.newton(0.59, -0.27, 1e-12).unwrap();
         let z = [st.v, 0.0, st.a2, 0.0];
-        let v = assess(&Linearization::at(&mut s, z), z);
+        let v = assess(&Linearization::at(&mut s, z), &z);
         assert!((v.rotation.unwrap() + 0.008436).abs() < 2e-6, "{v:?}");
         assert!((v.max_re + 0.052054).abs() < 2e-6, "{v:?}");
         assert!(v.stable());
@@ -132,16 +147,16 @@ mod tests {
         let mut s = SteadySolver::new(p, 192).unwrap();
         let st = s.newton(0.43, -0.03, 1e-12).unwrap();
         let z = [st.v, 0.0, st.a2, 0.0];
-        let v = assess(&Linearization::at(&mut s, z), z);
+        let v = assess(&Linearization::at(&mut s, z), &z);
         assert!((v.rotation.unwrap() - 0.000340).abs() < 2e-6, "{v:?}");
         assert!(v.stable() && v.max_re < 0.0, "{v:?}");
         // The resting disk has no rotation mode: its drift pair decides (unstable below the
         // onset of motion, eta_t = 0.07648).
         let z = [0.0; 4];
-        let v = assess(&Linearization::at(&mut s, z), z);
+        let v = assess(&Linearization::at(&mut s, z), &z);
         assert!(v.rotation.is_none() && v.unstable == 2, "{v:?}");
         let mut s = SteadySolver::new(ModelParams::at(0.085, 0.13), 192).unwrap();
-        let v = assess(&Linearization::at(&mut s, z), z);
+        let v = assess(&Linearization::at(&mut s, z), &z);
         assert!(v.rotation.is_none() && v.stable(), "{v:?}");
     }
 }

@@ -10,6 +10,7 @@ use crate::error::SolverError;
 use crate::model::classify::StateClass;
 use crate::model::initial::InitialCondition;
 use crate::model::params::ModelParams;
+use crate::model::state::four;
 use crate::runs::clock::{Clock, Recorder, Step};
 use crate::runs::finding::Diagnosis;
 use crate::runs::finish::{Decision, NewtonFinish};
@@ -88,7 +89,7 @@ impl Run {
         // droplet (m = 0) is finished by the paper's test.
         let start = self.scheme.state().monitored();
         let mut finish = (cfg.steady == SteadyMethod::Newton && self.params.mass > 0.0)
-            .then(|| NewtonFinish::new(&self.params, &cfg).starting_at(start));
+            .then(|| NewtonFinish::new(&self.params, &cfg).starting_at(&start));
         let mut end = End::default();
         loop {
             match clock.step(self.scheme.as_mut(), &cfg, rec.next) {
@@ -110,9 +111,9 @@ impl Run {
             };
             let fired = change < cfg.steady_tol;
             let decision = match finish.as_mut() {
-                None if fired => Decision::End(Ending::Test, st.monitored()),
+                None if fired => Decision::End(Ending::Test, st.monitored().to_vec()),
                 None => Decision::Continue,
-                Some(f) => f.consider(clock.t, st.monitored(), change, fired),
+                Some(f) => f.consider(clock.t, &st.monitored(), change, fired),
             };
             match decision {
                 Decision::Continue => {}
@@ -133,7 +134,7 @@ impl Run {
                     let _timed = profile::enter(Part::Leap);
                     let leapt = finish
                         .as_mut()
-                        .and_then(|f| f.root_field(leap.root).ok())
+                        .and_then(|f| f.root_field(&leap.root).ok())
                         .is_some_and(|field| {
                             let shift = leap.shift(st.vx, st.vy);
                             self.scheme.leap(leap.root, &field, leap.factor(), shift)
@@ -166,7 +167,7 @@ impl Run {
         // The series ends with the time-stepped state; the outcome, with the root if the
         // Newton finish ended the run.
         let series = rec.finish(clock.t, &state);
-        if let Some([vx, vy, a2, b2]) = end.polished {
+        if let Some([vx, vy, a2, b2]) = end.polished.as_deref().map(four) {
             (state.vx, state.vy, state.a2, state.b2) = (vx, vy, a2, b2);
         }
         let status = end.status;
@@ -234,7 +235,7 @@ impl Run {
                 &mut own
             }
         };
-        f.diagnose(z)
+        f.diagnose(&z)
     }
 }
 
@@ -244,7 +245,7 @@ struct End {
     t_steady: Option<f64>,
     ended_by: Option<Ending>,
     /// The root the Newton finish ended the run at.
-    polished: Option<[f64; 4]>,
+    polished: Option<Vec<f64>>,
     saddle_diagnosis: Option<String>,
     t_leapt: f64,
 }

@@ -10,8 +10,8 @@ use crate::runs::orientation::{class_of, invariant_distance};
 /// What a Newton try found: the root, its stability, and whether it is the turned root.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Finding {
-    /// The root, `(vx, vy, a2, b2)`.
-    pub z: [f64; 4],
+    /// The root, `(vx, vy, a_2..a_K, b_2..b_K)`.
+    pub z: Vec<f64>,
     pub verdict: Verdict,
     /// The root of the turned state (the run is to turn there), not the one near the run.
     pub turned: bool,
@@ -29,7 +29,7 @@ impl Finding {
     }
 
     /// Why a run stopped at `z` (the state Newton started from) is not settled on this root.
-    pub fn reason(&self, z: &[f64; 4]) -> Unsettled {
+    pub fn reason(&self, z: &[f64]) -> Unsettled {
         if self.verdict.unstable > 0 {
             Unsettled::BesideSaddle
         } else if self
@@ -54,7 +54,7 @@ impl Finding {
     /// A sentence for the `diagnosis` column of a run stopped at `z` (the state Newton started
     /// from). Only the rotation mode slow and the run's speed and deformation within
     /// [`SETTLED_WITHIN`] of the root's, with its class: [`SETTLED`] (the run only turns).
-    pub fn describe(&self, z: &[f64; 4]) -> String {
+    pub fn describe(&self, z: &[f64]) -> String {
         let rot = self.verdict.rotation;
         if self.verdict.unstable > 0 {
             format!(

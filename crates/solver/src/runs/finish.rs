@@ -65,9 +65,11 @@ use crate::contract::profile::{self, Part};
 use crate::contract::settings::SolverSettings;
 use crate::error::SolverError;
 use crate::model::params::ModelParams;
-use crate::model::state::max_distance;
+use crate::model::state::{four, max_distance};
 use crate::numerics::newton::NewtonOptions;
 use crate::roots::linearisation::Linearization;
+use crate::roots::mode_linearisation::ModeLinearization;
+use crate::roots::mode_solver::ModeSolver;
 use crate::roots::steady_solver::{KeptJacobians, SteadySolver};
 use crate::roots::verdict::{assess, Verdict};
 use crate::runs::finding::{Diagnosis, Finding};
@@ -99,8 +101,8 @@ pub const LEAVE: f64 = crate::model::classify::CLASS_THRESHOLD;
 #[derive(Debug, Clone, PartialEq)]
 pub enum Decision {
     Continue,
-    /// End steady at this `(vx, vy, a2, b2)`.
-    End(Ending, [f64; 4]),
+    /// End steady at this `(vx, vy, a_2..a_K, b_2..b_K)`.
+    End(Ending, Vec<f64>),
     /// Stop beside a saddle the run cannot leave before `t_max`, with this diagnosis.
     Saddle(String),
     /// Leap along the growing mode of a saddle the run is leaving.
@@ -109,8 +111,67 @@ pub enum Decision {
 
 /// Whether two roots Newton found are the same state: equal to 1e-9 in every unknown (Newton's
 /// tolerance is 1e-12), so that what a run's tries learnt of a root is found again.
-pub(super) fn same_root(a: &[f64; 4], b: &[f64; 4]) -> bool {
+pub(super) fn same_root(a: &[f64], b: &[f64]) -> bool {
     a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-9)
+}
+
+/// The steady force balances a finish solves: the 2-mode solver (with the chord method's
+/// kept Jacobians, and the constrained solves of the landing and the orientation flow), or
+/// the general one with shape modes `2..K`.
+pub(super) enum Balances {
+    Two(SteadySolver),
+    General(ModeSolver),
+}
+
+impl Balances {
+    /// Newton on all the balances from `z`: `(vx, vy, a2, b2)`, or `(vx, vy, a_2..a_K,
+    /// b_2..b_K)`.
+    fn root_near(
+        &mut self,
+        z: &[f64],
+        jacobians: &mut KeptJacobians,
+    ) -> Result<Vec<f64>, SolverError> {
+        match self {
+            Balances::Two(solver) => {
+                let opts = NewtonOptions {
+                    tol: 1e-12,
+                    // Converging solves from a run near its root take 3 to 8 iterations; a
+                    // failing one (a run mid-turn, see `aligned_root`) is not worth 30.
+                    max_iter: 12,
+                    fd_step: 1e-6,
+                    max_step: vec![f64::INFINITY, f64::INFINITY, 0.2, 0.2],
+                };
+                Ok(solver.root_near(four(z), &opts, jacobians)?.to_vec())
+            }
+            Balances::General(solver) => {
+                // The settings K-mode runs have been finished with: to 1e-11, every
+                // unknown's step limited.
+                let opts = NewtonOptions {
+                    tol: 1e-11,
+                    max_iter: 12,
+                    fd_step: 1e-7,
+                    max_step: vec![0.2; z.len()],
+                };
+                let found = crate::numerics::newton::solve(|y| solver.residual(y), z, &opts)?;
+                if found.x.iter().all(|x| x.is_finite()) {
+                    Ok(found.x)
+                } else {
+                    Err(SolverError::NewtonFailed {
+                        residual: f64::NAN,
+                        iterations: opts.max_iter,
+                    })
+                }
+            }
+        }
+    }
+
+    /// The stability of the root `z` ([`crate::roots::verdict::assess`]).
+    fn verdict(&mut self, z: &[f64]) -> Verdict {
+        match self {
+            Balances::Two(solver) => assess(&Linearization::at(solver, four(z)), z),
+            Balances::General(solver) => ModeLinearization::at(solver, z).verdict(),
+        }
+    }
 }
 
 /// The Newton finish of one run.
@@ -123,7 +184,11 @@ pub struct NewtonFinish {
     pub(super) landing: bool,
     /// The last try that found the run beside a saddle (for `leap_departures`).
     pub(super) sighting: Option<Sighting>,
-    pub(super) solver: Option<SteadySolver>,
+    /// The shape modes `2..K` of the run's states, and its friction law's exponent
+    /// (`eta_k`, which enters the eigenvalues, not the roots).
+    pub(super) modes: usize,
+    pub(super) eta_k_exponent: f64,
+    pub(super) solver: Option<Balances>,
     /// Whether the run started on a mirror line of the box (its own mirror image there), so
     /// that a lean below [`LEAN_FLOOR`] is none; else such a lean is round-off that grows.
     pub(super) mirror_symmetric: bool,
@@ -131,21 +196,21 @@ pub struct NewtonFinish {
     /// deformation at rest) at the last landing try.
     pub(super) last_lean: Option<((i64, bool), f64, f64)>,
     /// The root of the last try and the run's angle to it then.
-    pub(super) last_turn: Option<([f64; 4], f64)>,
+    pub(super) last_turn: Option<(Vec<f64>, f64)>,
     /// Roots already assessed and their verdicts (a run's later tries usually find the same
     /// root again; its eigenvalues are not recomputed).
-    pub(super) assessed: Vec<([f64; 4], Verdict)>,
+    pub(super) assessed: Vec<(Vec<f64>, Verdict)>,
     /// Whether the orientation's slow flow decides where a leaning run ends (numerics 8 and
     /// 9; the setting `orientation_flow`).
     pub(super) orientation_flow: bool,
     /// What is known of the orientation's flow beside roots stable in rotation, per root and
     /// side (lean > 0) ([`crate::runs::rotation_flow::FlowScan`]).
-    pub(super) flows: Vec<([f64; 4], bool, crate::runs::rotation_flow::FlowScan)>,
+    pub(super) flows: Vec<(Vec<f64>, bool, crate::runs::rotation_flow::FlowScan)>,
     /// Turns followed from roots unstable in rotation: the root, the lean the flow was
     /// followed from, the lean where it ended (its zero, or where the fast balances could not
     /// be solved), and the stable root found there, if any ([`NewtonFinish::flow_turn`]; a
     /// later try leaning in between ends the same way).
-    pub(super) turns: Vec<([f64; 4], f64, f64, Option<Finding>)>,
+    pub(super) turns: Vec<(Vec<f64>, f64, f64, Option<Finding>)>,
     pub(super) trigger: f64,
     pub(super) window: f64,
     pub(super) next_try: f64,
@@ -155,33 +220,42 @@ pub struct NewtonFinish {
     /// [`crate::runs::orientation::TURN_SEARCH`], per root and side (lean > 0): `None` for
     /// an angle not tried yet, `Some(None)` where Newton did not converge.
     #[allow(clippy::type_complexity)]
-    pub(super) turn_searches: Vec<([f64; 4], bool, Vec<Option<Option<Finding>>>)>,
+    pub(super) turn_searches: Vec<(Vec<f64>, bool, Vec<Option<Option<Finding>>>)>,
     /// The walks of the landing's tries along the families ([`crate::runs::landing::Walks`]).
     pub(super) walks: crate::runs::landing::Walks,
 }
 
 impl NewtonFinish {
     /// For a run of `settings` (its grid, steady tolerance and window, and `t_max`).
+    ///
+    /// Runs with shape modes `2..K`, `K > 2`, are finished by Newton on all `2K` balances,
+    /// the turn search and the diagnosis, as 2-mode runs are; the landing, the orientation
+    /// flow, the saddle stop and the leap solve the 2-mode balances only and are off for them
+    /// ([`crate::contract::honoured`] says so), and their change is a rate: `|dz/dt|`, the
+    /// steady window one time unit.
     pub fn new(params: &ModelParams, settings: &SolverSettings) -> Self {
-        let (n, steady_tol, window) = (settings.n, settings.steady_tol, settings.steady_window);
+        let two = settings.modes == 2;
+        let (n, steady_tol) = (settings.n, settings.steady_tol);
         Self {
             params: *params,
             n,
             t_max: settings.t_max,
-            stop_beside_saddle: settings.stop_beside_saddle,
-            leap_departures: settings.leap_departures,
-            landing: settings.landing,
+            stop_beside_saddle: settings.stop_beside_saddle && two,
+            leap_departures: settings.leap_departures && two,
+            landing: settings.landing && two,
             sighting: None,
             last_turn: None,
             last_lean: None,
             mirror_symmetric: true,
             assessed: Vec::new(),
-            orientation_flow: settings.orientation_flow,
+            orientation_flow: settings.orientation_flow && two,
             flows: Vec::new(),
             turns: Vec::new(),
+            modes: settings.modes,
+            eta_k_exponent: settings.eta_k_exponent,
             solver: None,
             trigger: TRIGGER_FACTOR * steady_tol,
-            window,
+            window: if two { settings.steady_window } else { 1.0 },
             next_try: 0.0,
             jacobians: KeptJacobians::default(),
             turn_searches: Vec::new(),
@@ -193,41 +267,33 @@ impl NewtonFinish {
     /// ([`crate::runs::orientation::mirror_symmetric`]; the paper's i' and ii') stays on an
     /// unstable line for ever (numerics 7). A finish made without its start (a diagnosis)
     /// takes a lean below [`LEAN_FLOOR`] to be none.
-    pub fn starting_at(mut self, z0: [f64; 4]) -> Self {
-        self.mirror_symmetric = crate::runs::orientation::mirror_symmetric(&z0);
+    pub fn starting_at(mut self, z0: &[f64]) -> Self {
+        self.mirror_symmetric = crate::runs::orientation::mirror_symmetric(z0);
         self
     }
 
     /// Newton from `z` on all four unknowns, and the root's verdict.
-    pub fn root_near(&mut self, z: [f64; 4]) -> Result<Finding, SolverError> {
+    pub fn root_near(&mut self, z: &[f64]) -> Result<Finding, SolverError> {
         crate::error::require(
             self.params.mass > 0.0,
             "mass",
             self.params.mass,
             "> 0 for the linearisation (an overdamped droplet is finished by the paper's test)",
         )?;
-        self.steady_solver()?;
+        self.balances()?;
         // The field, not `self`: `self.assessed` is read below while the solver is in use.
-        let solver = self.solver.as_mut().expect("made above");
-        let opts = NewtonOptions {
-            tol: 1e-12,
-            // Converging solves from a run near its root take 3 to 8 iterations; a failing
-            // one (a run mid-turn, see `aligned_root`) is not worth 30.
-            max_iter: 12,
-            fd_step: 1e-6,
-            max_step: vec![f64::INFINITY, f64::INFINITY, 0.2, 0.2],
-        };
+        let balances = self.solver.as_mut().expect("made above");
         let root = {
             let _timed = profile::enter(Part::Newton);
-            solver.root_near(z, &opts, &mut self.jacobians)?
+            balances.root_near(z, &mut self.jacobians)?
         };
         let known = self.assessed.iter().find(|(z, _)| same_root(z, &root));
         let verdict = match known {
             Some((_, v)) => v.clone(),
             None => {
                 let _timed = profile::enter(Part::Eigen);
-                let v = assess(&Linearization::at(solver, root), root);
-                self.assessed.push((root, v.clone()));
+                let v = balances.verdict(&root);
+                self.assessed.push((root.clone(), v.clone()));
                 v
             }
         };
@@ -242,16 +308,16 @@ impl NewtonFinish {
     /// ([`Finding::describe`]), or from `z` turned onto the box's nearest mirror lines if
     /// Newton from `z` does not converge (a run caught mid-turn); and where it was heading:
     /// the stable root near it, or the one its slow flow lands on ([`crate::runs::landing`]).
-    pub fn diagnose(&mut self, z: [f64; 4]) -> Diagnosis {
+    pub fn diagnose(&mut self, z: &[f64]) -> Diagnosis {
         let (text, reason, mut heading) = match self.root_near(z) {
-            Ok(found) => (found.describe(&z), found.reason(&z), found.heading()),
+            Ok(found) => (found.describe(z), found.reason(z), found.heading()),
             Err(SolverError::NewtonFailed { .. }) => match self.aligned_root(z) {
                 Some(found) => (
                     format!(
                         "caught turning between the box's mirror lines; the steady state on one: {}",
-                        found.describe(&z)
+                        found.describe(z)
                     ),
-                    found.reason(&z),
+                    found.reason(z),
                     found.heading(),
                 ),
                 None => (
@@ -276,7 +342,7 @@ impl NewtonFinish {
 
     /// One judged window at time `t`: the state `z`, its change over the window (scaled to
     /// one window), and whether the paper's test fired.
-    pub fn consider(&mut self, t: f64, z: [f64; 4], change: f64, test_fired: bool) -> Decision {
+    pub fn consider(&mut self, t: f64, z: &[f64], change: f64, test_fired: bool) -> Decision {
         if t < self.next_try || !(test_fired || change < self.trigger) {
             return Decision::Continue;
         }
@@ -297,14 +363,14 @@ impl NewtonFinish {
         // need only be within ORIENTATION of the root's, or closer to it than at the last try
         // (turning towards it), or the root be the turned one.
         let rate = f.verdict.max_re.abs().max(1e-12);
-        let settled = invariant_distance(&z, &f.z)
+        let settled = invariant_distance(z, &f.z)
             <= (10.0 * (change / self.window) / rate).min(MAX_SETTLED) + 1e-9;
-        let lean = angle_to(&z, &f.z);
+        let lean = angle_to(z, &f.z);
         let turn = lean.abs();
-        let turning_to = self.last_turn.is_some_and(|(root, before)| {
-            root.iter().zip(&f.z).all(|(a, b)| (a - b).abs() < 1e-6) && turn < before
+        let turning_to = self.last_turn.as_ref().is_some_and(|(root, before)| {
+            root.iter().zip(&f.z).all(|(a, b)| (a - b).abs() < 1e-6) && turn < *before
         });
-        self.last_turn = Some((f.z, turn));
+        self.last_turn = Some((f.z.clone(), turn));
         let approaching = settled && (f.turned || turn <= ORIENTATION || turning_to);
         // The basin check of a root stable in rotation, left to here: only a run that would
         // end on it pays for the flow's samples (the same decisions, fewer samples).
@@ -322,7 +388,7 @@ impl NewtonFinish {
         if let Some(end) = self.land_now(z) {
             return end;
         }
-        if let Some(diagnosis) = self.cannot_leave(t, &z, &f) {
+        if let Some(diagnosis) = self.cannot_leave(t, z, &f) {
             return Decision::Saddle(diagnosis);
         }
         if let Some(l) = self.departure(t, z, &f) {
@@ -346,12 +412,12 @@ impl NewtonFinish {
     /// where it is caught turning to ([`Self::turn_root`]). The first try knows no growth
     /// and lands only a run without lean. Landings on the resting disk (no orientation)
     /// need none of this.
-    fn land_now(&mut self, z: [f64; 4]) -> Option<Decision> {
+    fn land_now(&mut self, z: &[f64]) -> Option<Decision> {
         if !self.landing {
             return None;
         }
-        let (line, lean) = lean_from_mirror_line(&z);
-        let (v, s) = speed_and_deformation(&z);
+        let (line, lean) = lean_from_mirror_line(z);
+        let (v, s) = speed_and_deformation(z);
         let coordinate = if v > 1e-9 { v } else { s };
         let before = self.last_lean.replace((line, lean, coordinate));
         let lean_shrinking = before.is_some_and(|(line_before, lean_before, _)| {
@@ -365,7 +431,7 @@ impl NewtonFinish {
                         > LEAN_GROWTH * (coordinate / coordinate_before).ln().abs()
             });
         // A landing on the resting disk, which has no orientation, needs no lean.
-        let round = |z: &[f64; 4]| z.iter().all(|x| x.abs() < 1e-9);
+        let round = |z: &[f64]| z.iter().all(|x| x.abs() < 1e-9);
         let found = if turning_away {
             match self.flow_root(z, false) {
                 Some(found) if round(&found.z) => found,
@@ -379,29 +445,53 @@ impl NewtonFinish {
 
     /// With `leap_departures`, the leap of a run at `z` (time `t`) leaving the saddle `f`
     /// along one growing mode, if the previous try saw it on that mode too.
-    fn departure(&mut self, t: f64, z: [f64; 4], f: &Finding) -> Option<Leap> {
+    fn departure(&mut self, t: f64, z: &[f64], f: &Finding) -> Option<Leap> {
         if !self.leap_departures || f.verdict.unstable == 0 || f.turned {
             self.sighting = None;
             return None;
         }
-        let now = Sighting { t, z, root: f.z };
+        let now = Sighting {
+            t,
+            z: four(z),
+            root: four(&f.z),
+        };
         let before = self.sighting.replace(now)?;
         let l = leap(&before, &now, &f.verdict.eigenvalues, self.t_max)?;
         self.sighting = None;
         Some(l)
     }
 
-    /// The run's steady solver, made at its first use.
-    pub(super) fn steady_solver(&mut self) -> Result<&mut SteadySolver, SolverError> {
+    /// The run's steady balances, made at their first use.
+    fn balances(&mut self) -> Result<&mut Balances, SolverError> {
         if self.solver.is_none() {
-            self.solver = Some(SteadySolver::new(self.params, self.n)?);
+            self.solver = Some(if self.modes == 2 {
+                Balances::Two(SteadySolver::new(self.params, self.n)?)
+            } else {
+                let mut solver = ModeSolver::new(self.params, self.n)?;
+                solver.set_eta_k_exponent(self.eta_k_exponent);
+                Balances::General(solver)
+            });
         }
         Ok(self.solver.as_mut().expect("made above"))
     }
 
+    /// The run's 2-mode steady solver (for the landing, the orientation flow and the leap),
+    /// made at its first use; refused for runs with more shape modes.
+    pub(super) fn steady_solver(&mut self) -> Result<&mut SteadySolver, SolverError> {
+        let modes = self.modes;
+        match self.balances()? {
+            Balances::Two(solver) => Ok(solver),
+            Balances::General(_) => Err(SolverError::InvalidParameter {
+                name: "modes",
+                value: modes as f64,
+                allowed: "2 for the landing, the orientation flow and the leap".into(),
+            }),
+        }
+    }
+
     /// The co-moving field of the steady state `root` (normalised coefficients, `[kx][ky]`):
     /// what a leap scales the run's field towards.
-    pub fn root_field(&mut self, root: [f64; 4]) -> Result<Vec<Complex64>, SolverError> {
+    pub fn root_field(&mut self, root: &[f64]) -> Result<Vec<Complex64>, SolverError> {
         Ok(self
             .steady_solver()?
             .field_and_forces(root[0], root[1], root[2], root[3])
@@ -412,7 +502,7 @@ impl NewtonFinish {
     /// With `stop_beside_saddle`, the diagnosis of a run at `z` (time `t`) beside the saddle
     /// `f` that it cannot leave before `t_max`: its distance grown at the largest rate stays
     /// below [`LEAVE`], and the class is the same everywhere within that distance.
-    fn cannot_leave(&self, t: f64, z: &[f64; 4], f: &Finding) -> Option<String> {
+    fn cannot_leave(&self, t: f64, z: &[f64], f: &Finding) -> Option<String> {
         if !self.stop_beside_saddle || f.verdict.unstable == 0 || f.turned {
             return None;
         }
@@ -437,8 +527,8 @@ impl NewtonFinish {
 mod tests {
     use super::*;
     use crate::model::classify::StateClass;
+    use crate::model::state::turned;
     use crate::runs::finding::SETTLED;
-    use crate::runs::landing::rotated;
     use crate::runs::orientation::{angle_to, one_class_within, orientation};
 
     #[test]
@@ -487,11 +577,11 @@ mod tests {
         let mut f = NewtonFinish::new(&p, &settings);
         // Near MD, off the axis: Newton on all four unknowns finds the MD state (v and s as on
         // the axis, the box's weak anisotropy aside) and it is stable.
-        let found = f.root_near([0.58, 0.05, -0.26, 0.02]).unwrap();
+        let found = f.root_near(&[0.58, 0.05, -0.26, 0.02]).unwrap();
         let v = found.z[0].hypot(found.z[1]);
         assert!(v > 0.5 && v < 0.7, "{found:?}");
         // The resting disk is a root too, and unstable here (it deforms).
-        let ic = f.root_near([1e-3, 0.0, 1e-3, 0.0]).unwrap();
+        let ic = f.root_near(&[1e-3, 0.0, 1e-3, 0.0]).unwrap();
         assert!(ic.z.iter().all(|x| x.abs() < 1e-10), "{ic:?}");
         assert!(!ic.stable() && ic.verdict.unstable > 0, "{ic:?}");
         let note = ic.describe(&[1e-3, 0.0, 1e-3, 0.0]);
@@ -514,21 +604,6 @@ mod tests {
     }
 
     #[test]
-    fn turning_a_state_turns_its_motion_once_and_its_shape_twice() {
-        let z = [0.5, 0.1, -0.2, 0.05];
-        let q = rotated(&rotated(&z, 0.3), 0.4);
-        let direct = rotated(&z, 0.7);
-        assert!(q.iter().zip(&direct).all(|(a, b)| (a - b).abs() < 1e-15));
-        // 90 degrees: the velocity turns a quarter, the mode-2 shape changes sign.
-        let r = rotated(&z, std::f64::consts::FRAC_PI_2);
-        let expect = [-0.1, 0.5, 0.2, -0.05];
-        assert!(
-            r.iter().zip(&expect).all(|(a, b)| (a - b).abs() < 1e-15),
-            "{r:?}"
-        );
-    }
-
-    #[test]
     fn a_run_caught_between_mirror_lines_finds_the_root_on_one() {
         let p = ModelParams::at(0.085, 0.112);
         let settings = SolverSettings {
@@ -536,14 +611,14 @@ mod tests {
             ..SolverSettings::default()
         };
         let mut f = NewtonFinish::new(&p, &settings);
-        let axis = f.root_near([0.58, 0.0, -0.26, 0.0]).unwrap();
+        let axis = f.root_near(&[0.58, 0.0, -0.26, 0.0]).unwrap();
         // Turned by 20 degrees, between the x axis and the diagonal.
         let found = f
-            .aligned_root(rotated(&axis.z, 20f64.to_radians()))
+            .aligned_root(&turned(&axis.z, 20f64.to_radians()))
             .unwrap();
         let phi = orientation(&found.z) / std::f64::consts::FRAC_PI_4;
         assert!((phi - phi.round()).abs() < 1e-6, "{found:?}");
-        let speed = |z: &[f64; 4]| z[0].hypot(z[1]);
+        let speed = |z: &[f64]| z[0].hypot(z[1]);
         // The axis and diagonal states differ by the box's weak anisotropy only.
         assert!(
             (speed(&found.z) - speed(&axis.z)).abs() < 0.02,

@@ -40,6 +40,7 @@
 //! not grow on the way, and confirms the flow's root on its line ([`Landing::on_line`]),
 //! letting the run turn from there if that root is unstable in rotation
 //! ([`crate::runs::finish`], numerics 7).
+use crate::model::state::{four, turned};
 use crate::numerics::bracket::illinois;
 use crate::roots::steady_solver::{MirrorAxis, SteadySolver};
 use std::f64::consts::{FRAC_1_SQRT_2, FRAC_PI_4};
@@ -83,18 +84,6 @@ pub struct Landing {
     pub to: f64,
     /// Samples of the scalar flow taken by the walk.
     pub samples: usize,
-}
-
-/// The state `z` turned by `angle`: the velocity by `angle`, the shape's mode 2 by twice it.
-pub fn rotated(z: &[f64; 4], angle: f64) -> [f64; 4] {
-    let (c, s) = (angle.cos(), angle.sin());
-    let (c2, s2) = ((2.0 * angle).cos(), (2.0 * angle).sin());
-    [
-        c * z[0] - s * z[1],
-        s * z[0] + c * z[1],
-        c2 * z[2] - s2 * z[3],
-        s2 * z[2] + c2 * z[3],
-    ]
 }
 
 /// The two mirror lines next to a run's orientation (direction of motion, or long axis at
@@ -296,13 +285,13 @@ fn land_moving_on(
     (axis, psi, lean): (MirrorAxis, f64, f64),
     walks: &mut Walks,
 ) -> Option<Landing> {
-    let here = rotated(&z, -psi);
+    let here = four(&turned(&z, -psi));
     let v_run = z[0].hypot(z[1]);
     // The run's shape amplitude on the line, turned back by its lean.
-    let turned = rotated(&here, -lean);
+    let back = four(&turned(&here, -lean));
     let c_run = match axis {
-        MirrorAxis::X => turned[2],
-        MirrorAxis::Diagonal => turned[3],
+        MirrorAxis::X => back[2],
+        MirrorAxis::Diagonal => back[3],
     };
     let mut flow = SlowFlow::new(solver, axis);
     let (g_run, c_fam) = flow.drift(v_run, c_run)?;
@@ -327,8 +316,8 @@ fn land_moving_on(
     };
     let line_root = on_line(axis, to, c_to);
     Some(Landing {
-        z: rotated(&rotated(&line_root, lean), psi),
-        on_line: rotated(&line_root, psi),
+        z: four(&turned(&turned(&line_root, lean), psi)),
+        on_line: four(&turned(&line_root, psi)),
         coordinate: Coordinate::Speed,
         from: v_run,
         to,
@@ -433,8 +422,8 @@ fn land_resting_on(
     };
     let line_root = on_line(axis, 0.0, to);
     Some(Landing {
-        z: rotated(&rotated(&line_root, lean), psi),
-        on_line: rotated(&line_root, psi),
+        z: four(&turned(&turned(&line_root, lean), psi)),
+        on_line: four(&turned(&line_root, psi)),
         coordinate: Coordinate::Shape,
         from: s_run,
         to,
@@ -507,7 +496,7 @@ mod tests {
         // (along x; here leaning 3 degrees and moving along -y: the same root, turned).
         let mut s = solver(0.0763, 0.16);
         let turn = std::f64::consts::FRAC_PI_2 + 3f64.to_radians();
-        let run = rotated(&[0.05, 0.0, -0.0005, 0.0], turn);
+        let run = four(&turned(&[0.05, 0.0, -0.0005, 0.0], turn));
         let l = land(&mut s, run).unwrap();
         let (v, sd) = (l.z[0].hypot(l.z[1]), l.z[2].hypot(l.z[3]));
         assert!(

@@ -3,15 +3,16 @@
 //!
 //! - spectral (default): the ETD2RK stepper of [`crate::runs::mode_run`] on the run's clock
 //!   ([`crate::runs::clock`]: adaptive steps under `tol` and `dt_max` as 2-mode runs take
-//!   them, or fixed steps `dt` with `tol: 0`), ended like a 2-mode run with the Newton finish
-//!   (`steady: newton`): once the largest rate `|dz/dt|` falls below
-//!   [`crate::runs::finish::TRIGGER_FACTOR`] steady tolerances (or below the steady
-//!   tolerance, the test), Newton on all `2K` force balances from the run's state; the run
-//!   ends `steady` on the root when every eigenvalue of its `2K x 2K` eigenproblem decays
-//!   (the near-neutral rotation mode included, as for 2-mode runs) and the run is within
-//!   [`crate::runs::finish::MAX_SETTLED`] of it. A run not steady by where it is given up
-//!   (`t_max`, run on as 2-mode runs are) is unsettled: beside an unstable root, converging
-//!   to a stable one (with its class as `heading`), or with no root near.
+//!   them, or fixed steps `dt` with `tol: 0`), ended by the Newton finish of every `K`
+//!   ([`crate::runs::finish::NewtonFinish`], `steady: newton`): once the largest rate
+//!   `|dz/dt|` falls below [`crate::runs::finish::TRIGGER_FACTOR`] steady tolerances, Newton
+//!   on all `2K` force balances from the run's state; the run ends `steady` on a root whose
+//!   `2K x 2K` eigenproblem decays (the near-neutral rotation mode included) when it is on
+//!   its way there (speed and deformation, and orientation, as for 2-mode runs), or, if the
+//!   root is unstable only in rotation and the run leans from its mirror line, on the first
+//!   stable root the turn search finds on the side it leans to. A run given up (`t_max`, run
+//!   on as 2-mode runs are) is diagnosed as 2-mode runs are. With `steady: test` the
+//!   paper's test alone ends it (every rate below the steady tolerance): pure time stepping.
 //! - `paper-fd`: the paper's forward-Euler finite differences ([`crate::stepping::mode_fd`])
 //!   at fixed steps `dt` to `t_max`, ended by the test alone (`steady: test`; every rate
 //!   below the steady tolerance), as the paper ended its runs; not diagnosed when it does not
@@ -19,9 +20,10 @@
 //!
 //! The class is the paper's, from `v` and `s = |a2|` (mode 2 alone); the higher amplitudes
 //! `a_3..a_K, b_3..b_K` are in [`RunOutcome::higher_modes`]. Not here (refused by
-//! [`crate::contract::limits::check_run`]): the landing and the other endings of 2-mode
-//! runs, and pinned runs. Time series: [`simulate_modes_recorded`].
-use crate::contract::ending::Ending;
+//! [`crate::contract::limits::check_run`], or off in the finish): the landing, the
+//! orientation flow, the saddle stop and the leap, which solve the 2-mode balances, and
+//! pinned runs. Time series: [`simulate_modes_recorded`].
+use crate::contract::ending::{Ending, SteadyMethod};
 use crate::contract::outcome::{RunOutcome, RunStatus, SeriesRow, Unsettled};
 use crate::contract::profile::{self, Part};
 use crate::contract::settings::SolverSettings;
@@ -30,12 +32,9 @@ use crate::model::classify::StateClass;
 use crate::model::initial::InitialCondition;
 use crate::model::params::ModelParams;
 use crate::model::state::DropletState;
-use crate::numerics::newton::NewtonOptions;
-use crate::roots::mode_linearisation::{ModeLinearization, ModeVerdict};
 use crate::runs::clock::{Clock, Step};
-use crate::runs::finish::{MAX_SETTLED, TRIGGER_FACTOR};
+use crate::runs::finish::{Decision, NewtonFinish};
 use crate::runs::mode_run::ModeStepper;
-use crate::runs::orientation::{angle_to, LEAN_FLOOR};
 use crate::stepping::{mode_fd::ModeFd, SchemeKind};
 use std::time::Instant;
 
@@ -48,55 +47,6 @@ pub fn initial_modes(ic: &InitialCondition, k_max: usize) -> Vec<f64> {
     z.push(ic.b2);
     z.extend((3..=k_max).map(|k| mode(k)[1]));
     z
-}
-
-/// A root of the `2K` force balances near a run and its stability.
-struct Root {
-    z: Vec<f64>,
-    verdict: ModeVerdict,
-}
-
-impl Root {
-    /// Stable, the rotation mode included (a run ends where the box would leave it), unless
-    /// the run `z` does not lean from the root's mirror line at all (a mirror-symmetric run
-    /// never turns; leans below [`LEAN_FLOOR`] are round-off).
-    fn ends(&self, z: &[f64]) -> bool {
-        let k = z.len() / 2;
-        let four = |z: &[f64]| [z[0], z[1], z[2], z[k + 1]];
-        let lean = angle_to(&four(z), &four(&self.z)).abs();
-        self.verdict.unstable == 0
-            && (self.verdict.rotation.is_none_or(|r| r < 0.0) || lean < LEAN_FLOOR)
-    }
-}
-
-/// Newton on all `2K` force balances from `z`, and the root's stability.
-fn root_near(run: &mut ModeStepper, z: &[f64]) -> Option<Root> {
-    let opts = NewtonOptions {
-        tol: 1e-11,
-        max_iter: 12,
-        fd_step: 1e-7,
-        max_step: vec![0.2; z.len()],
-    };
-    let solver = run.solver_mut();
-    let timed = profile::enter(Part::Newton);
-    let x = crate::numerics::newton::solve(|y| solver.residual(y), z, &opts)
-        .ok()?
-        .x;
-    drop(timed);
-    if !x.iter().all(|v| v.is_finite()) {
-        return None;
-    }
-    let _timed = profile::enter(Part::Eigen);
-    let verdict = ModeLinearization::at(solver, &x).verdict();
-    Some(Root { z: x, verdict })
-}
-
-/// Largest of `|v - v*|` and `|s - s*|` (speed and the paper's `s`), rotation-invariant.
-fn distance(z: &[f64], root: &[f64]) -> f64 {
-    let k = z.len() / 2;
-    let vs = |z: &[f64]| (z[0].hypot(z[1]), z[2].hypot(z[k + 1]));
-    let ((v, s), (vr, sr)) = (vs(z), vs(root));
-    (v - vr).abs().max((s - sr).abs())
 }
 
 /// The `K`-mode state `z = (vx, vy, a_2..a_K, b_2..b_K)` at `(x, y)` as the 2-mode state and
@@ -232,7 +182,11 @@ fn left_model(z: &[f64], rate: f64) -> bool {
     !rate.is_finite() || z.iter().any(|x| !x.is_finite()) || z[2].hypot(z[k + 1]) >= 1.0
 }
 
-/// The spectral run on the clock (adaptive or fixed steps), ended by the Newton finish.
+/// The spectral run on the clock (adaptive or fixed steps), ended by the Newton finish of
+/// every `K` ([`NewtonFinish`]): tried once the largest rate `|dz/dt|` is below
+/// [`crate::runs::finish::TRIGGER_FACTOR`] steady tolerances, it ends the run on a stable
+/// root the run is on its way to, or on the stable root a leaning run turns to (the turn
+/// search), and diagnoses a run given up.
 fn newton_finished(
     params: &ModelParams,
     z0: &[f64],
@@ -242,8 +196,8 @@ fn newton_finished(
     let mut run = ModeStepper::new(params, settings.n, z0)?;
     run.set_eta_k_exponent(settings.eta_k_exponent);
     let mut clock = Clock::new(settings);
-    let trigger = TRIGGER_FACTOR * settings.steady_tol;
-    let mut next_try = 0.0;
+    let newton = settings.steady == SteadyMethod::Newton;
+    let mut finish = newton.then(|| NewtonFinish::new(params, settings).starting_at(z0));
     let (mut ended_by, mut end_root) = (None, None);
     let status = loop {
         if let Some(rec) = rec.as_mut() {
@@ -256,31 +210,20 @@ fn newton_finished(
         if left_model(&run.z, rate) {
             break RunStatus::Diverged;
         }
-        if rate < trigger && run.t >= next_try {
-            let z = run.z.clone();
-            match root_near(&mut run, &z) {
-                // On its way: within what the slowest decisive rate lets it still move.
-                Some(r)
-                    if r.ends(&z)
-                        && distance(&z, &r.z)
-                            <= (10.0 * rate / r.verdict.leading().abs().max(1e-12))
-                                .min(MAX_SETTLED)
-                                + 1e-9 =>
-                {
-                    ended_by = Some(if rate < settings.steady_tol {
-                        Ending::Test
-                    } else {
-                        Ending::Newton
-                    });
-                    end_root = Some(r.z);
-                    break RunStatus::Steady;
-                }
-                _ => {
-                    next_try = run.t + (0.25 * run.t).max(10.0);
-                    // Newton used the stepper's solver: its forces again before a step.
-                    continue;
-                }
+        // The change per unit time is the rate; the paper's test, every rate below the
+        // steady tolerance (with `steady: test` it alone ends the run: pure time stepping).
+        let fired = rate < settings.steady_tol && run.t > 0.0;
+        let decision = match finish.as_mut() {
+            Some(f) => f.consider(run.t, &run.z, rate, fired),
+            None if fired => Decision::End(Ending::Test, run.z.clone()),
+            None => Decision::Continue,
+        };
+        match decision {
+            Decision::End(ending, z) => {
+                (ended_by, end_root) = (Some(ending), Some(z));
+                break RunStatus::Steady;
             }
+            Decision::Saddle(_) | Decision::Leap(_) | Decision::Continue => {}
         }
         // Adaptive steps land on the recorder's times.
         match clock.step(&mut run, settings, rec.as_ref().map(|r| r.next)) {
@@ -294,7 +237,12 @@ fn newton_finished(
     let found = match status {
         RunStatus::Steady => (None, None, None),
         RunStatus::Diverged => (Some(Unsettled::Diverged), None, None),
-        _ => diagnose(&mut run),
+        _ => {
+            let _timed = profile::enter(Part::Diagnosis);
+            let mut own = NewtonFinish::new(params, settings);
+            let d = finish.as_mut().unwrap_or(&mut own).diagnose(&run.z);
+            (Some(d.reason), d.heading, Some(d.text))
+        }
     };
     let at = run.snapshot();
     let mut out = outcome(
@@ -382,39 +330,6 @@ fn outcome(at: &Snapshot, status: RunStatus, ended_by: Option<Ending>, found: Fo
         series: Vec::new(),
         higher_series: Vec::new(),
         profile: Default::default(),
-    }
-}
-
-/// Why a run given up did not settle: what Newton from its final state finds.
-fn diagnose(run: &mut ModeStepper) -> Found {
-    let z = run.z.clone();
-    let k = z.len() / 2;
-    match root_near(run, &z) {
-        None => (
-            Some(Unsettled::NoRoot),
-            None,
-            Some("no steady state near the final state (Newton did not converge)".into()),
-        ),
-        Some(r) if r.ends(&z) => {
-            let class = StateClass::of(r.z[0].hypot(r.z[1]), r.z[2].hypot(r.z[k + 1]));
-            (
-                Some(Unsettled::Converging),
-                Some(class),
-                Some(format!(
-                    "near a stable steady state ({}), not reached",
-                    class.as_str()
-                )),
-            )
-        }
-        Some(r) => (
-            Some(Unsettled::BesideSaddle),
-            None,
-            Some(format!(
-                "near an unstable steady state ({} growing mode(s), largest {:+.2e})",
-                r.verdict.unstable.max(1),
-                r.verdict.eigenvalues.first().map_or(f64::NAN, |l| l[0])
-            )),
-        ),
     }
 }
 

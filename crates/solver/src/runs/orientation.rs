@@ -1,4 +1,4 @@
-//! How a run's state `(vx, vy, a2, b2)` compares with a root's, invariant under the box's
+//! How a run's co-moving state `(vx, vy, a_2..a_K, b_2..b_K)` (any `K`) compares with a root's, invariant under the box's
 //! near-symmetries: its orientation (direction of motion, or long axis at rest), the angle
 //! between the two compared like with like, a rotation-invariant distance, and whether one
 //! class lies within reach of a root.
@@ -19,42 +19,48 @@ pub const TURN_SEARCH: [f64; 7] = [1.0, 2.0, 4.0, 8.0, 16.0, 32.0, 45.0];
 /// Leans (radians) below this are round-off of a mirror-symmetric run and count as none.
 pub const LEAN_FLOOR: f64 = 1e-9;
 
-/// The direction of motion, or for a resting droplet the direction of its long axis.
-pub(crate) fn orientation(z: &[f64; 4]) -> f64 {
+/// The mode-2 amplitudes `(a2, b2)` of the co-moving state `z = (vx, vy, a_2..a_K, b_2..b_K)`.
+fn mode_two(z: &[f64]) -> (f64, f64) {
+    (z[2], z[z.len() / 2 + 1])
+}
+
+/// The direction of motion, or for a resting droplet the direction of its long axis (of
+/// its mode 2).
+pub(crate) fn orientation(z: &[f64]) -> f64 {
     if z[0].hypot(z[1]) > 1e-9 {
         z[1].atan2(z[0])
     } else {
-        0.5 * z[3].atan2(z[2])
+        let (a2, b2) = mode_two(z);
+        0.5 * b2.atan2(a2)
     }
 }
 
 /// The box's mirror line nearest the run's orientation (motion, or long axis at rest, at a
 /// multiple of 45 degrees): which one (its multiple of 45 degrees, and whether the run
 /// moves), and the run's lean from it, in [-pi/8, pi/8].
-pub(crate) fn lean_from_mirror_line(z: &[f64; 4]) -> ((i64, bool), f64) {
+pub(crate) fn lean_from_mirror_line(z: &[f64]) -> ((i64, bool), f64) {
     let quarter = std::f64::consts::FRAC_PI_4;
     let phi = orientation(z);
     let line = (phi / quarter).round();
     ((line as i64, z[0].hypot(z[1]) > 1e-9), phi - line * quarter)
 }
 
-/// Whether `(vx, vy, a2, b2)` is its own mirror image in one of the box's mirror lines
-/// (through the droplet at a multiple of 45 degrees): a run from such a state stays on that
-/// line, its lean round-off. Reflection in the line at angle `alpha` takes the velocity
-/// `v -> e^{2 i alpha} conj(v)` and the mode-2 shape `a2 + i b2 -> e^{4 i alpha} conj(a2 + i b2)`.
-pub(crate) fn mirror_symmetric(z: &[f64; 4]) -> bool {
+/// Whether `z = (vx, vy, a_2..a_K, b_2..b_K)` is its own mirror image in one of the box's
+/// mirror lines (through the droplet at a multiple of 45 degrees): a run from such a state
+/// stays on that line, its lean round-off. Reflection in the line at angle `alpha` takes the
+/// velocity `v -> e^{2 i alpha} conj(v)` and shape mode `k`,
+/// `a_k + i b_k -> e^{2 k i alpha} conj(a_k + i b_k)`.
+pub(crate) fn mirror_symmetric(z: &[f64]) -> bool {
+    let k_max = z.len() / 2;
+    let scale = z.iter().fold(1.0_f64, |m, x| m.max(x.abs()));
     (0..4).any(|n| {
         let alpha = f64::from(n) * std::f64::consts::FRAC_PI_4;
-        let reflect = |x: f64, y: f64, angle: f64| {
+        let reflects = |x: f64, y: f64, angle: f64| {
             let (c, s) = (angle.cos(), angle.sin());
-            (c * x + s * y, s * x - c * y)
+            (c * x + s * y - x).abs() <= 1e-14 * scale && (s * x - c * y - y).abs() <= 1e-14 * scale
         };
-        let (vx, vy) = reflect(z[0], z[1], 2.0 * alpha);
-        let (a2, b2) = reflect(z[2], z[3], 4.0 * alpha);
-        let scale = z.iter().fold(1.0_f64, |m, x| m.max(x.abs()));
-        [vx - z[0], vy - z[1], a2 - z[2], b2 - z[3]]
-            .iter()
-            .all(|d| d.abs() <= 1e-14 * scale)
+        reflects(z[0], z[1], 2.0 * alpha)
+            && (2..=k_max).all(|k| reflects(z[k], z[k_max - 1 + k], 2.0 * k as f64 * alpha))
     })
 }
 
@@ -62,39 +68,41 @@ pub(crate) fn mirror_symmetric(z: &[f64; 4]) -> bool {
 /// directions of motion when both move, else long axes (modulo pi; a run slowing down onto
 /// a resting deformed root moves along its short axis, not its long one), and 0 for a
 /// resting round root, which has no orientation. In (-pi/2, pi/2].
-pub(crate) fn angle_to(z: &[f64; 4], root: &[f64; 4]) -> f64 {
-    let moving = |z: &[f64; 4]| z[0].hypot(z[1]) > 1e-9;
+pub(crate) fn angle_to(z: &[f64], root: &[f64]) -> f64 {
+    let moving = |z: &[f64]| z[0].hypot(z[1]) > 1e-9;
     if moving(z) && moving(root) {
         return (z[1].atan2(z[0]) - root[1].atan2(root[0])).sin().asin();
     }
-    if root[2].hypot(root[3]) <= 1e-9 {
+    let ((za, zb), (ra, rb)) = (mode_two(z), mode_two(root));
+    if ra.hypot(rb) <= 1e-9 {
         return 0.0;
     }
-    let d = 0.5 * (z[3].atan2(z[2]) - root[3].atan2(root[2]));
+    let d = 0.5 * (zb.atan2(za) - rb.atan2(ra));
     d - std::f64::consts::PI * (d / std::f64::consts::PI).round()
 }
 
-/// Speed `v` and deformation `s` of `(vx, vy, a2, b2)`.
-pub(crate) fn speed_and_deformation(z: &[f64; 4]) -> (f64, f64) {
-    (z[0].hypot(z[1]), z[2].hypot(z[3]))
+/// Speed `v` and deformation `s = |a2 + i b2|` (mode 2, the paper's) of `z`.
+pub(crate) fn speed_and_deformation(z: &[f64]) -> (f64, f64) {
+    let (a2, b2) = mode_two(z);
+    (z[0].hypot(z[1]), a2.hypot(b2))
 }
 
-/// The class of `(vx, vy, a2, b2)`.
-pub(crate) fn class_of(z: &[f64; 4]) -> StateClass {
+/// The class of `z`.
+pub(crate) fn class_of(z: &[f64]) -> StateClass {
     let (v, s) = speed_and_deformation(z);
     StateClass::of(v, s)
 }
 
 /// Max of the differences in speed and in deformation (invariant under rotation).
-pub(crate) fn invariant_distance(a: &[f64; 4], b: &[f64; 4]) -> f64 {
+pub(crate) fn invariant_distance(a: &[f64], b: &[f64]) -> f64 {
     let ((va, sa), (vb, sb)) = (speed_and_deformation(a), speed_and_deformation(b));
     (va - vb).abs().max((sa - sb).abs())
 }
 
-/// Whether every state whose speed and deformation are within `reach` (max over the 4
+/// Whether every state whose speed and deformation are within `reach` (max over the
 /// components, so `sqrt(2) reach` in `v` and `s`) of the root `root`'s has the class of `z`.
 /// Classes are quadrants of the `(v, s)` plane, so the corners of that box decide.
-pub(crate) fn one_class_within(z: &[f64; 4], root: &[f64; 4], reach: f64) -> bool {
+pub(crate) fn one_class_within(z: &[f64], root: &[f64], reach: f64) -> bool {
     let class = class_of(z);
     let (v, s) = speed_and_deformation(root);
     let r = std::f64::consts::SQRT_2 * reach;
@@ -109,7 +117,7 @@ pub(crate) fn one_class_within(z: &[f64; 4], root: &[f64; 4], reach: f64) -> boo
 mod tests {
     use super::*;
     use crate::model::initial::NAMED;
-    use crate::runs::landing::rotated;
+    use crate::model::state::turned;
 
     #[test]
     fn only_states_that_are_their_own_mirror_image_are_mirror_symmetric() {
@@ -118,20 +126,31 @@ mod tests {
             assert_eq!(mirror_symmetric(&z), name.ends_with('\''), "{name}");
         }
         // On the diagonal, and turned by a quarter: still on a mirror line.
-        let diagonal = rotated(&[0.3, 0.0, 0.1, 0.0], std::f64::consts::FRAC_PI_4);
+        let diagonal = turned(&[0.3, 0.0, 0.1, 0.0], std::f64::consts::FRAC_PI_4);
         assert!(mirror_symmetric(&diagonal));
-        assert!(mirror_symmetric(&rotated(
+        assert!(mirror_symmetric(&turned(
             &diagonal,
             std::f64::consts::FRAC_PI_2
         )));
         // Motion on the x axis but the shape turned: no mirror line keeps both.
         assert!(!mirror_symmetric(&[0.3, 0.0, 0.1, 0.02]));
         assert!(mirror_symmetric(&[0.0; 4]));
+        // With modes 2..4 every mode must be its mirror image: on the x axis with a3 and a4,
+        // and turned onto the diagonal; not with a b3 (mode 3 turned off the line).
+        let axis = [0.3, 0.0, 0.1, 0.02, 0.01, 0.0, 0.0, 0.0];
+        assert!(mirror_symmetric(&axis));
+        assert!(mirror_symmetric(&turned(
+            &axis,
+            std::f64::consts::FRAC_PI_4
+        )));
+        assert!(!mirror_symmetric(&[
+            0.3, 0.0, 0.1, 0.02, 0.01, 0.0, 0.005, 0.0
+        ]));
     }
 
     #[test]
     fn a_lean_is_measured_from_the_nearest_mirror_line() {
-        let z = rotated(&[0.3, 0.0, 0.1, 0.0], 50f64.to_radians());
+        let z = turned(&[0.3, 0.0, 0.1, 0.0], 50f64.to_radians());
         let ((line, moving), lean) = lean_from_mirror_line(&z);
         assert_eq!((line, moving), (1, true));
         assert!((lean - 5f64.to_radians()).abs() < 1e-12, "{lean}");

@@ -5,9 +5,10 @@
 //! lines is caught between ([`NewtonFinish::turn_root`]), and the root on the nearest mirror
 //! line ([`NewtonFinish::aligned_root`]).
 use crate::contract::profile::{self, Part};
+use crate::model::state::{four, turned};
 use crate::runs::finding::Finding;
-use crate::runs::finish::{same_root, NewtonFinish, MAX_SETTLED};
-use crate::runs::landing::{landings, rotated};
+use crate::runs::finish::{same_root, Balances, NewtonFinish, MAX_SETTLED};
+use crate::runs::landing::landings;
 use crate::runs::orientation::{
     angle_to, class_of, invariant_distance, orientation, speed_and_deformation, LEAN_FLOOR,
     TURN_SEARCH,
@@ -31,7 +32,7 @@ impl NewtonFinish {
     /// the stretch its flow turns back from ([`Self::within_rotation_basin`]). That check,
     /// for the root near `z` when it is stable, is left to the caller: it samples the flow,
     /// and is needed only when the run would end there (`basin_left`: the root is that one).
-    pub fn stable_root(&mut self, z: [f64; 4]) -> Option<(Finding, bool, bool)> {
+    pub fn stable_root(&mut self, z: &[f64]) -> Option<(Finding, bool, bool)> {
         let near = match self.root_near(z) {
             Ok(near) => near,
             Err(_) => self.aligned_root(z)?,
@@ -39,7 +40,7 @@ impl NewtonFinish {
         if near.stable() {
             return Some((near, true, true));
         }
-        let lean = angle_to(&z, &near.z);
+        let lean = angle_to(z, &near.z);
         let (found, may_end) = self.settle(near, lean, false);
         Some((found, may_end, false))
     }
@@ -120,13 +121,7 @@ impl NewtonFinish {
     /// The root Newton finds from the root `near` turned by `degrees` (the `i`-th of
     /// [`TURN_SEARCH`]) to the side `side` (+1 or -1), as an earlier try found it from the
     /// same root (to 1e-9) if one did: a run's tries beside one root search the same turns.
-    fn turned_root(
-        &mut self,
-        near: &[f64; 4],
-        side: f64,
-        i: usize,
-        degrees: f64,
-    ) -> Option<Finding> {
+    fn turned_root(&mut self, near: &[f64], side: f64, i: usize, degrees: f64) -> Option<Finding> {
         let known = self
             .turn_searches
             .iter()
@@ -135,13 +130,13 @@ impl NewtonFinish {
             return found;
         }
         let found = self
-            .root_near(rotated(near, side * degrees.to_radians()))
+            .root_near(&turned(near, side * degrees.to_radians()))
             .ok();
         let k = match known {
             Some(k) => k,
             None => {
                 self.turn_searches
-                    .push((*near, side > 0.0, vec![None; TURN_SEARCH.len()]));
+                    .push((near.to_vec(), side > 0.0, vec![None; TURN_SEARCH.len()]));
                 self.turn_searches.len() - 1
             }
         };
@@ -160,21 +155,23 @@ impl NewtonFinish {
     /// ([`Self::turn_root`]).
     /// `lean_shrinking`: the run's lean from its line shrank since the last try (numerics 9
     /// then lets it end on a turn only once it is on the family, [`Self::settle`]).
-    pub fn landing_root(&mut self, z: [f64; 4], lean_shrinking: bool) -> Option<Finding> {
+    pub fn landing_root(&mut self, z: &[f64], lean_shrinking: bool) -> Option<Finding> {
         self.flow_root(z, lean_shrinking)
             .or_else(|| self.turn_root(z))
     }
 
     /// [`Self::landing_root`] along the slow flow alone (no [`Self::turn_root`]).
-    pub fn flow_root(&mut self, z: [f64; 4], lean_shrinking: bool) -> Option<Finding> {
+    pub fn flow_root(&mut self, z: &[f64], lean_shrinking: bool) -> Option<Finding> {
         let found = {
             let _timed = profile::enter(Part::Landing);
             self.steady_solver().ok()?;
-            let solver = self.solver.as_mut().expect("made above");
-            landings(solver, z, &mut self.walks)
+            let Some(Balances::Two(solver)) = self.solver.as_mut() else {
+                return None;
+            };
+            landings(solver, four(z), &mut self.walks)
         };
         for landing in found {
-            let Ok(near) = self.root_near(landing.on_line) else {
+            let Ok(near) = self.root_near(&landing.on_line) else {
                 continue;
             };
             let flows_own = angle_to(&near.z, &landing.on_line).abs() < 1e-6
@@ -184,7 +181,7 @@ impl NewtonFinish {
                 continue;
             }
             let lean = angle_to(&landing.z, &landing.on_line);
-            let far = invariant_distance(&z, &near.z) > MAX_SETTLED;
+            let far = invariant_distance(z, &near.z) > MAX_SETTLED;
             let (found, may_end) = self.settle(near, lean, far && lean_shrinking);
             if may_end {
                 return Some(found);
@@ -201,15 +198,15 @@ impl NewtonFinish {
     /// the run's class and the run's speed and deformation lie between theirs (within
     /// [`crate::runs::landing::FAMILY_TOL`]): it is on the circle of states joining them. Both
     /// stable (two orientations, each with its basin) or both unstable: no decision.
-    pub fn turn_root(&mut self, z: [f64; 4]) -> Option<Finding> {
+    pub fn turn_root(&mut self, z: &[f64]) -> Option<Finding> {
         let quarter = std::f64::consts::FRAC_PI_4;
-        let phi = orientation(&z);
+        let phi = orientation(z);
         let nearest = (phi / quarter).round() * quarter;
         let other = nearest + if phi >= nearest { quarter } else { -quarter };
-        let class = class_of(&z);
+        let class = class_of(z);
         let mut roots = Vec::with_capacity(2);
         for target in [nearest, other] {
-            let found = self.root_near(rotated(&z, target - phi)).ok()?;
+            let found = self.root_near(&turned(z, target - phi)).ok()?;
             let on_line = (orientation(&found.z) - target).sin().abs() < 1e-6;
             if !on_line || class_of(&found.z) != class || found.verdict.unstable > 0 {
                 return None;
@@ -218,7 +215,7 @@ impl NewtonFinish {
         }
         let (b, a) = (roots.pop()?, roots.pop()?);
         let (run, ra, rb) = (
-            speed_and_deformation(&z),
+            speed_and_deformation(z),
             speed_and_deformation(&a.z),
             speed_and_deformation(&b.z),
         );
@@ -232,7 +229,7 @@ impl NewtonFinish {
             (false, true) => b,
             _ => return None,
         };
-        let lean = angle_to(&z, &found.z);
+        let lean = angle_to(z, &found.z);
         self.within_rotation_basin(&found, lean).then_some(found)
     }
 
@@ -264,11 +261,11 @@ impl NewtonFinish {
             return true;
         };
         let timed = profile::enter(Part::Flow);
-        scan.extend(solver, &near.z, lean);
+        scan.extend(solver, &four(&near.z), lean);
         drop(timed);
         match known {
             Some(i) => self.flows[i].2 = scan,
-            None => self.flows.push((near.z, side, scan)),
+            None => self.flows.push((near.z.clone(), side, scan)),
         }
         scan.verdict(lean).unwrap_or(true)
     }
@@ -296,16 +293,16 @@ impl NewtonFinish {
         }
         let zero = {
             let _timed = profile::enter(Part::Flow);
-            flow_zero(self.steady_solver().ok()?, &near.z, lean, away)
+            flow_zero(self.steady_solver().ok()?, &four(&near.z), lean, away)
         };
         let z = match zero {
             Ok(z) => z,
             Err(failed_at) => {
-                self.turns.push((near.z, lean, failed_at, None));
+                self.turns.push((near.z.clone(), lean, failed_at, None));
                 return None;
             }
         };
-        let found = self.root_near(z).ok()?;
+        let found = self.root_near(&z).ok()?;
         let to = angle_to(&z, &near.z);
         let ends = found.stable()
             && angle_to(&found.z, &z).abs() < 1e-4
@@ -315,7 +312,7 @@ impl NewtonFinish {
             turned: true,
             ..found
         });
-        self.turns.push((near.z, lean, to, found.clone()));
+        self.turns.push((near.z.clone(), lean, to, found.clone()));
         found
     }
 
@@ -323,14 +320,14 @@ impl NewtonFinish {
     /// the run's own state need not converge: Newton from the state turned onto the nearest
     /// mirror line (motion or long axis at a multiple of 45 degrees), then onto the next one
     /// on the other side; the first stable root, else the first root found.
-    pub fn aligned_root(&mut self, z: [f64; 4]) -> Option<Finding> {
+    pub fn aligned_root(&mut self, z: &[f64]) -> Option<Finding> {
         let quarter = std::f64::consts::FRAC_PI_4;
-        let phi = orientation(&z);
+        let phi = orientation(z);
         let nearest = (phi / quarter).round() * quarter;
         let other = nearest + if phi >= nearest { quarter } else { -quarter };
         let mut first = None;
         for target in [nearest, other] {
-            let Ok(found) = self.root_near(rotated(&z, target - phi)) else {
+            let Ok(found) = self.root_near(&turned(z, target - phi)) else {
                 continue;
             };
             if found.stable() {

@@ -240,7 +240,7 @@ impl Default for FlowScan {
 mod tests {
     use super::*;
     use crate::model::params::ModelParams;
-    use crate::runs::landing::rotated;
+    use crate::model::state::{four, turned};
 
     /// Whether a run leaning by `lean` (radians) from `root` (stable in rotation) turns back
     /// to it: one [`FlowScan`] from the root out to the run, as a run's first try asks it.
@@ -270,7 +270,7 @@ mod tests {
         // disagree.
         let off = solver
             .root_from(
-                rotated(&root, -6f64.to_radians()),
+                four(&turned(&root, -6f64.to_radians())),
                 &NewtonOptions {
                     tol: 1e-12,
                     max_iter: 20,

@@ -90,7 +90,7 @@ impl PointModel for TwoModes {
     }
 
     fn disk(&mut self) -> Growth {
-        let v = assess(&Linearization::at(&mut self.0, [0.0; 4]), [0.0; 4]);
+        let v = assess(&Linearization::at(&mut self.0, [0.0; 4]), &[0.0; 4]);
         Growth {
             unstable: v.unstable,
             max_re: v.max_re,
@@ -106,7 +106,7 @@ impl PointModel for TwoModes {
         };
         let z = [state[0], state[1], state[2], state[3]];
         let root = self.0.root_from(z, &opts).ok()?;
-        let v = assess(&Linearization::at(&mut self.0, root), root);
+        let v = assess(&Linearization::at(&mut self.0, root), &root);
         Some(Root {
             v: root[0].hypot(root[1]),
             s: root[2].hypot(root[3]),
@@ -129,7 +129,7 @@ impl KModes {
         let v = ModeLinearization::at(&mut self.solver, z).verdict();
         Growth {
             unstable: v.unstable,
-            max_re: v.leading(),
+            max_re: v.max_re,
         }
     }
 }

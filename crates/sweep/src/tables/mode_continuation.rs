@@ -52,7 +52,7 @@ pub fn write(
                 .map(|p| p.verdict.stable())
                 .collect::<Vec<bool>>(),
         ),
-        Column::new("leading_re".into(), f(&|p| p.verdict.leading())),
+        Column::new("leading_re".into(), f(&|p| p.verdict.max_re)),
         Column::new(
             "rotation_eig".into(),
             pts.iter()

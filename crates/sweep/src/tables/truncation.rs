@@ -8,9 +8,9 @@
 use crate::error::SweepError;
 use crate::tables::sweep_tables::{metadata, write_parquet};
 use droplet_solver::continuation::mode_branch::ModeFold;
-use droplet_solver::roots::mode_linearisation::ModeVerdict;
 use droplet_solver::roots::mode_solver::ModeState;
 use droplet_solver::roots::mode_thresholds::ModeThresholds;
+use droplet_solver::roots::verdict::Verdict;
 use polars::prelude::*;
 use std::path::{Path, PathBuf};
 
@@ -22,7 +22,7 @@ pub struct TruncationRow {
     /// The MD state at Fig. 1c.
     pub fig1c: ModeState,
     /// Its stability, the rotation mode set aside.
-    pub fig1c_verdict: ModeVerdict,
+    pub fig1c_verdict: Verdict,
     /// `sqrt(sum a_k^2)` there.
     pub deformation: f64,
     pub fig1c_seconds: f64,
@@ -59,7 +59,7 @@ pub fn write(dir: &Path, rows: &[TruncationRow], n: usize) -> Result<PathBuf, Sw
                 .map(|r| r.fig1c_verdict.stable())
                 .collect::<Vec<_>>(),
         ),
-        Column::new("leading_fig1c".into(), f(&|r| r.fig1c_verdict.leading())),
+        Column::new("leading_fig1c".into(), f(&|r| r.fig1c_verdict.max_re)),
         Column::new("rotation_fig1c".into(), opt(&|r| r.fig1c_verdict.rotation)),
     ];
     for k in 2..=k_top {
