@@ -80,9 +80,6 @@ pub struct Args {
 pub fn run(a: Args) -> Result<(), CliError> {
     check_common(&a)?;
     droplet_solver::model::mode_friction::check_exponent(a.eta_k_exponent, a.modes)?;
-    if a.modes != 2 {
-        return super::mode_continuation::run(&a);
-    }
     let study = study_of(&a)?;
     let axis = a.axis.clone();
     let done = study.run(&mut |p| match p {
@@ -104,7 +101,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
 }
 
 /// The grid, the number of states and the step, whatever the model.
-fn check_common(a: &Args) -> Result<(), CliError> {
+pub(super) fn check_common(a: &Args) -> Result<(), CliError> {
     super::check_grid(a.n)?;
     if !(2..=100_000).contains(&a.max_points) {
         return Err(CliError::usage(format!(

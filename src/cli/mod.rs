@@ -31,7 +31,6 @@ mod fit_h0;
 mod line;
 mod merge;
 mod mode_continuation;
-mod mode_simulate;
 mod ode;
 mod param_line;
 mod plot;
@@ -56,7 +55,7 @@ pub struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    Simulate(simulate::Args),
+    Simulate(run_settings::Args),
     Sweep(sweep::Args),
     Status(status::Args),
     Plot(plot::Args),
@@ -87,6 +86,8 @@ pub fn main() -> i32 {
         Command::Slurm(a) => slurm::run(a),
         Command::Bench(a) => bench::run(a),
         Command::Stability(a) => stability::run(a),
+        // The general model's continuation (the MD branch on the x axis), or why not.
+        Command::Continue(a) if a.modes != 2 => mode_continuation::run(&a),
         Command::Continue(a) => continuation::run(a),
         Command::Boundaries(a) => boundaries::run(a),
         Command::Truncation(a) => truncation::run(a),

@@ -1,11 +1,14 @@
 //! The folders of each library crate depend one way, in the order their `lib.rs` lists them
 //! (numerics -> model -> stepping -> contract -> reduced -> roots -> runs -> continuation in
 //! the solver crate; spec -> store -> map -> tables -> audit -> pictures -> execution -> studies -> bench
-//! in the sweep crate), and the module graph has no cycle.
+//! in the sweep crate), the module graph has no cycle, and neither have the files inside
+//! each folder.
 //!
 //! A module is a top-level file or folder of `src/` (`stepping/comoving_etd.rs` belongs to
 //! `stepping`); it depends on another when its code (not its comments, not its `#[cfg(test)]`
-//! part) names `crate::other`. A cycle fails the test with the modules on it.
+//! part) names `crate::other`. Inside a folder, a file depends on another of the folder when
+//! it names `crate::folder::other` or `super::other`. A cycle fails the test with the
+//! modules on it.
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 
@@ -25,14 +28,24 @@ fn rust_files(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
 
 /// The names following `crate::` in `code`, and in `use crate::{a, b::c}` groups.
 fn named_modules(code: &str) -> BTreeSet<String> {
+    named_after(code, "crate::")
+}
+
+/// The names following `prefix` in `code`, and in `use prefix{a, b::c}` groups.
+fn named_after(code: &str, prefix: &str) -> BTreeSet<String> {
     let ident = |s: &str| -> String {
         s.chars()
             .take_while(|c| c.is_alphanumeric() || *c == '_')
             .collect()
     };
     let mut out = BTreeSet::new();
-    for (i, _) in code.match_indices("crate::") {
-        let rest = &code[i + "crate::".len()..];
+    for (i, _) in code.match_indices(prefix) {
+        // `prefix` as a path's start, not inside a longer one (`super::` in `a::super::`).
+        let before = code[..i].chars().next_back();
+        if before.is_some_and(|c| c.is_alphanumeric() || c == '_' || c == ':') {
+            continue;
+        }
+        let rest = &code[i + prefix.len()..];
         if let Some(group) = rest.strip_prefix('{') {
             let end = group.find('}').unwrap_or(group.len());
             for item in group[..end].split(',') {
@@ -68,18 +81,54 @@ fn graph(src: &Path) -> Graph {
         if top == "lib" || top == "main" {
             continue;
         }
-        let text = std::fs::read_to_string(f).unwrap();
-        let code_part = text.split("#[cfg(test)]").next().unwrap();
-        let code: String = code_part
-            .lines()
-            .filter(|l| !l.trim_start().starts_with("//"))
-            .collect::<Vec<_>>()
-            .join("\n");
+        let code = code_of(f);
         let mut deps = named_modules(&code);
         deps.remove(&top);
         g.entry(top).or_default().extend(deps);
     }
     // Only edges between the crate's own modules.
+    let names: BTreeSet<String> = g.keys().cloned().collect();
+    for deps in g.values_mut() {
+        deps.retain(|d| names.contains(d));
+    }
+    g
+}
+
+/// The code of a file: not its comments, not its `#[cfg(test)]` part.
+fn code_of(file: &Path) -> String {
+    let text = std::fs::read_to_string(file).unwrap();
+    let code_part = text.split("#[cfg(test)]").next().unwrap();
+    code_part
+        .lines()
+        .filter(|l| !l.trim_start().starts_with("//"))
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// The files of the folder `dir` (a top-level module `folder`) and the files of the folder
+/// each names (`crate::folder::file`, `super::file`).
+fn folder_graph(dir: &Path, folder: &str) -> Graph {
+    let mut files = Vec::new();
+    rust_files(dir, &mut files);
+    let mut g = Graph::new();
+    for f in &files {
+        let rel = f.strip_prefix(dir).unwrap();
+        let name = rel
+            .components()
+            .next()
+            .unwrap()
+            .as_os_str()
+            .to_string_lossy()
+            .trim_end_matches(".rs")
+            .to_string();
+        let code = code_of(f);
+        let mut deps = named_after(&code, &format!("crate::{folder}::"));
+        if rel.components().count() == 1 {
+            deps.extend(named_after(&code, "super::"));
+        }
+        deps.remove(&name);
+        g.entry(name).or_default().extend(deps);
+    }
     let names: BTreeSet<String> = g.keys().cloned().collect();
     for deps in g.values_mut() {
         deps.retain(|d| names.contains(d));
@@ -161,6 +210,38 @@ fn library_crates_have_no_module_import_cycle() {
             panic!("{krate}: module import cycle {}", cycle.join(" -> "));
         }
     }
+}
+
+#[test]
+fn the_files_of_a_folder_have_no_import_cycle() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut folders = 0;
+    for krate in ["crates/solver", "crates/sweep", "."] {
+        let src = root.join(krate).join("src");
+        for e in std::fs::read_dir(&src).unwrap().flatten() {
+            if !e.path().is_dir() {
+                continue;
+            }
+            let folder = e.file_name().to_string_lossy().to_string();
+            let g = folder_graph(&e.path(), &folder);
+            folders += 1;
+            if let Some(cycle) = find_cycle(&g) {
+                panic!(
+                    "{krate}/src/{folder}: file import cycle {}",
+                    cycle.join(" -> ")
+                );
+            }
+        }
+    }
+    assert!(folders >= 10, "only {folders} folders found");
+    // The folder check sees `super::` and the folder's own paths, not a longer path.
+    assert_eq!(
+        named_after(
+            "use super::{a, b::c}; x::super::d(); crate::runs::e",
+            "super::"
+        ),
+        ["a", "b"].iter().map(|s| s.to_string()).collect()
+    );
 }
 
 /// The top-level modules of each crate, lowest first: each may use only those before it.

@@ -6,8 +6,8 @@
 //! there the pitchfork changes from sub- to supercritical).
 use crate::continuation::arclength::{start, ArclengthOptions, Stepper};
 use crate::continuation::branch::{follow, Branch, Line};
-use crate::continuation::plane::PlaneAxis;
 use crate::continuation::problem::Family;
+use crate::continuation::window::PlaneAxis;
 use crate::error::SolverError;
 use crate::model::params::ModelParams;
 use crate::numerics::newton::fd_jacobian;

@@ -24,46 +24,18 @@
 //! A window of two rate-only parameters (`eta2`, `mass`) has no boundary: they move no steady
 //! state and no real eigenvalue through zero.
 use crate::continuation::arclength::{last_where, start, ArclengthOptions, Stepper};
-use crate::continuation::boundaries::id_onset;
 use crate::continuation::branch::Branch;
 use crate::continuation::fold_curve::{fold_curve_from, fold_of, md_branch};
 use crate::continuation::level_set::{zero_set, LevelSetOptions};
+use crate::continuation::window::PlaneAxis;
 use crate::error::SolverError;
 use crate::model::classify::CLASS_THRESHOLD;
-use crate::model::param::ModelParam;
 use crate::model::params::ModelParams;
 use crate::reduced::boundaries::Boundary;
 use crate::roots::linearisation::Linearization;
+use crate::roots::named_state::id_onset;
 use crate::roots::steady_solver::{MirrorAxis, SteadySolver};
 use crate::roots::verdict::assess;
-
-/// One axis of a window: the parameter and its range (`q = 0` and `1` at its ends).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PlaneAxis {
-    pub param: ModelParam,
-    pub range: (f64, f64),
-}
-
-impl PlaneAxis {
-    pub fn new(param: ModelParam, range: (f64, f64)) -> Self {
-        Self { param, range }
-    }
-
-    /// The parameter's value at `q`.
-    pub fn value(&self, q: f64) -> f64 {
-        self.range.0 + q * (self.range.1 - self.range.0)
-    }
-
-    /// `q` of a value.
-    pub fn q(&self, value: f64) -> f64 {
-        (value - self.range.0) / (self.range.1 - self.range.0)
-    }
-
-    /// Whether the parameter moves steady states (all but the rate-only `eta2`, `mass`).
-    fn moves_states(&self) -> bool {
-        !matches!(self.param, ModelParam::Eta2 | ModelParam::Mass)
-    }
-}
 
 /// A window of two model parameters and the resolution of [`boundaries_in`].
 #[derive(Debug, Clone)]
@@ -371,6 +343,7 @@ mod tests {
     use crate::continuation::boundaries::boundaries;
     use crate::continuation::polyline::distance_to_polyline;
     use crate::continuation::window::Window;
+    use crate::model::param::ModelParam;
 
     /// In the paper's plane every curve continued in the pair lies on the paper plane's
     /// curve of the same name, computed there by other means (the thresholds as numbers, the

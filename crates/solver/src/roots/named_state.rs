@@ -173,6 +173,37 @@ pub fn ic_thresholds(params: &ModelParams, n: usize) -> Result<IcThresholds, Sol
     })
 }
 
+/// Largest eigenvalue of a real 2 x 2 matrix with real eigenvalues (else its real part).
+fn top_eigenvalue(m: [[f64; 2]; 2]) -> f64 {
+    let tr = m[0][0] + m[1][1];
+    let det = m[0][0] * m[1][1] - m[0][1] * m[1][0];
+    let disc = tr * tr / 4.0 - det;
+    tr / 2.0 + disc.max(0.0).sqrt()
+}
+
+/// The `eta_t` below which the ID state on `mirror` at `kappa2` starts to move, with its
+/// shape amplitude, or `None` where there is no ID state.
+pub fn id_onset(
+    solver: &mut SteadySolver,
+    mirror: MirrorAxis,
+    kappa2: f64,
+    seed: f64,
+) -> Option<(f64, f64)> {
+    let eta_t = solver.params().eta_t;
+    solver.set_control(eta_t, kappa2);
+    let st = solver.newton_on(mirror, 0.0, seed, 1e-12).ok()?;
+    if st.a2.abs() < 1e-4 {
+        return None;
+    }
+    let z = match mirror {
+        MirrorAxis::X => [0.0, 0.0, st.a2, 0.0],
+        MirrorAxis::Diagonal => [0.0, 0.0, 0.0, st.a2],
+    };
+    let j = Linearization::at(solver, z).jacobian0();
+    let k = [[j[0][0] + eta_t, j[0][1]], [j[1][0], j[1][1] + eta_t]];
+    Some((top_eigenvalue(k), st.a2))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

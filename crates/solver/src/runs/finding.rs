@@ -4,7 +4,6 @@
 use crate::contract::outcome::Unsettled;
 use crate::model::classify::StateClass;
 use crate::roots::verdict::Verdict;
-use crate::runs::finish::MAX_SETTLED;
 use crate::runs::orientation::{class_of, invariant_distance};
 
 /// What a Newton try found: the root, its stability, and whether it is the turned root.
@@ -80,6 +79,10 @@ impl Finding {
         }
     }
 }
+
+/// Largest difference in speed or deformation between a run and the root it is taken to be
+/// approaching.
+pub const MAX_SETTLED: f64 = 0.05;
 
 /// Largest difference in speed or deformation between a run and its root for the run to be
 /// settled (with the root's class) when only the rotation mode is slow: [`MAX_SETTLED`], the

@@ -72,7 +72,7 @@ use crate::roots::mode_linearisation::ModeLinearization;
 use crate::roots::mode_solver::ModeSolver;
 use crate::roots::steady_solver::{KeptJacobians, SteadySolver};
 use crate::roots::verdict::{assess, Verdict};
-use crate::runs::finding::{Diagnosis, Finding};
+use crate::runs::finding::{Diagnosis, Finding, MAX_SETTLED};
 use crate::runs::leap::{leap, Leap, Sighting};
 use crate::runs::orientation::{
     angle_to, class_of, invariant_distance, lean_from_mirror_line, one_class_within,
@@ -88,10 +88,6 @@ pub const TRIGGER_FACTOR: f64 = 100.0;
 /// to hold the lean fixed (a departure by a factor 1000 turns such a run by at most 40 %
 /// of its lean, in the measured cases by far less).
 pub const LEAN_GROWTH: f64 = 0.05;
-
-/// Largest difference in speed or deformation between a run and the root it is taken to be
-/// approaching.
-pub const MAX_SETTLED: f64 = 0.05;
 
 /// Largest distance from a saddle (max over `vx, vy, a2, b2`) that a run may reach by `t_max`
 /// and still be taken to be beside it then (with `stop_beside_saddle`): the class threshold.

@@ -6,8 +6,8 @@
 //! line ([`NewtonFinish::aligned_root`]).
 use crate::contract::profile::{self, Part};
 use crate::model::state::{four, turned};
-use crate::runs::finding::Finding;
-use crate::runs::finish::{same_root, Balances, NewtonFinish, MAX_SETTLED};
+use crate::runs::finding::{Finding, MAX_SETTLED};
+use crate::runs::finish::{same_root, Balances, NewtonFinish};
 use crate::runs::landing::landings;
 use crate::runs::orientation::{
     angle_to, class_of, invariant_distance, orientation, speed_and_deformation, LEAN_FLOOR,

@@ -2,15 +2,16 @@
 //! and its response to small perturbations, the one-parameter fold against the
 //! two-parameter fold curve, and the branches' meeting points against the exact thresholds.
 use droplet_solver::continuation::arclength::ArclengthOptions;
-use droplet_solver::continuation::boundaries::{id_onset, mc_line};
+use droplet_solver::continuation::boundaries::mc_line;
 use droplet_solver::continuation::fold_curve::md_fold_curve;
-use droplet_solver::continuation::plane::PlaneAxis;
+use droplet_solver::continuation::window::PlaneAxis;
 use droplet_solver::continuation::window::Window;
 use droplet_solver::continuation::{
     branch::follow, branch::Branch, branch::BranchPoint, branch::Line, problem::Family,
 };
 use droplet_solver::model::param::ModelParam;
 use droplet_solver::roots::named_state::ic_thresholds;
+use droplet_solver::roots::named_state::id_onset;
 use droplet_solver::roots::steady_solver::{MirrorAxis, SteadySolver};
 use droplet_solver::stepping::{comoving_etd::ComovingEtd, Scheme, Stepper};
 use droplet_solver::{
