@@ -6,6 +6,7 @@
 //!
 //! May use: `numerics`, `model`, `contract`, `reduced` (starting guesses). Used by: `runs`,
 //! `continuation`.
+pub mod balances;
 mod forces_memo;
 pub mod h0_fit;
 pub mod linearisation;

@@ -66,12 +66,9 @@ use crate::contract::settings::SolverSettings;
 use crate::error::SolverError;
 use crate::model::params::ModelParams;
 use crate::model::state::{four, max_distance};
-use crate::numerics::newton::NewtonOptions;
-use crate::roots::linearisation::Linearization;
-use crate::roots::mode_linearisation::ModeLinearization;
-use crate::roots::mode_solver::ModeSolver;
+use crate::roots::balances::Balances;
 use crate::roots::steady_solver::{KeptJacobians, SteadySolver};
-use crate::roots::verdict::{assess, Verdict};
+use crate::roots::verdict::Verdict;
 use crate::runs::finding::{Diagnosis, Finding, MAX_SETTLED};
 use crate::runs::leap::{leap, Leap, Sighting};
 use crate::runs::orientation::{
@@ -109,65 +106,6 @@ pub enum Decision {
 /// tolerance is 1e-12), so that what a run's tries learnt of a root is found again.
 pub(super) fn same_root(a: &[f64], b: &[f64]) -> bool {
     a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-9)
-}
-
-/// The steady force balances a finish solves: the 2-mode solver (with the chord method's
-/// kept Jacobians, and the constrained solves of the landing and the orientation flow), or
-/// the general one with shape modes `2..K`.
-pub(super) enum Balances {
-    Two(SteadySolver),
-    General(ModeSolver),
-}
-
-impl Balances {
-    /// Newton on all the balances from `z`: `(vx, vy, a2, b2)`, or `(vx, vy, a_2..a_K,
-    /// b_2..b_K)`.
-    fn root_near(
-        &mut self,
-        z: &[f64],
-        jacobians: &mut KeptJacobians,
-    ) -> Result<Vec<f64>, SolverError> {
-        match self {
-            Balances::Two(solver) => {
-                let opts = NewtonOptions {
-                    tol: 1e-12,
-                    // Converging solves from a run near its root take 3 to 8 iterations; a
-                    // failing one (a run mid-turn, see `aligned_root`) is not worth 30.
-                    max_iter: 12,
-                    fd_step: 1e-6,
-                    max_step: vec![f64::INFINITY, f64::INFINITY, 0.2, 0.2],
-                };
-                Ok(solver.root_near(four(z), &opts, jacobians)?.to_vec())
-            }
-            Balances::General(solver) => {
-                // The settings K-mode runs have been finished with: to 1e-11, every
-                // unknown's step limited.
-                let opts = NewtonOptions {
-                    tol: 1e-11,
-                    max_iter: 12,
-                    fd_step: 1e-7,
-                    max_step: vec![0.2; z.len()],
-                };
-                let found = crate::numerics::newton::solve(|y| solver.residual(y), z, &opts)?;
-                if found.x.iter().all(|x| x.is_finite()) {
-                    Ok(found.x)
-                } else {
-                    Err(SolverError::NewtonFailed {
-                        residual: f64::NAN,
-                        iterations: opts.max_iter,
-                    })
-                }
-            }
-        }
-    }
-
-    /// The stability of the root `z` ([`crate::roots::verdict::assess`]).
-    fn verdict(&mut self, z: &[f64]) -> Verdict {
-        match self {
-            Balances::Two(solver) => assess(&Linearization::at(solver, four(z)), z),
-            Balances::General(solver) => ModeLinearization::at(solver, z).verdict(),
-        }
-    }
 }
 
 /// The Newton finish of one run.
@@ -225,10 +163,17 @@ impl NewtonFinish {
     /// For a run of `settings` (its grid, steady tolerance and window, and `t_max`).
     ///
     /// Runs with shape modes `2..K`, `K > 2`, are finished by Newton on all `2K` balances,
-    /// the turn search and the diagnosis, as 2-mode runs are; the landing, the orientation
-    /// flow, the saddle stop and the leap solve the 2-mode balances only and are off for them
-    /// ([`crate::contract::honoured`] says so), and their change is a rate: `|dz/dt|`, the
-    /// steady window one time unit.
+    /// the turn search and the diagnosis, as 2-mode runs are; the landing, the saddle stop and
+    /// the leap solve the 2-mode balances only and are off for them
+    /// ([`crate::contract::honoured`] says so). So is the orientation's flow: on coarse grids
+    /// the lattice gives the fast balances at a fixed orientation several solutions, and the
+    /// flow followed from a root need not be the run's (modes 2..3, N = 96, (0.088, 0.1095)
+    /// from IC i: the flow from the x-axis MD points back to it out to 10 degrees along a
+    /// branch whose speed falls to 0.05, while the run, at 9.5 degrees and v = 0.16, turns on
+    /// to 26.9). Their change is a rate, `|dz/dt|` (the steady window one time unit): the
+    /// finish is tried only once every rate is below [`TRIGGER_FACTOR`] steady tolerances, ten
+    /// times later than a 2-mode run's (results/k-mode-endings: with the 2-mode runs' trigger
+    /// such runs end on roots that pure time stepping does not reach).
     pub fn new(params: &ModelParams, settings: &SolverSettings) -> Self {
         let two = settings.modes == 2;
         let (n, steady_tol) = (settings.n, settings.steady_tol);
@@ -458,15 +403,14 @@ impl NewtonFinish {
     }
 
     /// The run's steady balances, made at their first use.
-    fn balances(&mut self) -> Result<&mut Balances, SolverError> {
+    pub(super) fn balances(&mut self) -> Result<&mut Balances, SolverError> {
         if self.solver.is_none() {
-            self.solver = Some(if self.modes == 2 {
-                Balances::Two(SteadySolver::new(self.params, self.n)?)
-            } else {
-                let mut solver = ModeSolver::new(self.params, self.n)?;
-                solver.set_eta_k_exponent(self.eta_k_exponent);
-                Balances::General(solver)
-            });
+            self.solver = Some(Balances::new(
+                self.params,
+                self.n,
+                self.modes,
+                self.eta_k_exponent,
+            )?);
         }
         Ok(self.solver.as_mut().expect("made above"))
     }

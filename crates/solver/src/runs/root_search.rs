@@ -6,8 +6,9 @@
 //! line ([`NewtonFinish::aligned_root`]).
 use crate::contract::profile::{self, Part};
 use crate::model::state::{four, turned};
+use crate::roots::balances::Balances;
 use crate::runs::finding::{Finding, MAX_SETTLED};
-use crate::runs::finish::{same_root, Balances, NewtonFinish};
+use crate::runs::finish::{same_root, NewtonFinish};
 use crate::runs::landing::landings;
 use crate::runs::orientation::{
     angle_to, class_of, invariant_distance, orientation, speed_and_deformation, LEAN_FLOOR,
@@ -257,11 +258,11 @@ impl NewtonFinish {
         if let Some(verdict) = scan.verdict(lean) {
             return verdict;
         }
-        let Ok(solver) = self.steady_solver() else {
+        let Ok(balances) = self.balances() else {
             return true;
         };
         let timed = profile::enter(Part::Flow);
-        scan.extend(solver, &four(&near.z), lean);
+        scan.extend(balances, &near.z, lean);
         drop(timed);
         match known {
             Some(i) => self.flows[i].2 = scan,
@@ -293,7 +294,7 @@ impl NewtonFinish {
         }
         let zero = {
             let _timed = profile::enter(Part::Flow);
-            flow_zero(self.steady_solver().ok()?, &four(&near.z), lean, away)
+            flow_zero(self.balances().ok()?, &near.z, lean, away)
         };
         let z = match zero {
             Ok(z) => z,

@@ -18,9 +18,9 @@
 //! off lines whose own root is stable in rotation (at (0.096, 0.1) the resting deformed
 //! droplet on the x axis, rotation eigenvalue -1.1e-3, has an unstable root 0.57 degrees off
 //! it; a run leaning 12 degrees turns on to the diagonal, as long time stepping shows).
-use crate::model::dynamics;
+use crate::model::state::turned;
 use crate::numerics::newton::{self, NewtonOptions};
-use crate::roots::steady_solver::SteadySolver;
+use crate::roots::balances::Balances;
 use crate::runs::orientation::orientation;
 
 /// Largest spacing (radians) of the orientations at which [`FlowScan::extend`] samples the flow:
@@ -35,45 +35,37 @@ const MAX_SAMPLES: usize = 48;
 /// and at smaller angles the flow, `O(lambda lean)`, approaches the accuracy of the solve.
 pub const LINEAR_LEAN: f64 = 0.05 * std::f64::consts::PI / 180.0;
 
-/// `(x, y)` turned by `angle`.
-fn turn(x: f64, y: f64, angle: f64) -> (f64, f64) {
-    let (c, s) = (angle.cos(), angle.sin());
-    (c * x - s * y, s * x + c * y)
-}
-
 /// The orientation's flow at the absolute orientation `phi` (direction of motion, or long
-/// axis at rest): the fast balances solved from `guess` (speed and the shape in the frame
-/// of `phi`; at rest the deformation alone), and the balance left across them (its sign is
-/// that of `dphi/dt`). `None` when Newton does not converge.
+/// axis at rest) of states with `k_max` shape modes: the fast balances solved from `guess`
+/// (speed and the shape in the frame of `phi`; at rest the shape with mode 2 along `phi`),
+/// and the balance left across them (its sign is that of `dphi/dt`). `None` when Newton does
+/// not converge.
 fn flow_at(
-    solver: &mut SteadySolver,
-    moving: bool,
+    balances: &mut Balances,
+    (moving, k_max): (bool, usize),
     phi: f64,
     guess: &[f64],
     jac: &mut Option<Vec<Vec<f64>>>,
 ) -> Option<(f64, Vec<f64>)> {
-    let p = *solver.params();
-    let mut balance = |y: &[f64]| -> [f64; 4] {
-        let z = state_at(moving, phi, y);
-        let f = solver.forces(z[0], z[1], z[2], z[3]);
-        let r = dynamics::force_balance(&p, z, &f);
-        let (along, across) = turn(r[0], r[1], -phi);
-        let (sc, sd) = turn(r[2], r[3], -2.0 * phi);
-        [along, across, sc, sd]
-    };
+    // The balance in the frame of `phi`: along and across the motion, each shape mode's.
+    let mut balance =
+        |y: &[f64]| turned(&balances.residual(&state_at((moving, k_max), phi, y)), -phi);
     let opts = NewtonOptions {
         tol: 1e-11,
         max_iter: 8,
         fd_step: 1e-6,
         max_step: vec![0.2; guess.len()],
     };
+    // Moving: all but the balance across the motion; at rest: the shape's, but mode 2's
+    // across its long axis (the velocity's vanish with the odd modes of a resting state).
+    let left = if moving { 1 } else { k_max + 1 };
     let mut fast = |y: &[f64]| {
         let r = balance(y);
-        if moving {
-            vec![r[0], r[2], r[3]]
-        } else {
-            vec![r[2]]
-        }
+        let from = if moving { 0 } else { 2 };
+        (from..r.len())
+            .filter(|&i| i != left)
+            .map(|i| r[i])
+            .collect::<Vec<f64>>()
     };
     // The chord method with the Jacobian of the previous sample (samples are at most half a
     // degree apart), else Newton, whose root's Jacobian the next sample then uses.
@@ -89,33 +81,42 @@ fn flow_at(
         }
     };
     let r = balance(&y);
-    Some((if moving { r[1] } else { r[3] }, y))
+    Some((r[left], y))
 }
 
-/// The state `(vx, vy, a2, b2)` at the absolute orientation `phi` whose fast variables in the
-/// frame of `phi` are `y` ([`flow_at`]'s unknowns).
-fn state_at(moving: bool, phi: f64, y: &[f64]) -> [f64; 4] {
-    let (v, c, d) = if moving {
-        (y[0], y[1], y[2])
+/// The state `(vx, vy, a_2..a_K, b_2..b_K)` at the absolute orientation `phi` whose fast
+/// variables in the frame of `phi` are `y` ([`flow_at`]'s unknowns): moving, the speed and
+/// every shape amplitude; at rest, the shape with `b2 = 0` (mode 2 along `phi`).
+fn state_at((moving, k_max): (bool, usize), phi: f64, y: &[f64]) -> Vec<f64> {
+    let mut frame = vec![0.0; 2 * k_max];
+    if moving {
+        frame[0] = y[0];
+        frame[2..].copy_from_slice(&y[1..]);
     } else {
-        (0.0, y[0], 0.0)
-    };
-    let (vx, vy) = turn(v, 0.0, phi);
-    let (a2, b2) = turn(c, d, 2.0 * phi);
-    [vx, vy, a2, b2]
+        frame[2..=k_max].copy_from_slice(&y[..k_max - 1]);
+        frame[k_max + 2..].copy_from_slice(&y[k_max - 1..]);
+    }
+    turned(&frame, phi)
 }
 
-/// The fast variables of `root` in the frame of its own orientation: the guess of [`flow_at`].
-fn fast_guess(root: &[f64; 4]) -> (bool, f64, Vec<f64>) {
+/// The fast variables of `root` in the frame of its own orientation: the guess of [`flow_at`],
+/// whether it moves, its shape modes and its orientation.
+fn fast_guess(root: &[f64]) -> ((bool, usize), f64, Vec<f64>) {
+    let k_max = root.len() / 2;
     let moving = root[0].hypot(root[1]) > 1e-9;
     let phi0 = orientation(root);
-    let (c0, d0) = turn(root[2], root[3], -2.0 * phi0);
+    let frame = turned(root, -phi0);
     let guess = if moving {
-        vec![root[0].hypot(root[1]), c0, d0]
+        std::iter::once(root[0].hypot(root[1]))
+            .chain(frame[2..].iter().copied())
+            .collect()
     } else {
-        vec![c0.hypot(d0)]
+        std::iter::once(frame[2].hypot(frame[k_max + 1]))
+            .chain(frame[3..=k_max].iter().copied())
+            .chain(frame[k_max + 2..].iter().copied())
+            .collect()
     };
-    (moving, phi0, guess)
+    ((moving, k_max), phi0, guess)
 }
 
 /// Where the orientation's flow takes a run leaning `lean` (radians) from `root`, a root on
@@ -128,15 +129,15 @@ fn fast_guess(root: &[f64; 4]) -> (bool, f64, Vec<f64>) {
 /// solved, the flow about zero): a guess for Newton on all four balances; or, where the fast
 /// balances cannot be solved, the error names that orientation (its lean from `root`).
 pub fn flow_zero(
-    solver: &mut SteadySolver,
-    root: &[f64; 4],
+    balances: &mut Balances,
+    root: &[f64],
     lean: f64,
     away: bool,
-) -> Result<[f64; 4], f64> {
+) -> Result<Vec<f64>, f64> {
     let (moving, phi0, mut guess) = fast_guess(root);
     let start = phi0 + lean;
     let mut jac = None;
-    let (drift, y) = flow_at(solver, moving, start, &guess, &mut jac).ok_or(lean)?;
+    let (drift, y) = flow_at(balances, moving, start, &guess, &mut jac).ok_or(lean)?;
     let dir = if away { lean.signum() } else { drift.signum() };
     guess = y;
     let quarter = std::f64::consts::FRAC_PI_4;
@@ -152,12 +153,12 @@ pub fn flow_zero(
         if j == samples {
             return Ok(state_at(moving, line, &before.1));
         }
-        let (drift, y) = flow_at(solver, moving, phi, &before.1, &mut jac).ok_or(phi - phi0)?;
+        let (drift, y) = flow_at(balances, moving, phi, &before.1, &mut jac).ok_or(phi - phi0)?;
         if drift * dir <= 0.0 {
             let (mut lo, mut hi, mut ylo) = (before.0, phi, before.1);
             while (hi - lo).abs() > 1e-8 {
                 let mid = 0.5 * (lo + hi);
-                let (d, ym) = flow_at(solver, moving, mid, &ylo, &mut jac).ok_or(mid - phi0)?;
+                let (d, ym) = flow_at(balances, moving, mid, &ylo, &mut jac).ok_or(mid - phi0)?;
                 if d * dir > 0.0 {
                     (lo, ylo) = (mid, ym);
                 } else {
@@ -205,7 +206,7 @@ impl FlowScan {
     /// first sample that points outward. Where the fast balances cannot be solved the scan
     /// stops and counts the stretch out to `|lean|` as turning back: the root's eigenvalues
     /// decide there, as without the setting.
-    pub fn extend(&mut self, solver: &mut SteadySolver, root: &[f64; 4], lean: f64) {
+    pub fn extend(&mut self, balances: &mut Balances, root: &[f64], lean: f64) {
         let (from, to, side) = (self.back_to, lean.abs(), lean.signum());
         if to <= from || self.outward_at.is_some() {
             return;
@@ -216,7 +217,7 @@ impl FlowScan {
         for j in 1..=samples {
             let theta = from + (to - from) * j as f64 / samples as f64;
             let phi = phi0 + side * theta;
-            let Some((drift, y)) = flow_at(solver, moving, phi, &guess, &mut jac) else {
+            let Some((drift, y)) = flow_at(balances, moving, phi, &guess, &mut jac) else {
                 self.back_to = to;
                 return;
             };
@@ -240,14 +241,28 @@ impl Default for FlowScan {
 mod tests {
     use super::*;
     use crate::model::params::ModelParams;
-    use crate::model::state::{four, turned};
+    use crate::model::state::four;
+    use crate::roots::steady_solver::SteadySolver;
 
     /// Whether a run leaning by `lean` (radians) from `root` (stable in rotation) turns back
     /// to it: one [`FlowScan`] from the root out to the run, as a run's first try asks it.
-    fn turns_back(solver: &mut SteadySolver, root: &[f64; 4], lean: f64) -> bool {
+    fn turns_back(balances: &mut Balances, root: &[f64], lean: f64) -> bool {
         let mut scan = FlowScan::new();
-        scan.extend(solver, root, lean);
+        scan.extend(balances, root, lean);
         scan.verdict(lean).unwrap_or(true)
+    }
+
+    /// The 2-mode balances at `(eta_t, kappa2)`, N = 192.
+    fn two(eta_t: f64, kappa2: f64) -> Balances {
+        Balances::Two(SteadySolver::new(ModelParams::at(eta_t, kappa2), 192).unwrap())
+    }
+
+    /// Their steady solver.
+    fn solver(b: &mut Balances) -> &mut SteadySolver {
+        match b {
+            Balances::Two(s) => s,
+            Balances::General(_) => unreachable!("made with two modes"),
+        }
     }
 
     #[test]
@@ -256,19 +271,19 @@ mod tests {
         // rotation (-1.1e-3) and an unstable root lies 0.571 degrees off it (Newton from
         // the root turned by 6 degrees finds it). Inside, the flow turns a run back; beyond,
         // it does not.
-        let mut solver = SteadySolver::new(ModelParams::at(0.096, 0.1), 192).unwrap();
-        let root = solver.newton(0.0, 0.37, 1e-12).unwrap();
+        let mut b = two(0.096, 0.1);
+        let root = solver(&mut b).newton(0.0, 0.37, 1e-12).unwrap();
         let root = [0.0, 0.0, root.a2, 0.0];
         for lean in [0.3f64, -0.3] {
-            assert!(turns_back(&mut solver, &root, lean.to_radians()), "{lean}");
+            assert!(turns_back(&mut b, &root, lean.to_radians()), "{lean}");
         }
         for lean in [1.0f64, -1.0, -12.0] {
-            assert!(!turns_back(&mut solver, &root, lean.to_radians()), "{lean}");
+            assert!(!turns_back(&mut b, &root, lean.to_radians()), "{lean}");
         }
         // The flow vanishes at the unstable root: Newton on all four balances from the root
         // turned by 6 degrees converges 0.571 degrees off the axis, between the samples that
         // disagree.
-        let off = solver
+        let off = solver(&mut b)
             .root_from(
                 four(&turned(&root, -6f64.to_radians())),
                 &NewtonOptions {
@@ -281,8 +296,8 @@ mod tests {
             .unwrap();
         let angle = orientation(&off).to_degrees().abs();
         assert!((angle - 0.571).abs() < 1e-3, "{angle}");
-        assert!(turns_back(&mut solver, &root, -(0.9 * angle).to_radians()));
-        assert!(!turns_back(&mut solver, &root, -(1.1 * angle).to_radians()));
+        assert!(turns_back(&mut b, &root, -(0.9 * angle).to_radians()));
+        assert!(!turns_back(&mut b, &root, -(1.1 * angle).to_radians()));
     }
 
     #[test]
@@ -290,8 +305,8 @@ mod tests {
         // (0.076, 0.1535): the x-axis MD is unstable in rotation; the flow points away from
         // it out to 22.15 degrees (a stable MD off the lines, v = 0.530204), back from there
         // to 34 degrees (unstable), and on to the diagonal beyond.
-        let mut solver = SteadySolver::new(ModelParams::at(0.076, 0.1535), 192).unwrap();
-        let md = solver.newton(0.528, -0.049, 1e-12).unwrap();
+        let mut b = two(0.076, 0.1535);
+        let md = solver(&mut b).newton(0.528, -0.049, 1e-12).unwrap();
         let root = [md.v, 0.0, md.a2, 0.0];
         let opts = NewtonOptions {
             tol: 1e-12,
@@ -300,22 +315,22 @@ mod tests {
             max_step: vec![f64::INFINITY, f64::INFINITY, 0.2, 0.2],
         };
         for (lean, away) in [(LINEAR_LEAN, true), (4f64.to_radians(), false)] {
-            let z = flow_zero(&mut solver, &root, lean, away).unwrap();
+            let z = flow_zero(&mut b, &root, lean, away).unwrap();
             assert!(
                 (orientation(&z).to_degrees() - 22.151).abs() < 1e-2,
                 "{z:?}"
             );
-            let found = solver.root_from(z, &opts).unwrap();
+            let found = solver(&mut b).root_from(four(&z), &opts).unwrap();
             let v = found[0].hypot(found[1]);
             assert!((v - 0.530204).abs() < 1e-6, "{found:?}");
         }
         // From 30 degrees the flow points back to the stable zero; from 40, on to the diagonal.
-        let z = flow_zero(&mut solver, &root, 30f64.to_radians(), false).unwrap();
+        let z = flow_zero(&mut b, &root, 30f64.to_radians(), false).unwrap();
         assert!(
             (orientation(&z).to_degrees() - 22.151).abs() < 1e-2,
             "{z:?}"
         );
-        let z = flow_zero(&mut solver, &root, 40f64.to_radians(), false).unwrap();
+        let z = flow_zero(&mut b, &root, 40f64.to_radians(), false).unwrap();
         assert!((orientation(&z).to_degrees() - 45.0).abs() < 1e-9, "{z:?}");
     }
 
@@ -323,10 +338,10 @@ mod tests {
     fn a_moving_droplet_inside_its_basin_turns_back_and_beyond_it_turns_on() {
         // (0.072, 0.132): the x-axis MD, stable in rotation, with an unstable root 4.8
         // degrees off it and a stable one at 8.7.
-        let mut solver = SteadySolver::new(ModelParams::at(0.072, 0.132), 192).unwrap();
-        let md = solver.newton(1.17, -0.21, 1e-12).unwrap();
+        let mut b = two(0.072, 0.132);
+        let md = solver(&mut b).newton(1.17, -0.21, 1e-12).unwrap();
         let root = [md.v, 0.0, md.a2, 0.0];
-        assert!(turns_back(&mut solver, &root, 3f64.to_radians()));
-        assert!(!turns_back(&mut solver, &root, 6.5f64.to_radians()));
+        assert!(turns_back(&mut b, &root, 3f64.to_radians()));
+        assert!(!turns_back(&mut b, &root, 6.5f64.to_radians()));
     }
 }
