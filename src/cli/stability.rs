@@ -3,8 +3,9 @@ use super::param_line::parse_set;
 use super::{print_json, CliError};
 use droplet_solver::model::param::ModelParam;
 use droplet_solver::model::params::ModelParams;
-use droplet_solver::roots::mode_thresholds::ModeThresholds;
-use droplet_solver::roots::named_state::{find, ic_thresholds, IcThresholds, StateKind};
+use droplet_solver::roots::balances::Balances;
+use droplet_solver::roots::named_state::{find, StateKind};
+use droplet_solver::roots::thresholds::{ic_thresholds, IcThresholds};
 use serde::Serialize;
 
 /// Compute one steady state directly, with its linear stability.
@@ -71,9 +72,8 @@ pub struct Args {
     /// kappa2, eta2, mass, radius, sigma, box_len}, vx, vy, a2, b2, a_k [a2..aK], b_k
     /// [b2..bK], v, s (the paper's, mode 2), residual, eigenvalues [{re, im}], rotation (the
     /// rotation mode's eigenvalue or null), unstable (rotation excluded), stable,
-    /// ic_thresholds {eta_t, kappa2_a2, kappa2_b2} for the resting disk with 2 modes, else
-    /// null, mode_thresholds {eta_t, kappa2 [k = 2..K]} for the resting disk with K > 2, else
-    /// null).
+    /// ic_thresholds {eta_t, kappa2_a2, kappa2_b2, kappa2_a [k = 2..K], kappa2_b [k = 2..K]}
+    /// for the resting disk, else null).
     #[arg(long)]
     json: bool,
 }
@@ -112,8 +112,6 @@ struct Report {
     stable: bool,
     /// For the resting disk: where it loses stability (independent of the point).
     ic_thresholds: Option<IcThresholds>,
-    /// For the resting disk with K > 2 modes.
-    mode_thresholds: Option<ModeThresholds>,
 }
 
 pub fn run(a: Args) -> Result<(), CliError> {
@@ -137,116 +135,29 @@ pub fn run(a: Args) -> Result<(), CliError> {
     params.validate()?;
     super::check_grid(a.n)?;
     droplet_solver::model::mode_friction::check_exponent(a.eta_k_exponent, a.modes)?;
-    if a.modes != 2 {
-        return with_modes(&a, axis, seed, params);
-    }
-    let st = find(&params, a.n, a.state, axis, seed).map_err(|e| match e {
+    let k = a.modes;
+    let mut balances = Balances::new(params, a.n, k, a.eta_k_exponent)?;
+    let st = find(&mut balances, a.state, axis, seed).map_err(|e| match e {
         droplet_solver::error::SolverError::NewtonFailed { .. }
         | droplet_solver::error::SolverError::RestingRoot { .. } => CliError {
-            message: format!("{e}; try another --seed or --axis"),
+            message: if k == 2 {
+                format!("{e}; try another --seed or --axis")
+            } else {
+                format!(
+                    "{e}: no {:?} state with {k} shape modes found here",
+                    a.state
+                )
+            },
             code: 1,
         },
+        droplet_solver::error::SolverError::InvalidParameter {
+            name: "seed",
+            allowed,
+            ..
+        } => CliError::usage(format!("invalid --seed with --modes {k}: {allowed}")),
         other => CliError::from(other),
     })?;
-    let [vx, vy, a2, b2] = st.z;
-    let unstable = st.verdict.unstable;
-    let report = Report {
-        state: a.state,
-        axis: a.axis.clone(),
-        eta_t: a.eta_t,
-        kappa2: a.kappa2,
-        n: a.n,
-        modes: 2,
-        eta_k_exponent: 0.0,
-        params,
-        vx,
-        vy,
-        a2,
-        b2,
-        a_k: vec![a2],
-        b_k: vec![b2],
-        v: vx.hypot(vy),
-        s: a2.hypot(b2),
-        residual: st.residual,
-        eigenvalues: st
-            .eigenvalues
-            .iter()
-            .map(|l| Eigen { re: l.re, im: l.im })
-            .collect(),
-        rotation: st.verdict.rotation,
-        unstable,
-        stable: unstable == 0,
-        ic_thresholds: match a.state {
-            StateKind::IC => Some(ic_thresholds(&params, a.n)?),
-            _ => None,
-        },
-        mode_thresholds: None,
-    };
-    emit(&report, a.json);
-    Ok(())
-}
-
-/// The options `--modes K` (K > 2) can honour: no seed, inertia for the eigenvalues, and K
-/// modes the grid resolves.
-fn check_with_modes(
-    a: &Args,
-    seed: Option<(f64, f64)>,
-    params: &ModelParams,
-) -> Result<(), CliError> {
-    droplet_solver::contract::limits::check_modes(params, a.n, a.modes)?;
-    if seed.is_some() {
-        return Err(CliError::usage(format!(
-            "invalid --seed with --modes {}: the K-mode state starts from the 2-mode one",
-            a.modes
-        )));
-    }
-    if params.mass <= 0.0 {
-        return Err(CliError::usage(
-            "invalid --mass: > 0 for the eigenvalues".to_string(),
-        ));
-    }
-    Ok(())
-}
-
-/// `--modes K` with K > 2: the state on the x axis (or the diagonal) of the K-mode model and
-/// its stability.
-fn with_modes(
-    a: &Args,
-    axis: droplet_solver::roots::steady_solver::MirrorAxis,
-    seed: Option<(f64, f64)>,
-    params: ModelParams,
-) -> Result<(), CliError> {
-    use droplet_solver::continuation::mode_branch::{ic_state, id_state, md_state};
-    use droplet_solver::roots::mode_linearisation::ModeLinearization;
-    use droplet_solver::roots::mode_solver::ModeSolver;
-    check_with_modes(a, seed, &params)?;
-    let k = a.modes;
-    let mut solver = ModeSolver::new(params, a.n)?;
-    solver.set_eta_k_exponent(a.eta_k_exponent);
-    let lost = |what: &str| CliError {
-        message: format!("Newton lost the {what} state with {k} modes at this point"),
-        code: 1,
-    };
-    let (v, shape) = match a.state {
-        StateKind::IC => (0.0, ic_state(&mut solver, k).ok_or_else(|| lost("IC"))?),
-        StateKind::ID => (
-            0.0,
-            id_state(&mut solver, k, 0.3).ok_or_else(|| lost("ID"))?,
-        ),
-        StateKind::MD => {
-            let st = md_state(&mut solver, k).map_err(|_| lost("MD"))?;
-            (st.v, st.a)
-        }
-    };
-    let mut z = droplet_solver::roots::mode_solver::on_x_axis(v, &shape);
-    if axis == droplet_solver::roots::steady_solver::MirrorAxis::Diagonal {
-        z = on_diagonal(&mut solver, &z).ok_or_else(|| lost("diagonal"))?;
-    }
-    let residual = solver
-        .residual(&z)
-        .iter()
-        .fold(0.0f64, |m, r| m.max(r.abs()));
-    let verdict = ModeLinearization::at(&mut solver, &z).verdict();
+    let z = &st.z;
     let report = Report {
         state: a.state,
         axis: a.axis.clone(),
@@ -264,42 +175,22 @@ fn with_modes(
         b_k: z[k + 1..].to_vec(),
         v: z[0].hypot(z[1]),
         s: z[2].hypot(z[k + 1]),
-        residual,
-        eigenvalues: verdict
+        residual: st.residual,
+        eigenvalues: st
             .eigenvalues
             .iter()
-            .map(|l| Eigen { re: l[0], im: l[1] })
+            .map(|l| Eigen { re: l.re, im: l.im })
             .collect(),
-        rotation: verdict.rotation,
-        unstable: verdict.unstable,
-        stable: verdict.stable(),
-        ic_thresholds: None,
-        mode_thresholds: match a.state {
-            StateKind::IC => Some(solver.disk_thresholds(k)),
+        rotation: st.verdict.rotation,
+        unstable: st.verdict.unstable,
+        stable: st.verdict.stable(),
+        ic_thresholds: match a.state {
+            StateKind::IC => Some(ic_thresholds(&params, a.n, k)?),
             _ => None,
         },
     };
     emit(&report, a.json);
     Ok(())
-}
-
-/// The `K`-mode state on the diagonal from the one on the x axis `z`: Newton on all 2K
-/// balances from `z` turned by 45 degrees (the two differ by the box's anisotropy; the mirror
-/// symmetry keeps Newton on the diagonal). `None` if Newton does not converge.
-fn on_diagonal(
-    solver: &mut droplet_solver::roots::mode_solver::ModeSolver,
-    z: &[f64],
-) -> Option<Vec<f64>> {
-    let turned = droplet_solver::model::state::turned(z, std::f64::consts::FRAC_PI_4);
-    let opts = droplet_solver::numerics::newton::NewtonOptions {
-        tol: 1e-11,
-        max_iter: 30,
-        fd_step: 1e-7,
-        max_step: vec![0.2; turned.len()],
-    };
-    droplet_solver::numerics::newton::solve(|y| solver.residual(y), &turned, &opts)
-        .ok()
-        .map(|r| r.x)
 }
 
 /// `--seed V,SHAPE`: a starting guess for Newton, if given.
@@ -347,24 +238,18 @@ fn print_text(report: &Report) {
             .collect();
         outln!("  shape with {} modes: {}", report.modes, amps.join(", "));
     }
-    if let Some(th) = &report.mode_thresholds {
+    if let Some(th) = &report.ic_thresholds {
         let ks: Vec<String> = th
-            .kappa2
+            .kappa2_a
             .iter()
             .zip(&th.kappa2_b)
             .enumerate()
-            .map(|(i, (k, kb))| format!("a{0} for kappa2 < {k:.7} (b{0} < {kb:.7})", i + 2))
+            .map(|(i, (ka, kb))| format!("a{0} for kappa2 < {ka:.9} (b{0} for < {kb:.9})", i + 2))
             .collect();
         outln!(
             "resting disk: moves for eta_t < {:.9}; deforms {}",
             th.eta_t,
             ks.join(", ")
-        );
-    }
-    if let Some(th) = &report.ic_thresholds {
-        outln!(
-            "resting disk: moves for eta_t < {:.9}; deforms (a2) for kappa2 < {:.9}, (b2, diagonal) for kappa2 < {:.9}",
-            th.eta_t, th.kappa2_a2, th.kappa2_b2
         );
     }
     outln!(

@@ -220,7 +220,7 @@ fn stability_with_modes_gives_the_k_mode_state_and_its_verdict() {
     let a4 = ic["a_k"][2].as_f64().unwrap();
     assert!(a4.abs() > 0.0 && a4.abs() < 2e-3, "{ic}");
     assert_eq!(
-        ic["mode_thresholds"]["kappa2"].as_array().unwrap().len(),
+        ic["ic_thresholds"]["kappa2_a"].as_array().unwrap().len(),
         3,
         "{ic}"
     );

@@ -3,7 +3,7 @@
 //!
 //! - **IC onset of motion / of deformation** (pitchforks of the resting disk): at the disk the
 //!   linearisation decouples and neither threshold depends on the other parameter, so each is
-//!   one number ([`crate::roots::named_state::ic_thresholds`]): a vertical and a horizontal line.
+//!   one number ([`crate::roots::thresholds::ic_thresholds`]): a vertical and a horizontal line.
 //! - **ID onset of motion** (pitchfork of the resting deformed droplet into MD): the ID state
 //!   does not depend on `eta_t` (it does not move), and at a mirror-symmetric ID the drift
 //!   block of the `lambda = 0` Jacobian is `-eta_t I + K(kappa2)` (decoupled from the shape
@@ -25,8 +25,8 @@ use crate::error::SolverError;
 use crate::model::param::ModelParam;
 use crate::reduced::boundaries::Boundary;
 use crate::roots::linearisation::Linearization;
-use crate::roots::named_state::{ic_thresholds, id_onset};
 use crate::roots::steady_solver::{MirrorAxis, SteadySolver};
+use crate::roots::thresholds::{ic_thresholds, id_onset};
 
 /// The ID onset line on `mirror` for `kappa2` from `lo` up to (not including) `hi`, where ID
 /// meets IC; none when the window lies above `hi`.
@@ -103,7 +103,7 @@ pub fn boundaries(w: &Window) -> Result<Vec<Boundary>, SolverError> {
     if w.modes != 2 {
         return crate::continuation::mode_boundaries::mode_boundaries(w);
     }
-    let th = ic_thresholds(&w.base, w.n)?;
+    let th = ic_thresholds(&w.base, w.n, 2)?;
     let (e0, e1) = w.eta_t;
     let (k0, k1) = w.kappa2;
     let k_shape = th.kappa2_a2.max(th.kappa2_b2);

@@ -3,7 +3,7 @@
 //! solution of its equations:
 //!
 //! - **IC onset of motion**: the disk's drift threshold with the odd modes it couples to in
-//!   the box ([`ModeSolver::disk_thresholds`]), at the window's bottom and top.
+//!   the box ([`crate::roots::thresholds::disk_thresholds`]), at the window's bottom and top.
 //! - **IC onset of deformation (a2, axis)** and **(b2, diagonal)**: the disk's mode-2
 //!   thresholds (modes decouple at the circle but for the box's weak `k +- 4` coupling, left
 //!   out); the onset of motion starts from the higher of the two. Each of the disk's lines is
@@ -27,7 +27,7 @@
 //!   axis ID (for `K = 2`, as in the 2-mode model; from `K = 4` also through mode 4, which the
 //!   turn flips).
 use crate::continuation::fold_curve::{fold_options, fold_walk};
-use crate::continuation::mode_branch::{id_state, md_fold_from, md_state, rest_shape, ModeLine};
+use crate::continuation::mode_branch::{md_fold_from, ModeLine};
 use crate::continuation::window::Window;
 use crate::error::SolverError;
 use crate::model::classify::CLASS_THRESHOLD;
@@ -37,7 +37,8 @@ use crate::numerics::newton::{fd_jacobian, NewtonOptions};
 use crate::reduced::boundaries::Boundary;
 use crate::roots::mode_linearisation::ModeLinearization;
 use crate::roots::mode_solver::ModeSolver;
-use crate::roots::mode_thresholds::drift_threshold;
+use crate::roots::named_state::{id_state, md_state, rest_shape};
+use crate::roots::thresholds::{disk_thresholds, drift_threshold};
 
 /// The determinant of a square matrix (nalgebra's LU).
 fn det(a: Vec<Vec<f64>>) -> f64 {
@@ -255,11 +256,11 @@ pub fn mode_boundaries(w: &Window) -> Result<Vec<Boundary>, SolverError> {
         },
         w.n,
     )?;
-    let low = disk.disk_thresholds(w.modes);
+    let low = disk_thresholds(&mut disk, w.modes);
     disk.set_control(w.base.eta_t, k1);
-    let high = disk.disk_thresholds(w.modes);
-    let shape_onset = low.kappa2[0];
-    let diagonal_onset = low.kappa2_b[0];
+    let high = disk_thresholds(&mut disk, w.modes);
+    let shape_onset = low.kappa2_a2;
+    let diagonal_onset = low.kappa2_b2;
     type Curve = Result<Vec<(f64, f64)>, SolverError>;
     let diagonal = std::f64::consts::FRAC_PI_4;
     let (id, id_diagonal, fold, mc): (Curve, Curve, Curve, Curve) = std::thread::scope(|scope| {

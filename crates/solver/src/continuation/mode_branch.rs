@@ -10,6 +10,7 @@ use crate::error::SolverError;
 use crate::model::param::ModelParam;
 use crate::model::params::ModelParams;
 use crate::roots::mode_solver::{ModeSolver, ModeState};
+use crate::roots::named_state::md_state;
 
 /// A line in `eta_t` or `kappa2` for the `K`-mode MD branch.
 #[derive(Debug, Clone)]
@@ -36,101 +37,6 @@ pub struct ModeFold {
     pub v: f64,
     /// `a_k` for `k = 2..=K`.
     pub a: Vec<f64>,
-}
-
-/// The MD state of the `k_max`-mode model at the solver's parameters, moving along +x: the
-/// 2-mode model's ([`crate::roots::named_state::find`], from the reduced model's states),
-/// then one mode at a time, each from `a_k = 0`.
-pub fn md_state(solver: &mut ModeSolver, k_max: usize) -> Result<ModeState, SolverError> {
-    let two = crate::roots::named_state::find(
-        solver.params(),
-        solver.n(),
-        crate::roots::named_state::StateKind::MD,
-        crate::roots::steady_solver::MirrorAxis::X,
-        None,
-    )?;
-    let mut guess = vec![two.z[0], two.z[2]];
-    let mut st = solver.newton_x(&guess, 1e-11)?;
-    for _ in 3..=k_max {
-        let mut next = None;
-        for &a in &NEW_MODE_SEEDS {
-            guess = std::iter::once(st.v)
-                .chain(st.a.iter().copied())
-                .chain([a])
-                .collect();
-            match solver.newton_x(&guess, 1e-11) {
-                Ok(found) => {
-                    next = Some(Ok(found));
-                    break;
-                }
-                Err(e) => next = Some(Err(e)),
-            }
-        }
-        st = next.expect("seeds")?;
-    }
-    Ok(st)
-}
-
-/// The shape `a_2..a_(len+1)` of a resting state (`v = 0`, `b_k = 0`) by Newton on the shape
-/// balance from `seed`; `None` where Newton fails or lands on the disk (`|a2| <= 1e-4`).
-pub fn rest_shape(solver: &mut ModeSolver, seed: &[f64]) -> Option<Vec<f64>> {
-    let opts = crate::numerics::newton::NewtonOptions {
-        tol: 1e-12,
-        max_iter: 40,
-        fd_step: 1e-7,
-        max_step: vec![0.05; seed.len()],
-    };
-    crate::numerics::newton::solve(
-        |a| {
-            let y: Vec<f64> = std::iter::once(0.0).chain(a.iter().copied()).collect();
-            solver.residual_x(&y)[1..].to_vec()
-        },
-        seed,
-        &opts,
-    )
-    .ok()
-    .map(|sol| sol.x)
-    .filter(|x| x[0].abs() > 1e-4)
-}
-
-/// The resting deformed state (ID) of the `k_max`-mode model on the x axis, `a_2..a_K`: with
-/// mode 2 alone from `a2 = seed` (> 0: elongated along x), then one mode at a time from 0.
-pub fn id_state(solver: &mut ModeSolver, k_max: usize, seed: f64) -> Option<Vec<f64>> {
-    let two = rest_shape(solver, &[seed])?;
-    (3..=k_max).try_fold(two, |s, _| {
-        // From 0, else from either side of it (Newton from exactly 0 can miss a mode the
-        // shape drives strongly: a4 = 0.07 at kappa2 = 0.105).
-        NEW_MODE_SEEDS.iter().find_map(|&a| {
-            let next: Vec<f64> = s.iter().copied().chain([a]).collect();
-            rest_shape(solver, &next)
-        })
-    })
-}
-
-/// Where Newton starts a mode added to a state: 0, then either side of it.
-const NEW_MODE_SEEDS: [f64; 3] = [0.0, 0.05, -0.05];
-
-/// The resting disk of the `k_max`-mode model on the x axis, `a_2..a_K`: round but for the
-/// box and the grid, whose square symmetry drives mode 4 (and 8, ...) a little (a4 ~ 5e-4 at
-/// N = 96).
-pub fn ic_state(solver: &mut ModeSolver, k_max: usize) -> Option<Vec<f64>> {
-    let opts = crate::numerics::newton::NewtonOptions {
-        tol: 1e-12,
-        max_iter: 40,
-        fd_step: 1e-7,
-        max_step: vec![0.05; k_max - 1],
-    };
-    crate::numerics::newton::solve(
-        |a| {
-            let y: Vec<f64> = std::iter::once(0.0).chain(a.iter().copied()).collect();
-            solver.residual_x(&y)[1..].to_vec()
-        },
-        &vec![0.0; k_max - 1],
-        &opts,
-    )
-    .ok()
-    .map(|sol| sol.x)
-    .filter(|x| x[0].abs() < 1e-4)
 }
 
 /// The fold between `p` and the accepted `step` after it along a curve `(.., q)` whose

@@ -8,10 +8,11 @@
 //! tangent's `q` component changes sign there (the continuation), and one real eigenvalue
 //! crosses zero there (the stability).
 use crate::continuation::arclength::{start, ArclengthOptions, Stepper};
-use crate::continuation::mode_branch::{fold_point, md_state, ModeLine};
+use crate::continuation::mode_branch::{fold_point, ModeLine};
 use crate::error::SolverError;
 use crate::roots::mode_linearisation::ModeLinearization;
 use crate::roots::mode_solver::ModeSolver;
+use crate::roots::named_state::md_state;
 use crate::roots::verdict::Verdict;
 
 /// One state of the branch.

@@ -5,7 +5,7 @@
 //! - **IC onsets of motion and of deformation** (axis, diagonal): where the resting disk's
 //!   drift eigenvalue `eta_c - eta_t` or a shape eigenvalue `kappa_c - kappa2` vanishes. The
 //!   thresholds `eta_c`, `kappa_c` depend on the geometry (`radius`, `sigma`, `box_len`) only
-//!   ([`crate::roots::named_state::ic_thresholds`]), so a window without a geometric axis
+//!   ([`crate::roots::thresholds::ic_thresholds`]), so a window without a geometric axis
 //!   computes them once.
 //! - **ID onsets of motion** (on each mirror axis): where the top eigenvalue of the drift block
 //!   of the resting deformed droplet's Jacobian vanishes, ID solved by Newton at each point
@@ -33,8 +33,8 @@ use crate::model::classify::CLASS_THRESHOLD;
 use crate::model::params::ModelParams;
 use crate::reduced::boundaries::Boundary;
 use crate::roots::linearisation::Linearization;
-use crate::roots::named_state::id_onset;
 use crate::roots::steady_solver::{MirrorAxis, SteadySolver};
+use crate::roots::thresholds::id_onset;
 use crate::roots::verdict::assess;
 
 /// A window of two model parameters and the resolution of [`boundaries_in`].
@@ -372,7 +372,7 @@ mod tests {
             samples: 16,
         })
         .unwrap();
-        let th = crate::roots::named_state::ic_thresholds(&base, n).unwrap();
+        let th = crate::roots::thresholds::ic_thresholds(&base, n, 2).unwrap();
         let names: Vec<&str> = plane.iter().map(|b| b.name).collect();
         assert_eq!(names.len(), 7, "{names:?}");
         for c in &paper {

@@ -19,7 +19,11 @@ use crate::roots::verdict::{assess, Verdict};
 /// the general one with shape modes `2..K`.
 pub enum Balances {
     Two(SteadySolver),
-    General(ModeSolver),
+    /// The general solver and the model's `K` (its states `(vx, vy, a_2..a_K, b_2..b_K)`).
+    General {
+        solver: ModeSolver,
+        modes: usize,
+    },
 }
 
 impl Balances {
@@ -42,7 +46,7 @@ impl Balances {
                 };
                 Ok(solver.root_near(four(z), &opts, jacobians)?.to_vec())
             }
-            Balances::General(solver) => {
+            Balances::General { solver, .. } => {
                 // The settings K-mode runs have been finished with: to 1e-11, every
                 // unknown's step limited.
                 let opts = NewtonOptions {
@@ -68,14 +72,15 @@ impl Balances {
     pub fn verdict(&mut self, z: &[f64]) -> Verdict {
         match self {
             Balances::Two(solver) => assess(&Linearization::at(solver, four(z)), z),
-            Balances::General(solver) => ModeLinearization::at(solver, z).verdict(),
+            Balances::General { solver, .. } => ModeLinearization::at(solver, z).verdict(),
         }
     }
 }
 
 impl Balances {
     /// The balances of `params` on an `n x n` grid with shape modes `2..=modes` (the general
-    /// ones with the friction law's exponent `eta_k_exponent`, which enters eigenvalues only).
+    /// ones with the friction law's exponent `eta_k_exponent`, which enters eigenvalues only;
+    /// `modes` within [`crate::contract::limits::check_modes`]).
     pub fn new(
         params: ModelParams,
         n: usize,
@@ -85,10 +90,19 @@ impl Balances {
         Ok(if modes == 2 {
             Balances::Two(SteadySolver::new(params, n)?)
         } else {
+            crate::contract::limits::check_modes(&params, n, modes)?;
             let mut solver = ModeSolver::new(params, n)?;
             solver.set_eta_k_exponent(eta_k_exponent);
-            Balances::General(solver)
+            Balances::General { solver, modes }
         })
+    }
+
+    /// The model's parameters.
+    pub fn params(&self) -> &ModelParams {
+        match self {
+            Balances::Two(solver) => solver.params(),
+            Balances::General { solver, .. } => solver.params(),
+        }
     }
 
     /// The force balance at `z`, in `z`'s layout: the velocity's, then each shape mode's
@@ -100,7 +114,7 @@ impl Balances {
                 let f = solver.forces(z[0], z[1], z[2], z[3]);
                 dynamics::force_balance(&p, four(z), &f).to_vec()
             }
-            Balances::General(solver) => solver.residual(z),
+            Balances::General { solver, .. } => solver.residual(z),
         }
     }
 }

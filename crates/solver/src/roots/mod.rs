@@ -1,8 +1,9 @@
 //! Steady states as roots: the exact co-moving steady solver (and its `K`-mode form,
 //! `mode_solver`), the linearisation about a root
 //! (field included, docs/numerics.md "Stability"), the stability verdict with the rotation mode
-//! set aside, the named states of the paper (IC, ID, MD on a mirror axis of the box) and the
-//! Appendix E fit of `h0`.
+//! set aside, the steady balances of any `K` behind one interface (`balances`), the named
+//! states of the paper (IC, ID, MD on a mirror axis of the box, any `K`), where resting states
+//! lose stability (`thresholds`) and the Appendix E fit of `h0`.
 //!
 //! May use: `numerics`, `model`, `contract`, `reduced` (starting guesses). Used by: `runs`,
 //! `continuation`.
@@ -13,7 +14,7 @@ pub mod linearisation;
 pub mod mode_field;
 pub mod mode_linearisation;
 pub mod mode_solver;
-pub mod mode_thresholds;
 pub mod named_state;
 pub mod steady_solver;
+pub mod thresholds;
 pub mod verdict;

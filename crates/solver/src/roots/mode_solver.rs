@@ -452,7 +452,7 @@ mod tests {
         // vanish there, and the box makes the diagonal state differ from the axis one.
         let p = ModelParams::at(0.085, 0.112);
         let mut solver = ModeSolver::new(p, 96).unwrap();
-        let axis = crate::continuation::mode_branch::md_state(&mut solver, 3).unwrap();
+        let axis = crate::roots::named_state::md_state(&mut solver, 3).unwrap();
         let phi = std::f64::consts::FRAC_PI_4;
         let guess: Vec<f64> = std::iter::once(axis.v).chain(axis.a.clone()).collect();
         solver.set_axis(phi);

@@ -1,14 +1,21 @@
-//! The steady states the paper names, computed as roots and linearised: the resting disk (IC),
-//! the resting deformed droplet (ID) and the droplet moving along its minor axis (MD), each on
-//! a mirror axis of the box (motion along x or along the diagonal). Newton starts from the
-//! reduced model's state (Sect. 5) unless a seed is given.
+//! The steady states the paper names, computed as roots and linearised, for shape modes
+//! `2..K`: the resting disk (IC), the resting deformed droplet (ID) and the droplet moving
+//! along its minor axis (MD), each on a mirror axis of the box (motion along x or along the
+//! diagonal). With two modes Newton starts from the reduced model's state (Sect. 5) unless a
+//! seed is given; with modes `2..K` from the 2-mode state on the x axis with one mode added at
+//! a time, and on the diagonal from that state turned by 45 degrees and solved again on all
+//! `2K` balances (the two differ by the box's anisotropy; the mirror symmetry keeps Newton on
+//! the diagonal).
 use crate::error::SolverError;
 use crate::model::params::ModelParams;
+use crate::model::state::turned;
+use crate::numerics::newton::{self, NewtonOptions};
 use crate::reduced::bifurcation::md_states;
 use crate::reduced::coefficients::Coefficients;
-use crate::roots::linearisation::Linearization;
+use crate::roots::balances::Balances;
+use crate::roots::mode_solver::{on_x_axis, ModeSolver, ModeState};
 use crate::roots::steady_solver::{MirrorAxis, SteadySolver};
-use crate::roots::verdict::{assess, Verdict};
+use crate::roots::verdict::Verdict;
 use rustfft::num_complex::Complex64;
 use serde::Serialize;
 
@@ -35,11 +42,11 @@ impl std::str::FromStr for StateKind {
 /// A steady state with its leading eigenvalues.
 #[derive(Debug, Clone, PartialEq)]
 pub struct NamedState {
-    /// `(vx, vy, a2, b2)`.
-    pub z: [f64; 4],
+    /// `(vx, vy, a_2..a_K, b_2..b_K)`; with two modes `(vx, vy, a2, b2)`.
+    pub z: Vec<f64>,
     /// Max norm of the force balance at `z`.
     pub residual: f64,
-    /// Eigenvalues with `Re > -1`, decreasing real part ([`Linearization::eigenvalues`]).
+    /// Eigenvalues with `Re > -1`, decreasing real part.
     pub eigenvalues: Vec<Complex64>,
     /// What they say: the rotation mode identified and set aside
     /// ([`crate::roots::verdict::assess`]).
@@ -73,147 +80,233 @@ pub fn md_seeds(c: &Coefficients, params: &ModelParams, sign: f64) -> Vec<(f64, 
         .collect()
 }
 
-/// Finds `kind` at `params` on `axis` with an `n x n` grid (Newton to 1e-12 from `seed`, or
-/// from the reduced model's state), then linearises it. Needs inertia `m > 0`.
+/// Finds `kind` on `axis` with the balances' shape modes and grid (Newton to 1e-12; with two
+/// modes from `seed` or from the reduced model's state, with more from the 2-mode state, see
+/// the module), then linearises it. Needs inertia `m > 0`; a seed is taken with two modes only.
 pub fn find(
-    params: &ModelParams,
-    n: usize,
+    balances: &mut Balances,
     kind: StateKind,
     axis: MirrorAxis,
     seed: Option<(f64, f64)>,
 ) -> Result<NamedState, SolverError> {
+    let mass = balances.params().mass;
     crate::error::require(
-        params.mass > 0.0,
+        mass > 0.0,
         "mass",
-        params.mass,
+        mass,
         "a finite number > 0 for the linearisation (the overdamped velocity has no dynamics)",
     )?;
-    let mut solver = SteadySolver::new(*params, n)?;
-    let c = Coefficients::new(params.radius, crate::contract::settings::H0_PAPER);
-    let id_seed = id_seed(&c, params);
-    let (v, shape, residual) = match kind {
-        StateKind::IC => (0.0, 0.0, 0.0),
-        StateKind::ID | StateKind::MD => {
-            let seeds: Vec<(f64, f64)> = match (seed, kind) {
-                (Some(s), _) => vec![s],
-                (None, StateKind::ID) => vec![(0.0, id_seed)],
-                _ => {
-                    let mut v = md_seeds(&c, params, -1.0);
-                    v.extend([(0.6, -0.27), (0.9, -0.35), (0.3, -0.1)]);
-                    v
-                }
-            };
-            let mut last = None;
-            let mut found = None;
-            for (v0, c0) in seeds {
-                let v0 = if kind == StateKind::ID { 0.0 } else { v0 };
-                match solver.newton_on(axis, v0, c0, 1e-12) {
-                    Ok(st) if kind == StateKind::ID || st.v.abs() > 1e-6 => {
-                        found = Some((st.v, st.a2, st.residual));
-                        break;
-                    }
-                    Ok(st) => {
-                        last = Some(SolverError::RestingRoot {
-                            residual: st.residual,
-                            iterations: st.iterations,
-                            v: st.v.abs(),
-                        })
-                    }
-                    Err(e) => last = Some(e),
-                }
+    let (z, residual) = match balances {
+        Balances::Two(solver) => {
+            let (z, residual) = two_mode_root(solver, kind, axis, seed)?;
+            (z.to_vec(), residual)
+        }
+        Balances::General { solver, modes } => {
+            if let Some((v, _)) = seed {
+                crate::error::require(
+                    false,
+                    "seed",
+                    v,
+                    format!(
+                        "no seed with {modes} shape modes (the state starts from the 2-mode one)"
+                    ),
+                )?;
             }
-            found.ok_or_else(|| {
-                last.unwrap_or(SolverError::NewtonFailed {
-                    residual: f64::NAN,
-                    iterations: 0,
-                })
-            })?
+            let z = general_root(solver, *modes, kind, axis)?;
+            let residual = solver
+                .residual(&z)
+                .iter()
+                .fold(0.0f64, |m, r| m.max(r.abs()));
+            (z, residual)
         }
     };
-    let z = on_axis(axis, v, shape);
-    let verdict = assess(&Linearization::at(&mut solver, z), &z);
+    let verdict = balances.verdict(&z);
     Ok(NamedState {
-        z,
         residual,
         eigenvalues: verdict
             .eigenvalues
             .iter()
             .map(|[re, im]| Complex64::new(*re, *im))
             .collect(),
+        z,
         verdict,
     })
 }
 
-/// Where the resting disk loses stability, at the grid and box of `params` (its other
-/// parameters fixed). At the disk the linearisation decouples (drift `(vx, vy)`, shape `a2`,
-/// shape `b2`) and neither block depends on the other parameter, so each threshold is one
-/// number, read off the `lambda = 0` Jacobian `-T(0)`: its drift entry is `-eta_t + c` with
-/// `c` the field's feedback, so the drift pair crosses zero at `eta_t = c`; likewise the shape
-/// entries give the `kappa2` at which an `a2` (axis-aligned) or a `b2` (diagonal) deformation
-/// sets in. Real crossings: pitchforks (the eigenvalues here are real).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct IcThresholds {
-    /// Onset of motion: the disk is unstable to drift for `eta_t` below this.
-    pub eta_t: f64,
-    /// Onset of an `a2` deformation: unstable for `kappa2` below this.
-    pub kappa2_a2: f64,
-    /// Onset of a `b2` deformation (long axis on the box diagonal).
-    pub kappa2_b2: f64,
+/// The 2-mode state `kind` on `axis` and its residual: Newton from `seed`, or from the reduced
+/// model's states in turn (MD: then three fixed starts) until one is of the kind.
+fn two_mode_root(
+    solver: &mut SteadySolver,
+    kind: StateKind,
+    axis: MirrorAxis,
+    seed: Option<(f64, f64)>,
+) -> Result<([f64; 4], f64), SolverError> {
+    if kind == StateKind::IC {
+        return Ok((on_axis(axis, 0.0, 0.0), 0.0));
+    }
+    let params = *solver.params();
+    let c = Coefficients::new(params.radius, crate::contract::settings::H0_PAPER);
+    let seeds: Vec<(f64, f64)> = match (seed, kind) {
+        (Some(s), _) => vec![s],
+        (None, StateKind::ID) => vec![(0.0, id_seed(&c, &params))],
+        _ => {
+            let mut v = md_seeds(&c, &params, -1.0);
+            v.extend([(0.6, -0.27), (0.9, -0.35), (0.3, -0.1)]);
+            v
+        }
+    };
+    let mut last = None;
+    for (v0, c0) in seeds {
+        let v0 = if kind == StateKind::ID { 0.0 } else { v0 };
+        match solver.newton_on(axis, v0, c0, 1e-12) {
+            Ok(st) if kind == StateKind::ID || st.v.abs() > 1e-6 => {
+                return Ok((on_axis(axis, st.v, st.a2), st.residual));
+            }
+            Ok(st) => {
+                last = Some(SolverError::RestingRoot {
+                    residual: st.residual,
+                    iterations: st.iterations,
+                    v: st.v.abs(),
+                })
+            }
+            Err(e) => last = Some(e),
+        }
+    }
+    Err(last.unwrap_or(SolverError::NewtonFailed {
+        residual: f64::NAN,
+        iterations: 0,
+    }))
 }
 
-/// The resting disk's thresholds (see [`IcThresholds`]); `params.eta_t` and `params.kappa2`
-/// do not matter.
-pub fn ic_thresholds(params: &ModelParams, n: usize) -> Result<IcThresholds, SolverError> {
-    let mut solver = SteadySolver::new(*params, n)?;
-    let j0 = Linearization::at(&mut solver, [0.0; 4]).jacobian0();
-    Ok(IcThresholds {
-        eta_t: j0[0][0] + params.eta_t,
-        kappa2_a2: j0[2][2] + params.kappa2,
-        kappa2_b2: j0[3][3] + params.kappa2,
+/// The state `kind` of the model with shape modes `2..=k_max` on `axis` (see the module).
+fn general_root(
+    solver: &mut ModeSolver,
+    k_max: usize,
+    kind: StateKind,
+    axis: MirrorAxis,
+) -> Result<Vec<f64>, SolverError> {
+    let lost = || SolverError::NewtonFailed {
+        residual: f64::NAN,
+        iterations: 0,
+    };
+    let (v, shape) = match kind {
+        StateKind::IC => (0.0, ic_state(solver, k_max).ok_or_else(lost)?),
+        StateKind::ID => (0.0, id_state(solver, k_max, 0.3).ok_or_else(lost)?),
+        StateKind::MD => {
+            let st = md_state(solver, k_max)?;
+            (st.v, st.a)
+        }
+    };
+    let z = on_x_axis(v, &shape);
+    if axis == MirrorAxis::X {
+        return Ok(z);
+    }
+    let opts = NewtonOptions {
+        tol: 1e-11,
+        max_iter: 30,
+        fd_step: 1e-7,
+        max_step: vec![0.2; z.len()],
+    };
+    let turned = turned(&z, std::f64::consts::FRAC_PI_4);
+    Ok(newton::solve(|y| solver.residual(y), &turned, &opts)?.x)
+}
+
+/// Where Newton starts a mode added to a state: 0, then either side of it.
+const NEW_MODE_SEEDS: [f64; 3] = [0.0, 0.05, -0.05];
+
+/// The MD state of the `k_max`-mode model at the solver's parameters, moving along +x: the
+/// 2-mode model's ([`find`], from the reduced model's states), then one mode at a time, each
+/// from `a_k = 0`.
+pub fn md_state(solver: &mut ModeSolver, k_max: usize) -> Result<ModeState, SolverError> {
+    let two = find(
+        &mut Balances::new(*solver.params(), solver.n(), 2, 0.0)?,
+        StateKind::MD,
+        MirrorAxis::X,
+        None,
+    )?;
+    let mut guess = vec![two.z[0], two.z[2]];
+    let mut st = solver.newton_x(&guess, 1e-11)?;
+    for _ in 3..=k_max {
+        let mut next = None;
+        for &a in &NEW_MODE_SEEDS {
+            guess = std::iter::once(st.v)
+                .chain(st.a.iter().copied())
+                .chain([a])
+                .collect();
+            match solver.newton_x(&guess, 1e-11) {
+                Ok(found) => {
+                    next = Some(Ok(found));
+                    break;
+                }
+                Err(e) => next = Some(Err(e)),
+            }
+        }
+        st = next.expect("seeds")?;
+    }
+    Ok(st)
+}
+
+/// Newton on the shape balance of a resting state (`v = 0`, `b_k = 0`) from `seed`, with
+/// steps of at most 0.05 per mode.
+fn rest_root(solver: &mut ModeSolver, seed: &[f64]) -> Option<Vec<f64>> {
+    let opts = NewtonOptions {
+        tol: 1e-12,
+        max_iter: 40,
+        fd_step: 1e-7,
+        max_step: vec![0.05; seed.len()],
+    };
+    newton::solve(
+        |a| {
+            let y: Vec<f64> = std::iter::once(0.0).chain(a.iter().copied()).collect();
+            solver.residual_x(&y)[1..].to_vec()
+        },
+        seed,
+        &opts,
+    )
+    .ok()
+    .map(|sol| sol.x)
+}
+
+/// The shape `a_2..a_(len+1)` of a resting deformed state by Newton on the shape balance from
+/// `seed`; `None` where Newton fails or lands on the disk (`|a2| <= 1e-4`).
+pub fn rest_shape(solver: &mut ModeSolver, seed: &[f64]) -> Option<Vec<f64>> {
+    rest_root(solver, seed).filter(|x| x[0].abs() > 1e-4)
+}
+
+/// The resting deformed state (ID) of the `k_max`-mode model on the x axis, `a_2..a_K`: with
+/// mode 2 alone from `a2 = seed` (> 0: elongated along x), then one mode at a time from 0.
+pub fn id_state(solver: &mut ModeSolver, k_max: usize, seed: f64) -> Option<Vec<f64>> {
+    let two = rest_shape(solver, &[seed])?;
+    (3..=k_max).try_fold(two, |s, _| {
+        // From 0, else from either side of it (Newton from exactly 0 can miss a mode the
+        // shape drives strongly: a4 = 0.07 at kappa2 = 0.105).
+        NEW_MODE_SEEDS.iter().find_map(|&a| {
+            let next: Vec<f64> = s.iter().copied().chain([a]).collect();
+            rest_shape(solver, &next)
+        })
     })
 }
 
-/// Largest eigenvalue of a real 2 x 2 matrix with real eigenvalues (else its real part).
-fn top_eigenvalue(m: [[f64; 2]; 2]) -> f64 {
-    let tr = m[0][0] + m[1][1];
-    let det = m[0][0] * m[1][1] - m[0][1] * m[1][0];
-    let disc = tr * tr / 4.0 - det;
-    tr / 2.0 + disc.max(0.0).sqrt()
-}
-
-/// The `eta_t` below which the ID state on `mirror` at `kappa2` starts to move, with its
-/// shape amplitude, or `None` where there is no ID state.
-pub fn id_onset(
-    solver: &mut SteadySolver,
-    mirror: MirrorAxis,
-    kappa2: f64,
-    seed: f64,
-) -> Option<(f64, f64)> {
-    let eta_t = solver.params().eta_t;
-    solver.set_control(eta_t, kappa2);
-    let st = solver.newton_on(mirror, 0.0, seed, 1e-12).ok()?;
-    if st.a2.abs() < 1e-4 {
-        return None;
-    }
-    let z = match mirror {
-        MirrorAxis::X => [0.0, 0.0, st.a2, 0.0],
-        MirrorAxis::Diagonal => [0.0, 0.0, 0.0, st.a2],
-    };
-    let j = Linearization::at(solver, z).jacobian0();
-    let k = [[j[0][0] + eta_t, j[0][1]], [j[1][0], j[1][1] + eta_t]];
-    Some((top_eigenvalue(k), st.a2))
+/// The resting disk of the `k_max`-mode model on the x axis, `a_2..a_K`: round but for the
+/// box and the grid, whose square symmetry drives mode 4 (and 8, ...) a little (a4 ~ 5e-4 at
+/// N = 96).
+pub fn ic_state(solver: &mut ModeSolver, k_max: usize) -> Option<Vec<f64>> {
+    rest_root(solver, &vec![0.0; k_max - 1]).filter(|x| x[0].abs() < 1e-4)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
+    fn two(eta_t: f64, kappa2: f64, n: usize) -> Balances {
+        Balances::new(ModelParams::at(eta_t, kappa2), n, 2, 0.0).unwrap()
+    }
+
     #[test]
     fn md_from_the_reduced_models_seed_is_the_time_steppers_state() {
         // Fig. 1c: the time stepper's steady MD state is v = 0.592462, s = 0.270056 (README).
         let st = find(
-            &ModelParams::at(0.085, 0.112),
-            192,
+            &mut two(0.085, 0.112, 192),
             StateKind::MD,
             MirrorAxis::X,
             None,
@@ -222,48 +315,67 @@ mod tests {
         assert!((st.z[0] - 0.592462).abs() < 1e-6, "{st:?}");
         assert!((st.z[2] + 0.270056).abs() < 1e-6, "{st:?}");
         assert!(st.eigenvalues.iter().all(|l| l.re < 0.0), "{st:?}");
-        let id = find(
-            &ModelParams::at(0.1, 0.105),
-            96,
-            StateKind::ID,
-            MirrorAxis::X,
-            None,
-        )
-        .unwrap();
+        let id = find(&mut two(0.1, 0.105, 96), StateKind::ID, MirrorAxis::X, None).unwrap();
         assert!(id.z[2] > 0.1 && id.z[0] == 0.0, "{id:?}");
     }
 
     #[test]
-    fn the_resting_disks_thresholds_are_where_its_eigenvalues_cross_zero() {
-        let th = ic_thresholds(&ModelParams::at(0.085, 0.13), 192).unwrap();
-        // Bracketed by the reference eigenvalues of docs/model.md: drift +0.001445 at eta_t = 0.0763 and
-        // -0.004036 at 0.077; shape > 0 at kappa2 = 0.112, < 0 at 0.13.
-        assert!(th.eta_t > 0.0763 && th.eta_t < 0.077, "{th:?}");
-        for k in [th.kappa2_a2, th.kappa2_b2] {
-            assert!(k > 0.112 && k < 0.13, "{th:?}");
+    fn the_general_balances_with_mode_two_alone_find_the_two_mode_states() {
+        // The general solver and its 2K x 2K eigenproblem at K = 2 against the 2-mode solver
+        // and its 4 x 4 one: the same states and the same leading eigenvalues.
+        let p = ModelParams::at(0.085, 0.112);
+        for (kind, axis) in [
+            (StateKind::MD, MirrorAxis::X),
+            (StateKind::MD, MirrorAxis::Diagonal),
+            (StateKind::IC, MirrorAxis::X),
+        ] {
+            let fast = find(&mut Balances::new(p, 96, 2, 0.0).unwrap(), kind, axis, None).unwrap();
+            let mut general = Balances::General {
+                solver: ModeSolver::new(p, 96).unwrap(),
+                modes: 2,
+            };
+            let st = find(&mut general, kind, axis, None).unwrap();
+            let dz =
+                st.z.iter()
+                    .zip(&fast.z)
+                    .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+            assert!(
+                dz < 1e-8 && st.residual < 1e-10,
+                "{kind:?} {axis:?}: {st:?} {fast:?}"
+            );
+            assert_eq!(
+                st.verdict.unstable, fast.verdict.unstable,
+                "{st:?} {fast:?}"
+            );
+            for (a, b) in st.eigenvalues.iter().zip(&fast.eigenvalues).take(3) {
+                assert!((a - b).norm() < 1e-6, "{kind:?} {axis:?}: {a} vs {b}");
+            }
         }
-        // The same numbers whatever the other parameter.
-        let other = ic_thresholds(&ModelParams::at(0.1, 0.16), 192).unwrap();
-        assert!((other.eta_t - th.eta_t).abs() < 1e-9, "{other:?}");
-        assert!((other.kappa2_a2 - th.kappa2_a2).abs() < 1e-9, "{other:?}");
-        // At the threshold the drift pair's eigenvalue is zero, the shape's at its own.
-        let at = |eta_t, kappa2| {
-            find(
-                &ModelParams::at(eta_t, kappa2),
-                192,
-                StateKind::IC,
-                MirrorAxis::X,
-                None,
-            )
-            .unwrap()
-            .eigenvalues
-        };
-        let drift = at(th.eta_t, 0.13);
+    }
+
+    #[test]
+    fn with_three_modes_the_md_states_lie_on_their_mirror_lines_and_a_seed_is_refused() {
+        let mut b = Balances::new(ModelParams::at(0.085, 0.112), 96, 3, 0.0).unwrap();
+        let x = find(&mut b, StateKind::MD, MirrorAxis::X, None).unwrap();
+        assert_eq!(x.z.len(), 6);
+        assert!(x.z[1] == 0.0 && x.z[4] == 0.0 && x.z[5] == 0.0, "{x:?}");
+        assert!(x.verdict.stable() && x.residual < 1e-10, "{x:?}");
+        // On the diagonal: Newton on all six balances from the axis state turned by 45
+        // degrees stays on the mirror line (here on a slower state: mode 3 turned by 45
+        // degrees is not the axis state's mode 3, and the box tells them apart).
+        let d = find(&mut b, StateKind::MD, MirrorAxis::Diagonal, None).unwrap();
         assert!(
-            drift[0].re.abs() < 1e-8 && drift[1].re.abs() < 1e-8,
-            "{drift:?}"
+            (d.z[0] - d.z[1]).abs() < 1e-9 && d.residual < 1e-10,
+            "{d:?}"
         );
-        let shape = at(0.085, th.kappa2_b2.max(th.kappa2_a2));
-        assert!(shape[0].re.abs() < 1e-8, "{shape:?}");
+        assert!(d.z[0] > 0.1, "{d:?}");
+        let seeded = find(&mut b, StateKind::MD, MirrorAxis::X, Some((0.3, -0.1)));
+        assert!(
+            matches!(
+                seeded,
+                Err(SolverError::InvalidParameter { name: "seed", .. })
+            ),
+            "{seeded:?}"
+        );
     }
 }

@@ -418,12 +418,11 @@ impl NewtonFinish {
     /// The run's 2-mode steady solver (for the landing, the orientation flow and the leap),
     /// made at its first use; refused for runs with more shape modes.
     pub(super) fn steady_solver(&mut self) -> Result<&mut SteadySolver, SolverError> {
-        let modes = self.modes;
         match self.balances()? {
             Balances::Two(solver) => Ok(solver),
-            Balances::General(_) => Err(SolverError::InvalidParameter {
+            Balances::General { modes, .. } => Err(SolverError::InvalidParameter {
                 name: "modes",
-                value: modes as f64,
+                value: *modes as f64,
                 allowed: "2 for the landing, the orientation flow and the leap".into(),
             }),
         }

@@ -354,7 +354,7 @@ mod tests {
         assert_eq!(out.class, Some(StateClass::MD), "{out:?}");
         assert_eq!(out.ended_by, Some(Ending::Newton), "{out:?}");
         let mut solver = crate::roots::mode_solver::ModeSolver::new(p, 96).unwrap();
-        let md = crate::continuation::mode_branch::md_state(&mut solver, 3).unwrap();
+        let md = crate::roots::named_state::md_state(&mut solver, 3).unwrap();
         assert!((out.v - md.v).abs() < 1e-8, "{out:?} {md:?}");
         let a3 = out.higher_modes[0].hypot(out.higher_modes[1]);
         assert!((a3 - md.a[1].abs()).abs() < 1e-8, "{out:?} {md:?}");

@@ -323,8 +323,8 @@ pub fn run_modes(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::continuation::mode_branch::md_state;
     use crate::model::initial::InitialCondition;
+    use crate::roots::named_state::md_state;
     use crate::stepping::{comoving_etd::ComovingEtd, Scheme, Stepper};
 
     /// `(vx, vy, a_2..a_K, b_2..b_K)` after `steps` fixed steps of `h` from IC i with modes

@@ -261,7 +261,7 @@ mod tests {
     fn solver(b: &mut Balances) -> &mut SteadySolver {
         match b {
             Balances::Two(s) => s,
-            Balances::General(_) => unreachable!("made with two modes"),
+            Balances::General { .. } => unreachable!("made with two modes"),
         }
     }
 

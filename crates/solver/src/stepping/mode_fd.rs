@@ -244,7 +244,7 @@ mod tests {
         use crate::roots::{mode_field::lab_field, mode_solver::ModeSolver};
         let p = ModelParams::at(0.085, 0.112);
         let mut solver = ModeSolver::new(p, n).unwrap();
-        let md = crate::continuation::mode_branch::md_state(&mut solver, 3).unwrap();
+        let md = crate::roots::named_state::md_state(&mut solver, 3).unwrap();
         let z = crate::roots::mode_solver::on_x_axis(md.v, &md.a);
         let field = lab_field(&mut solver, &z, 0.0, 0.0);
         let mut fd = ModeFd::new(&p, n, &z).unwrap();

@@ -10,9 +10,8 @@ use droplet_solver::continuation::{
     branch::follow, branch::Branch, branch::BranchPoint, branch::Line, problem::Family,
 };
 use droplet_solver::model::param::ModelParam;
-use droplet_solver::roots::named_state::ic_thresholds;
-use droplet_solver::roots::named_state::id_onset;
 use droplet_solver::roots::steady_solver::{MirrorAxis, SteadySolver};
+use droplet_solver::roots::thresholds::{ic_thresholds, id_onset};
 use droplet_solver::stepping::{comoving_etd::ComovingEtd, Scheme, Stepper};
 use droplet_solver::{
     contract::settings::SolverSettings, model::initial::InitialCondition,
@@ -184,7 +183,7 @@ fn the_mc_onset_line_is_where_the_moving_branch_has_s_at_the_threshold() {
     // kappa2 = 0.16, and where its s crosses 0.01 between two of its points (linear
     // interpolation; the points are ~1e-4 apart there).
     let n = 128;
-    let th = ic_thresholds(&ModelParams::at(0.085, 0.16), n).unwrap();
+    let th = ic_thresholds(&ModelParams::at(0.085, 0.16), n, 2).unwrap();
     let w = Window {
         base: ModelParams::at(0.07, 0.16),
         n,
@@ -233,7 +232,7 @@ fn the_mc_onset_line_is_where_the_moving_branch_has_s_at_the_threshold() {
 #[test]
 fn branches_meet_ic_and_id_at_the_exact_thresholds() {
     let n = 128;
-    let th = ic_thresholds(&ModelParams::at(0.085, 0.13), n).unwrap();
+    let th = ic_thresholds(&ModelParams::at(0.085, 0.13), n, 2).unwrap();
     let md = branch(Family::MdMinor, 0.13, 0.07, 0.1, n);
     let meet = md.events.iter().find(|e| e.what == "meets IC").unwrap();
     assert!(

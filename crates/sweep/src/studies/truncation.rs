@@ -18,7 +18,7 @@ use crate::pictures::map_figure::{boundary_picture, outline_picture, Curve, CURV
 use crate::tables::boundaries::NamedCurve;
 use crate::tables::truncation::TruncationRow;
 use droplet_solver::continuation::mode_boundaries::mode_boundaries;
-use droplet_solver::continuation::mode_branch::{md_fold, md_state, ModeLine};
+use droplet_solver::continuation::mode_branch::{md_fold, ModeLine};
 use droplet_solver::continuation::window::Window;
 use droplet_solver::contract::settings::ModelKind;
 use droplet_solver::model::modes::Modes;
@@ -27,6 +27,8 @@ use droplet_solver::model::params::ModelParams;
 use droplet_solver::model::shape::ShapeParams;
 use droplet_solver::roots::mode_linearisation::ModeLinearization;
 use droplet_solver::roots::mode_solver::ModeSolver;
+use droplet_solver::roots::named_state::md_state;
+use droplet_solver::roots::thresholds::disk_thresholds;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -73,7 +75,7 @@ fn row(
         ..*base
     };
     let mut disk_solver = ModeSolver::new(line_base, n)?;
-    let disk = disk_solver.disk_thresholds(k_max);
+    let disk = disk_thresholds(&mut disk_solver, k_max);
     let fold = md_fold(&ModeLine {
         base: line_base,
         n,

@@ -9,7 +9,7 @@ use crate::error::SweepError;
 use crate::tables::sweep_tables::{metadata, write_parquet};
 use droplet_solver::continuation::mode_branch::ModeFold;
 use droplet_solver::roots::mode_solver::ModeState;
-use droplet_solver::roots::mode_thresholds::ModeThresholds;
+use droplet_solver::roots::thresholds::IcThresholds;
 use droplet_solver::roots::verdict::Verdict;
 use polars::prelude::*;
 use std::path::{Path, PathBuf};
@@ -27,7 +27,7 @@ pub struct TruncationRow {
     pub deformation: f64,
     pub fig1c_seconds: f64,
     /// The resting disk's onsets at the band line's `kappa2`.
-    pub disk: ModeThresholds,
+    pub disk: IcThresholds,
     /// The MD fold on the band line, if found.
     pub fold: Option<ModeFold>,
     pub fold_seconds: f64,
