@@ -129,7 +129,7 @@ pub struct Args {
     /// the Newton finish: steady on a root of the 2K force balances whose eigenvalues all
     /// decay, else unsettled where a 2-mode run gives up (as a sweep with params.modes: K
     /// runs it). Its
-    /// --series gains a3..aK, b3..bK; --picture draws every mode (the field: the steady field of the final state). With --scheme paper-fd: the paper's forward Euler with every
+    /// --series gains a3..aK, b3..bK; --picture draws every mode. With --scheme paper-fd: the paper's forward Euler with every
     /// mode to t_max, ended by the steady test (every rate below --steady-tol). No pinning
     /// or landing.
     #[arg(long, default_value_t = 2)]

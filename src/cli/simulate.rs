@@ -1,11 +1,9 @@
 //! `droplet simulate`: one run, its class, and optionally its time series and Fig. 1 picture,
-//! with the paper's two shape modes or with modes 2..K (`--modes K`, the general model as a
-//! sweep with `params.modes: K` runs it, `droplet_solver::runs::mode_outcome`); one report
-//! with the same keys for every K.
+//! with the paper's two shape modes or with modes 2..K (`--modes K`), by the one run driver
+//! (`droplet_solver::runs::driver`); one report with the same keys for every K.
 use super::run_settings::{check_outputs, model_of, Args};
 use super::{print_json, CliError};
 use droplet_solver::contract::outcome::RunOutcome;
-use droplet_solver::roots::{mode_field::lab_field, mode_solver::ModeSolver};
 use droplet_solver::{
     contract::settings::SolverSettings, model::initial::InitialCondition,
     model::params::ModelParams, runs::driver::Run, stepping::Field, stepping::SchemeKind,
@@ -62,8 +60,8 @@ struct Report {
     /// stopped at (a root found by Newton from there; rotation mode included).
     final_state: Option<FinalState>,
     wall_s: f64,
-    /// The surfactant's integral over the box at the end (2-mode runs; null with more modes).
-    mass_integral: Option<f64>,
+    /// The surfactant's integral over the box at the end.
+    mass_integral: f64,
     params: ModelParams,
     settings: SolverSettings,
     ic: InitialCondition,
@@ -80,30 +78,10 @@ pub fn run(a: Args) -> Result<(), CliError> {
         droplet_solver::contract::limits::check_modes(&params, settings.n, a.modes)?;
     }
     let every = check_outputs(&a, &settings)?.then_some(a.every);
-    let (out, mass_integral, pictures) = if a.modes == 2 {
-        let mut run = Run::new(&params, &ic, &settings)?.record_every(every);
-        let out = run.execute();
-        let field = a.picture.is_some().then(|| run.scheme_mut().field());
-        (out, Some(run.scheme_mut().mass()), field)
-    } else {
-        let out = droplet_solver::runs::mode_outcome::simulate_modes_recorded(
-            &params, &ic, &settings, every,
-        )?;
-        // The run's own field is not kept: the steady field of its final state.
-        let field = match a.picture {
-            Some(_) => {
-                let mut solver = ModeSolver::new(params, settings.n)?;
-                Some(lab_field(
-                    &mut solver,
-                    &out.unknowns(),
-                    out.state.x,
-                    out.state.y,
-                ))
-            }
-            None => None,
-        };
-        (out, None, field)
-    };
+    let mut run = Run::new(&params, &ic, &settings)?.record_every(every);
+    let out = run.execute();
+    let pictures = a.picture.is_some().then(|| run.scheme_mut().field());
+    let mass_integral = run.scheme_mut().mass();
     if let Some(path) = &a.series {
         droplet_sweep::tables::series::write(
             path,
@@ -163,8 +141,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
     Ok(())
 }
 
-/// The run's Fig. 1 panels: the field (the run's own with two modes; with more, the steady
-/// field of its final state, centred where the run ends), the outline with every mode, and
+/// The run's Fig. 1 panels: the run's own field at its end, the outline with every mode, and
 /// `v(t)`, `s(t)`.
 fn picture(
     path: &std::path::Path,

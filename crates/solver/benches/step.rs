@@ -4,7 +4,7 @@
 //! each shape mode adds (K = 2 through the general stepper, beside the 2-mode fast path).
 //! Run: `cargo bench --bench step` (add `-- --quick` for a fast pass).
 use criterion::{criterion_group, criterion_main, Criterion};
-use droplet_solver::runs::{mode_outcome::initial_modes, mode_run::ModeStepper};
+use droplet_solver::runs::mode_run::ModeStepper;
 use droplet_solver::stepping::{comoving_etd::ComovingEtd, paper_fd::PaperFd, Stepper};
 use droplet_solver::{model::initial::InitialCondition, model::params::ModelParams};
 
@@ -28,7 +28,7 @@ fn bench(c: &mut Criterion) {
     g.bench_function("paper_fd_n280", |b| b.iter(|| fd.step(1e-4)));
     for k in [2, 3, 4, 6] {
         // IC i with modes 3..K at 0, past the start-up.
-        let z = initial_modes(&InitialCondition::parse("i").unwrap(), k);
+        let z = InitialCondition::parse("i").unwrap().unknowns(k);
         let mut m = ModeStepper::new(&p, 192, &z).unwrap();
         for _ in 0..500 {
             m.step(0.02);

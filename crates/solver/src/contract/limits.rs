@@ -32,7 +32,7 @@ pub fn adaptive_step_cap(settings: &SolverSettings) -> u64 {
     (100.0 * settings.give_up_at() / settings.dt_max).clamp(1e6, MAX_STEPS) as u64
 }
 
-/// What a `K`-mode run (`modes` > 2, [`crate::runs::mode_outcome`]) can do: the modes the
+/// What a `K`-mode run (`modes` > 2, [`crate::runs::driver`]) can do: the modes the
 /// grid resolves ([`check_modes`]), its steps as a 2-mode run's
 /// ([`SolverSettings::check_steps`]), a free centre and none of the 2-mode runs' optional
 /// endings; the spectral scheme with the Newton finish or the paper's test, or the paper's

@@ -97,9 +97,9 @@ pub struct SolverSettings {
     #[serde(default = "on")]
     pub run_on: bool,
     /// Shape modes `2..=modes` of the paper's general model (default 2, the paper's
-    /// truncation). With more, a run is the `K`-mode model's ([`crate::runs::mode_outcome`]:
-    /// fixed steps `dt`, the Newton finish, run on to 4 `t_max`). A 2-mode run keeps the run
-    /// key it had before.
+    /// truncation). With more, a run is the `K`-mode model's (the one driver,
+    /// [`crate::runs::driver`], with the general schemes and the rate as its watch). A 2-mode
+    /// run keeps the run key it had before.
     #[serde(default = "two_modes", skip_serializing_if = "is_two_modes")]
     pub modes: usize,
     /// The friction law of the shape modes `k >= 3`, `eta_k = eta2 (k / 2)^eta_k_exponent`

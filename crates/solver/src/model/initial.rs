@@ -143,6 +143,17 @@ impl InitialCondition {
         Err(SolverError::UnknownInitialCondition(text.to_string()))
     }
 
+    /// The unknowns `(vx, vy, a_2..a_K, b_2..b_K)` of the droplet with shape modes
+    /// `2..=k_max`: the amplitudes of modes `3..K` given ([`Self::higher`]), 0 for the others.
+    pub fn unknowns(&self, k_max: usize) -> Vec<f64> {
+        let mode = |k: usize| self.higher.get(k - 3).copied().unwrap_or([0.0; 2]);
+        let mut z = vec![self.vx, self.vy, self.a2];
+        z.extend((3..=k_max).map(|k| mode(k)[0]));
+        z.push(self.b2);
+        z.extend((3..=k_max).map(|k| mode(k)[1]));
+        z
+    }
+
     /// The droplet state at `t = 0` (`r_c = 0`).
     pub fn state(&self) -> DropletState {
         DropletState {

@@ -28,6 +28,22 @@ impl DropletState {
         [self.vx, self.vy, self.a2, self.b2]
     }
 
+    /// The droplet of unknowns `z = (vx, vy, a_2..a_K, b_2..b_K)` centred at `(x, y)`, and its
+    /// higher amplitudes `a_3..a_K, b_3..b_K` (none for `K = 2`).
+    pub fn of_unknowns(z: &[f64], x: f64, y: f64) -> (Self, Vec<f64>) {
+        let k = z.len() / 2;
+        let state = Self {
+            x,
+            y,
+            vx: z[0],
+            vy: z[1],
+            a2: z[2],
+            b2: z[k + 1],
+        };
+        let higher = z[3..k + 1].iter().chain(&z[k + 2..]).copied().collect();
+        (state, higher)
+    }
+
     /// True when every component is finite.
     pub fn is_finite(&self) -> bool {
         [self.x, self.y, self.vx, self.vy, self.a2, self.b2]

@@ -2,7 +2,8 @@
 //! over its two solvers: the 2-mode steady solver (the fast path: its chord method with kept
 //! Jacobians, and the constrained solves of the landing) and the general one
 //! ([`crate::roots::mode_solver::ModeSolver`]). States are `(vx, vy, a_2..a_K, b_2..b_K)`,
-//! for `K = 2` `(vx, vy, a2, b2)`.
+//! for `K = 2` `(vx, vy, a2, b2)`. With them, the steady field of a droplet of any `K` in the
+//! lab frame ([`lab_field`]).
 use crate::error::SolverError;
 use crate::model::dynamics;
 use crate::model::params::ModelParams;
@@ -115,6 +116,61 @@ impl Balances {
                 dynamics::force_balance(&p, four(z), &f).to_vec()
             }
             Balances::General { solver, .. } => solver.residual(z),
+        }
+    }
+}
+
+/// The steady field in the lab frame (for pictures and checks) of the droplet `z = (vx, vy, a_2..a_K, b_2..b_K)` centred at `(x, y)`, on
+/// the solver's grid (row-major, `values[iy * n + ix]` at `((ix - n/2) dx, (iy - n/2) dx)`).
+pub fn lab_field(solver: &mut ModeSolver, z: &[f64], x: f64, y: f64) -> crate::stepping::Field {
+    solver.forces(z[0], z[1], &crate::model::modes::Modes::of_state(z));
+    let n = solver.n();
+    let len = solver.params().box_len;
+    let mut spec = solver.field_spectrum().to_vec();
+    solver.grid().shift_spectrum(&mut spec, x, y);
+    let mut values = vec![0.0; n * n];
+    crate::numerics::fft2::PrunedFft2::new(n).inverse(&mut spec, &mut values, 0, n - 1);
+    crate::stepping::Field { n, len, values }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn with_two_modes_at_the_centre_it_is_the_two_mode_steady_field() {
+        let p = ModelParams::at(0.085, 0.112);
+        let mut modes = ModeSolver::new(p, 64).unwrap();
+        let mut two = SteadySolver::new(p, 64).unwrap();
+        let f = lab_field(&mut modes, &[0.3, 0.1, -0.2, 0.05], 0.0, 0.0);
+        let g = two.field(0.3, 0.1, -0.2, 0.05);
+        let peak = g.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        let diff = f
+            .values
+            .iter()
+            .zip(&g)
+            .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+        assert!(peak > 0.01 && diff < 1e-12 * peak, "{diff} of {peak}");
+    }
+
+    #[test]
+    fn moving_the_centre_by_whole_cells_moves_the_field() {
+        // A shift by (3, -2) cells moves the field's samples with it, exactly but for the
+        // Nyquist modes, which the spectral shift (like the derivatives) leaves out: a part in
+        // 1e-4 of the peak at N = 64. A shift the wrong way would be off by a fifth of it.
+        let p = ModelParams::at(0.085, 0.112);
+        let mut s = ModeSolver::new(p, 64).unwrap();
+        let z = [0.3, 0.0, -0.2, 0.04, 0.0, 0.01];
+        let at0 = lab_field(&mut s, &z, 0.0, 0.0);
+        let dx = p.box_len / 64.0;
+        let moved = lab_field(&mut s, &z, 3.0 * dx, -2.0 * dx);
+        let peak = at0.values.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        for iy in 10..54 {
+            for ix in 10..54 {
+                let a = moved.values[iy * 64 + ix];
+                let b = at0.values[(iy + 2) * 64 + ix - 3];
+                assert!((a - b).abs() < 1e-4 * peak, "({ix}, {iy}): {a} vs {b}");
+            }
         }
     }
 }

@@ -11,7 +11,6 @@ pub mod balances;
 mod forces_memo;
 pub mod h0_fit;
 pub mod linearisation;
-pub mod mode_field;
 pub mod mode_linearisation;
 pub mod mode_solver;
 pub mod named_state;

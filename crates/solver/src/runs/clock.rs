@@ -98,30 +98,47 @@ impl Clock {
     }
 }
 
-/// The time series of a run, one row every `every` time units (if asked).
+/// The time series of a run, one row every `every` time units (if asked): the droplet's
+/// `(t, x, y, vx, vy, a2, b2, v, s)` and, with more than two shape modes, its higher
+/// amplitudes `a_3..a_K, b_3..b_K` ([`crate::contract::outcome::RunOutcome::higher_series`]).
 pub(super) struct Recorder {
     pub(super) every: Option<f64>,
     /// The next recording time.
     pub(super) next: Option<f64>,
     pub(super) slack: f64,
     pub(super) rows: Vec<SeriesRow>,
+    pub(super) higher: Vec<Vec<f64>>,
 }
 
 impl Recorder {
-    pub(super) fn new(every: Option<f64>, start: &DropletState, slack: f64) -> Self {
-        Self {
+    pub(super) fn new(every: Option<f64>, start: (&DropletState, Vec<f64>), slack: f64) -> Self {
+        let mut rec = Self {
             every,
             next: every,
             slack,
-            rows: every.map_or_else(Vec::new, |_| vec![SeriesRow::at(0.0, start)]),
+            rows: Vec::new(),
+            higher: Vec::new(),
+        };
+        if every.is_some() {
+            rec.push(0.0, start);
+        }
+        rec
+    }
+
+    fn push(&mut self, t: f64, (st, higher): (&DropletState, Vec<f64>)) {
+        self.rows.push(SeriesRow::at(t, st));
+        if !higher.is_empty() {
+            self.higher.push(higher);
         }
     }
 
-    /// Records `st` if `t` reached the next recording time.
-    pub(super) fn sample(&mut self, t: f64, st: &DropletState) {
+    /// Records the droplet (state and higher amplitudes, made only when recorded) if `t`
+    /// reached the next recording time.
+    pub(super) fn sample(&mut self, t: f64, at: impl FnOnce() -> (DropletState, Vec<f64>)) {
         if let (Some(tr), Some(every)) = (self.next, self.every) {
             if t >= tr - self.slack {
-                self.rows.push(SeriesRow::at(t, st));
+                let (st, higher) = at();
+                self.push(t, (&st, higher));
                 self.next = Some(tr + every);
             }
         }
@@ -131,19 +148,23 @@ impl Recorder {
     /// skips the leapt times).
     pub(super) fn after_leap(&mut self, t: f64, st: &DropletState) {
         if let (Some(tr), Some(every)) = (self.next, self.every) {
-            self.rows.push(SeriesRow::at(t, st));
+            self.push(t, (st, Vec::new()));
             if tr <= t {
                 self.next = Some(tr + every * (((t - tr) / every).floor() + 1.0));
             }
         }
     }
 
-    /// The series, ending with the final state at `t`.
-    pub(super) fn finish(mut self, t: f64, st: &DropletState) -> Vec<SeriesRow> {
+    /// The series and the higher amplitudes' series, ending with the final droplet at `t`.
+    pub(super) fn finish(
+        mut self,
+        t: f64,
+        end: (&DropletState, Vec<f64>),
+    ) -> (Vec<SeriesRow>, Vec<Vec<f64>>) {
         if self.rows.last().is_some_and(|r| r.t < t - self.slack) {
-            self.rows.push(SeriesRow::at(t, st));
+            self.push(t, end);
         }
-        self.rows
+        (self.rows, self.higher)
     }
 }
 

@@ -1,6 +1,16 @@
-//! The run driver: integrate from an initial condition until the steady state, `t_max`, or
-//! divergence (paper Sect. 3 stop rule, [`crate::contract::stop_rule`]), recording a time series when
-//! asked.
+//! The run driver, one for every number of shape modes: integrate from an initial condition
+//! until the steady state, `t_max`, or divergence (paper Sect. 3 stop rule,
+//! [`crate::contract::stop_rule`]), recording a time series when asked.
+//!
+//! The scheme is chosen once per run ([`Run::new`]): for two shape modes the 2-mode fast paths
+//! (the co-moving ETD2RK with the droplet's point symmetry, or the paper's scheme), for
+//! modes `2..K` the general ones ([`crate::runs::mode_run::ModeStepper`],
+//! [`crate::stepping::mode_fd::ModeFd`]). What a run watches for its end is chosen with it:
+//! a 2-mode run the change of `(vx, vy, a2, b2)` over the paper's window of 0.1, a `K`-mode
+//! run the largest rate `|dz/dt|` its scheme measures (the Newton finish is tried once that is
+//! below [`crate::runs::finish::TRIGGER_FACTOR`] steady tolerances; the paper's test fires
+//! below one). The landing, the orientation flow, the saddle stop and the leap solve the
+//! 2-mode balances: off for `K > 2` ([`crate::contract::limits::check_run`] and the finish).
 use crate::contract::ending::{Ending, SteadyMethod};
 use crate::contract::outcome::{RunOutcome, RunStatus, Unsettled};
 use crate::contract::profile::{self, Part};
@@ -10,10 +20,12 @@ use crate::error::SolverError;
 use crate::model::classify::StateClass;
 use crate::model::initial::InitialCondition;
 use crate::model::params::ModelParams;
-use crate::model::state::four;
+use crate::model::state::{four, DropletState};
 use crate::runs::clock::{Clock, Recorder, Step};
 use crate::runs::finding::Diagnosis;
 use crate::runs::finish::{Decision, NewtonFinish};
+use crate::runs::mode_run::ModeStepper;
+use crate::stepping::mode_fd::ModeFd;
 use crate::stepping::{comoving_etd::ComovingEtd, paper_fd::PaperFd, Scheme, SchemeKind};
 use std::time::Instant;
 
@@ -42,14 +54,22 @@ impl Run {
                 allowed: "pde for a field run (ODE runs go through `simulate`)".into(),
             });
         }
-        ic.check_modes(2)?;
-        let st = ic.state();
-        let scheme: Box<dyn Scheme> = match settings.scheme {
-            SchemeKind::Spectral => {
-                Box::new(ComovingEtd::new(*params, settings.n, st, settings.pinned)?)
+        ic.check_modes(settings.modes)?;
+        let (st, n) = (ic.state(), settings.n);
+        let scheme: Box<dyn Scheme> = match (settings.scheme, settings.modes) {
+            (SchemeKind::Spectral, 2) => {
+                Box::new(ComovingEtd::new(*params, n, st, settings.pinned)?)
             }
-            SchemeKind::PaperFd => {
-                Box::new(PaperFd::new(*params, settings.n, st, settings.pinned)?)
+            (SchemeKind::PaperFd, 2) => Box::new(PaperFd::new(*params, n, st, settings.pinned)?),
+            (SchemeKind::Spectral, k) => {
+                let mut run = ModeStepper::new(params, n, &ic.unknowns(k))?;
+                run.set_eta_k_exponent(settings.eta_k_exponent);
+                Box::new(run)
+            }
+            (SchemeKind::PaperFd, k) => {
+                let mut run = ModeFd::new(params, n, &ic.unknowns(k))?;
+                run.set_eta_k_exponent(settings.eta_k_exponent);
+                Box::new(run)
             }
         };
         Ok(Self {
@@ -60,7 +80,8 @@ impl Run {
         })
     }
 
-    /// Records `(t, x, y, vx, vy, a2, b2, v, s)` every `interval` time units.
+    /// Records `(t, x, y, vx, vy, a2, b2, v, s)` (and `a_3..a_K, b_3..b_K`) every `interval`
+    /// time units.
     pub fn record_every(mut self, interval: Option<f64>) -> Self {
         self.record_every = interval.filter(|i| *i > 0.0 && i.is_finite());
         self
@@ -83,11 +104,13 @@ impl Run {
         profile::start();
         let cfg = self.settings;
         let mut clock = Clock::new(&cfg);
-        let mut rec = Recorder::new(self.record_every, &self.scheme.state(), clock.slack);
-        let mut steady_test = SteadyTest::new(&cfg, 0.0, self.scheme.state().monitored());
+        let start = self.scheme.unknowns();
+        let at = self.scheme.state();
+        let higher = DropletState::of_unknowns(&start, at.x, at.y).1;
+        let mut rec = Recorder::new(self.record_every, (&at, higher), clock.slack);
+        let mut watch = Watch::new(&cfg, &start);
         // The Newton finish needs the linearisation, which needs inertia: an overdamped
         // droplet (m = 0) is finished by the paper's test.
-        let start = self.scheme.state().monitored();
         let mut finish = (cfg.steady == SteadyMethod::Newton && self.params.mass > 0.0)
             .then(|| NewtonFinish::new(&self.params, &cfg).starting_at(&start));
         let mut end = End::default();
@@ -101,19 +124,24 @@ impl Run {
                 }
             }
             let st = self.scheme.state();
-            if diverged(st.monitored(), &[st.x, st.y]) {
+            let z = self.scheme.unknowns();
+            if diverged(st.monitored(), &[st.x, st.y]) || !z.iter().all(|x| x.is_finite()) {
                 end.status = RunStatus::Diverged;
                 break;
             }
-            rec.sample(clock.t, &st);
-            let Some(change) = steady_test.judge(clock.t, st.monitored()) else {
+            rec.sample(clock.t, || DropletState::of_unknowns(&z, st.x, st.y));
+            let Some(change) = watch.judge(clock.t, &z, self.scheme.as_mut()) else {
                 continue;
             };
+            if !change.is_finite() {
+                end.status = RunStatus::Diverged;
+                break;
+            }
             let fired = change < cfg.steady_tol;
             let decision = match finish.as_mut() {
-                None if fired => Decision::End(Ending::Test, st.monitored().to_vec()),
+                None if fired => Decision::End(Ending::Test, z),
                 None => Decision::Continue,
-                Some(f) => f.consider(clock.t, &st.monitored(), change, fired),
+                Some(f) => f.consider(clock.t, &z, change, fired),
             };
             match decision {
                 Decision::Continue => {}
@@ -143,7 +171,7 @@ impl Run {
                         clock.t += leap.duration;
                         end.t_leapt += leap.duration;
                         let st = self.scheme.state();
-                        steady_test = SteadyTest::new(&cfg, clock.t, st.monitored());
+                        watch = Watch::new_at(&cfg, clock.t, &self.scheme.unknowns());
                         rec.after_leap(clock.t, &st);
                     }
                 }
@@ -163,13 +191,16 @@ impl Run {
         mut finish: Option<NewtonFinish>,
         started: Instant,
     ) -> RunOutcome {
-        let mut state = self.scheme.state();
         // The series ends with the time-stepped state; the outcome, with the root if the
         // Newton finish ended the run.
-        let series = rec.finish(clock.t, &state);
-        if let Some([vx, vy, a2, b2]) = end.polished.as_deref().map(four) {
-            (state.vx, state.vy, state.a2, state.b2) = (vx, vy, a2, b2);
-        }
+        let stepped = self.scheme.unknowns();
+        let at = self.scheme.state();
+        let (series, higher_series) = rec.finish(
+            clock.t,
+            (&at, DropletState::of_unknowns(&stepped, at.x, at.y).1),
+        );
+        let z = end.polished.unwrap_or(stepped);
+        let (state, higher_modes) = DropletState::of_unknowns(&z, at.x, at.y);
         let status = end.status;
         let found = match status {
             RunStatus::Steady => None,
@@ -183,9 +214,7 @@ impl Run {
                 reason: Unsettled::BesideSaddle,
                 heading: None,
             }),
-            RunStatus::TMax | RunStatus::StepLimit => {
-                Some(self.diagnose(finish.as_mut(), state.monitored()))
-            }
+            RunStatus::TMax | RunStatus::StepLimit => Some(self.diagnose(finish.as_mut(), &z)),
         };
         let (v, s) = (state.speed(), state.deformation());
         let diagnosis = found
@@ -210,15 +239,16 @@ impl Run {
             t_leapt: end.t_leapt,
             unsettled: found.as_ref().map(|d| d.reason),
             heading: found.and_then(|d| d.heading),
-            higher_modes: Vec::new(),
+            higher_modes,
             series,
-            higher_series: Vec::new(),
+            higher_series,
             profile: profile::finish(),
         }
     }
 
-    /// Why a run did not finish: what a Newton try from its final state `z` finds (spectral runs only; one try, about 0.1 s at N = 192).
-    fn diagnose(&self, finish: Option<&mut NewtonFinish>, z: [f64; 4]) -> Diagnosis {
+    /// Why a run did not finish: what a Newton try from its final state `z` finds (spectral
+    /// runs only; one try, about 0.1 s at N = 192 with two modes).
+    fn diagnose(&self, finish: Option<&mut NewtonFinish>, z: &[f64]) -> Diagnosis {
         let _timed = profile::enter(Part::Diagnosis);
         if self.settings.scheme != SchemeKind::Spectral || self.settings.pinned {
             return Diagnosis {
@@ -235,7 +265,43 @@ impl Run {
                 &mut own
             }
         };
-        f.diagnose(&z)
+        f.diagnose(z)
+    }
+}
+
+/// What a run watches for its end (see the module).
+enum Watch {
+    /// The change of `(vx, vy, a2, b2)` over the paper's window (2-mode runs).
+    Window(SteadyTest),
+    /// The largest rate `|dz/dt|` the scheme measures (`K > 2`).
+    Rate,
+}
+
+impl Watch {
+    /// The watch of a run of `cfg.modes` shape modes, from the state `z` at `t`.
+    fn new_at(cfg: &SolverSettings, t: f64, z: &[f64]) -> Self {
+        if cfg.modes == 2 {
+            Watch::Window(SteadyTest::new(cfg, t, four(z)))
+        } else {
+            Watch::Rate
+        }
+    }
+
+    fn new(cfg: &SolverSettings, z: &[f64]) -> Self {
+        Self::new_at(cfg, 0.0, z)
+    }
+
+    /// The run's change now (`None` while the window has not passed), scaled to the steady
+    /// tolerance's meaning: per window of 0.1, or per unit time (a rate).
+    fn judge(&mut self, t: f64, z: &[f64], scheme: &mut dyn Scheme) -> Option<f64> {
+        match self {
+            Watch::Window(test) => test.judge(t, four(z)),
+            Watch::Rate => {
+                let _timed = profile::enter(Part::Stepping);
+                // NaN (the run left the model) if the scheme measured none.
+                Some(scheme.rate().unwrap_or(f64::NAN))
+            }
+        }
     }
 }
 
@@ -271,9 +337,6 @@ pub fn simulate(
 ) -> Result<RunOutcome, SolverError> {
     ic.check_modes(settings.modes)?;
     match settings.model {
-        ModelKind::Pde if settings.modes != 2 => {
-            crate::runs::mode_outcome::simulate_modes(params, ic, settings)
-        }
         ModelKind::Pde => Ok(Run::new(params, ic, settings)?.execute()),
         ModelKind::Ode => crate::reduced::ode::simulate(params, ic, settings),
     }

@@ -23,34 +23,12 @@
 use crate::error::SolverError;
 use crate::model::modes::Modes;
 use crate::model::params::ModelParams;
+use crate::model::state::DropletState;
+use crate::numerics::fft2::PrunedFft2;
 use crate::roots::mode_solver::ModeSolver;
 use crate::stepping::etd::{EtdCoef, SeparableExp};
-use crate::stepping::{Attempt, Stepper};
+use crate::stepping::{Attempt, Field, Scheme, Stepper};
 use rustfft::num_complex::Complex64;
-
-/// How a `K`-mode run steps and when it stops ([`run_modes`]).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ModeRunSettings {
-    /// Time step.
-    pub dt: f64,
-    /// Largest time.
-    pub t_max: f64,
-    /// Steady when every rate `|dz/dt|` is below this.
-    pub tol: f64,
-}
-
-/// How a `K`-mode run ended.
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
-pub struct ModeRun {
-    /// `(vx, vy, a_2..a_K, b_2..b_K)` at the end.
-    pub z: Vec<f64>,
-    pub t_end: f64,
-    pub steps: u64,
-    /// Whether every rate fell below the tolerance before `t_max`.
-    pub steady: bool,
-    /// The largest rate `|dz/dt|` at the end.
-    pub rate: f64,
-}
 
 /// The forces at the run's present state, and whether the solver's buffers (`Theta`, its
 /// transform) still belong to it: a refused step, or Newton with [`ModeStepper::solver_mut`],
@@ -163,7 +141,7 @@ impl ModeStepper {
     }
 
     /// The largest rate `|dz/dt|` = `|f / m - r z|` at the present state.
-    pub fn rate(&mut self) -> f64 {
+    pub fn max_rate(&mut self) -> f64 {
         self.ensure_start();
         let f = &self.start.as_ref().expect("forces at the start").forces;
         f.iter()
@@ -238,6 +216,40 @@ impl ModeStepper {
     }
 }
 
+impl Scheme for ModeStepper {
+    fn state(&self) -> DropletState {
+        DropletState::of_unknowns(&self.z, self.x, self.y).0
+    }
+
+    fn unknowns(&self) -> Vec<f64> {
+        self.z.clone()
+    }
+
+    fn rate(&mut self) -> Option<f64> {
+        Some(self.max_rate())
+    }
+
+    fn mass(&self) -> f64 {
+        let len = self.solver.params().box_len;
+        len * len * self.u[0].re
+    }
+
+    fn field(&mut self) -> Field {
+        // Lab frame: u(x) = w(x - r_c), an exact phase shift e^{-i k . r_c}.
+        let grid = self.solver.grid();
+        let n = grid.n;
+        let mut spec = self.u.clone();
+        grid.shift_spectrum(&mut spec, self.x, self.y);
+        let mut values = vec![0.0; n * n];
+        PrunedFft2::new(n).inverse(&mut spec, &mut values, 0, n - 1);
+        Field {
+            n,
+            len: self.solver.params().box_len,
+            values,
+        }
+    }
+}
+
 impl Stepper for ModeStepper {
     fn attempt(&mut self, h: f64, max_error: f64) -> Attempt {
         self.ensure_start();
@@ -289,37 +301,6 @@ impl Stepper for ModeStepper {
     }
 }
 
-/// Runs the `K`-mode model (`K = z0.len() / 2`) from `z0` with the field 0 at fixed steps
-/// `dt`, until every rate is below `tol` or `t_max`.
-pub fn run_modes(
-    params: &ModelParams,
-    n: usize,
-    z0: &[f64],
-    settings: &ModeRunSettings,
-) -> Result<ModeRun, SolverError> {
-    let mut run = ModeStepper::new(params, n, z0)?;
-    crate::error::require(
-        settings.dt > 0.0 && settings.t_max / settings.dt <= crate::contract::settings::MAX_STEPS,
-        "dt",
-        settings.dt,
-        "a finite number > 0 giving at most MAX_STEPS steps up to t_max",
-    )?;
-    loop {
-        let rate = run.rate();
-        let t = run.t;
-        if (rate < settings.tol && t > 0.0) || t >= settings.t_max || !rate.is_finite() {
-            return Ok(ModeRun {
-                z: run.z,
-                t_end: t,
-                steps: run.steps,
-                steady: rate < settings.tol,
-                rate,
-            });
-        }
-        run.step(settings.dt);
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -330,8 +311,7 @@ mod tests {
     /// `(vx, vy, a_2..a_K, b_2..b_K)` after `steps` fixed steps of `h` from IC i with modes
     /// `3..K` at 0, and the centre.
     fn stepped(p: &ModelParams, n: usize, k: usize, h: f64, steps: usize) -> (Vec<f64>, f64) {
-        let z0 =
-            crate::runs::mode_outcome::initial_modes(&InitialCondition::parse("i").unwrap(), k);
+        let z0 = InitialCondition::parse("i").unwrap().unknowns(k);
         let mut run = ModeStepper::new(p, n, &z0).unwrap();
         for _ in 0..steps {
             run.step(h);
@@ -394,8 +374,7 @@ mod tests {
     #[test]
     fn a_refused_step_changes_nothing() {
         let p = ModelParams::at(0.085, 0.112);
-        let z0 =
-            crate::runs::mode_outcome::initial_modes(&InitialCondition::parse("i").unwrap(), 3);
+        let z0 = InitialCondition::parse("i").unwrap().unknowns(3);
         let mut run = ModeStepper::new(&p, 64, &z0).unwrap();
         run.step(0.02);
         let (z, x, t) = (run.z.clone(), run.x, run.t);
@@ -412,32 +391,39 @@ mod tests {
 
     #[test]
     fn a_run_settles_on_the_state_newton_finds_with_its_mode_3() {
-        // Fig. 1c with modes 2..3 from a droplet pushed along x: the run ends steady on the MD
+        // Fig. 1c with modes 2..3 from a droplet pushed along x, by pure time stepping (the
+        // paper's test, every rate below 1e-9, fixed steps): the run ends steady on the MD
         // state of the steady solver, a3 included, to 1e-6. (N = 96: there the box's rotation
         // mode of the x-axis state decays, at rate 0.037; at N = 64 the run turns away from
         // the axis.)
         let p = ModelParams::at(0.085, 0.112);
         let n = 96;
-        let run = run_modes(
-            &p,
+        let settings = crate::contract::settings::SolverSettings {
             n,
-            &[0.5, 0.0, -0.1, 0.0, 0.0, 0.0],
-            &ModeRunSettings {
-                dt: 0.05,
-                t_max: 3000.0,
-                tol: 1e-9,
-            },
-        )
-        .unwrap();
-        assert!(run.steady, "{run:?}");
+            modes: 3,
+            dt: 0.05,
+            tol: 0.0,
+            t_max: 3000.0,
+            steady: crate::contract::ending::SteadyMethod::Test,
+            steady_tol: 1e-9,
+            ..Default::default()
+        };
+        let ic = InitialCondition::parse("custom:0.5,0,-0.1,0,0,0").unwrap();
+        let run = crate::runs::driver::simulate(&p, &ic, &settings).unwrap();
+        assert_eq!(
+            run.status,
+            crate::contract::outcome::RunStatus::Steady,
+            "{run:?}"
+        );
         let mut solver = ModeSolver::new(p, n).unwrap();
         let st = md_state(&mut solver, 3).unwrap();
-        assert!((run.z[0] - st.v).abs() < 1e-6, "{run:?} {st:?}");
-        assert!((run.z[2] - st.a[0]).abs() < 1e-6, "{run:?} {st:?}");
+        let z = run.unknowns();
+        assert!((z[0] - st.v).abs() < 1e-6, "{run:?} {st:?}");
+        assert!((z[2] - st.a[0]).abs() < 1e-6, "{run:?} {st:?}");
         assert!(
-            (run.z[3] - st.a[1]).abs() < 1e-6 && st.a[1].abs() > 1e-2,
+            (z[3] - st.a[1]).abs() < 1e-6 && st.a[1].abs() > 1e-2,
             "{run:?} {st:?}"
         );
-        assert!(run.z[1].abs() < 1e-9 && run.z[4].abs() < 1e-9, "{run:?}");
+        assert!(z[1].abs() < 1e-9 && z[4].abs() < 1e-9, "{run:?}");
     }
 }

@@ -6,7 +6,7 @@
 //!   exponential time-differencing coefficients; `step_control` the PI step-size controller.
 //! - `paper_fd`: the paper's forward-Euler finite differences (the baseline); `mode_fd` the
 //!   same scheme for the general model with shape modes `2..K` (whose ETD2RK stepper is
-//!   [`crate::runs::mode_run::ModeStepper`], a [`Stepper`] as the 2-mode schemes are).
+//!   [`crate::runs::mode_run::ModeStepper`]; every one a [`Scheme`], so one driver runs them).
 //!
 //! May use: `numerics`, `model`. Used by: `contract` (the scheme setting), `runs`.
 pub mod comoving_etd;
@@ -91,11 +91,21 @@ pub trait Stepper: Send {
     }
 }
 
-/// One integrator of the 2-mode droplet: a [`Stepper`] whose state is a [`DropletState`],
-/// with its field, mass and the leap along a linear mode.
+/// One integrator of the droplet with shape modes `2..K`: a [`Stepper`] with its state, field
+/// and mass, the rate it measures (`K > 2`) and the leap along a linear mode (`K = 2`).
 pub trait Scheme: Stepper {
-    /// Current droplet state.
+    /// The droplet's centre, velocity and mode-2 amplitudes.
     fn state(&self) -> DropletState;
+    /// Its unknowns `(vx, vy, a_2..a_K, b_2..b_K)`; with two modes `(vx, vy, a2, b2)`.
+    fn unknowns(&self) -> Vec<f64> {
+        self.state().monitored().to_vec()
+    }
+    /// The largest rate `|dz/dt|` of the unknowns at the present state, for schemes that
+    /// measure it: those of `K > 2` modes, whose runs are watched by it (2-mode runs by the
+    /// change over the paper's window, [`crate::contract::stop_rule::SteadyTest`]).
+    fn rate(&mut self) -> Option<f64> {
+        None
+    }
     /// `Integral u dA`.
     fn mass(&self) -> f64;
     /// The concentration in the lab frame.

@@ -17,11 +17,14 @@ use crate::model::mode_friction::eta_k;
 use crate::model::modes::{w_fields, Modes};
 use crate::model::params::ModelParams;
 use crate::model::shape::ShapeParams;
+use crate::model::state::DropletState;
 use crate::stepping::paper_fd::central_gradient;
+use crate::stepping::{Attempt, Field, Scheme, Stepper};
 
 /// Explicit finite differences for the `K`-mode droplet on the lab grid. One step is
-/// [`ModeFd::rate`] (`Theta` and the forces at the present state, and the largest rate) then
-/// [`ModeFd::advance`]; the buffers are made once.
+/// [`ModeFd::max_rate`] (`Theta` and the forces at the present state, and the largest rate)
+/// then [`ModeFd::advance`] (a [`Stepper`] step measures the rate unless the run just did);
+/// the buffers are made once.
 pub struct ModeFd {
     params: ModelParams,
     shape: ShapeParams,
@@ -47,6 +50,8 @@ pub struct ModeFd {
     /// [`Self::rate`].
     balance: Vec<f64>,
     area: f64,
+    /// Whether [`Self::balance`] is the present state's.
+    fresh: bool,
 }
 
 impl ModeFd {
@@ -91,6 +96,7 @@ impl ModeFd {
             stiffness,
             balance: vec![0.0; z0.len()],
             area: 0.0,
+            fresh: false,
         })
     }
 
@@ -171,8 +177,9 @@ impl ModeFd {
 
     /// `Theta` and the force balances at the present state, kept for [`Self::advance`], and
     /// the largest rate `|dz/dt|` = `|balance / inertia|`.
-    pub fn rate(&mut self) -> f64 {
+    pub fn max_rate(&mut self) -> f64 {
         self.fill_and_forces();
+        self.fresh = true;
         let mut largest = 0.0f64;
         for (i, b) in self.balance.iter_mut().enumerate() {
             *b -= self.stiffness[i] * self.z[i];
@@ -181,7 +188,7 @@ impl ModeFd {
         largest
     }
 
-    /// One forward-Euler step of `h` from the state of the last [`Self::rate`].
+    /// One forward-Euler step of `h` from the state of the last [`Self::max_rate`].
     pub fn advance(&mut self, h: f64) {
         crate::stepping::paper_fd::euler_field_step(
             &mut self.u,
@@ -198,14 +205,54 @@ impl ModeFd {
         }
         self.t += h;
         self.steps += 1;
+        self.fresh = false;
+    }
+}
+
+impl Stepper for ModeFd {
+    /// Forward Euler has no error estimate: every step is taken.
+    fn attempt(&mut self, h: f64, _max_error: f64) -> Attempt {
+        if !self.fresh {
+            self.max_rate();
+        }
+        self.advance(h);
+        Attempt {
+            accepted: true,
+            error: None,
+        }
+    }
+}
+
+impl Scheme for ModeFd {
+    fn state(&self) -> DropletState {
+        DropletState::of_unknowns(&self.z, self.x, self.y).0
+    }
+
+    fn unknowns(&self) -> Vec<f64> {
+        self.z.clone()
+    }
+
+    fn mass(&self) -> f64 {
+        ModeFd::mass(self)
+    }
+
+    fn field(&mut self) -> Field {
+        Field {
+            n: self.n,
+            len: self.params.box_len,
+            values: self.u.clone(),
+        }
+    }
+
+    fn rate(&mut self) -> Option<f64> {
+        Some(self.max_rate())
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::state::DropletState;
-    use crate::stepping::{paper_fd::PaperFd, Scheme, Stepper};
+    use crate::stepping::paper_fd::PaperFd;
 
     #[test]
     fn two_modes_step_as_the_papers_scheme() {
@@ -225,7 +272,7 @@ mod tests {
         let mut fd = ModeFd::new(&p, n, &[0.3, -0.1, -0.08, 0.03]).unwrap();
         for _ in 0..400 {
             paper.step(h);
-            fd.rate();
+            fd.max_rate();
             fd.advance(h);
         }
         let s = paper.state();
@@ -241,7 +288,7 @@ mod tests {
     /// The largest force balance of the paper's scheme at the `K = 3` MD state of the spectral
     /// steady solver, its field included, against the largest force there.
     fn balance_at_spectral_md(n: usize) -> (f64, f64, f64) {
-        use crate::roots::{mode_field::lab_field, mode_solver::ModeSolver};
+        use crate::roots::{balances::lab_field, mode_solver::ModeSolver};
         let p = ModelParams::at(0.085, 0.112);
         let mut solver = ModeSolver::new(p, n).unwrap();
         let md = crate::roots::named_state::md_state(&mut solver, 3).unwrap();
@@ -249,7 +296,7 @@ mod tests {
         let field = lab_field(&mut solver, &z, 0.0, 0.0);
         let mut fd = ModeFd::new(&p, n, &z).unwrap();
         assert!(fd.set_field(&field.values));
-        fd.rate();
+        fd.max_rate();
         let worst = fd.balance.iter().fold(0.0f64, |m, b| m.max(b.abs()));
         (worst, p.eta_t * md.v, md.a[1])
     }
@@ -284,7 +331,7 @@ mod tests {
         z[4] = 0.05;
         let mut fd = ModeFd::new(&p, n, &z).unwrap();
         for _ in 0..steps {
-            fd.rate();
+            fd.max_rate();
             fd.advance(h);
         }
         let want = 1.0 - (1.0 - h).powi(steps);

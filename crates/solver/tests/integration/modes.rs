@@ -1,10 +1,12 @@
 //! The model with shape modes `2..K`: where its runs end either side of its own MD fold.
 use droplet_solver::continuation::mode_branch::{md_fold, ModeLine};
+
 use droplet_solver::contract::{outcome::RunStatus, settings::SolverSettings};
 use droplet_solver::model::{
     classify::StateClass, initial::InitialCondition, param::ModelParam, params::ModelParams,
 };
-use droplet_solver::runs::mode_outcome::simulate_modes;
+use droplet_solver::runs::driver::simulate;
+use droplet_solver::stepping::SchemeKind;
 
 /// The `eta_t` of the MD branch's fold at `kappa2 = 0.13` with modes `2..=k_max` at N = 96.
 fn fold(k_max: usize) -> f64 {
@@ -39,7 +41,7 @@ fn with_four_modes_the_ic_md_band_ends_at_the_four_mode_fold() {
     use StateClass::{IC, MD};
     for (eta_t, classes) in [(0.0786, [IC, IC, IC, IC]), (0.0775, [MD, MD, IC, IC])] {
         for (ic, class) in ["i", "ii", "iii", "iv"].into_iter().zip(classes) {
-            let out = simulate_modes(
+            let out = simulate(
                 &ModelParams::at(eta_t, 0.13),
                 &InitialCondition::parse(ic).unwrap(),
                 &SolverSettings {
@@ -125,7 +127,7 @@ fn three_mode_runs_end_where_pure_time_stepping_ends() {
     for end in &pure {
         let p = ModelParams::at(end.eta_t, end.kappa2);
         let ic = InitialCondition::parse(&end.ic).unwrap();
-        let out = simulate_modes(&p, &ic, &settings).unwrap();
+        let out = simulate(&p, &ic, &settings).unwrap();
         assert_eq!(out.status, RunStatus::Steady, "{}: {out:?}", end.ic);
         assert!(
             same_end(&out, end),
@@ -150,7 +152,90 @@ fn three_mode_runs_end_where_pure_time_stepping_ends() {
             .find(|e| e.eta_t == eta_t && e.kappa2 == kappa2 && e.ic == ic)
             .unwrap();
         let p = ModelParams::at(eta_t, kappa2);
-        let out = simulate_modes(&p, &InitialCondition::parse(ic).unwrap(), &stepping).unwrap();
+        let out = simulate(&p, &InitialCondition::parse(ic).unwrap(), &stepping).unwrap();
         assert!(same_end(&out, end), "{ic}: {out:?}");
+    }
+}
+
+#[test]
+fn a_three_mode_run_ends_steady_on_the_three_mode_md_state() {
+    // Fig. 1c with modes 2..3 at N = 96 from IC i: the Newton finish ends the run on the
+    // MD state of the steady solver, a3 included, long before the rates fall to the test.
+    let p = ModelParams::at(0.085, 0.112);
+    let settings = SolverSettings {
+        n: 96,
+        dt: 0.05,
+        modes: 3,
+        ..SolverSettings::default()
+    };
+    let ic = InitialCondition::parse("i").unwrap();
+    let out = simulate(&p, &ic, &settings).unwrap();
+    assert_eq!(out.status, RunStatus::Steady, "{out:?}");
+    assert_eq!(out.class, Some(StateClass::MD), "{out:?}");
+    assert_eq!(
+        out.ended_by,
+        Some(droplet_solver::contract::ending::Ending::Newton),
+        "{out:?}"
+    );
+    let mut solver = droplet_solver::roots::mode_solver::ModeSolver::new(p, 96).unwrap();
+    let md = droplet_solver::roots::named_state::md_state(&mut solver, 3).unwrap();
+    assert!((out.v - md.v).abs() < 1e-8, "{out:?} {md:?}");
+    let a3 = out.higher_modes[0].hypot(out.higher_modes[1]);
+    assert!((a3 - md.a[1].abs()).abs() < 1e-8, "{out:?} {md:?}");
+    assert_eq!(out.higher_modes.len(), 2);
+    // With the friction law eta_k = (2/k) eta2 (mode 3 relaxes 1.5 times faster), the run
+    // takes another path to the same state: eta_k enters no steady state.
+    let faster = simulate(
+        &p,
+        &ic,
+        &SolverSettings {
+            eta_k_exponent: -1.0,
+            ..settings
+        },
+    )
+    .unwrap();
+    assert_eq!(faster.status, RunStatus::Steady, "{faster:?}");
+    assert!((faster.v - md.v).abs() < 1e-8, "{faster:?} {md:?}");
+    let a3 = faster.higher_modes[0].hypot(faster.higher_modes[1]);
+    assert!((a3 - md.a[1].abs()).abs() < 1e-8, "{faster:?} {md:?}");
+    assert_ne!(faster.steps, out.steps);
+}
+
+#[test]
+fn the_friction_law_sets_how_fast_a_mode_relaxes() {
+    // A mode-3 dent on the resting disk at (0.1, 0.16), where the disk is stable, with
+    // both schemes: after 0.5 time units it has relaxed further with eta_3 = (2/3) eta2
+    // (exponent -1) than with eta_3 = eta2, and less with eta_3 = (3/2) eta2 (exponent 1);
+    // its mean rate goes about as 1 / eta_3 (ratio 1.5; measured 1.583 with the spectral
+    // scheme, 1.585 with the paper's: the field building up from 0 moves it a little).
+    let p = ModelParams::at(0.1, 0.16);
+    let ic = InitialCondition::parse("custom:0,0,0,0,0.05,0").unwrap();
+    for scheme in [SchemeKind::Spectral, SchemeKind::PaperFd] {
+        let a3 = |exponent: f64| {
+            let settings = SolverSettings {
+                n: 64,
+                dt: 2e-3,
+                tol: 0.0,
+                t_max: 0.5,
+                run_on: false,
+                modes: 3,
+                eta_k_exponent: exponent,
+                scheme,
+                steady: match scheme {
+                    SchemeKind::Spectral => droplet_solver::contract::ending::SteadyMethod::Newton,
+                    SchemeKind::PaperFd => droplet_solver::contract::ending::SteadyMethod::Test,
+                },
+                ..SolverSettings::default()
+            };
+            simulate(&p, &ic, &settings).unwrap().higher_modes[0]
+        };
+        let (slow, base, fast) = (a3(1.0), a3(0.0), a3(-1.0));
+        assert!(
+            0.0 < fast && fast < base && base < slow && slow < 0.05,
+            "{scheme}"
+        );
+        let rate = |a: f64| -(a / 0.05).ln();
+        let ratio = rate(fast) / rate(base);
+        assert!(ratio > 1.3 && ratio < 1.8, "{scheme}: {ratio}");
     }
 }
