@@ -79,7 +79,7 @@ pub struct Args {
 
 pub fn run(a: Args) -> Result<(), CliError> {
     check_common(&a)?;
-    droplet_solver::model::mode_friction::check_exponent(a.eta_k_exponent, a.modes)?;
+    droplet_solver::model::friction::check_exponent(a.eta_k_exponent, a.modes)?;
     let study = study_of(&a)?;
     let axis = a.axis.clone();
     let done = study.run(&mut |p| match p {

@@ -51,7 +51,7 @@ fn study_of(a: &Args) -> Result<ModeContinuationStudy, CliError> {
 /// `droplet continue --modes K` with K > 2.
 pub fn run(a: &Args) -> Result<(), CliError> {
     super::continuation::check_common(a)?;
-    droplet_solver::model::mode_friction::check_exponent(a.eta_k_exponent, a.modes)?;
+    droplet_solver::model::friction::check_exponent(a.eta_k_exponent, a.modes)?;
     let study = study_of(a)?;
     err!("following md (x, modes 2..{}) ... ", a.modes);
     let done = study.run()?;

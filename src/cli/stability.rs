@@ -134,7 +134,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
     }
     params.validate()?;
     super::check_grid(a.n)?;
-    droplet_solver::model::mode_friction::check_exponent(a.eta_k_exponent, a.modes)?;
+    droplet_solver::model::friction::check_exponent(a.eta_k_exponent, a.modes)?;
     let k = a.modes;
     let mut balances = Balances::new(params, a.n, k, a.eta_k_exponent)?;
     let st = find(&mut balances, a.state, axis, seed).map_err(|e| match e {

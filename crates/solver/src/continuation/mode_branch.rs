@@ -24,7 +24,7 @@ pub struct ModeLine {
     pub parameter: ModelParam,
     pub from: f64,
     pub to: f64,
-    /// The friction law of the modes `k >= 3` ([`crate::model::mode_friction`]; 0: `eta_k =
+    /// The friction law of the modes `k >= 3` ([`crate::model::friction`]; 0: `eta_k =
     /// eta2`): it moves no state or fold, only the eigenvalues of the verdicts.
     pub eta_k_exponent: f64,
 }

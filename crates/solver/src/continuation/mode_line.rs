@@ -58,7 +58,7 @@ pub enum ModeBranchEnd {
 pub struct ModeBranch {
     pub k_max: usize,
     /// The friction law's exponent the verdicts were computed with
-    /// ([`crate::model::mode_friction`]).
+    /// ([`crate::model::friction`]).
     pub eta_k_exponent: f64,
     pub points: Vec<ModeBranchPoint>,
     pub end: ModeBranchEnd,

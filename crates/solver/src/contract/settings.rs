@@ -103,7 +103,7 @@ pub struct SolverSettings {
     #[serde(default = "two_modes", skip_serializing_if = "is_two_modes")]
     pub modes: usize,
     /// The friction law of the shape modes `k >= 3`, `eta_k = eta2 (k / 2)^eta_k_exponent`
-    /// ([`crate::model::mode_friction`]; default 0: `eta_k = eta2`; -1: the dissipation of the
+    /// ([`crate::model::friction`]; default 0: `eta_k = eta2`; -1: the dissipation of the
     /// mode's flow). Only with `modes` > 2. A run with the default keeps its run key.
     #[serde(default, skip_serializing_if = "is_zero")]
     pub eta_k_exponent: f64,
@@ -238,7 +238,7 @@ impl SolverSettings {
 
     pub fn validate(&self) -> Result<(), SolverError> {
         require(self.dt > 0.0, "dt", self.dt, "a finite number > 0")?;
-        crate::model::mode_friction::check_exponent(self.eta_k_exponent, self.modes)?;
+        crate::model::friction::check_exponent(self.eta_k_exponent, self.modes)?;
         require(
             self.t_max >= self.dt,
             "t_max",

@@ -3,7 +3,7 @@
 //! indicator and its transforms, the driving forces (eqs. 35-37), the equations of motion
 //! (eqs. 36-39 with the inertia `m`) and the classes IC / ID / MD / MC of a steady state; the
 //! general shape with modes `k = 2..K` and its fields `w_k` (`modes`), and their friction
-//! `eta_k` (`mode_friction`).
+//! `eta_k` (`friction`).
 //!
 //! May use: `numerics`. Used by every folder above it.
 pub mod classify;
@@ -11,7 +11,7 @@ pub mod dynamics;
 pub mod forces;
 pub mod grid;
 pub mod initial;
-pub mod mode_friction;
+pub mod friction;
 pub mod modes;
 pub mod param;
 pub mod params;

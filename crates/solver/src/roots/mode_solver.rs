@@ -101,7 +101,7 @@ pub struct ModeSolver {
     uy: Vec<f64>,
     /// The angle of the axis [`Self::residual_x`] works on (0: the x axis).
     axis: f64,
-    /// The friction law's exponent ([`crate::model::mode_friction`]).
+    /// The friction law's exponent ([`crate::model::friction`]).
     eta_k_exponent: f64,
     /// The forces of the last droplets the residuals asked for.
     memo: ForcesMemo<(f64, f64, Modes), ModeForces>,
@@ -379,7 +379,7 @@ impl ModeSolver {
         sum
     }
 
-    /// Sets the friction law of the modes `k >= 3` ([`crate::model::mode_friction`]): the
+    /// Sets the friction law of the modes `k >= 3` ([`crate::model::friction`]): the
     /// time stepping and the eigenvalues use [`Self::eta`]; no steady state depends on it.
     pub fn set_eta_k_exponent(&mut self, exponent: f64) {
         self.eta_k_exponent = exponent;
@@ -387,7 +387,7 @@ impl ModeSolver {
 
     /// The friction `eta_k` of mode `k` (`eta2` for every mode by default).
     pub fn eta(&self, k: usize) -> f64 {
-        crate::model::mode_friction::eta_k(self.params.eta2, k, self.eta_k_exponent)
+        crate::model::friction::eta_k(self.params.eta2, k, self.eta_k_exponent)
     }
 
     /// `kappa_k = (k^2 / 4) kappa2`.

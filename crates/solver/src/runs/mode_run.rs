@@ -105,7 +105,7 @@ impl ModeStepper {
         }
     }
 
-    /// Sets the friction law of the modes `k >= 3` ([`crate::model::mode_friction`]; the
+    /// Sets the friction law of the modes `k >= 3` ([`crate::model::friction`]; the
     /// default is `eta_k = eta2`).
     pub fn set_eta_k_exponent(&mut self, exponent: f64) {
         self.solver.set_eta_k_exponent(exponent);

@@ -13,7 +13,7 @@
 //! [`crate::stepping::paper_fd::PaperFd`] (tested to round-off).
 use crate::error::SolverError;
 use crate::model::grid::Grid;
-use crate::model::mode_friction::eta_k;
+use crate::model::friction::eta_k;
 use crate::model::modes::{w_fields, Modes};
 use crate::model::params::ModelParams;
 use crate::model::shape::ShapeParams;
@@ -100,7 +100,7 @@ impl ModeFd {
         })
     }
 
-    /// Sets the friction law of the modes `k >= 3` ([`crate::model::mode_friction`]; the
+    /// Sets the friction law of the modes `k >= 3` ([`crate::model::friction`]; the
     /// default is `eta_k = eta2`).
     pub fn set_eta_k_exponent(&mut self, exponent: f64) {
         let k_max = self.z.len() / 2;
