@@ -9,9 +9,9 @@
 pub mod classify;
 pub mod dynamics;
 pub mod forces;
+pub mod friction;
 pub mod grid;
 pub mod initial;
-pub mod friction;
 pub mod modes;
 pub mod param;
 pub mod params;

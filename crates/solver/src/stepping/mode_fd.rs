@@ -12,8 +12,8 @@
 //! eqs. dakdt_dl, dbkdt_dl; `w_k` of [`crate::model::modes::w_fields`]). With `K = 2` this is
 //! [`crate::stepping::paper_fd::PaperFd`] (tested to round-off).
 use crate::error::SolverError;
-use crate::model::grid::Grid;
 use crate::model::friction::eta_k;
+use crate::model::grid::Grid;
 use crate::model::modes::{w_fields, Modes};
 use crate::model::params::ModelParams;
 use crate::model::shape::ShapeParams;

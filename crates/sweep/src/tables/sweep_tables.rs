@@ -98,8 +98,18 @@ pub fn runs_frame(
         .tasks()
         .filter_map(|t| records.get(&t.key).map(|r| (t, r)))
         .collect();
+    let mut cols = input_columns(&rows);
+    cols.extend(outcome_columns(&rows));
+    let records: Vec<&RunRecord> = rows.iter().map(|(_, r)| *r).collect();
+    cols.extend(crate::tables::mode_columns::mode_columns(&records));
+    Ok(DataFrame::new(rows.len(), cols)?)
+}
+
+/// The runs table's columns of what made each run: its point, parameters, initial condition
+/// and settings.
+fn input_columns(rows: &[(crate::store::plan::Task, &RunRecord)]) -> Vec<Column> {
     let f = |g: &dyn Fn(&RunRecord) -> f64| rows.iter().map(|(_, r)| g(r)).collect::<Vec<f64>>();
-    let mut cols = vec![
+    vec![
         Column::new(
             "point".into(),
             rows.iter()
@@ -124,20 +134,20 @@ pub fn runs_frame(
                 .map(|(_, r)| r.settings.model.as_str().to_string())
                 .collect(),
         ),
-        Column::new("h0".into(), read(&rows, "h0", |s| s.h0)),
+        Column::new("h0".into(), read(rows, "h0", |s| s.h0)),
         Column::new(
             "scheme".into(),
-            read(&rows, "scheme", |s| s.scheme.to_string()),
+            read(rows, "scheme", |s| s.scheme.to_string()),
         ),
-        Column::new("n".into(), read(&rows, "n", |s| s.n as u32)),
+        Column::new("n".into(), read(rows, "n", |s| s.n as u32)),
         f64_col("dt", f(&|r| r.settings.dt)),
-        Column::new("tol".into(), read(&rows, "tol", |s| s.tol)),
-        Column::new("dt_max".into(), read(&rows, "dt_max", |s| s.dt_max)),
+        Column::new("tol".into(), read(rows, "tol", |s| s.tol)),
+        Column::new("dt_max".into(), read(rows, "dt_max", |s| s.dt_max)),
         f64_col("t_max", f(&|r| r.settings.t_max)),
         f64_col("steady_tol", f(&|r| r.settings.steady_tol)),
         Column::new(
             "steady_window".into(),
-            read(&rows, "steady_window", |s| s.steady_window),
+            read(rows, "steady_window", |s| s.steady_window),
         ),
         str_col(
             "steady",
@@ -147,14 +157,21 @@ pub fn runs_frame(
         ),
         Column::new(
             "stop_beside_saddle".into(),
-            read(&rows, "stop_beside_saddle", |s| s.stop_beside_saddle),
+            read(rows, "stop_beside_saddle", |s| s.stop_beside_saddle),
         ),
         Column::new(
             "leap_departures".into(),
-            read(&rows, "leap_departures", |s| s.leap_departures),
+            read(rows, "leap_departures", |s| s.leap_departures),
         ),
-        Column::new("landing".into(), read(&rows, "landing", |s| s.landing)),
-        Column::new("run_on".into(), read(&rows, "run_on", |s| s.run_on)),
+        Column::new("landing".into(), read(rows, "landing", |s| s.landing)),
+        Column::new("run_on".into(), read(rows, "run_on", |s| s.run_on)),
+    ]
+}
+
+/// The runs table's columns of how each run ended.
+fn outcome_columns(rows: &[(crate::store::plan::Task, &RunRecord)]) -> Vec<Column> {
+    let f = |g: &dyn Fn(&RunRecord) -> f64| rows.iter().map(|(_, r)| g(r)).collect::<Vec<f64>>();
+    vec![
         str_col(
             "status",
             rows.iter()
@@ -225,10 +242,7 @@ pub fn runs_frame(
         ),
         f64_col("wall_s", f(&|r| r.outcome.wall_s)),
         str_col("key", rows.iter().map(|(t, _)| t.key.clone()).collect()),
-    ];
-    let records: Vec<&RunRecord> = rows.iter().map(|(_, r)| *r).collect();
-    cols.extend(crate::tables::mode_columns::mode_columns(&records));
-    Ok(DataFrame::new(rows.len(), cols)?)
+    ]
 }
 
 /// The points table: coordinates (one column per swept parameter), refinement level and cell size (the grid step of the
