@@ -106,6 +106,41 @@ impl Balances {
         }
     }
 
+    /// Grid points per side.
+    pub fn n(&self) -> usize {
+        match self {
+            Balances::Two(solver) => solver.grid().n,
+            Balances::General { solver, .. } => solver.n(),
+        }
+    }
+
+    /// The model's shape modes `K` (its states have `2K` unknowns).
+    pub fn modes(&self) -> usize {
+        match self {
+            Balances::Two(_) => 2,
+            Balances::General { modes, .. } => *modes,
+        }
+    }
+
+    /// Moves the balances to `(eta_t, kappa2)`, the other parameters kept.
+    pub fn set_control(&mut self, eta_t: f64, kappa2: f64) {
+        match self {
+            Balances::Two(solver) => solver.set_control(eta_t, kappa2),
+            Balances::General { solver, .. } => solver.set_control(eta_t, kappa2),
+        }
+    }
+
+    /// Plain Newton on all the balances from `z` with the caller's options (no kept
+    /// Jacobians: an independent check of a root, as the audit makes it).
+    pub fn root_from(&mut self, z: &[f64], opts: &NewtonOptions) -> Result<Vec<f64>, SolverError> {
+        match self {
+            Balances::Two(solver) => Ok(solver.root_from(four(z), opts)?.to_vec()),
+            Balances::General { solver, .. } => {
+                Ok(crate::numerics::newton::solve(|y| solver.residual(y), z, opts)?.x)
+            }
+        }
+    }
+
     /// The force balance at `z`, in `z`'s layout: the velocity's, then each shape mode's
     /// (zero at a steady state; it turns with the state, mode `k` `k` times).
     pub fn residual(&mut self, z: &[f64]) -> Vec<f64> {

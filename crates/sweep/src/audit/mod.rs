@@ -33,10 +33,11 @@ mod point_model;
 
 use crate::error::SweepError;
 use crate::tables::read::{self as tables, RunRow as Row};
+use droplet_solver::roots::balances::Balances;
 use droplet_solver::{
     contract::outcome::RunStatus, model::classify::StateClass, model::params::ModelParams,
 };
-use point_model::{Growth, PointModel, Root};
+use point_model::{Growth, Root};
 use rayon::prelude::*;
 use serde::Serialize;
 use std::collections::{BTreeMap, BTreeSet};
@@ -131,7 +132,7 @@ type Checked = Option<Root>;
 
 /// Audits the runs of one point (spec order of initial conditions) under `label`.
 fn audit_point(
-    model: &mut dyn PointModel,
+    model: &mut Balances,
     runs: &[&Row],
     label: &str,
     states: &mut usize,
@@ -171,7 +172,7 @@ fn audit_point(
 /// The steady states met at one point, each computed once: the resting disk's growth and the
 /// roots near the runs' final states (counted in `states`).
 struct PointStates<'a> {
-    model: &'a mut dyn PointModel,
+    model: &'a mut Balances,
     disk: Option<Growth>,
     roots: Vec<(Vec<f64>, Checked)>,
     states: &'a mut usize,
@@ -183,7 +184,7 @@ impl PointStates<'_> {
         let (model, states) = (&mut *self.model, &mut *self.states);
         let g = *self.disk.get_or_insert_with(|| {
             *states += 1;
-            model.disk()
+            point_model::disk(model)
         });
         (!g.stable()).then(|| {
             (
@@ -201,7 +202,7 @@ impl PointStates<'_> {
         let found = match self.roots.iter().find(|(start, _)| near(start)) {
             Some((_, f)) => *f,
             None => {
-                let f = self.model.root_near(z);
+                let f = point_model::root_near(self.model, z);
                 *self.states += usize::from(f.is_some());
                 self.roots.push((z.to_vec(), f));
                 f
@@ -328,7 +329,7 @@ pub fn audit(dir: &Path, sample: Option<Sample>) -> Result<Audit, SweepError> {
     let results: Vec<(Vec<Contradiction>, usize)> = groups
         .par_iter()
         .map_init(
-            || None::<Box<dyn PointModel>>,
+            || None::<Balances>,
             |slot, (label, rows)| {
                 let Some(first) = rows.first() else {
                     return (Vec::new(), 0);
@@ -352,7 +353,7 @@ pub fn audit(dir: &Path, sample: Option<Sample>) -> Result<Audit, SweepError> {
                 };
                 model.set_control(p.eta_t, p.kappa2);
                 let mut states = 0;
-                let c = audit_point(model.as_mut(), rows, label, &mut states);
+                let c = audit_point(model, rows, label, &mut states);
                 (c, states)
             },
         )
