@@ -69,15 +69,7 @@ fn graph(src: &Path) -> Graph {
     rust_files(src, &mut files);
     let mut g = Graph::new();
     for f in &files {
-        let rel = f.strip_prefix(src).unwrap();
-        let top = rel
-            .components()
-            .next()
-            .unwrap()
-            .as_os_str()
-            .to_string_lossy()
-            .trim_end_matches(".rs")
-            .to_string();
+        let top = module_of(f.strip_prefix(src).unwrap());
         if top == "lib" || top == "main" {
             continue;
         }
@@ -92,6 +84,17 @@ fn graph(src: &Path) -> Graph {
         deps.retain(|d| names.contains(d));
     }
     g
+}
+
+/// The module a file below a folder belongs to: its first path component, without `.rs`.
+fn module_of(rel: &Path) -> String {
+    rel.components()
+        .next()
+        .unwrap()
+        .as_os_str()
+        .to_string_lossy()
+        .trim_end_matches(".rs")
+        .to_string()
 }
 
 /// The code of a file: not its comments, not its `#[cfg(test)]` part.
@@ -113,14 +116,7 @@ fn folder_graph(dir: &Path, folder: &str) -> Graph {
     let mut g = Graph::new();
     for f in &files {
         let rel = f.strip_prefix(dir).unwrap();
-        let name = rel
-            .components()
-            .next()
-            .unwrap()
-            .as_os_str()
-            .to_string_lossy()
-            .trim_end_matches(".rs")
-            .to_string();
+        let name = module_of(rel);
         let code = code_of(f);
         let mut deps = named_after(&code, &format!("crate::{folder}::"));
         if rel.components().count() == 1 {
