@@ -128,10 +128,9 @@ pub struct Args {
     /// (modes 3..K as --ic custom gives them, else 0; field 0), ended like a 2-mode run by
     /// the Newton finish: steady on a root of the 2K force balances whose eigenvalues all
     /// decay, else unsettled where a 2-mode run gives up (as a sweep with params.modes: K
-    /// runs it). Its
-    /// --series gains a3..aK, b3..bK; --picture draws every mode. With --scheme paper-fd: the paper's forward Euler with every
-    /// mode to t_max, ended by the steady test (every rate below --steady-tol). No pinning
-    /// or landing.
+    /// runs it). Its --series gains a3..aK, b3..bK; --picture draws every mode. With
+    /// --scheme paper-fd: the paper's forward Euler with every mode to t_max, ended by the
+    /// steady test (every rate below --steady-tol). No pinning or landing.
     #[arg(long, default_value_t = 2)]
     pub(super) modes: usize,
     /// With --modes K > 2: the friction law of the modes k >= 3, eta_k = eta2 (k/2)^P
