@@ -69,10 +69,11 @@ pub struct Args {
     /// Output directory.
     #[arg(long, default_value = "out/continuation")]
     pub(super) out: PathBuf,
-    /// Print one JSON object (keys: line, n, seconds, branches [{branch, mirror, points,
-    /// stable_points, ends}], events [{kind, what, branch, parameter, at, eta_t, kappa2, v, s,
-    /// eigenvalue, precision}], files; with --modes K > 2: modes, eta_k_exponent, line, n, seconds, parameter,
-    /// points, stable_points, end, folds [{at, eta_t, kappa2, v, s, a}], files).
+    /// Print one JSON object, the same keys for every K (modes, eta_k_exponent, line, n,
+    /// seconds, branches [{branch, mirror, points, stable_points, ends}], events [{kind, what,
+    /// branch, mirror, parameter, at, eta_t, kappa2, v, s, a_k [a2..aK], b_k [b2..bK],
+    /// eigenvalue, precision}], files; with --modes K > 2 the one branch md on x, its folds
+    /// the SN events, eigenvalue and precision null).
     #[arg(long)]
     pub(super) json: bool,
 }
@@ -189,7 +190,8 @@ fn json_summary(done: &ContinuationWritten, n: usize, varied: &str) -> serde_jso
                     "kind": e.kind, "what": e.what, "branch": b.family.as_str(),
                     "mirror": b.mirror, "parameter": varied, "at": e.point.at,
                     "eta_t": e.point.eta_t, "kappa2": e.point.kappa2,
-                    "v": e.point.v, "s": e.point.s, "eigenvalue": e.eigenvalue,
+                    "v": e.point.v, "s": e.point.s, "a_k": [e.point.z[2]],
+                    "b_k": [e.point.z[3]], "eigenvalue": e.eigenvalue,
                     "precision": e.precision,
                 })
             })
@@ -207,8 +209,8 @@ fn json_summary(done: &ContinuationWritten, n: usize, varied: &str) -> serde_jso
         })
         .collect();
     serde_json::json!({
-        "line": done.description, "n": n, "seconds": done.seconds, "branches": summary,
-        "events": events, "files": done.files,
+        "modes": 2, "eta_k_exponent": 0.0, "line": done.description, "n": n,
+        "seconds": done.seconds, "branches": summary, "events": events, "files": done.files,
     })
 }
 

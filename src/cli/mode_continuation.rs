@@ -5,6 +5,7 @@ use super::continuation::Args;
 use super::{print_json, CliError};
 use droplet_solver::continuation::arclength::ArclengthOptions;
 use droplet_solver::continuation::mode_branch::ModeLine;
+use droplet_solver::continuation::mode_line::ModeBranchEnd;
 use droplet_solver::model::param::ModelParam;
 use droplet_sweep::studies::mode_continuation::{ModeContinuationStudy, ModeContinuationWritten};
 
@@ -93,24 +94,35 @@ fn print_text(done: &ModeContinuationWritten, varied: &str) {
     outln!("{:.1} s", done.seconds);
 }
 
-/// The `--json` object (keys: modes, line, n, seconds, parameter, points, stable_points, end,
-/// folds [{at, eta_t, kappa2, v, s, a}], files).
+/// The `--json` object, with the keys of the 2-mode one (`super::continuation`): the one
+/// branch (md on x, from the line's start), its folds as SN events.
 fn json_summary(done: &ModeContinuationWritten, n: usize, varied: &str) -> serde_json::Value {
     let b = &done.branch;
-    let folds: Vec<_> = b
+    let events: Vec<_> = b
         .folds()
         .map(|f| {
             serde_json::json!({
-                "at": f.at, "eta_t": f.eta_t, "kappa2": f.kappa2, "v": f.v,
-                "s": f.a[0].abs(), "a": f.a,
+                "kind": "SN", "what": "fold", "branch": "md", "mirror": "x",
+                "parameter": varied, "at": f.at, "eta_t": f.eta_t, "kappa2": f.kappa2,
+                "v": f.v, "s": f.a[0].abs(), "a_k": f.a, "b_k": vec![0.0; f.a.len()],
+                "eigenvalue": null, "precision": null,
             })
         })
         .collect();
+    let end = match b.end {
+        ModeBranchEnd::LineEnd => "reached the line's end".to_string(),
+        ModeBranchEnd::AtRest => "meets a resting state (v below 1e-3)".to_string(),
+        ModeBranchEnd::Stalled => "no continuation step converged".to_string(),
+        ModeBranchEnd::MaxPoints => "stopped at --max-points".to_string(),
+    };
     serde_json::json!({
         "modes": b.k_max, "eta_k_exponent": b.eta_k_exponent, "line": done.description,
         "n": n, "seconds": done.seconds,
-        "parameter": varied, "points": b.points.len(),
-        "stable_points": b.points.iter().filter(|p| p.verdict.stable()).count(),
-        "end": b.end, "folds": folds, "files": done.files,
+        "branches": [{
+            "branch": "md", "mirror": "x", "points": b.points.len(),
+            "stable_points": b.points.iter().filter(|p| p.verdict.stable()).count(),
+            "ends": [format!("the line's start ({varied} followed one way)"), end],
+        }],
+        "events": events, "files": done.files,
     })
 }

@@ -404,8 +404,50 @@ fn continue_with_modes_follows_the_k_mode_branch_with_its_stability() {
     ]));
     assert_eq!(c["modes"], 3, "{c}");
     assert_eq!(c["eta_k_exponent"], 0.0, "{c}");
-    let folds = c["folds"].as_array().unwrap();
+    // The same keys as the 2-mode command's, at every level.
+    let two = json(&run(&[
+        "continue",
+        "--branch",
+        "md",
+        "--kappa2",
+        "0.13",
+        "--from",
+        "0.0775",
+        "--to",
+        "0.1",
+        "--n",
+        "96",
+        "--max-points",
+        "24",
+        "--ds-max",
+        "0.08",
+        "--out",
+        dir.path().join("c2").to_str().unwrap(),
+        "--json",
+    ]));
+    let keys =
+        |v: &serde_json::Value| -> Vec<String> { v.as_object().unwrap().keys().cloned().collect() };
+    let sn = |v: &serde_json::Value| {
+        v["events"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|e| e["kind"] == "SN")
+            .cloned()
+            .unwrap()
+    };
+    assert_eq!(keys(&c), keys(&two), "{c} {two}");
+    assert_eq!(
+        keys(&c["branches"][0]),
+        keys(&two["branches"][0]),
+        "{c} {two}"
+    );
+    assert_eq!(keys(&sn(&c)), keys(&sn(&two)), "{c} {two}");
+    // The 2-mode command's keys: the one branch, its folds as SN events.
+    let folds = c["events"].as_array().unwrap();
     assert_eq!(folds.len(), 1, "{c}");
+    assert_eq!(folds[0]["kind"], "SN", "{c}");
+    assert_eq!(folds[0]["a_k"].as_array().unwrap().len(), 2, "{c}");
     let fold = folds[0]["at"].as_f64().unwrap();
     // Stable up to the fold, unstable after it: the table in branch order.
     let t = read(&out.join("continuation_modes3_kappa2_0.13.parquet"));
@@ -423,7 +465,7 @@ fn continue_with_modes_follows_the_k_mode_branch_with_its_stability() {
         stable[..i].iter().all(|s| *s) && stable[i + 1..].iter().all(|s| !*s),
         "{c}"
     );
-    let counted = c["stable_points"].as_u64().unwrap() as usize;
+    let counted = c["branches"][0]["stable_points"].as_u64().unwrap() as usize;
     assert!(counted == i || counted == i + 1, "{c}");
     // The branch against two independent computations at a state of the table: Newton at
     // that point (`stability --modes 3`) and time stepping to it (`simulate --modes 3`). (At
