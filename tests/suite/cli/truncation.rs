@@ -382,49 +382,36 @@ fn a_k_mode_run_settles_on_the_k_mode_steady_state() {
 fn continue_with_modes_follows_the_k_mode_branch_with_its_stability() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("c3");
-    let c = json(&run(&[
-        "continue",
-        "--modes",
-        "3",
-        "--kappa2",
-        "0.13",
-        "--from",
-        "0.0775",
-        "--to",
-        "0.1",
-        "--n",
-        "96",
-        "--max-points",
-        "24",
-        "--ds-max",
-        "0.08",
-        "--out",
-        out.to_str().unwrap(),
-        "--json",
-    ]));
+    // The MD branch at kappa2 = 0.13 with shape modes 2..K, written to `dir`.
+    let line = |modes: &str, dir: &std::path::Path| {
+        json(&run(&[
+            "continue",
+            "--modes",
+            modes,
+            "--branch",
+            "md",
+            "--kappa2",
+            "0.13",
+            "--from",
+            "0.0775",
+            "--to",
+            "0.1",
+            "--n",
+            "96",
+            "--max-points",
+            "24",
+            "--ds-max",
+            "0.08",
+            "--out",
+            dir.to_str().unwrap(),
+            "--json",
+        ]))
+    };
+    let c = line("3", &out);
     assert_eq!(c["modes"], 3, "{c}");
     assert_eq!(c["eta_k_exponent"], 0.0, "{c}");
     // The same keys as the 2-mode command's, at every level.
-    let two = json(&run(&[
-        "continue",
-        "--branch",
-        "md",
-        "--kappa2",
-        "0.13",
-        "--from",
-        "0.0775",
-        "--to",
-        "0.1",
-        "--n",
-        "96",
-        "--max-points",
-        "24",
-        "--ds-max",
-        "0.08",
-        "--out",
-        dir.path().join("c2").to_str().unwrap(),
-        "--json",
-    ]));
+    let two = line("2", &dir.path().join("c2"));
     let keys =
         |v: &serde_json::Value| -> Vec<String> { v.as_object().unwrap().keys().cloned().collect() };
     let sn = |v: &serde_json::Value| {
