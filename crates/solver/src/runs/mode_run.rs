@@ -57,8 +57,8 @@ pub struct ModeStepper {
     rate_of: Vec<f64>,
     inertia: Vec<f64>,
     start: Option<AtStart>,
+    /// Time stepped (the run's clock keeps the run's own).
     pub t: f64,
-    pub steps: u64,
     /// The centre.
     pub x: f64,
     pub y: f64,
@@ -85,7 +85,6 @@ impl ModeStepper {
             inertia: Vec::new(),
             start: None,
             t: 0.0,
-            steps: 0,
             x: 0.0,
             y: 0.0,
         };
@@ -293,7 +292,6 @@ impl Stepper for ModeStepper {
         self.z = next;
         self.start = None;
         self.t += h;
-        self.steps += 1;
         Attempt {
             accepted: true,
             error: Some(error),

@@ -35,8 +35,6 @@ pub struct ModeFd {
     /// The centre.
     pub x: f64,
     pub y: f64,
-    pub t: f64,
-    pub steps: u64,
     u: Vec<f64>,
     u_next: Vec<f64>,
     theta: Vec<f64>,
@@ -86,8 +84,6 @@ impl ModeFd {
             z: z0.to_vec(),
             x: 0.0,
             y: 0.0,
-            t: 0.0,
-            steps: 0,
             u: vec![0.0; n * n],
             u_next: vec![0.0; n * n],
             theta: vec![0.0; n * n],
@@ -203,8 +199,6 @@ impl ModeFd {
         for ((z, b), m) in self.z.iter_mut().zip(&self.balance).zip(&self.inertia) {
             *z += h / m * b;
         }
-        self.t += h;
-        self.steps += 1;
         self.fresh = false;
     }
 }
