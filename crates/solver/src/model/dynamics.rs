@@ -5,7 +5,7 @@
 //!
 //! with `m = 0` meaning the overdamped law `eta_t v = F`, and a pinned droplet (deformation-only
 //! runs, Appendix E) keeping `v = 0`.
-use crate::model::forces::Forces;
+use crate::model::forces::parseval::Forces;
 use crate::model::params::ModelParams;
 
 /// The force balance `(-eta_t vx + Fx, -eta_t vy + Fy, Ga - kappa2 a2, Gb - kappa2 b2)`: `M`

@@ -13,6 +13,12 @@ pub struct Modes {
     pub b: Vec<f64>,
 }
 
+/// The restoring coefficient of shape mode `k`, `kappa_k = (k^2 / 4) kappa2` (the paper's
+/// `kappa_k = pi k^2 tau R`, scaled by mode 2's).
+pub fn kappa_k(kappa2: f64, k: usize) -> f64 {
+    (k * k) as f64 / 4.0 * kappa2
+}
+
 /// `(Re, Im)` of `(x + i y)^p`.
 fn power(x: f64, y: f64, p: usize) -> (f64, f64) {
     let (mut re, mut im) = (1.0, 0.0);

@@ -14,7 +14,7 @@
 //! 3 x (hi - N/2 + 1) row transforms instead of 2 x (hi - lo + 1), and 1.5 instead of 2
 //! column transforms' worth. The output is the same (to round-off): `p` of `Theta + X Theta`
 //! and `y` of `Y Theta`, raw, `[kx][ky]`. Plans and buffers are made once.
-use crate::model::forces::ShapeSampler;
+use crate::model::forces::parseval::ShapeSampler;
 use crate::model::grid::Grid;
 use crate::model::shape::ShapeParams;
 use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};

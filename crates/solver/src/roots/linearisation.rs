@@ -18,7 +18,7 @@
 //! `lambda = mu(lambda)` of the eigenvalues `mu` of `M^(-1) (E + C (lambda - D)^(-1) B)`,
 //! started from `lambda = 0`.
 use crate::model::dynamics;
-use crate::model::forces::{spectral_forces, ColumnSums, ForceSums, Forces};
+use crate::model::forces::parseval::{spectral_forces, ColumnSums, ForceSums, Forces};
 use crate::roots::steady_solver::SteadySolver;
 use rustfft::num_complex::Complex64;
 

@@ -13,8 +13,9 @@
 //! the modes. The roots are found by Newton on `det T` divided by the roots already found
 //! (its logarithmic derivative `tr(T^(-1) T')`, exact), started from the eigenvalues of the
 //! `lambda = 0` problem `M^(-1) (E + C (-D)^(-1) B)`.
+use crate::model::forces::quadrature::fill_operator;
 use crate::model::modes::Modes;
-use crate::roots::mode_solver::{fill_operator, ModeSolver};
+use crate::roots::mode_solver::ModeSolver;
 use crate::roots::verdict::{assess, Spectrum, Verdict};
 use nalgebra::DMatrix;
 use rustfft::num_complex::Complex64;
@@ -71,10 +72,10 @@ impl ModeLinearization {
                 z[j] += sign * h;
                 Modes::of_state(&z)
             };
-            solver.source(&shifted(1.0));
-            let sp = solver.source_spectrum().to_vec();
-            solver.source(&shifted(-1.0));
-            let sm = solver.source_spectrum();
+            solver.quadrature_mut().source(&shifted(1.0));
+            let sp = solver.quadrature_mut().source_spectrum().to_vec();
+            solver.quadrature_mut().source(&shifted(-1.0));
+            let sm = solver.quadrature_mut().source_spectrum();
             b.push(
                 sp.iter()
                     .zip(sm)
@@ -83,9 +84,9 @@ impl ModeLinearization {
             );
             // The frozen field's forces on the shifted shape.
             let mut forces = |sign: f64| {
-                let (area, lo, hi) = solver.sample(&shifted(sign));
-                solver.gradient(&u0, lo, hi);
-                solver.sums(k_max, lo, hi, area).to_vec()
+                let (area, lo, hi) = solver.quadrature_mut().sample(&shifted(sign));
+                solver.quadrature_mut().gradient(&u0, lo, hi);
+                solver.quadrature_mut().sums(k_max, lo, hi, area).to_vec()
             };
             let (fp, fm) = (forces(1.0), forces(-1.0));
             for i in 0..dim {
@@ -257,13 +258,13 @@ impl ModeLinearization {
 /// `m_k = 1` on the columns `kx = 0` and `N/2`, 2 elsewhere), and `X = i k u` for a
 /// derivative.
 fn force_functionals(solver: &mut ModeSolver, m: &Modes) -> Vec<C64> {
-    let (_, lo, hi) = solver.sample(m);
+    let (_, lo, hi) = solver.quadrature_mut().sample(m);
     let grid = solver.grid().clone();
     let (n, k_max) = (grid.n, m.k_max());
     let dim = 2 * k_max;
     let (da, r0) = (-grid.dx * grid.dx, solver.params().radius);
     let (mut wx, mut wy) = (vec![vec![0.0; n * n]; dim], vec![vec![0.0; n * n]; dim]);
-    let theta = solver.theta();
+    let theta = solver.quadrature_mut().theta();
     for iy in lo..=hi {
         let y = grid.coord(iy);
         for ix in lo..=hi {
@@ -287,7 +288,10 @@ fn force_functionals(solver: &mut ModeSolver, m: &Modes) -> Vec<C64> {
     }
     let mut c = vec![C64::default(); grid.spectral_len() * dim];
     for (i, (wx, wy)) in wx.iter_mut().zip(&mut wy).enumerate() {
-        let (tx, ty) = (solver.transform(wx, lo, hi), solver.transform(wy, lo, hi));
+        let (tx, ty) = (
+            solver.quadrature_mut().transform(wx, lo, hi),
+            solver.quadrature_mut().transform(wy, lo, hi),
+        );
         for jx in 0..=n / 2 {
             let weight = if jx == 0 || 2 * jx == n { 1.0 } else { 2.0 };
             for jy in 0..n {
@@ -379,9 +383,9 @@ mod tests {
             })
             .map(|x| x * 1e-3)
             .collect();
-        let (area, lo, hi) = solver.sample(&m);
-        solver.gradient(&u, lo, hi);
-        let want = solver.sums(3, lo, hi, area).to_vec();
+        let (area, lo, hi) = solver.quadrature_mut().sample(&m);
+        solver.quadrature_mut().gradient(&u, lo, hi);
+        let want = solver.quadrature_mut().sums(3, lo, hi, area).to_vec();
         for (i, w) in want.iter().enumerate() {
             let got: f64 = u
                 .iter()

@@ -16,51 +16,15 @@
 //! real space instead of by Parseval (equal to round-off for `K = 2`, tested). No symmetry of
 //! the shape is assumed (odd modes break the point symmetry the 2-mode solver uses).
 use crate::error::SolverError;
+use crate::model::forces::quadrature::{fill_operator, ForceQuadrature, ShapeForces};
 use crate::model::grid::Grid;
 use crate::model::modes::Modes;
 use crate::model::params::ModelParams;
 use crate::model::shape::ShapeParams;
 use crate::model::state::turned;
-use crate::numerics::fft2::PrunedFft2;
 use crate::numerics::newton::{self, NewtonOptions};
 use crate::roots::forces_memo::ForcesMemo;
 use rustfft::num_complex::Complex64;
-
-/// The forces on a `K`-mode droplet.
-#[derive(Debug, Clone, PartialEq)]
-pub struct ModeForces {
-    pub fx: f64,
-    pub fy: f64,
-    /// `G_k^(a)`, `G_k^(b)` for `k = 2..=K` (index `k - 2`).
-    pub ga: Vec<f64>,
-    pub gb: Vec<f64>,
-    /// `A = Sum(Theta) dx^2`.
-    pub area: f64,
-}
-
-impl ModeForces {
-    /// The forces as one vector `(Fx, Fy, G^(a)_2.., G^(b)_2..)`, ordered like a state.
-    pub fn to_vec(&self) -> Vec<f64> {
-        [self.fx, self.fy]
-            .into_iter()
-            .chain(self.ga.iter().copied())
-            .chain(self.gb.iter().copied())
-            .collect()
-    }
-}
-
-/// `D = -(1 + k^2) + i k.v`, the co-moving field operator, for every stored mode of `grid`
-/// (`[kx][ky]`), into `out`.
-pub(crate) fn fill_operator(grid: &Grid, vx: f64, vy: f64, out: &mut [Complex64]) {
-    let n = grid.n;
-    for jx in 0..=n / 2 {
-        let (kx, kxd) = (grid.kx[jx], grid.kx_d[jx]);
-        for jy in 0..n {
-            let (ky, kyd) = (grid.ky[jy], grid.ky_d[jy]);
-            out[jx * n + jy] = Complex64::new(-(1.0 + kx * kx + ky * ky), kxd * vx + kyd * vy);
-        }
-    }
-}
 
 /// A steady state moving along `x` with a shape symmetric about the x axis (`b_k = 0`).
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
@@ -83,28 +47,18 @@ pub fn on_x_axis(v: f64, a: &[f64]) -> Vec<f64> {
 /// Evaluates steady fields and force balances of `K`-mode droplets on an `N x N` grid.
 pub struct ModeSolver {
     params: ModelParams,
-    grid: Grid,
-    fft: PrunedFft2,
-    /// `Theta` on the grid, and a copy the forward transform may overwrite.
-    theta: Vec<f64>,
-    real: Vec<f64>,
-    /// Its transform, and the spectral derivatives of the field.
-    spec: Vec<Complex64>,
-    dx_spec: Vec<Complex64>,
-    dy_spec: Vec<Complex64>,
+    /// `Theta`, its transform and the forces of a field on it.
+    quad: ForceQuadrature,
     /// The last field's coefficients (normalised, `[kx][ky]`), and the operator `D` it was
     /// solved with.
     u_spec: Vec<Complex64>,
     d: Vec<Complex64>,
-    /// The field's gradient on the droplet's rows.
-    ux: Vec<f64>,
-    uy: Vec<f64>,
     /// The angle of the axis [`Self::residual_x`] works on (0: the x axis).
     axis: f64,
     /// The friction law's exponent ([`crate::model::friction`]).
     eta_k_exponent: f64,
     /// The forces of the last droplets the residuals asked for.
-    memo: ForcesMemo<(f64, f64, Modes), ModeForces>,
+    memo: ForcesMemo<(f64, f64, Modes), ShapeForces>,
 }
 
 impl ModeSolver {
@@ -112,22 +66,19 @@ impl ModeSolver {
         params.validate()?;
         let grid = Grid::new(n, params.box_len)?;
         crate::contract::limits::check_resolved(&params, n)?;
+        let shape = ShapeParams {
+            radius: params.radius,
+            sigma: params.sigma,
+        };
+        let len = grid.spectral_len();
         Ok(Self {
             params,
-            fft: PrunedFft2::new(n),
-            theta: vec![0.0; n * n],
-            real: vec![0.0; n * n],
-            spec: vec![Complex64::default(); grid.spectral_len()],
-            dx_spec: vec![Complex64::default(); grid.spectral_len()],
-            dy_spec: vec![Complex64::default(); grid.spectral_len()],
-            u_spec: vec![Complex64::default(); grid.spectral_len()],
-            d: vec![Complex64::default(); grid.spectral_len()],
-            ux: vec![0.0; n * n],
-            uy: vec![0.0; n * n],
+            quad: ForceQuadrature::new(grid, shape),
+            u_spec: vec![Complex64::default(); len],
+            d: vec![Complex64::default(); len],
             axis: 0.0,
             eta_k_exponent: 0.0,
             memo: ForcesMemo::default(),
-            grid,
         })
     }
 
@@ -137,7 +88,7 @@ impl ModeSolver {
 
     /// Grid points per side.
     pub fn n(&self) -> usize {
-        self.grid.n
+        self.quad.grid().n
     }
 
     pub fn set_control(&mut self, eta_t: f64, kappa2: f64) {
@@ -153,162 +104,9 @@ impl ModeSolver {
         self.axis = phi;
     }
 
-    fn shape(&self) -> ShapeParams {
-        ShapeParams {
-            radius: self.params.radius,
-            sigma: self.params.sigma,
-        }
-    }
-
-    /// The rows (and columns) `lo..=hi` that can hold `Theta > 0` (droplet at the centre).
-    fn span(&self, m: &Modes) -> (usize, usize) {
-        let c = self.grid.n / 2;
-        let w = ((m.outer_radius(&self.shape()) / self.grid.dx).ceil() as usize).min(c - 1);
-        (c - w, c + w)
-    }
-
-    /// Samples `Theta` of `m` into the rows `lo..=hi` (returned) of the grid buffer; the area.
-    pub(crate) fn sample(&mut self, m: &Modes) -> (f64, usize, usize) {
-        let n = self.grid.n;
-        let shape = self.shape();
-        let (lo, hi) = self.span(m);
-        let (r_in, r_out) = (m.inner_radius(&shape), m.outer_radius(&shape));
-        // Squared radii: no square root outside the interface band.
-        let (r_in2, r_out2) = (r_in * r_in, r_out * r_out);
-        let mut count = 0.0;
-        for iy in lo..=hi {
-            let y = self.grid.coord(iy);
-            let row = &mut self.theta[iy * n..(iy + 1) * n];
-            row.fill(0.0);
-            for (ix, t) in row.iter_mut().enumerate().take(hi + 1).skip(lo) {
-                let x = self.grid.coord(ix);
-                let r2 = x * x + y * y;
-                *t = if r2 < r_in2 {
-                    1.0
-                } else if r2 > r_out2 {
-                    0.0
-                } else {
-                    m.theta(&shape, x, y)
-                };
-                count += *t;
-            }
-        }
-        (count * self.grid.dx * self.grid.dx, lo, hi)
-    }
-
-    /// Transforms the source `Theta / A` of `m` into a normalised half spectrum (`[kx][ky]`,
-    /// like the field's; [`Self::source_spectrum`]), leaving `Theta` sampled: the area and the
-    /// rows `lo..=hi` that hold it.
-    pub(crate) fn source(&mut self, m: &Modes) -> (f64, usize, usize) {
-        let (area, lo, hi) = self.theta_spectrum(m);
-        let norm = self.source_scale(area);
-        for c in self.spec.iter_mut() {
-            *c *= norm;
-        }
-        (area, lo, hi)
-    }
-
-    /// Like [`Self::source`], but leaves the raw transform of `Theta` (not divided by
-    /// `A N^2`, [`Self::source_scale`]) in [`Self::source_spectrum`]: a time step folds the
-    /// scale into its own pass over the spectrum.
-    pub(crate) fn theta_spectrum(&mut self, m: &Modes) -> (f64, usize, usize) {
-        let n = self.grid.n;
-        let (area, lo, hi) = self.sample(m);
-        self.real[lo * n..(hi + 1) * n].copy_from_slice(&self.theta[lo * n..(hi + 1) * n]);
-        self.fft.forward(&mut self.real, &mut self.spec, lo, hi);
-        (area, lo, hi)
-    }
-
-    /// The factor `1 / (A N^2)` from the raw transform of `Theta` to the normalised source.
-    pub(crate) fn source_scale(&self, area: f64) -> f64 {
-        1.0 / (area * (self.grid.n * self.grid.n) as f64)
-    }
-
-    /// `Theta` of the last [`Self::sample`] (row-major `N x N`, rows `lo..=hi`).
-    pub(crate) fn theta(&self) -> &[f64] {
-        &self.theta
-    }
-
-    /// The unnormalised transform (`[kx][ky]`) of a real field whose rows outside `lo..=hi`
-    /// are zero; those rows of `real` are clobbered.
-    pub(crate) fn transform(&mut self, real: &mut [f64], lo: usize, hi: usize) -> Vec<Complex64> {
-        let mut spec = vec![Complex64::default(); self.grid.spectral_len()];
-        self.fft.forward(real, &mut spec, lo, hi);
-        spec
-    }
-
-    /// The last [`Self::source`]'s normalised half spectrum (raw after
-    /// [`Self::theta_spectrum`]).
-    pub(crate) fn source_spectrum(&self) -> &[Complex64] {
-        &self.spec
-    }
-
-    /// The gradient of the real field with the normalised half spectrum `u` on the rows
-    /// `lo..=hi` (spectral derivatives, Nyquist mode zeroed).
-    pub(crate) fn gradient(&mut self, u: &[Complex64], lo: usize, hi: usize) {
-        let n = self.grid.n;
-        for jx in 0..=n / 2 {
-            let kxd = self.grid.kx_d[jx];
-            for jy in 0..n {
-                let kyd = self.grid.ky_d[jy];
-                let i = jx * n + jy;
-                self.dx_spec[i] = Complex64::new(-u[i].im * kxd, u[i].re * kxd);
-                self.dy_spec[i] = Complex64::new(-u[i].im * kyd, u[i].re * kyd);
-            }
-        }
-        self.fft.inverse(&mut self.dx_spec, &mut self.ux, lo, hi);
-        self.fft.inverse(&mut self.dy_spec, &mut self.uy, lo, hi);
-    }
-
-    /// The forces `-Int grad u Theta` and `-Int w_k . grad u Theta` of the last
-    /// [`Self::gradient`] on the last [`Self::sample`]d shape (`k_max` modes, rows `lo..=hi`).
-    pub(crate) fn sums(&self, k_max: usize, lo: usize, hi: usize, area: f64) -> ModeForces {
-        let n = self.grid.n;
-        let mut f = ModeForces {
-            fx: 0.0,
-            fy: 0.0,
-            ga: vec![0.0; k_max - 1],
-            gb: vec![0.0; k_max - 1],
-            area,
-        };
-        for iy in lo..=hi {
-            let y = self.grid.coord(iy);
-            for ix in lo..=hi {
-                let i = iy * n + ix;
-                let t = self.theta[i];
-                if t == 0.0 {
-                    continue;
-                }
-                let x = self.grid.coord(ix);
-                let (gx, gy) = (self.ux[i] * t, self.uy[i] * t);
-                f.fx += gx;
-                f.fy += gy;
-                // w_k^(a) . g and w_k^(b) . g without their factor R^(2-k)
-                // ([`crate::model::modes::w_fields`]):
-                // (Re, Im) of (x + i y)^(k-1), one product per mode.
-                let (mut re, mut im) = (x, y);
-                for (ga, gb) in f.ga.iter_mut().zip(f.gb.iter_mut()) {
-                    *ga += re * gx - im * gy;
-                    *gb += im * gx + re * gy;
-                    (re, im) = (re * x - im * y, re * y + im * x);
-                }
-            }
-        }
-        let da = -self.grid.dx * self.grid.dx;
-        f.fx *= da;
-        f.fy *= da;
-        let r0 = self.params.radius;
-        for (k, (ga, gb)) in (2..).zip(f.ga.iter_mut().zip(f.gb.iter_mut())) {
-            let scale = da * r0.powi(2 - k);
-            *ga *= scale;
-            *gb *= scale;
-        }
-        f
-    }
-
     /// [`Self::forces`] for a residual: a droplet asked for before is not solved again (and
     /// then the solver's field is not its field).
-    fn kept_forces(&mut self, vx: f64, vy: f64, m: &Modes) -> ModeForces {
+    fn kept_forces(&mut self, vx: f64, vy: f64, m: &Modes) -> ShapeForces {
         let droplet = (vx, vy, m.clone());
         if let Some(f) = self.memo.get(&droplet) {
             return f;
@@ -319,18 +117,17 @@ impl ModeSolver {
     }
 
     /// The forces of the steady field of the droplet `m` moving at `(vx, vy)`.
-    pub fn forces(&mut self, vx: f64, vy: f64, m: &Modes) -> ModeForces {
+    pub fn forces(&mut self, vx: f64, vy: f64, m: &Modes) -> ShapeForces {
         crate::contract::profile::field_solve();
-        let (area, lo, hi) = self.source(m);
+        let (area, lo, hi) = self.quad.source(m);
         // u_hat = source / (1 + k^2 - i k.v) = -source / D.
-        fill_operator(&self.grid, vx, vy, &mut self.d);
-        for ((u, s), d) in self.u_spec.iter_mut().zip(&self.spec).zip(&self.d) {
+        fill_operator(self.quad.grid(), vx, vy, &mut self.d);
+        let source = self.quad.source_spectrum();
+        for ((u, s), d) in self.u_spec.iter_mut().zip(source).zip(&self.d) {
             *u = -s / d;
         }
-        let u = std::mem::take(&mut self.u_spec);
-        self.gradient(&u, lo, hi);
-        self.u_spec = u;
-        self.sums(m.k_max(), lo, hi, area)
+        self.quad.gradient(&self.u_spec, lo, hi);
+        self.quad.sums(m.k_max(), lo, hi, area)
     }
 
     /// The last steady field's normalised half spectrum.
@@ -340,7 +137,13 @@ impl ModeSolver {
 
     /// The grid.
     pub(crate) fn grid(&self) -> &Grid {
-        &self.grid
+        self.quad.grid()
+    }
+
+    /// The quadrature of the forces, for computations that take its steps in their own order
+    /// (the linearisation); the solver's last field stays.
+    pub(crate) fn quadrature_mut(&mut self) -> &mut ForceQuadrature {
+        &mut self.quad
     }
 
     /// The force balance of the state `z = (vx, vy, a_2..a_K, b_2..b_K)` (`K = z.len() / 2`):
@@ -364,15 +167,16 @@ impl ModeSolver {
     /// The last field of [`Self::forces`] at `(x, y)` relative to the droplet's centre, summed
     /// from its Fourier series (for checks: `N^2` terms per point).
     pub fn field_at(&self, x: f64, y: f64) -> f64 {
-        let n = self.grid.n;
-        let (x, y) = (x - self.grid.coord(0), y - self.grid.coord(0));
+        let grid = self.quad.grid();
+        let n = grid.n;
+        let (x, y) = (x - grid.coord(0), y - grid.coord(0));
         let mut sum = 0.0;
         for jx in 0..=n / 2 {
-            let (c, s) = (self.grid.kx[jx] * x).sin_cos();
-            let wt = self.grid.column_weight(jx);
+            let (c, s) = (grid.kx[jx] * x).sin_cos();
+            let wt = grid.column_weight(jx);
             for jy in 0..n {
                 let u = self.u_spec[jx * n + jy];
-                let phase = Complex64::new(s, c) * Complex64::from_polar(1.0, self.grid.ky[jy] * y);
+                let phase = Complex64::new(s, c) * Complex64::from_polar(1.0, grid.ky[jy] * y);
                 sum += wt * (u * phase).re;
             }
         }
@@ -392,7 +196,7 @@ impl ModeSolver {
 
     /// `kappa_k = (k^2 / 4) kappa2`.
     pub fn kappa(&self, k: usize) -> f64 {
-        (k * k) as f64 / 4.0 * self.params.kappa2
+        crate::model::modes::kappa_k(self.params.kappa2, k)
     }
 
     /// The force balance along x for a droplet moving along x with `a_k = y[k - 1]`

@@ -6,7 +6,7 @@
 //! [`crate::stepping::comoving_etd::ComovingEtd`], so its fixed points coincide with the solver's.
 use crate::error::SolverError;
 use crate::model::dynamics;
-use crate::model::forces::{spectral_forces, Forces};
+use crate::model::forces::parseval::{spectral_forces, Forces};
 use crate::model::grid::Grid;
 use crate::model::params::ModelParams;
 use crate::model::shape::ShapeParams;

@@ -21,18 +21,20 @@
 //! a transform by the droplet's point symmetry and the forces' Parseval sums, which the odd
 //! modes break.
 use crate::error::SolverError;
+use crate::model::forces::quadrature::ForceQuadrature;
+use crate::model::grid::Grid;
 use crate::model::modes::Modes;
 use crate::model::params::ModelParams;
+use crate::model::shape::ShapeParams;
 use crate::model::state::DropletState;
 use crate::numerics::fft2::PrunedFft2;
-use crate::roots::mode_solver::ModeSolver;
 use crate::stepping::etd::{EtdCoef, SeparableExp};
 use crate::stepping::{Attempt, Field, Scheme, Stepper};
 use rustfft::num_complex::Complex64;
 
-/// The forces at the run's present state, and whether the solver's buffers (`Theta`, its
-/// transform) still belong to it: a refused step, or Newton with [`ModeStepper::solver_mut`],
-/// leaves the forces valid and the buffers another droplet's.
+/// The forces at the run's present state, and whether the quadrature's buffers (`Theta`, its
+/// transform) still belong to it: a refused step leaves the forces valid and the buffers the
+/// predictor's droplet's.
 struct AtStart {
     forces: Vec<f64>,
     area: f64,
@@ -42,7 +44,10 @@ struct AtStart {
 /// The `K`-mode model's state in time, stepped by ETD2RK ([`Stepper::attempt`]). Plans and
 /// buffers are made once; a step allocates only the forces' vectors.
 pub struct ModeStepper {
-    solver: ModeSolver,
+    params: ModelParams,
+    /// The friction law's exponent ([`crate::model::friction`]).
+    eta_k_exponent: f64,
+    quad: ForceQuadrature,
     /// `(vx, vy, a_2..a_K, b_2..b_K)`.
     pub z: Vec<f64>,
     /// The field's normalised spectrum, the predictor's, and the explicit part `N` at the
@@ -69,12 +74,20 @@ impl ModeStepper {
     pub fn new(params: &ModelParams, n: usize, z0: &[f64]) -> Result<Self, SolverError> {
         let k_max = z0.len() / 2;
         crate::contract::limits::check_mode_stepper(params, n, k_max)?;
-        let solver = ModeSolver::new(*params, n)?;
-        let len = solver.grid().spectral_len();
-        let inv_c = solver.grid().inverse_rates();
+        params.validate()?;
+        let grid = Grid::new(n, params.box_len)?;
+        crate::contract::limits::check_resolved(params, n)?;
+        let len = grid.spectral_len();
+        let inv_c = grid.inverse_rates();
+        let shape = ShapeParams {
+            radius: params.radius,
+            sigma: params.sigma,
+        };
         let zero = Complex64::default();
         let mut run = Self {
-            solver,
+            params: *params,
+            eta_k_exponent: 0.0,
+            quad: ForceQuadrature::new(grid, shape),
             z: z0.to_vec(),
             u: vec![zero; len],
             a_hat: vec![zero; len],
@@ -95,41 +108,43 @@ impl ModeStepper {
     /// The decay rates and the inertia of `(vx, vy, a_2..a_K, b_2..b_K)`.
     fn linear_parts(&mut self) {
         let k_max = self.z.len() / 2;
-        let p = *self.solver.params();
+        let p = self.params;
         self.rate_of = vec![p.eta_t / p.mass; 2];
         self.inertia = vec![p.mass; 2];
         for k in (2..=k_max).chain(2..=k_max) {
-            self.rate_of.push(self.solver.kappa(k) / self.solver.eta(k));
-            self.inertia.push(self.solver.eta(k));
+            let eta = crate::model::friction::eta_k(p.eta2, k, self.eta_k_exponent);
+            self.rate_of
+                .push(crate::model::modes::kappa_k(p.kappa2, k) / eta);
+            self.inertia.push(eta);
         }
     }
 
     /// Sets the friction law of the modes `k >= 3` ([`crate::model::friction`]; the
     /// default is `eta_k = eta2`).
     pub fn set_eta_k_exponent(&mut self, exponent: f64) {
-        self.solver.set_eta_k_exponent(exponent);
+        self.eta_k_exponent = exponent;
         self.linear_parts();
     }
 
     /// Samples and transforms `Theta` of the state `z` and computes the forces of the field
-    /// `u` on it: `(forces, area)`; the solver's buffers then hold that droplet.
-    fn forces_of(solver: &mut ModeSolver, u: &[Complex64], z: &[f64]) -> (Vec<f64>, f64) {
+    /// `u` on it: `(forces, area)`; the quadrature's buffers then hold that droplet.
+    fn forces_of(quad: &mut ForceQuadrature, u: &[Complex64], z: &[f64]) -> (Vec<f64>, f64) {
         let k_max = z.len() / 2;
-        let (area, lo, hi) = solver.theta_spectrum(&Modes::of_state(z));
-        solver.gradient(u, lo, hi);
-        (solver.sums(k_max, lo, hi, area).to_vec(), area)
+        let (area, lo, hi) = quad.theta_spectrum(&Modes::of_state(z));
+        quad.gradient(u, lo, hi);
+        (quad.sums(k_max, lo, hi, area).to_vec(), area)
     }
 
-    /// The forces at the present state, with the solver's buffers holding its `Theta`.
+    /// The forces at the present state, with the quadrature's buffers holding its `Theta`.
     fn ensure_start(&mut self) {
         match &mut self.start {
             Some(s) if s.buffers => {}
             Some(s) => {
-                self.solver.theta_spectrum(&Modes::of_state(&self.z));
+                self.quad.theta_spectrum(&Modes::of_state(&self.z));
                 s.buffers = true;
             }
             None => {
-                let (forces, area) = Self::forces_of(&mut self.solver, &self.u, &self.z);
+                let (forces, area) = Self::forces_of(&mut self.quad, &self.u, &self.z);
                 self.start = Some(AtStart {
                     forces,
                     area,
@@ -149,15 +164,6 @@ impl ModeStepper {
             .map(|((f, z), (r, m))| (f / m - r * z).abs())
             .fold(0.0f64, f64::max)
     }
-
-    /// The steady solver the run steps with; the run computes its own forces again before
-    /// its next step.
-    pub fn solver_mut(&mut self) -> &mut ModeSolver {
-        if let Some(s) = &mut self.start {
-            s.buffers = false;
-        }
-        &mut self.solver
-    }
 }
 
 /// Which half of an ETD2RK step a pass over the field's spectrum takes.
@@ -173,13 +179,13 @@ impl ModeStepper {
     /// One pass of `stage` over the spectrum for a step of `h`, with the droplet of that stage
     /// moving at `(vx, vy)` and the solver's buffers holding its `Theta`, of area `area`.
     fn field_pass(&mut self, stage: Stage, h: f64, (vx, vy): (f64, f64), area: f64) {
-        let grid = self.solver.grid();
+        let grid = self.quad.grid();
         if let Stage::Predict = stage {
             self.exp.update(h, &grid.kx, &grid.ky);
         }
         let (n, inv_h) = (grid.n, 1.0 / h);
-        let scale = self.solver.source_scale(area);
-        let source = self.solver.source_spectrum();
+        let scale = self.quad.source_scale(area);
+        let source = self.quad.source_spectrum();
         for (jx, (kxd, ax)) in grid.kx_d.iter().zip(&self.exp.ax).enumerate() {
             let row = jx * n..(jx + 1) * n;
             let modes = grid
@@ -229,13 +235,13 @@ impl Scheme for ModeStepper {
     }
 
     fn mass(&self) -> f64 {
-        let len = self.solver.params().box_len;
+        let len = self.params.box_len;
         len * len * self.u[0].re
     }
 
     fn field(&mut self) -> Field {
         // Lab frame: u(x) = w(x - r_c), an exact phase shift e^{-i k . r_c}.
-        let grid = self.solver.grid();
+        let grid = self.quad.grid();
         let n = grid.n;
         let mut spec = self.u.clone();
         grid.shift_spectrum(&mut spec, self.x, self.y);
@@ -243,7 +249,7 @@ impl Scheme for ModeStepper {
         PrunedFft2::new(n).inverse(&mut spec, &mut values, 0, n - 1);
         Field {
             n,
-            len: self.solver.params().box_len,
+            len: self.params.box_len,
             values,
         }
     }
@@ -261,7 +267,7 @@ impl Stepper for ModeStepper {
         let z_a: Vec<f64> = (0..self.z.len())
             .map(|j| coefs[j].predict(self.z[j], f0[j] / self.inertia[j]))
             .collect();
-        let (f_a, area_a) = Self::forces_of(&mut self.solver, &self.a_hat, &z_a);
+        let (f_a, area_a) = Self::forces_of(&mut self.quad, &self.a_hat, &z_a);
         start.buffers = false;
         let next: Vec<f64> = (0..self.z.len())
             .map(|j| {
@@ -413,7 +419,7 @@ mod tests {
             crate::contract::outcome::RunStatus::Steady,
             "{run:?}"
         );
-        let mut solver = ModeSolver::new(p, n).unwrap();
+        let mut solver = crate::roots::mode_solver::ModeSolver::new(p, n).unwrap();
         let st = md_state(&mut solver, 3).unwrap();
         let z = run.unknowns();
         assert!((z[0] - st.v).abs() < 1e-6, "{run:?} {st:?}");

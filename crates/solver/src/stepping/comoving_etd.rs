@@ -32,7 +32,7 @@
 //! [`ComovingEtd::correct_scalars`] and [`ComovingEtd::step_error`] (where a step may be
 //! refused), then [`ComovingEtd::correct_field`] (the second pass).
 use crate::model::dynamics;
-use crate::model::forces::Forces;
+use crate::model::forces::parseval::Forces;
 use crate::model::grid::Grid;
 use crate::model::params::ModelParams;
 use crate::model::shape::ShapeParams;
@@ -180,7 +180,7 @@ impl ComovingEtd {
         self.prev_valid = false;
         let st = self.state;
         Self::shape_spectra(&mut self.shapes, st.a2, st.b2, &mut self.cur);
-        let f = crate::model::forces::spectral_forces(
+        let f = crate::model::forces::parseval::spectral_forces(
             &self.grid,
             &self.w_hat,
             &self.cur.p,

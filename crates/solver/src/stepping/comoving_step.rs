@@ -3,7 +3,7 @@
 //! embedded error estimate (where a step may be refused before its second half), and the
 //! field corrector (the second pass, fused with the forces at the new state).
 use crate::model::dynamics;
-use crate::model::forces::Forces;
+use crate::model::forces::parseval::Forces;
 use crate::model::state::DropletState;
 use crate::stepping::comoving_etd::ComovingEtd;
 use crate::stepping::etd::EtdCoef;

@@ -2,7 +2,7 @@
 //! `Theta` evaluated on the lab grid at the droplet's position (minimum image).
 //! Kept as the baseline for speed and error comparisons; paper settings dx = 0.025, dt = 1e-4.
 use crate::model::dynamics;
-use crate::model::forces::Forces;
+use crate::model::forces::parseval::Forces;
 use crate::model::grid::Grid;
 use crate::model::params::ModelParams;
 use crate::model::shape::ShapeParams;

@@ -6,7 +6,7 @@
 //! The predictor's shape is either its own transform or the linear extrapolation
 //! `S_a = S_n + alpha (S_n - S_{n-1})` of the transforms at the last two accepted states
 //! ([`PredictorShape`]), formed on the fly so that it costs no transform and no extra pass.
-use crate::model::forces::{ColumnSums, ForceSums};
+use crate::model::forces::parseval::{ColumnSums, ForceSums};
 use crate::model::grid::Grid;
 use crate::stepping::etd::SeparableExp;
 use rustfft::num_complex::Complex64;

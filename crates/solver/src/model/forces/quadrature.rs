@@ -1,0 +1,243 @@
+//! The forces on a droplet of any shape (modes `2..K`, [`crate::model::modes::Modes`]) by
+//! quadrature over the grid: `F = -dx^2 Sum grad(u) Theta` and
+//! `G_k = -dx^2 Sum w_k . grad(u) Theta` (the smoothed eqs. 35, dakdt_dl, dbkdt_dl), with the
+//! same samples of `Theta` and the same spectral gradient (Nyquist mode zeroed) as the
+//! point-symmetric fast path ([`super::parseval`]), the sums taken in real space over the
+//! droplet's rows (equal to the Parseval sums to round-off for `K = 2`, tested in the steady
+//! solver). No symmetry of the shape is assumed: odd modes break the point symmetry.
+//!
+//! [`ForceQuadrature`] owns the plans and buffers (made once): `Theta` sampled on the rows that
+//! can hold it, its transform, the field's gradient on those rows. A steady solve, a time step
+//! and the linearisation use it in their own order ([`ForceQuadrature::sample`],
+//! [`ForceQuadrature::theta_spectrum`], [`ForceQuadrature::gradient`],
+//! [`ForceQuadrature::sums`]).
+use crate::model::grid::Grid;
+use crate::model::modes::Modes;
+use crate::model::shape::ShapeParams;
+use crate::numerics::fft2::PrunedFft2;
+use rustfft::num_complex::Complex64;
+
+/// The forces on a droplet with shape modes `2..=K`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ShapeForces {
+    pub fx: f64,
+    pub fy: f64,
+    /// `G_k^(a)`, `G_k^(b)` for `k = 2..=K` (index `k - 2`).
+    pub ga: Vec<f64>,
+    pub gb: Vec<f64>,
+    /// `A = Sum(Theta) dx^2`.
+    pub area: f64,
+}
+
+impl ShapeForces {
+    /// The forces as one vector `(Fx, Fy, G^(a)_2.., G^(b)_2..)`, ordered like a state.
+    pub fn to_vec(&self) -> Vec<f64> {
+        [self.fx, self.fy]
+            .into_iter()
+            .chain(self.ga.iter().copied())
+            .chain(self.gb.iter().copied())
+            .collect()
+    }
+}
+
+/// `D = -(1 + k^2) + i k.v`, the co-moving field operator, for every stored mode of `grid`
+/// (`[kx][ky]`), into `out`.
+pub fn fill_operator(grid: &Grid, vx: f64, vy: f64, out: &mut [Complex64]) {
+    let n = grid.n;
+    for jx in 0..=n / 2 {
+        let (kx, kxd) = (grid.kx[jx], grid.kx_d[jx]);
+        for jy in 0..n {
+            let (ky, kyd) = (grid.ky[jy], grid.ky_d[jy]);
+            out[jx * n + jy] = Complex64::new(-(1.0 + kx * kx + ky * ky), kxd * vx + kyd * vy);
+        }
+    }
+}
+
+/// `Theta` of a droplet of any shape on an `N x N` grid, its transform and the forces of a
+/// field on it.
+pub struct ForceQuadrature {
+    grid: Grid,
+    shape: ShapeParams,
+    fft: PrunedFft2,
+    /// `Theta` on the grid, and a copy the forward transform may overwrite.
+    theta: Vec<f64>,
+    real: Vec<f64>,
+    /// Its transform, and the spectral derivatives of the field.
+    spec: Vec<Complex64>,
+    dx_spec: Vec<Complex64>,
+    dy_spec: Vec<Complex64>,
+    /// The field's gradient on the droplet's rows.
+    ux: Vec<f64>,
+    uy: Vec<f64>,
+}
+
+impl ForceQuadrature {
+    /// Plans and buffers for `grid` and droplets of radius and interface width `shape`.
+    pub fn new(grid: Grid, shape: ShapeParams) -> Self {
+        let n = grid.n;
+        let len = grid.spectral_len();
+        Self {
+            shape,
+            fft: PrunedFft2::new(n),
+            theta: vec![0.0; n * n],
+            real: vec![0.0; n * n],
+            spec: vec![Complex64::default(); len],
+            dx_spec: vec![Complex64::default(); len],
+            dy_spec: vec![Complex64::default(); len],
+            ux: vec![0.0; n * n],
+            uy: vec![0.0; n * n],
+            grid,
+        }
+    }
+
+    /// The grid.
+    pub fn grid(&self) -> &Grid {
+        &self.grid
+    }
+
+    /// The rows (and columns) `lo..=hi` that can hold `Theta > 0` (droplet at the centre).
+    fn span(&self, m: &Modes) -> (usize, usize) {
+        let c = self.grid.n / 2;
+        let w = ((m.outer_radius(&self.shape) / self.grid.dx).ceil() as usize).min(c - 1);
+        (c - w, c + w)
+    }
+
+    /// Samples `Theta` of `m` into the rows `lo..=hi` (returned) of the grid buffer; the area.
+    pub fn sample(&mut self, m: &Modes) -> (f64, usize, usize) {
+        let n = self.grid.n;
+        let shape = self.shape;
+        let (lo, hi) = self.span(m);
+        let (r_in, r_out) = (m.inner_radius(&shape), m.outer_radius(&shape));
+        // Squared radii: no square root outside the interface band.
+        let (r_in2, r_out2) = (r_in * r_in, r_out * r_out);
+        let mut count = 0.0;
+        for iy in lo..=hi {
+            let y = self.grid.coord(iy);
+            let row = &mut self.theta[iy * n..(iy + 1) * n];
+            row.fill(0.0);
+            for (ix, t) in row.iter_mut().enumerate().take(hi + 1).skip(lo) {
+                let x = self.grid.coord(ix);
+                let r2 = x * x + y * y;
+                *t = if r2 < r_in2 {
+                    1.0
+                } else if r2 > r_out2 {
+                    0.0
+                } else {
+                    m.theta(&shape, x, y)
+                };
+                count += *t;
+            }
+        }
+        (count * self.grid.dx * self.grid.dx, lo, hi)
+    }
+
+    /// Transforms the source `Theta / A` of `m` into a normalised half spectrum (`[kx][ky]`,
+    /// like the field's; [`Self::source_spectrum`]), leaving `Theta` sampled: the area and the
+    /// rows `lo..=hi` that hold it.
+    pub fn source(&mut self, m: &Modes) -> (f64, usize, usize) {
+        let (area, lo, hi) = self.theta_spectrum(m);
+        let norm = self.source_scale(area);
+        for c in self.spec.iter_mut() {
+            *c *= norm;
+        }
+        (area, lo, hi)
+    }
+
+    /// Like [`Self::source`], but leaves the raw transform of `Theta` (not divided by
+    /// `A N^2`, [`Self::source_scale`]) in [`Self::source_spectrum`]: a time step folds the
+    /// scale into its own pass over the spectrum.
+    pub fn theta_spectrum(&mut self, m: &Modes) -> (f64, usize, usize) {
+        let n = self.grid.n;
+        let (area, lo, hi) = self.sample(m);
+        self.real[lo * n..(hi + 1) * n].copy_from_slice(&self.theta[lo * n..(hi + 1) * n]);
+        self.fft.forward(&mut self.real, &mut self.spec, lo, hi);
+        (area, lo, hi)
+    }
+
+    /// The factor `1 / (A N^2)` from the raw transform of `Theta` to the normalised source.
+    pub fn source_scale(&self, area: f64) -> f64 {
+        1.0 / (area * (self.grid.n * self.grid.n) as f64)
+    }
+
+    /// `Theta` of the last [`Self::sample`] (row-major `N x N`, rows `lo..=hi`).
+    pub fn theta(&self) -> &[f64] {
+        &self.theta
+    }
+
+    /// The unnormalised transform (`[kx][ky]`) of a real field whose rows outside `lo..=hi`
+    /// are zero; those rows of `real` are clobbered.
+    pub fn transform(&mut self, real: &mut [f64], lo: usize, hi: usize) -> Vec<Complex64> {
+        let mut spec = vec![Complex64::default(); self.grid.spectral_len()];
+        self.fft.forward(real, &mut spec, lo, hi);
+        spec
+    }
+
+    /// The last [`Self::source`]'s normalised half spectrum (raw after
+    /// [`Self::theta_spectrum`]).
+    pub fn source_spectrum(&self) -> &[Complex64] {
+        &self.spec
+    }
+
+    /// The gradient of the real field with the normalised half spectrum `u` on the rows
+    /// `lo..=hi` (spectral derivatives, Nyquist mode zeroed).
+    pub fn gradient(&mut self, u: &[Complex64], lo: usize, hi: usize) {
+        let n = self.grid.n;
+        for jx in 0..=n / 2 {
+            let kxd = self.grid.kx_d[jx];
+            for jy in 0..n {
+                let kyd = self.grid.ky_d[jy];
+                let i = jx * n + jy;
+                self.dx_spec[i] = Complex64::new(-u[i].im * kxd, u[i].re * kxd);
+                self.dy_spec[i] = Complex64::new(-u[i].im * kyd, u[i].re * kyd);
+            }
+        }
+        self.fft.inverse(&mut self.dx_spec, &mut self.ux, lo, hi);
+        self.fft.inverse(&mut self.dy_spec, &mut self.uy, lo, hi);
+    }
+
+    /// The forces `-Int grad u Theta` and `-Int w_k . grad u Theta` of the last
+    /// [`Self::gradient`] on the last [`Self::sample`]d shape (`k_max` modes, rows `lo..=hi`).
+    pub fn sums(&self, k_max: usize, lo: usize, hi: usize, area: f64) -> ShapeForces {
+        let n = self.grid.n;
+        let mut f = ShapeForces {
+            fx: 0.0,
+            fy: 0.0,
+            ga: vec![0.0; k_max - 1],
+            gb: vec![0.0; k_max - 1],
+            area,
+        };
+        for iy in lo..=hi {
+            let y = self.grid.coord(iy);
+            for ix in lo..=hi {
+                let i = iy * n + ix;
+                let t = self.theta[i];
+                if t == 0.0 {
+                    continue;
+                }
+                let x = self.grid.coord(ix);
+                let (gx, gy) = (self.ux[i] * t, self.uy[i] * t);
+                f.fx += gx;
+                f.fy += gy;
+                // w_k^(a) . g and w_k^(b) . g without their factor R^(2-k)
+                // ([`crate::model::modes::w_fields`]):
+                // (Re, Im) of (x + i y)^(k-1), one product per mode.
+                let (mut re, mut im) = (x, y);
+                for (ga, gb) in f.ga.iter_mut().zip(f.gb.iter_mut()) {
+                    *ga += re * gx - im * gy;
+                    *gb += im * gx + re * gy;
+                    (re, im) = (re * x - im * y, re * y + im * x);
+                }
+            }
+        }
+        let da = -self.grid.dx * self.grid.dx;
+        f.fx *= da;
+        f.fy *= da;
+        let r0 = self.shape.radius;
+        for (k, (ga, gb)) in (2..).zip(f.ga.iter_mut().zip(f.gb.iter_mut())) {
+            let scale = da * r0.powi(2 - k);
+            *ga *= scale;
+            *gb *= scale;
+        }
+        f
+    }
+}
