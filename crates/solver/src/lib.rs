@@ -76,7 +76,7 @@ pub const SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-1
 pub const ODE_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-1+ode-3");
 
 /// Version of the time stepping of the general model with shape modes `2..K`, `K > 2`
-/// (`runs::mode_run`) on top of [`SOLVER_VERSION`]; 2: the field's advection and source
+/// (`stepping::comoving_etd`) on top of [`SOLVER_VERSION`]; 2: the field's advection and source
 /// explicit over a step, as in the production scheme's predictor (same fixed points); 3:
 /// ETD2RK with its error estimate on the 2-mode runs' clock, adaptive steps under `tol` and
 /// `dt_max` by default (was exponential Euler at fixed steps `dt`), run on as 2-mode runs; 4:

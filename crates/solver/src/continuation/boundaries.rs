@@ -24,14 +24,14 @@ use crate::continuation::window::Window;
 use crate::error::SolverError;
 use crate::model::param::ModelParam;
 use crate::reduced::boundaries::Boundary;
-use crate::roots::linearisation::Linearization;
-use crate::roots::steady_solver::{MirrorAxis, SteadySolver};
+use crate::roots::linearisation::TwoModeLinearization;
+use crate::roots::steady_solver::{MirrorAxis, TwoModeSolver};
 use crate::roots::thresholds::{ic_thresholds, id_onset};
 
 /// The ID onset line on `mirror` for `kappa2` from `lo` up to (not including) `hi`, where ID
 /// meets IC; none when the window lies above `hi`.
 fn id_line(w: &Window, mirror: MirrorAxis, hi: f64) -> Result<Vec<(f64, f64)>, SolverError> {
-    let mut solver = SteadySolver::new(w.base, w.n)?;
+    let mut solver = TwoModeSolver::new(w.base, w.n)?;
     let lo = w.kappa2.0;
     if hi <= lo {
         return Ok(Vec::new());
@@ -58,7 +58,7 @@ fn id_line(w: &Window, mirror: MirrorAxis, hi: f64) -> Result<Vec<(f64, f64)>, S
 /// the point where the onset of motion turns subcritical the `s = 0.01` state lies on the
 /// unstable part of the branch, and no label can change there.
 pub fn mc_line(w: &Window, onset_eta_t: f64) -> Result<Vec<(f64, f64)>, SolverError> {
-    let mut solver = SteadySolver::new(w.base, w.n)?;
+    let mut solver = TwoModeSolver::new(w.base, w.n)?;
     let c = -crate::model::classify::CLASS_THRESHOLD;
     let opts = crate::numerics::newton::NewtonOptions {
         tol: 1e-12,
@@ -90,7 +90,7 @@ pub fn mc_line(w: &Window, onset_eta_t: f64) -> Result<Vec<(f64, f64)>, SolverEr
         guess = [v, eta];
         solver.set_control(eta, k);
         let z = [v, 0.0, c, 0.0];
-        if !crate::roots::verdict::assess(&Linearization::at(&mut solver, z), &z).stable() {
+        if !crate::roots::verdict::assess(&TwoModeLinearization::at(&mut solver, z), &z).stable() {
             break;
         }
         pts.push((eta, k));

@@ -11,11 +11,11 @@ use crate::continuation::window::PlaneAxis;
 use crate::error::SolverError;
 use crate::model::params::ModelParams;
 use crate::numerics::newton::fd_jacobian;
-use crate::roots::steady_solver::{MirrorAxis, SteadySolver};
+use crate::roots::steady_solver::{MirrorAxis, TwoModeSolver};
 
 /// The extended system of the MD fold: `y = (v, c, qx, qy)`.
 struct FoldSystem {
-    solver: SteadySolver,
+    solver: TwoModeSolver,
     mirror: MirrorAxis,
     x: PlaneAxis,
     y: PlaneAxis,
@@ -180,7 +180,7 @@ pub fn fold_curve_from(
     (v, c, at_x, at_y): (f64, f64, f64, f64),
 ) -> Result<Vec<(f64, f64)>, SolverError> {
     let mut sys = FoldSystem {
-        solver: SteadySolver::new(*base, n)?,
+        solver: TwoModeSolver::new(*base, n)?,
         mirror,
         x,
         y,

@@ -1,5 +1,5 @@
 //! The phase boundaries of the `K`-mode model in a window of `(eta_t, kappa2)`, for the states
-//! on the x axis ([`crate::roots::mode_solver`]: motion along x, `b_k = 0`), each point a
+//! on the x axis ([`crate::roots::steady_solver`]: motion along x, `b_k = 0`), each point a
 //! solution of its equations:
 //!
 //! - **IC onset of motion**: the disk's drift threshold with the odd modes it couples to in
@@ -23,7 +23,7 @@
 //!
 //! - **ID onset of motion (diagonal ID)**: the same for the resting deformed state elongated
 //!   along a diagonal, drifting along the other: every x-axis computation in the frame turned
-//!   by 45 degrees ([`ModeSolver::set_axis`]); the box's square symmetry tells it from the
+//!   by 45 degrees ([`SteadySolver::set_axis`]); the box's square symmetry tells it from the
 //!   axis ID (for `K = 2`, as in the 2-mode model; from `K = 4` also through mode 4, which the
 //!   turn flips).
 use crate::continuation::fold_curve::{fold_options, fold_walk};
@@ -35,9 +35,9 @@ use crate::model::param::ModelParam;
 use crate::model::params::ModelParams;
 use crate::numerics::newton::{fd_jacobian, NewtonOptions};
 use crate::reduced::boundaries::Boundary;
-use crate::roots::mode_linearisation::ModeLinearization;
-use crate::roots::mode_solver::ModeSolver;
+use crate::roots::linearisation::Linearization;
 use crate::roots::named_state::{id_state, md_state, rest_shape};
+use crate::roots::steady_solver::SteadySolver;
 use crate::roots::thresholds::{disk_thresholds, drift_threshold};
 
 /// The determinant of a square matrix (nalgebra's LU).
@@ -50,9 +50,9 @@ fn det(a: Vec<Vec<f64>>) -> f64 {
 /// bottom up to where ID meets the disk (the mode-2 onset `top`), from the first `kappa2`
 /// where ID is found (with mode 2 alone, then adding one mode at a time) to where Newton
 /// loses it (none when the window lies above `top`), for the ID whose minor axis is the mirror line at angle `axis` to x (0: the
-/// axis ID; `pi / 4`: the diagonal ID, [`ModeSolver::set_axis`]).
+/// axis ID; `pi / 4`: the diagonal ID, [`SteadySolver::set_axis`]).
 fn id_line(w: &Window, top: f64, axis: f64) -> Result<Vec<(f64, f64)>, SolverError> {
-    let mut solver = ModeSolver::new(w.base, w.n)?;
+    let mut solver = SteadySolver::new(w.base, w.n)?;
     solver.set_axis(axis);
     let k_max = w.modes;
     let (lo, hi) = (w.kappa2.0, top.min(w.kappa2.1));
@@ -115,7 +115,7 @@ fn fold_curve(w: &Window) -> Result<Vec<(f64, f64)>, SolverError> {
     // No moving state at the middle line's start (the window's left edge is at rest there:
     // Newton from the 2-mode state finds the disk, or nothing): no fold curve in this window.
     // A failure further along the branch is the command's error.
-    let mut start = ModeSolver::new(line.base, line.n)?;
+    let mut start = SteadySolver::new(line.base, line.n)?;
     let Ok(st) = md_state(&mut start, line.k_max) else {
         return Ok(Vec::new());
     };
@@ -125,7 +125,7 @@ fn fold_curve(w: &Window) -> Result<Vec<(f64, f64)>, SolverError> {
         Ok(None) => return Ok(Vec::new()),
         Err(e) => return Err(e),
     };
-    let mut solver = ModeSolver::new(w.base, w.n)?;
+    let mut solver = SteadySolver::new(w.base, w.n)?;
     let k_max = w.modes;
     let (e, k) = (w.eta_t, w.kappa2);
     let control = |y: &[f64]| {
@@ -182,7 +182,7 @@ fn mc_state(x: &[f64]) -> Vec<f64> {
 /// two ends and by bisection between them (one change of stability along the line; each
 /// verdict is a `2K x 2K` eigenproblem with the field, seconds at N = 192).
 fn mc_line(w: &Window, onset_eta_t: f64) -> Result<Vec<(f64, f64)>, SolverError> {
-    let mut solver = ModeSolver::new(w.base, w.n)?;
+    let mut solver = SteadySolver::new(w.base, w.n)?;
     let k_max = w.modes;
     let opts = NewtonOptions {
         tol: 1e-12,
@@ -219,7 +219,7 @@ fn mc_line(w: &Window, onset_eta_t: f64) -> Result<Vec<(f64, f64)>, SolverError>
     let mut stable = |i: usize| {
         let (eta, k, z) = &line[i];
         solver.set_control(*eta, *k);
-        ModeLinearization::at(&mut solver, z).verdict().stable()
+        Linearization::at(&mut solver, z).verdict().stable()
     };
     let kept = match line.len() {
         0 => 0,
@@ -249,7 +249,7 @@ pub fn mode_boundaries(w: &Window) -> Result<Vec<Boundary>, SolverError> {
     crate::contract::limits::check_modes(&w.base, w.n, w.modes)?;
     let (e0, e1) = w.eta_t;
     let (k0, k1) = w.kappa2;
-    let mut disk = ModeSolver::new(
+    let mut disk = SteadySolver::new(
         ModelParams {
             kappa2: k0,
             ..w.base
@@ -356,12 +356,12 @@ mod tests {
         let axis = id_line(&w, 0.118, 0.0).unwrap();
         assert_eq!((line[0].1, axis[0].1), (k, k));
         let onset = line[0].0;
-        let mut solver = ModeSolver::new(w.base, w.n).unwrap();
+        let mut solver = SteadySolver::new(w.base, w.n).unwrap();
         let shape = id_state(&mut solver, 4, -0.3).unwrap();
-        let unstable = |solver: &mut ModeSolver, eta: f64| {
+        let unstable = |solver: &mut SteadySolver, eta: f64| {
             solver.set_control(eta, k);
             let z = crate::model::state::turned(
-                &crate::roots::mode_solver::on_x_axis(0.0, &shape),
+                &crate::roots::steady_solver::on_x_axis(0.0, &shape),
                 diagonal,
             );
             let opts = NewtonOptions {
@@ -377,7 +377,7 @@ mod tests {
                 z[0].abs() < 1e-10 && z[2].abs() < 1e-10,
                 "on the diagonal: {z:?}"
             );
-            ModeLinearization::at(solver, &z).verdict().unstable
+            Linearization::at(solver, &z).verdict().unstable
         };
         let (above, below) = (
             unstable(&mut solver, onset + 2e-4),

@@ -1,4 +1,4 @@
-//! The MD branch of the `K`-mode model ([`crate::roots::mode_solver`]) on the x axis (motion
+//! The MD branch of the `K`-mode model ([`crate::roots::steady_solver`]) on the x axis (motion
 //! along x, `b_k = 0`), followed in `eta_t` or `kappa2` by pseudo-arclength continuation of
 //! `(v, a_2..a_K, q)`, and its fold (the saddle-node that bounds the bistable bands): where
 //! the tangent's `q` component changes sign, located by bisection in arclength. The branch
@@ -9,8 +9,8 @@ use crate::continuation::arclength::{
 use crate::error::SolverError;
 use crate::model::param::ModelParam;
 use crate::model::params::ModelParams;
-use crate::roots::mode_solver::{ModeSolver, ModeState};
 use crate::roots::named_state::md_state;
+use crate::roots::steady_solver::{AxisState, SteadySolver};
 
 /// A line in `eta_t` or `kappa2` for the `K`-mode MD branch.
 #[derive(Debug, Clone)]
@@ -83,7 +83,7 @@ pub(crate) fn fold_point(
 /// its first fold, if it has one before the line's end or the branch's meeting with the
 /// resting state (`v -> 0`).
 pub fn md_fold(line: &ModeLine) -> Result<Option<ModeFold>, SolverError> {
-    let mut solver = ModeSolver::new(line.base, line.n)?;
+    let mut solver = SteadySolver::new(line.base, line.n)?;
     let st = md_state(&mut solver, line.k_max)?;
     md_fold_from(line, solver, &st)
 }
@@ -92,8 +92,8 @@ pub fn md_fold(line: &ModeLine) -> Result<Option<ModeFold>, SolverError> {
 /// parameters the line's `base`).
 pub fn md_fold_from(
     line: &ModeLine,
-    mut solver: ModeSolver,
-    st: &ModeState,
+    mut solver: SteadySolver,
+    st: &AxisState,
 ) -> Result<Option<ModeFold>, SolverError> {
     let span = line.to - line.from;
     let base = line.base;

@@ -1,7 +1,7 @@
 //! The MD branch of the `K`-mode model followed along a whole line, every state with its
 //! stability (`droplet continue --modes K`): pseudo-arclength continuation of
 //! `(v, a_2..a_K, q)` on the x axis as in [`crate::continuation::mode_branch`], on past its
-//! folds, and the `2K x 2K` eigenproblem ([`crate::roots::mode_linearisation`]) at every
+//! folds, and the `2K x 2K` eigenproblem ([`crate::roots::linearisation`]) at every
 //! state, the rotation mode set aside.
 //!
 //! Two independent views of the same fold, checked against each other in the tests: the
@@ -10,9 +10,9 @@
 use crate::continuation::arclength::{start, ArclengthOptions, Stepper};
 use crate::continuation::mode_branch::{fold_point, ModeLine};
 use crate::error::SolverError;
-use crate::roots::mode_linearisation::ModeLinearization;
-use crate::roots::mode_solver::ModeSolver;
+use crate::roots::linearisation::Linearization;
 use crate::roots::named_state::md_state;
+use crate::roots::steady_solver::SteadySolver;
 use crate::roots::verdict::Verdict;
 
 /// One state of the branch.
@@ -35,7 +35,7 @@ pub struct ModeBranchPoint {
 impl ModeBranchPoint {
     /// The `2K` unknowns `(vx, vy, a_2..a_K, b_2..b_K)` of the state.
     pub fn z(&self) -> Vec<f64> {
-        crate::roots::mode_solver::on_x_axis(self.v, &self.a)
+        crate::roots::steady_solver::on_x_axis(self.v, &self.a)
     }
 }
 
@@ -77,7 +77,7 @@ const AT_REST: f64 = 1e-3;
 /// The states `(v, a_2..a_K, q)` walked along `line` (with their fold flags) and the
 /// stability of each.
 fn with_stability(
-    solver: &mut ModeSolver,
+    solver: &mut SteadySolver,
     line: &ModeLine,
     walked: Vec<(Vec<f64>, bool)>,
 ) -> Vec<ModeBranchPoint> {
@@ -103,7 +103,7 @@ fn with_stability(
                 },
                 fold,
             };
-            point.verdict = ModeLinearization::at(solver, &point.z()).verdict();
+            point.verdict = Linearization::at(solver, &point.z()).verdict();
             point
         })
         .collect()
@@ -117,7 +117,7 @@ pub fn follow_md(
     max_points: usize,
     opts: &ArclengthOptions,
 ) -> Result<ModeBranch, SolverError> {
-    let mut solver = ModeSolver::new(line.base, line.n)?;
+    let mut solver = SteadySolver::new(line.base, line.n)?;
     solver.set_eta_k_exponent(line.eta_k_exponent);
     let st = md_state(&mut solver, line.k_max)?;
     let span = line.to - line.from;

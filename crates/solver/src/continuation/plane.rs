@@ -32,8 +32,8 @@ use crate::error::SolverError;
 use crate::model::classify::CLASS_THRESHOLD;
 use crate::model::params::ModelParams;
 use crate::reduced::boundaries::Boundary;
-use crate::roots::linearisation::Linearization;
-use crate::roots::steady_solver::{MirrorAxis, SteadySolver};
+use crate::roots::linearisation::TwoModeLinearization;
+use crate::roots::steady_solver::{MirrorAxis, TwoModeSolver};
 use crate::roots::thresholds::id_onset;
 use crate::roots::verdict::assess;
 
@@ -51,7 +51,7 @@ pub struct PlaneWindow {
 
 impl PlaneWindow {
     /// Moves `solver` to `(qx, qy)`; false where the parameters are invalid there.
-    fn place(&self, solver: &mut SteadySolver, qx: f64, qy: f64) -> bool {
+    fn place(&self, solver: &mut TwoModeSolver, qx: f64, qy: f64) -> bool {
         solver.set_param(self.x.param, self.x.value(qx)).is_ok()
             && solver.set_param(self.y.param, self.y.value(qy)).is_ok()
     }
@@ -104,7 +104,7 @@ fn geometry(p: &ModelParams) -> [f64; 3] {
 
 /// The resting disk's three onsets, each a zero set.
 fn disk_onsets(w: &PlaneWindow) -> Result<Vec<Boundary>, SolverError> {
-    let mut solver = SteadySolver::new(w.base, w.n)?;
+    let mut solver = TwoModeSolver::new(w.base, w.n)?;
     let mut memo: Memo<[f64; 3]> = Memo::new();
     let names = [
         "IC onset of motion",
@@ -121,7 +121,7 @@ fn disk_onsets(w: &PlaneWindow) -> Result<Vec<Boundary>, SolverError> {
             let [r, s, l] = geometry(&p);
             // eta_c, kappa_c (diagonal), kappa_c (axis).
             let th = memo.get([r, s, l, 0.0], || {
-                let j0 = Linearization::at(&mut solver, [0.0; 4]).jacobian0();
+                let j0 = TwoModeLinearization::at(&mut solver, [0.0; 4]).jacobian0();
                 [j0[0][0] + p.eta_t, j0[3][3] + p.kappa2, j0[2][2] + p.kappa2]
             });
             match i {
@@ -141,7 +141,7 @@ fn disk_onsets(w: &PlaneWindow) -> Result<Vec<Boundary>, SolverError> {
 
 /// The ID onset of motion on `mirror`: a zero set.
 fn id_onsets(w: &PlaneWindow, mirror: MirrorAxis) -> Result<Vec<Boundary>, SolverError> {
-    let mut solver = SteadySolver::new(w.base, w.n)?;
+    let mut solver = TwoModeSolver::new(w.base, w.n)?;
     let mut memo: Memo<Option<f64>> = Memo::new();
     let mut seed = 0.3;
     let mut g = |qx: f64, qy: f64| {
@@ -198,7 +198,7 @@ fn mc_crossing(branch: &Branch, at: f64) -> Option<(f64, f64, f64)> {
 /// `a2 = -0.01`, corrected at fixed `y`, then continued both ways in `(v, qx, qy)` while it is
 /// stable (the rotation mode aside), inside the window and moving.
 fn mc_curve(w: &PlaneWindow, (v, x, y): (f64, f64, f64)) -> Result<Vec<(f64, f64)>, SolverError> {
-    let mut solver = SteadySolver::new(w.base, w.n)?;
+    let mut solver = TwoModeSolver::new(w.base, w.n)?;
     let c = -CLASS_THRESHOLD;
     let mut f = |u: &[f64]| {
         if !w.place(&mut solver, u[1], u[2]) {
@@ -230,11 +230,11 @@ fn mc_curve(w: &PlaneWindow, (v, x, y): (f64, f64, f64)) -> Result<Vec<(f64, f64
     else {
         return Ok(Vec::new());
     };
-    let mut check = SteadySolver::new(w.base, w.n)?;
+    let mut check = TwoModeSolver::new(w.base, w.n)?;
     let mut stable = |u: &[f64]| {
         w.place(&mut check, u[1], u[2]) && {
             let z = [u[0], 0.0, c, 0.0];
-            assess(&Linearization::at(&mut check, z), &z).stable()
+            assess(&TwoModeLinearization::at(&mut check, z), &z).stable()
         }
     };
     let inside =

@@ -10,8 +10,8 @@
 use crate::error::SolverError;
 use crate::model::param::ModelParam;
 use crate::model::params::ModelParams;
-use crate::roots::linearisation::Linearization;
-use crate::roots::steady_solver::{MirrorAxis, SteadySolver};
+use crate::roots::linearisation::TwoModeLinearization;
+use crate::roots::steady_solver::{MirrorAxis, TwoModeSolver};
 use crate::roots::verdict::{assess, Verdict};
 use serde::Serialize;
 
@@ -74,7 +74,7 @@ impl std::str::FromStr for Family {
 
 /// The zero set of one family along a parameter line.
 pub struct Problem {
-    pub solver: SteadySolver,
+    pub solver: TwoModeSolver,
     pub family: Family,
     pub mirror: MirrorAxis,
     pub parameter: ModelParam,
@@ -95,7 +95,7 @@ impl Problem {
         to: f64,
     ) -> Result<Self, SolverError> {
         Ok(Self {
-            solver: SteadySolver::new(*base, n)?,
+            solver: TwoModeSolver::new(*base, n)?,
             family,
             mirror,
             parameter,
@@ -220,7 +220,7 @@ impl Problem {
     pub fn verdict(&mut self, y: &[f64]) -> Verdict {
         self.set(*y.last().expect("q"));
         let z = self.state(y);
-        assess(&Linearization::at(&mut self.solver, z), &z)
+        assess(&TwoModeLinearization::at(&mut self.solver, z), &z)
     }
 
     /// A root of the family at the parameter value `value`, by Newton from the reduced model's

@@ -117,18 +117,6 @@ pub const MAX_MODES: usize = 16;
 /// Least grid cells along half a wavelength of the highest mode on the boundary, `pi R / K`.
 pub const MIN_MODE_CELLS: f64 = 4.0;
 
-/// Checks what the `K`-mode spectral stepper needs (`K = k_max`): the modes the grid resolves
-/// ([`check_modes`]) and inertia (the stepper integrates the velocity).
-pub fn check_mode_stepper(params: &ModelParams, n: usize, k_max: usize) -> Result<(), SolverError> {
-    check_modes(params, n, k_max)?;
-    require(
-        params.mass > 0.0,
-        "mass",
-        params.mass,
-        "a finite number > 0 (the K-mode run integrates the velocity)",
-    )
-}
-
 /// Checks a number of shape modes `K` (modes `2..=K`): from 2 to [`MAX_MODES`], and resolved by
 /// the grid: half a wavelength of mode `K` along the boundary, `pi R / K`, at least
 /// [`MIN_MODE_CELLS`] cells (`K <= pi R N / (4 L)`: 7 at the paper's R = 1, L = 7 and N = 64, 21 at N = 192).

@@ -1,7 +1,7 @@
 //! The co-moving steady force balances of the model with shape modes `2..K`, one interface
 //! over its two solvers: the 2-mode steady solver (the fast path: its chord method with kept
 //! Jacobians, and the constrained solves of the landing) and the general one
-//! ([`crate::roots::mode_solver::ModeSolver`]). States are `(vx, vy, a_2..a_K, b_2..b_K)`,
+//! ([`crate::roots::steady_solver::SteadySolver`]). States are `(vx, vy, a_2..a_K, b_2..b_K)`,
 //! for `K = 2` `(vx, vy, a2, b2)`. With them, the steady field of a droplet of any `K` in the
 //! lab frame ([`lab_field`]).
 use crate::error::SolverError;
@@ -10,19 +10,19 @@ use crate::model::params::ModelParams;
 use crate::model::state::four;
 use crate::numerics::newton::NewtonOptions;
 use crate::roots::linearisation::Linearization;
-use crate::roots::mode_linearisation::ModeLinearization;
-use crate::roots::mode_solver::ModeSolver;
-use crate::roots::steady_solver::{KeptJacobians, SteadySolver};
+use crate::roots::linearisation::TwoModeLinearization;
+use crate::roots::steady_solver::SteadySolver;
+use crate::roots::steady_solver::{KeptJacobians, TwoModeSolver};
 use crate::roots::verdict::{assess, Verdict};
 
 /// The steady force balances a finish solves: the 2-mode solver (with the chord method's
 /// kept Jacobians, and the constrained solves of the landing and the orientation flow), or
 /// the general one with shape modes `2..K`.
 pub enum Balances {
-    Two(SteadySolver),
+    Two(TwoModeSolver),
     /// The general solver and the model's `K` (its states `(vx, vy, a_2..a_K, b_2..b_K)`).
     General {
-        solver: ModeSolver,
+        solver: SteadySolver,
         modes: usize,
     },
 }
@@ -72,8 +72,8 @@ impl Balances {
     /// The stability of the root `z` ([`crate::roots::verdict::assess`]).
     pub fn verdict(&mut self, z: &[f64]) -> Verdict {
         match self {
-            Balances::Two(solver) => assess(&Linearization::at(solver, four(z)), z),
-            Balances::General { solver, .. } => ModeLinearization::at(solver, z).verdict(),
+            Balances::Two(solver) => assess(&TwoModeLinearization::at(solver, four(z)), z),
+            Balances::General { solver, .. } => Linearization::at(solver, z).verdict(),
         }
     }
 }
@@ -89,10 +89,10 @@ impl Balances {
         eta_k_exponent: f64,
     ) -> Result<Self, SolverError> {
         Ok(if modes == 2 {
-            Balances::Two(SteadySolver::new(params, n)?)
+            Balances::Two(TwoModeSolver::new(params, n)?)
         } else {
             crate::contract::limits::check_modes(&params, n, modes)?;
-            let mut solver = ModeSolver::new(params, n)?;
+            let mut solver = SteadySolver::new(params, n)?;
             solver.set_eta_k_exponent(eta_k_exponent);
             Balances::General { solver, modes }
         })
@@ -157,7 +157,7 @@ impl Balances {
 
 /// The steady field in the lab frame (for pictures and checks) of the droplet `z = (vx, vy, a_2..a_K, b_2..b_K)` centred at `(x, y)`, on
 /// the solver's grid (row-major, `values[iy * n + ix]` at `((ix - n/2) dx, (iy - n/2) dx)`).
-pub fn lab_field(solver: &mut ModeSolver, z: &[f64], x: f64, y: f64) -> crate::stepping::Field {
+pub fn lab_field(solver: &mut SteadySolver, z: &[f64], x: f64, y: f64) -> crate::stepping::Field {
     solver.forces(z[0], z[1], &crate::model::modes::Modes::of_state(z));
     let n = solver.n();
     let len = solver.params().box_len;
@@ -175,8 +175,8 @@ mod tests {
     #[test]
     fn with_two_modes_at_the_centre_it_is_the_two_mode_steady_field() {
         let p = ModelParams::at(0.085, 0.112);
-        let mut modes = ModeSolver::new(p, 64).unwrap();
-        let mut two = SteadySolver::new(p, 64).unwrap();
+        let mut modes = SteadySolver::new(p, 64).unwrap();
+        let mut two = TwoModeSolver::new(p, 64).unwrap();
         let f = lab_field(&mut modes, &[0.3, 0.1, -0.2, 0.05], 0.0, 0.0);
         let g = two.field(0.3, 0.1, -0.2, 0.05);
         let peak = g.iter().fold(0.0f64, |m, x| m.max(x.abs()));
@@ -194,7 +194,7 @@ mod tests {
         // Nyquist modes, which the spectral shift (like the derivatives) leaves out: a part in
         // 1e-4 of the peak at N = 64. A shift the wrong way would be off by a fifth of it.
         let p = ModelParams::at(0.085, 0.112);
-        let mut s = ModeSolver::new(p, 64).unwrap();
+        let mut s = SteadySolver::new(p, 64).unwrap();
         let z = [0.3, 0.0, -0.2, 0.04, 0.0, 0.01];
         let at0 = lab_field(&mut s, &z, 0.0, 0.0);
         let dx = p.box_len / 64.0;

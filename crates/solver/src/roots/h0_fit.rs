@@ -2,13 +2,13 @@
 //! translation) over a range of `kappa2`, and the least-squares fit `kappa2 = p0 - p2 s^2` over
 //! `0.001 < s < 0.3`; `p2` is the reduced model's `h0`.
 //!
-//! The steady states come from the exact steady evaluator ([`crate::roots::steady_solver::SteadySolver`]
+//! The steady states come from the exact steady evaluator ([`crate::roots::steady_solver::TwoModeSolver`]
 //! with `v = 0`, a one-dimensional Newton solve in `a2`), continued from one `kappa2` to the
 //! next: the same fixed points that deformation-only time integration converges to, without
 //! its slow relaxation near the threshold.
 use crate::error::SolverError;
 use crate::model::params::ModelParams;
-use crate::roots::steady_solver::SteadySolver;
+use crate::roots::steady_solver::TwoModeSolver;
 use serde::Serialize;
 
 /// Result of the fit.
@@ -32,7 +32,7 @@ pub fn fit_h0(base: &ModelParams, n: usize, kappa2s: &[f64]) -> Result<H0Fit, So
     let mut guess = ((0.1196 - ks[0]).max(1e-4) / 0.1436).sqrt();
     for &k in &ks {
         let p = ModelParams { kappa2: k, ..*base };
-        let mut solver = SteadySolver::new(p, n)?;
+        let mut solver = TwoModeSolver::new(p, n)?;
         let s = match solver.newton(0.0, guess.max(0.02), 1e-13) {
             Ok(st) => st.a2.abs(),
             Err(_) => 0.0,

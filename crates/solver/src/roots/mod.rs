@@ -1,5 +1,5 @@
-//! Steady states as roots: the exact co-moving steady solver (and its `K`-mode form,
-//! `mode_solver`), the linearisation about a root
+//! Steady states as roots: the exact co-moving steady solver (`steady_solver`: any `K`, and
+//! the fast path of `K = 2`), the linearisation about a root
 //! (field included, docs/numerics.md "Stability"), the stability verdict with the rotation mode
 //! set aside, the steady balances of any `K` behind one interface (`balances`), the named
 //! states of the paper (IC, ID, MD on a mirror axis of the box, any `K`), where resting states
@@ -11,8 +11,6 @@ pub mod balances;
 mod forces_memo;
 pub mod h0_fit;
 pub mod linearisation;
-pub mod mode_linearisation;
-pub mod mode_solver;
 pub mod named_state;
 pub mod steady_solver;
 pub mod thresholds;

@@ -13,8 +13,8 @@ use crate::numerics::newton::{self, NewtonOptions};
 use crate::reduced::bifurcation::md_states;
 use crate::reduced::coefficients::Coefficients;
 use crate::roots::balances::Balances;
-use crate::roots::mode_solver::{on_x_axis, ModeSolver, ModeState};
-use crate::roots::steady_solver::{MirrorAxis, SteadySolver};
+use crate::roots::steady_solver::{on_x_axis, AxisState, SteadySolver};
+use crate::roots::steady_solver::{MirrorAxis, TwoModeSolver};
 use crate::roots::verdict::Verdict;
 use rustfft::num_complex::Complex64;
 use serde::Serialize;
@@ -136,7 +136,7 @@ pub fn find(
 /// The 2-mode state `kind` on `axis` and its residual: Newton from `seed`, or from the reduced
 /// model's states in turn (MD: then three fixed starts) until one is of the kind.
 fn two_mode_root(
-    solver: &mut SteadySolver,
+    solver: &mut TwoModeSolver,
     kind: StateKind,
     axis: MirrorAxis,
     seed: Option<(f64, f64)>,
@@ -180,7 +180,7 @@ fn two_mode_root(
 
 /// The state `kind` of the model with shape modes `2..=k_max` on `axis` (see the module).
 fn general_root(
-    solver: &mut ModeSolver,
+    solver: &mut SteadySolver,
     k_max: usize,
     kind: StateKind,
     axis: MirrorAxis,
@@ -217,7 +217,7 @@ const NEW_MODE_SEEDS: [f64; 3] = [0.0, 0.05, -0.05];
 /// The MD state of the `k_max`-mode model at the solver's parameters, moving along +x: the
 /// 2-mode model's ([`find`], from the reduced model's states), then one mode at a time, each
 /// from `a_k = 0`.
-pub fn md_state(solver: &mut ModeSolver, k_max: usize) -> Result<ModeState, SolverError> {
+pub fn md_state(solver: &mut SteadySolver, k_max: usize) -> Result<AxisState, SolverError> {
     let two = find(
         &mut Balances::new(*solver.params(), solver.n(), 2, 0.0)?,
         StateKind::MD,
@@ -248,7 +248,7 @@ pub fn md_state(solver: &mut ModeSolver, k_max: usize) -> Result<ModeState, Solv
 
 /// Newton on the shape balance of a resting state (`v = 0`, `b_k = 0`) from `seed`, with
 /// steps of at most 0.05 per mode.
-fn rest_root(solver: &mut ModeSolver, seed: &[f64]) -> Option<Vec<f64>> {
+fn rest_root(solver: &mut SteadySolver, seed: &[f64]) -> Option<Vec<f64>> {
     let opts = NewtonOptions {
         tol: 1e-12,
         max_iter: 40,
@@ -269,13 +269,13 @@ fn rest_root(solver: &mut ModeSolver, seed: &[f64]) -> Option<Vec<f64>> {
 
 /// The shape `a_2..a_(len+1)` of a resting deformed state by Newton on the shape balance from
 /// `seed`; `None` where Newton fails or lands on the disk (`|a2| <= 1e-4`).
-pub fn rest_shape(solver: &mut ModeSolver, seed: &[f64]) -> Option<Vec<f64>> {
+pub fn rest_shape(solver: &mut SteadySolver, seed: &[f64]) -> Option<Vec<f64>> {
     rest_root(solver, seed).filter(|x| x[0].abs() > 1e-4)
 }
 
 /// The resting deformed state (ID) of the `k_max`-mode model on the x axis, `a_2..a_K`: with
 /// mode 2 alone from `a2 = seed` (> 0: elongated along x), then one mode at a time from 0.
-pub fn id_state(solver: &mut ModeSolver, k_max: usize, seed: f64) -> Option<Vec<f64>> {
+pub fn id_state(solver: &mut SteadySolver, k_max: usize, seed: f64) -> Option<Vec<f64>> {
     let two = rest_shape(solver, &[seed])?;
     (3..=k_max).try_fold(two, |s, _| {
         // From 0, else from either side of it (Newton from exactly 0 can miss a mode the
@@ -290,7 +290,7 @@ pub fn id_state(solver: &mut ModeSolver, k_max: usize, seed: f64) -> Option<Vec<
 /// The resting disk of the `k_max`-mode model on the x axis, `a_2..a_K`: round but for the
 /// box and the grid, whose square symmetry drives mode 4 (and 8, ...) a little (a4 ~ 5e-4 at
 /// N = 96).
-pub fn ic_state(solver: &mut ModeSolver, k_max: usize) -> Option<Vec<f64>> {
+pub fn ic_state(solver: &mut SteadySolver, k_max: usize) -> Option<Vec<f64>> {
     rest_root(solver, &vec![0.0; k_max - 1]).filter(|x| x[0].abs() < 1e-4)
 }
 
@@ -331,7 +331,7 @@ mod tests {
         ] {
             let fast = find(&mut Balances::new(p, 96, 2, 0.0).unwrap(), kind, axis, None).unwrap();
             let mut general = Balances::General {
-                solver: ModeSolver::new(p, 96).unwrap(),
+                solver: SteadySolver::new(p, 96).unwrap(),
                 modes: 2,
             };
             let st = find(&mut general, kind, axis, None).unwrap();

@@ -11,9 +11,9 @@
 use crate::error::SolverError;
 use crate::model::params::ModelParams;
 use crate::numerics::newton;
-use crate::roots::linearisation::Linearization;
-use crate::roots::mode_solver::ModeSolver;
-use crate::roots::steady_solver::{MirrorAxis, SteadySolver};
+use crate::roots::linearisation::TwoModeLinearization;
+use crate::roots::steady_solver::SteadySolver;
+use crate::roots::steady_solver::{MirrorAxis, TwoModeSolver};
 use serde::Serialize;
 
 /// Where the resting disk loses stability, at the grid and box of its parameters (its
@@ -48,10 +48,10 @@ pub fn ic_thresholds(
     modes: usize,
 ) -> Result<IcThresholds, SolverError> {
     if modes > 2 {
-        return Ok(disk_thresholds(&mut ModeSolver::new(*params, n)?, modes));
+        return Ok(disk_thresholds(&mut SteadySolver::new(*params, n)?, modes));
     }
-    let mut solver = SteadySolver::new(*params, n)?;
-    let j0 = Linearization::at(&mut solver, [0.0; 4]).jacobian0();
+    let mut solver = TwoModeSolver::new(*params, n)?;
+    let j0 = TwoModeLinearization::at(&mut solver, [0.0; 4]).jacobian0();
     let (a2, b2) = (j0[2][2] + params.kappa2, j0[3][3] + params.kappa2);
     Ok(IcThresholds {
         eta_t: j0[0][0] + params.eta_t,
@@ -64,7 +64,7 @@ pub fn ic_thresholds(
 
 /// The resting disk's thresholds with shape modes `2..=k_max` from the general solver, at any
 /// `K` (the truncation study compares every `K` with this one computation).
-pub fn disk_thresholds(solver: &mut ModeSolver, k_max: usize) -> IcThresholds {
+pub fn disk_thresholds(solver: &mut SteadySolver, k_max: usize) -> IcThresholds {
     let c = disk_jacobian(solver, k_max);
     let b = disk_b_entries(solver, k_max);
     let kappa2 = solver.params().kappa2;
@@ -80,10 +80,10 @@ pub fn disk_thresholds(solver: &mut ModeSolver, k_max: usize) -> IcThresholds {
     }
 }
 
-/// The `lambda = 0` Jacobian of [`ModeSolver::residual_x`] at the resting disk with `eta_t`
+/// The `lambda = 0` Jacobian of [`SteadySolver::residual_x`] at the resting disk with `eta_t`
 /// set to 0 (the field's feedback on the speed, the stiffness on the shape), unknowns
 /// `(v, a_2..a_K)`.
-pub fn disk_jacobian(solver: &mut ModeSolver, k_max: usize) -> Vec<Vec<f64>> {
+pub fn disk_jacobian(solver: &mut SteadySolver, k_max: usize) -> Vec<Vec<f64>> {
     let (eta_t, kappa2) = (solver.params().eta_t, solver.params().kappa2);
     solver.set_control(0.0, kappa2);
     let j = newton::fd_jacobian(
@@ -96,9 +96,9 @@ pub fn disk_jacobian(solver: &mut ModeSolver, k_max: usize) -> Vec<Vec<f64>> {
 }
 
 /// The `b_k` diagonal entries `dG_k^(b)/db_k - kappa_k` (`k = 2..=k_max`) of the `lambda = 0`
-/// Jacobian of [`ModeSolver::residual`] at the resting disk, by central differences in each
+/// Jacobian of [`SteadySolver::residual`] at the resting disk, by central differences in each
 /// `b_k` alone.
-fn disk_b_entries(solver: &mut ModeSolver, k_max: usize) -> Vec<f64> {
+fn disk_b_entries(solver: &mut SteadySolver, k_max: usize) -> Vec<f64> {
     let h = 1e-5;
     (2..=k_max)
         .map(|k| {
@@ -114,7 +114,7 @@ fn disk_b_entries(solver: &mut ModeSolver, k_max: usize) -> Vec<f64> {
 }
 
 /// The `eta_t` at which the drift along x of a resting state has a zero eigenvalue, from the
-/// `lambda = 0` Jacobian `c` of [`ModeSolver::residual_x`] taken there with `eta_t = 0`
+/// `lambda = 0` Jacobian `c` of [`SteadySolver::residual_x`] taken there with `eta_t = 0`
 /// (unknowns `(v, a_2..a_K)`): the drift couples only to the odd modes (the mirror `x -> -x`),
 /// so the threshold is the Schur complement `c00 - c0^T C_oo^-1 c0` over them. (At rest
 /// `c0` vanishes, no shape feeling a net force, and it is `c00`; the complement keeps it
@@ -157,7 +157,7 @@ fn top_eigenvalue(m: [[f64; 2]; 2]) -> f64 {
 /// The `eta_t` below which the 2-mode ID state on `mirror` at `kappa2` starts to move, with
 /// its shape amplitude, or `None` where there is no ID state.
 pub fn id_onset(
-    solver: &mut SteadySolver,
+    solver: &mut TwoModeSolver,
     mirror: MirrorAxis,
     kappa2: f64,
     seed: f64,
@@ -172,7 +172,7 @@ pub fn id_onset(
         MirrorAxis::X => [0.0, 0.0, st.a2, 0.0],
         MirrorAxis::Diagonal => [0.0, 0.0, 0.0, st.a2],
     };
-    let j = Linearization::at(solver, z).jacobian0();
+    let j = TwoModeLinearization::at(solver, z).jacobian0();
     let k = [[j[0][0] + eta_t, j[0][1]], [j[1][0], j[1][1] + eta_t]];
     Some((top_eigenvalue(k), st.a2))
 }
@@ -231,7 +231,7 @@ mod tests {
             (th.kappa2_b2 - two.kappa2_b2).abs() < 1e-7 && two.kappa2_b2 > two.kappa2_a2 + 1e-4,
             "{th:?} {two:?}"
         );
-        let general_two = disk_thresholds(&mut ModeSolver::new(p, 192).unwrap(), 2);
+        let general_two = disk_thresholds(&mut SteadySolver::new(p, 192).unwrap(), 2);
         assert!((general_two.eta_t - two.eta_t).abs() < 1e-7);
         // Each mode's onset is the sharp-interface, unbounded-plane value to within the box's
         // and the smoothing's 1.1 % (1.0 % for k = 2), closer as k grows (the field of a

@@ -4,8 +4,8 @@
 //!
 //! The scheme is chosen once per run ([`Run::new`]): for two shape modes the 2-mode fast paths
 //! (the co-moving ETD2RK with the droplet's point symmetry, or the paper's scheme), for
-//! modes `2..K` the general ones ([`crate::runs::mode_run::ModeStepper`],
-//! [`crate::stepping::mode_fd::ModeFd`]). What a run watches for its end is chosen with it:
+//! modes `2..K` the general ones ([`crate::stepping::comoving_etd::ComovingEtd`],
+//! [`crate::stepping::paper_fd::PaperFd`]). What a run watches for its end is chosen with it:
 //! a 2-mode run the change of `(vx, vy, a2, b2)` over the paper's window of 0.1, a `K`-mode
 //! run the largest rate `|dz/dt|` its scheme measures (the Newton finish is tried once that is
 //! below [`crate::runs::finish::TRIGGER_FACTOR`] steady tolerances; the paper's test fires
@@ -24,9 +24,9 @@ use crate::model::state::{four, DropletState};
 use crate::runs::clock::{Clock, Recorder, Step};
 use crate::runs::finding::Diagnosis;
 use crate::runs::finish::{Decision, NewtonFinish};
-use crate::runs::mode_run::ModeStepper;
-use crate::stepping::mode_fd::ModeFd;
-use crate::stepping::{comoving_etd::ComovingEtd, paper_fd::PaperFd, Scheme, SchemeKind};
+use crate::stepping::comoving_etd::ComovingEtd;
+use crate::stepping::paper_fd::PaperFd;
+use crate::stepping::{comoving_etd::TwoModeEtd, paper_fd::TwoModeFd, Scheme, SchemeKind};
 use std::time::Instant;
 
 /// A run in progress: the scheme plus the stop rules.
@@ -58,16 +58,16 @@ impl Run {
         let (st, n) = (ic.state(), settings.n);
         let scheme: Box<dyn Scheme> = match (settings.scheme, settings.modes) {
             (SchemeKind::Spectral, 2) => {
-                Box::new(ComovingEtd::new(*params, n, st, settings.pinned)?)
+                Box::new(TwoModeEtd::new(*params, n, st, settings.pinned)?)
             }
-            (SchemeKind::PaperFd, 2) => Box::new(PaperFd::new(*params, n, st, settings.pinned)?),
+            (SchemeKind::PaperFd, 2) => Box::new(TwoModeFd::new(*params, n, st, settings.pinned)?),
             (SchemeKind::Spectral, k) => {
-                let mut run = ModeStepper::new(params, n, &ic.unknowns(k))?;
+                let mut run = ComovingEtd::new(params, n, &ic.unknowns(k))?;
                 run.set_eta_k_exponent(settings.eta_k_exponent);
                 Box::new(run)
             }
             (SchemeKind::PaperFd, k) => {
-                let mut run = ModeFd::new(params, n, &ic.unknowns(k))?;
+                let mut run = PaperFd::new(params, n, &ic.unknowns(k))?;
                 run.set_eta_k_exponent(settings.eta_k_exponent);
                 Box::new(run)
             }

@@ -1,6 +1,6 @@
 //! Finishing a run by Newton instead of creeping to the paper's steady test (docs/model.md,
 //! "Steady states as roots"; docs/numerics.md): the state a run converges to is a root of the co-moving force balance, which
-//! [`SteadySolver`] computes directly, and its stability ([`crate::roots::verdict`])
+//! [`TwoModeSolver`] computes directly, and its stability ([`crate::roots::verdict`])
 //! says whether time stepping would stay there.
 //!
 //! When it is tried: once the run's change per steady window falls below
@@ -67,7 +67,7 @@ use crate::error::SolverError;
 use crate::model::params::ModelParams;
 use crate::model::state::{four, max_distance};
 use crate::roots::balances::Balances;
-use crate::roots::steady_solver::{KeptJacobians, SteadySolver};
+use crate::roots::steady_solver::{KeptJacobians, TwoModeSolver};
 use crate::roots::verdict::Verdict;
 use crate::runs::finding::{Diagnosis, Finding, MAX_SETTLED};
 use crate::runs::leap::{leap, Leap, Sighting};
@@ -417,7 +417,7 @@ impl NewtonFinish {
 
     /// The run's 2-mode steady solver (for the landing, the orientation flow and the leap),
     /// made at its first use; refused for runs with more shape modes.
-    pub(super) fn steady_solver(&mut self) -> Result<&mut SteadySolver, SolverError> {
+    pub(super) fn steady_solver(&mut self) -> Result<&mut TwoModeSolver, SolverError> {
         match self.balances()? {
             Balances::Two(solver) => Ok(solver),
             Balances::General { modes, .. } => Err(SolverError::InvalidParameter {

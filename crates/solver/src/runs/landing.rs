@@ -8,7 +8,7 @@
 //!
 //! Speed family (a moving run): on a mirror line of the box (x axis, or the diagonal; the
 //! run's direction of motion turned onto the nearest one), fix the speed `v`, take the
-//! co-moving steady field at that speed (exact, [`SteadySolver`]), solve only the shape
+//! co-moving steady field at that speed (exact, [`TwoModeSolver`]), solve only the shape
 //! balance `G(v, c) = kappa2 c` for the shape amplitude `c*(v)` on the line, and evaluate
 //! what is left of the velocity balance,
 //!
@@ -42,7 +42,7 @@
 //! ([`crate::runs::finish`], numerics 7).
 use crate::model::state::{four, turned};
 use crate::numerics::bracket::illinois;
-use crate::roots::steady_solver::{MirrorAxis, SteadySolver};
+use crate::roots::steady_solver::{MirrorAxis, TwoModeSolver};
 use std::f64::consts::{FRAC_1_SQRT_2, FRAC_PI_4};
 
 /// Largest distance of a run's shape amplitude from the family's, `|c_run - c*(v_run)|`, for
@@ -118,7 +118,7 @@ fn on_line(axis: MirrorAxis, v: f64, c: f64) -> [f64; 4] {
 
 /// The scalar flows of one mirror line.
 pub struct SlowFlow<'a> {
-    solver: &'a mut SteadySolver,
+    solver: &'a mut TwoModeSolver,
     axis: MirrorAxis,
     /// Samples taken.
     pub samples: usize,
@@ -128,7 +128,7 @@ pub struct SlowFlow<'a> {
 }
 
 impl<'a> SlowFlow<'a> {
-    pub fn new(solver: &'a mut SteadySolver, axis: MirrorAxis) -> Self {
+    pub fn new(solver: &'a mut TwoModeSolver, axis: MirrorAxis) -> Self {
         Self {
             solver,
             axis,
@@ -209,7 +209,7 @@ fn step_size(x: f64, f: f64, prev: Option<(f64, f64)>) -> f64 {
 /// speed family; one whose drift decays stays on the shape family). Each is a landing the
 /// walk found (see the module's certificate); the caller takes the first whose root it
 /// confirms stable.
-pub fn landings(solver: &mut SteadySolver, z: [f64; 4], walks: &mut Walks) -> Vec<Landing> {
+pub fn landings(solver: &mut TwoModeSolver, z: [f64; 4], walks: &mut Walks) -> Vec<Landing> {
     let speed = z[0].hypot(z[1]);
     let moving = (speed > 0.0)
         .then(|| land_moving(solver, z, walks))
@@ -221,7 +221,7 @@ pub fn landings(solver: &mut SteadySolver, z: [f64; 4], walks: &mut Walks) -> Ve
 }
 
 /// The first of [`landings`] (no walks kept).
-pub fn land(solver: &mut SteadySolver, z: [f64; 4]) -> Option<Landing> {
+pub fn land(solver: &mut TwoModeSolver, z: [f64; 4]) -> Option<Landing> {
     landings(solver, z, &mut Walks::default())
         .into_iter()
         .next()
@@ -273,14 +273,14 @@ impl Walks {
     }
 }
 
-fn land_moving(solver: &mut SteadySolver, z: [f64; 4], walks: &mut Walks) -> Option<Landing> {
+fn land_moving(solver: &mut TwoModeSolver, z: [f64; 4], walks: &mut Walks) -> Option<Landing> {
     let [near, other] = lines_near(z[1].atan2(z[0]));
     land_moving_on(solver, z, near, walks).or_else(|| land_moving_on(solver, z, other, walks))
 }
 
 /// [`land_moving`] on one mirror line (`(axis, psi, lean)` of [`lines_near`]).
 fn land_moving_on(
-    solver: &mut SteadySolver,
+    solver: &mut TwoModeSolver,
     z: [f64; 4],
     (axis, psi, lean): (MirrorAxis, f64, f64),
     walks: &mut Walks,
@@ -381,7 +381,7 @@ fn bisect(flow: &mut SlowFlow<'_>, a: (f64, f64, f64), b: (f64, f64, f64)) -> Op
     Some((zero, c))
 }
 
-fn land_resting(solver: &mut SteadySolver, z: [f64; 4], walks: &mut Walks) -> Option<Landing> {
+fn land_resting(solver: &mut TwoModeSolver, z: [f64; 4], walks: &mut Walks) -> Option<Landing> {
     let s_run = z[2].hypot(z[3]);
     if s_run == 0.0 {
         return None;
@@ -394,7 +394,7 @@ fn land_resting(solver: &mut SteadySolver, z: [f64; 4], walks: &mut Walks) -> Op
 /// [`land_resting`] on one mirror line (`(axis, psi, lean)` of [`lines_near`]): the
 /// deformation is the family's coordinate itself, so a resting run is on it.
 fn land_resting_on(
-    solver: &mut SteadySolver,
+    solver: &mut TwoModeSolver,
     s_run: f64,
     (axis, psi, lean): (MirrorAxis, f64, f64),
     walks: &mut Walks,
@@ -464,8 +464,8 @@ mod tests {
     use super::*;
     use crate::model::params::ModelParams;
 
-    fn solver(eta_t: f64, kappa2: f64) -> SteadySolver {
-        SteadySolver::new(ModelParams::at(eta_t, kappa2), 192).unwrap()
+    fn solver(eta_t: f64, kappa2: f64) -> TwoModeSolver {
+        TwoModeSolver::new(ModelParams::at(eta_t, kappa2), 192).unwrap()
     }
 
     #[test]

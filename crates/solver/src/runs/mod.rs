@@ -11,7 +11,6 @@ pub mod finding;
 pub mod finish;
 pub mod landing;
 pub mod leap;
-pub mod mode_run;
 pub mod orientation;
 pub mod root_search;
 pub mod rotation_flow;

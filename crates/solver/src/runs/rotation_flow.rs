@@ -242,7 +242,7 @@ mod tests {
     use super::*;
     use crate::model::params::ModelParams;
     use crate::model::state::four;
-    use crate::roots::steady_solver::SteadySolver;
+    use crate::roots::steady_solver::TwoModeSolver;
 
     /// Whether a run leaning by `lean` (radians) from `root` (stable in rotation) turns back
     /// to it: one [`FlowScan`] from the root out to the run, as a run's first try asks it.
@@ -254,11 +254,11 @@ mod tests {
 
     /// The 2-mode balances at `(eta_t, kappa2)`, N = 192.
     fn two(eta_t: f64, kappa2: f64) -> Balances {
-        Balances::Two(SteadySolver::new(ModelParams::at(eta_t, kappa2), 192).unwrap())
+        Balances::Two(TwoModeSolver::new(ModelParams::at(eta_t, kappa2), 192).unwrap())
     }
 
     /// Their steady solver.
-    fn solver(b: &mut Balances) -> &mut SteadySolver {
+    fn solver(b: &mut Balances) -> &mut TwoModeSolver {
         match b {
             Balances::Two(s) => s,
             Balances::General { .. } => unreachable!("made with two modes"),

@@ -2,19 +2,15 @@
 //! droplet state) and what they are built from.
 //!
 //! - `comoving_etd`: the default pseudo-spectral ETD2RK in the droplet's co-moving frame,
-//!   fixed or adaptive steps; `spectral_pass` its one spectral pass per stage; `etd` the
+//!   fixed or adaptive steps, for every `K` and its fast path for `K = 2`; `etd` the
 //!   exponential time-differencing coefficients; `step_control` the PI step-size controller.
-//! - `paper_fd`: the paper's forward-Euler finite differences (the baseline); `mode_fd` the
-//!   same scheme for the general model with shape modes `2..K` (whose ETD2RK stepper is
-//!   [`crate::runs::mode_run::ModeStepper`]; every one a [`Scheme`], so one driver runs them).
+//! - `paper_fd`: the paper's forward-Euler finite differences (the baseline), for every `K`
+//!   and for `K = 2`. Every one is a [`Scheme`], so one driver runs them.
 //!
 //! May use: `numerics`, `model`. Used by: `contract` (the scheme setting), `runs`.
 pub mod comoving_etd;
-pub mod comoving_step;
 pub mod etd;
-pub mod mode_fd;
 pub mod paper_fd;
-pub mod spectral_pass;
 pub mod step_control;
 
 use crate::error::SolverError;
@@ -112,7 +108,7 @@ pub trait Scheme: Stepper {
     fn field(&mut self) -> Field;
     /// Moves the run along a linear mode of the fixed point `root = (vx, vy, a2, b2)` whose
     /// co-moving field is `root_field` (normalised coefficients, `[kx][ky]`, as
-    /// [`crate::roots::steady_solver::SteadySolver::field_and_forces`] gives them): the displacement of
+    /// [`crate::roots::steady_solver::TwoModeSolver::field_and_forces`] gives them): the displacement of
     /// the field and of `(vx, vy, a2, b2)` from the fixed point is multiplied by `factor`
     /// and the centre moves by `shift` ([`crate::runs::leap`]). Schemes without a
     /// co-moving spectrum return false and change nothing.

@@ -5,7 +5,7 @@ use droplet_solver::roots::steady_solver::MirrorAxis;
 use droplet_solver::{
     contract::outcome::RunStatus, contract::settings::SolverSettings, model::classify::StateClass,
     model::initial::InitialCondition, model::params::ModelParams,
-    roots::steady_solver::SteadySolver, runs::driver::simulate, runs::driver::Run,
+    roots::steady_solver::TwoModeSolver, runs::driver::simulate, runs::driver::Run,
 };
 
 /// Time stepping to the paper's test (what these tests are about; the Newton finish would end
@@ -31,7 +31,7 @@ fn md() -> (ModelParams, InitialCondition) {
 #[test]
 fn adaptive_runs_reach_the_newton_state_in_far_fewer_steps() {
     let (p, ic) = md();
-    let newton = SteadySolver::new(p, 64)
+    let newton = TwoModeSolver::new(p, 64)
         .unwrap()
         .newton(0.7, -0.3, 1e-13)
         .unwrap();
@@ -143,7 +143,7 @@ fn diagonal_newton_matches_the_x_axis_for_a_rotation_invariant_state() {
     // A resting droplet's deformation is the same on both mirror axes up to the box's images;
     // deep in the ID region (far from thresholds) the two agree closely.
     let p = ModelParams::at(0.1, 0.105);
-    let mut s = SteadySolver::new(p, 64).unwrap();
+    let mut s = TwoModeSolver::new(p, 64).unwrap();
     let x = s.newton_on(MirrorAxis::X, 0.0, 0.2, 1e-13).unwrap();
     let d = s.newton_on(MirrorAxis::Diagonal, 0.0, 0.2, 1e-13).unwrap();
     assert!(x.a2 > 0.1, "{x:?}");

@@ -10,9 +10,9 @@ use droplet_solver::continuation::{
     branch::follow, branch::Branch, branch::BranchPoint, branch::Line, problem::Family,
 };
 use droplet_solver::model::param::ModelParam;
-use droplet_solver::roots::steady_solver::{MirrorAxis, SteadySolver};
+use droplet_solver::roots::steady_solver::{MirrorAxis, TwoModeSolver};
 use droplet_solver::roots::thresholds::{ic_thresholds, id_onset};
-use droplet_solver::stepping::{comoving_etd::ComovingEtd, Scheme, Stepper};
+use droplet_solver::stepping::{comoving_etd::TwoModeEtd, Scheme, Stepper};
 use droplet_solver::{
     contract::settings::SolverSettings, model::initial::InitialCondition,
     model::params::ModelParams, model::state::DropletState, runs::driver::simulate,
@@ -88,14 +88,14 @@ fn stable_states_are_the_time_steppers_steady_states() {
 /// Distance from the state `(v, a2)` on the x axis after stepping `t` time units from it,
 /// perturbed by `dv` in the speed, with its own steady field.
 fn departure(p: ModelParams, n: usize, v: f64, a2: f64, dv: f64, t: f64) -> f64 {
-    let mut solver = SteadySolver::new(p, n).unwrap();
+    let mut solver = TwoModeSolver::new(p, n).unwrap();
     let field = solver.field_and_forces(v, 0.0, a2, 0.0).0.to_vec();
     let start = DropletState {
         vx: v + dv,
         a2,
         ..DropletState::default()
     };
-    let mut scheme = ComovingEtd::new(p, n, start, false).unwrap();
+    let mut scheme = TwoModeEtd::new(p, n, start, false).unwrap();
     scheme.set_spectrum(&field);
     let dt = 0.01;
     for _ in 0..(t / dt).round() as usize {
@@ -246,7 +246,7 @@ fn branches_meet_ic_and_id_at_the_exact_thresholds() {
     // Below the onset of deformation MD bifurcates from ID where ID's drift sets in.
     let md = branch(Family::MdMinor, 0.117, 0.07, 0.1, n);
     let meet = md.events.iter().find(|e| e.what == "meets ID").unwrap();
-    let mut solver = SteadySolver::new(ModelParams::at(0.085, 0.117), n).unwrap();
+    let mut solver = TwoModeSolver::new(ModelParams::at(0.085, 0.117), n).unwrap();
     let (onset, _) = id_onset(&mut solver, MirrorAxis::X, 0.117, 0.1).unwrap();
     assert!(
         (meet.point.eta_t - onset).abs() < 1e-9,

@@ -177,7 +177,7 @@ fn a_three_mode_run_ends_steady_on_the_three_mode_md_state() {
         Some(droplet_solver::contract::ending::Ending::Newton),
         "{out:?}"
     );
-    let mut solver = droplet_solver::roots::mode_solver::ModeSolver::new(p, 96).unwrap();
+    let mut solver = droplet_solver::roots::steady_solver::SteadySolver::new(p, 96).unwrap();
     let md = droplet_solver::roots::named_state::md_state(&mut solver, 3).unwrap();
     assert!((out.v - md.v).abs() < 1e-8, "{out:?} {md:?}");
     let a3 = out.higher_modes[0].hypot(out.higher_modes[1]);

@@ -1,11 +1,11 @@
 //! Physics checks of the solver: analytic solutions, conservation, symmetry, convergence,
 //! exact fixed points, and agreement of time integration with the Newton steady state.
 use droplet_solver::numerics::bessel::ik;
-use droplet_solver::stepping::{comoving_etd::ComovingEtd, paper_fd::PaperFd, Scheme, Stepper};
+use droplet_solver::stepping::{comoving_etd::TwoModeEtd, paper_fd::TwoModeFd, Scheme, Stepper};
 use droplet_solver::{
     contract::outcome::RunStatus, contract::settings::SolverSettings,
     model::initial::InitialCondition, model::params::ModelParams, model::state::DropletState,
-    roots::steady_solver::SteadySolver, runs::driver::simulate,
+    roots::steady_solver::TwoModeSolver, runs::driver::simulate,
 };
 
 fn state_of(ic: &str) -> DropletState {
@@ -23,7 +23,7 @@ fn resting_disk_matches_the_bessel_solution() {
         ..ModelParams::default()
     };
     let n = 512;
-    let mut steady = SteadySolver::new(params, n).unwrap();
+    let mut steady = TwoModeSolver::new(params, n).unwrap();
     let u = steady.field(0.0, 0.0, 0.0, 0.0);
     let area = steady.forces(0.0, 0.0, 0.0, 0.0).area;
     let dx = params.box_len / n as f64;
@@ -67,7 +67,7 @@ fn resting_disk_matches_the_bessel_solution() {
 /// `d/dt Int u = -Int u + 1`, so from `u = 0` the mass is `1 - e^{-t}`: exact for ETD.
 #[test]
 fn mass_balance_along_a_run() {
-    let mut s = ComovingEtd::new(ModelParams::at(0.08, 0.11), 64, state_of("i"), false).unwrap();
+    let mut s = TwoModeEtd::new(ModelParams::at(0.08, 0.11), 64, state_of("i"), false).unwrap();
     let dt = 0.05;
     for k in 1..=100 {
         s.step(dt);
@@ -83,7 +83,7 @@ fn mass_balance_along_a_run() {
         sigma: 0.1,
         ..ModelParams::at(0.08, 0.11)
     };
-    let mut fd = PaperFd::new(params, 64, state_of("i"), false).unwrap();
+    let mut fd = TwoModeFd::new(params, 64, state_of("i"), false).unwrap();
     let h = 1e-3;
     for _ in 0..500 {
         fd.step(h);
@@ -97,7 +97,7 @@ fn mass_balance_along_a_run() {
 }
 
 fn run_scheme(ic: &InitialCondition, steps: usize) -> DropletState {
-    let mut s = ComovingEtd::new(ModelParams::at(0.08, 0.115), 64, ic.state(), false).unwrap();
+    let mut s = TwoModeEtd::new(ModelParams::at(0.08, 0.115), 64, ic.state(), false).unwrap();
     for _ in 0..steps {
         s.step(0.02);
     }
@@ -142,14 +142,14 @@ fn translating_the_start_point_changes_nothing() {
     let p = ModelParams::at(0.08, 0.115);
     let mut s0 = state_of("i");
     let a = {
-        let mut s = ComovingEtd::new(p, 64, s0, false).unwrap();
+        let mut s = TwoModeEtd::new(p, 64, s0, false).unwrap();
         (0..200).for_each(|_| s.step(0.02));
         s.state()
     };
     s0.x = 1.234;
     s0.y = -2.5;
     let b = {
-        let mut s = ComovingEtd::new(p, 64, s0, false).unwrap();
+        let mut s = TwoModeEtd::new(p, 64, s0, false).unwrap();
         (0..200).for_each(|_| s.step(0.02));
         s.state()
     };
@@ -163,7 +163,7 @@ fn translating_the_start_point_changes_nothing() {
         let mut st = state_of("i");
         st.x = x0;
         st.y = y0;
-        let mut s = PaperFd::new(pf, n, st, false).unwrap();
+        let mut s = TwoModeFd::new(pf, n, st, false).unwrap();
         (0..300).for_each(|_| s.step(1e-3));
         s.state()
     };
@@ -178,7 +178,7 @@ fn translating_the_start_point_changes_nothing() {
 fn time_error_falls_at_second_order() {
     let run = |dt: f64| {
         let mut s =
-            ComovingEtd::new(ModelParams::at(0.08, 0.115), 64, state_of("i"), false).unwrap();
+            TwoModeEtd::new(ModelParams::at(0.08, 0.115), 64, state_of("i"), false).unwrap();
         for _ in 0..(2.0 / dt).round() as usize {
             s.step(dt);
         }
@@ -210,7 +210,7 @@ fn time_error_falls_at_second_order() {
 fn steady_state_converges_spectrally_in_n() {
     let p = ModelParams::at(0.085, 0.112);
     let fx = |n: usize| {
-        SteadySolver::new(p, n)
+        TwoModeSolver::new(p, n)
             .unwrap()
             .forces(0.59, 0.0, -0.27, 0.0)
             .fx
@@ -232,7 +232,7 @@ fn steady_state_converges_spectrally_in_n() {
 fn moving_steady_state_is_independent_of_dt() {
     let p = ModelParams::at(0.085, 0.112);
     let n = 96;
-    let mut steady = SteadySolver::new(p, n).unwrap();
+    let mut steady = TwoModeSolver::new(p, n).unwrap();
     let st = steady.newton(0.6, -0.27, 1e-13).unwrap();
     assert!(st.v > 0.5, "{st:?}");
     let (spec, _) = steady.field_and_forces(st.v, 0.0, st.a2, 0.0);
@@ -243,7 +243,7 @@ fn moving_steady_state_is_independent_of_dt() {
             a2: st.a2,
             ..Default::default()
         };
-        let mut s = ComovingEtd::new(p, n, start, false).unwrap();
+        let mut s = TwoModeEtd::new(p, n, start, false).unwrap();
         s.set_spectrum(&spec);
         for _ in 0..20 {
             s.step(dt);
@@ -279,7 +279,7 @@ fn time_integration_reaches_the_newton_state() {
         let p = ModelParams::at(eta_t, kappa2);
         let out = simulate(&p, &InitialCondition::parse(ic).unwrap(), &settings).unwrap();
         assert_eq!(out.status, RunStatus::Steady, "{out:?}");
-        let newton = SteadySolver::new(p, n)
+        let newton = TwoModeSolver::new(p, n)
             .unwrap()
             .newton(v0, a0, 1e-13)
             .unwrap();

@@ -7,7 +7,7 @@
 //! in the IC/MD bistable band of Fig. 2(b) (class agreement is what counts there), and the
 //! transient `t <= 20` through the MD instability (the time series is compared).
 //! References: steady MD / ID states by Newton on the exact co-moving steady equations
-//! ([`droplet_solver::roots::steady_solver::SteadySolver`]) at `n_newton`, seeded from a fine time integration that
+//! ([`droplet_solver::roots::steady_solver::TwoModeSolver`]) at `n_newton`, seeded from a fine time integration that
 //! also gives the reference class; IC states are exactly `v = s = 0`; the transient by the
 //! spectral scheme at `n_ref` with a small fixed step.
 use crate::bench::family::Family;

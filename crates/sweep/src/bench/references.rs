@@ -10,7 +10,7 @@ use droplet_solver::{
     contract::outcome::RunOutcome, contract::outcome::RunStatus,
     contract::settings::SolverSettings, model::classify::StateClass,
     model::initial::InitialCondition, model::params::ModelParams,
-    roots::steady_solver::SteadySolver, runs::driver::simulate,
+    roots::steady_solver::TwoModeSolver, runs::driver::simulate,
 };
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -147,7 +147,7 @@ fn reference(plan: &BenchPlan, c: &Case) -> Result<Reference, SweepError> {
             format!("{run_how}; resting disk v = s = 0 exactly"),
         ),
         StateClass::MD | StateClass::ID => {
-            let mut newton = SteadySolver::new(params(c), plan.n_newton)?;
+            let mut newton = TwoModeSolver::new(params(c), plan.n_newton)?;
             let st = &out.state;
             let axis = nearest_mirror(st, class);
             // Moving droplets are elongated across the motion (amplitude < 0 on the axis).

@@ -1,9 +1,9 @@
 //! `droplet truncation`: how far the paper's 2-mode truncation moves its results, from the
-//! general model with shape modes `k = 2..K` (`droplet_solver::roots::mode_solver`), for
+//! general model with shape modes `k = 2..K` (`droplet_solver::roots::steady_solver`), for
 //! each `K` asked:
 //! - the MD state at the paper's Fig. 1c point (`eta_t` = 0.085, `kappa2` = 0.112): `v`, the
 //!   paper's `s` (mode 2), the total deformation, every `a_k`, and its stability (the `2K x 2K`
-//!   eigenproblem, `droplet_solver::roots::mode_linearisation`);
+//!   eigenproblem, `droplet_solver::roots::linearisation`);
 //! - the resting disk's onsets at `kappa2` = 0.13: of motion, and of each mode's deformation;
 //! - the MD branch along `eta_t` at `kappa2` = 0.13 and its fold, the right edge of the IC/MD
 //!   bistable band (its left edge is the onset of motion);
@@ -25,9 +25,9 @@ use droplet_solver::model::modes::Modes;
 use droplet_solver::model::param::ModelParam;
 use droplet_solver::model::params::ModelParams;
 use droplet_solver::model::shape::ShapeParams;
-use droplet_solver::roots::mode_linearisation::ModeLinearization;
-use droplet_solver::roots::mode_solver::ModeSolver;
+use droplet_solver::roots::linearisation::Linearization;
 use droplet_solver::roots::named_state::md_state;
+use droplet_solver::roots::steady_solver::SteadySolver;
 use droplet_solver::roots::thresholds::disk_thresholds;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -57,10 +57,10 @@ fn row(
         kappa2: FIG1C.1,
         ..*base
     };
-    let mut solver = ModeSolver::new(at, n)?;
+    let mut solver = SteadySolver::new(at, n)?;
     let fig1c = md_state(&mut solver, k_max)?;
-    let z = droplet_solver::roots::mode_solver::on_x_axis(fig1c.v, &fig1c.a);
-    let fig1c_verdict = ModeLinearization::at(&mut solver, &z).verdict();
+    let z = droplet_solver::roots::steady_solver::on_x_axis(fig1c.v, &fig1c.a);
+    let fig1c_verdict = Linearization::at(&mut solver, &z).verdict();
     let fig1c_seconds = started.elapsed().as_secs_f64();
     let deformation = Modes {
         a: fig1c.a.clone(),
@@ -74,7 +74,7 @@ fn row(
         kappa2,
         ..*base
     };
-    let mut disk_solver = ModeSolver::new(line_base, n)?;
+    let mut disk_solver = SteadySolver::new(line_base, n)?;
     let disk = disk_thresholds(&mut disk_solver, k_max);
     let fold = md_fold(&ModeLine {
         base: line_base,

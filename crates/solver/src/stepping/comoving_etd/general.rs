@@ -1,7 +1,6 @@
-//! Time stepping of the `K`-mode model (the paper's general equations with modes `2..K`,
-//! [`crate::roots::mode_solver`]) in the droplet's frame: ETD2RK, the production scheme of
-//! 2-mode runs ([`crate::stepping::comoving_etd`]) written for the general shape, with its
-//! embedded error estimate, so that the one clock ([`crate::runs::clock`]) takes fixed or
+//! Time stepping of the model with shape modes `2..K` (the paper's general equations) in the
+//! droplet's frame: ETD2RK ([`crate::stepping::comoving_etd`]) for the general shape, with
+//! its embedded error estimate, so that the one clock ([`crate::runs::clock`]) takes fixed or
 //! adaptive steps with it ([`Stepper`]).
 //!
 //! With `w` the co-moving field and `z = (vx, vy, a_2..a_K, b_2..b_K)`:
@@ -13,7 +12,7 @@
 //! `w' = a + h phi2 (N(a, z_a) - N(w, z))`, `z'` likewise. The corrector minus the predictor
 //! of `z` is the error estimate; a step refused there leaves the run unchanged. Every ETD-RK
 //! step keeps the ODE's fixed points, so the fixed points of the scheme are exactly the
-//! steady states of [`ModeSolver`] (the field's is `s_hat / (1 + k^2 - i k.v)`), whatever
+//! steady states of [`crate::roots::steady_solver::SteadySolver`] (the field's is `s_hat / (1 + k^2 - i k.v)`), whatever
 //! the step.
 //!
 //! Cost per step: `Theta` sampled and transformed twice (at the step's start and at the
@@ -43,7 +42,7 @@ struct AtStart {
 
 /// The `K`-mode model's state in time, stepped by ETD2RK ([`Stepper::attempt`]). Plans and
 /// buffers are made once; a step allocates only the forces' vectors.
-pub struct ModeStepper {
+pub struct ComovingEtd {
     params: ModelParams,
     /// The friction law's exponent ([`crate::model::friction`]).
     eta_k_exponent: f64,
@@ -69,14 +68,19 @@ pub struct ModeStepper {
     pub y: f64,
 }
 
-impl ModeStepper {
+impl ComovingEtd {
     /// The `K`-mode model (`K = z0.len() / 2`) at `z0` with the field 0.
     pub fn new(params: &ModelParams, n: usize, z0: &[f64]) -> Result<Self, SolverError> {
-        let k_max = z0.len() / 2;
-        crate::contract::limits::check_mode_stepper(params, n, k_max)?;
         params.validate()?;
+        // The modes and the droplet the grid resolves are the caller's to check
+        // (`contract::limits::check_run`); the velocity is integrated, so it needs inertia.
+        crate::error::require(
+            params.mass > 0.0,
+            "mass",
+            params.mass,
+            "a finite number > 0 (the K-mode run integrates the velocity)",
+        )?;
         let grid = Grid::new(n, params.box_len)?;
-        crate::contract::limits::check_resolved(params, n)?;
         let len = grid.spectral_len();
         let inv_c = grid.inverse_rates();
         let shape = ShapeParams {
@@ -175,7 +179,7 @@ enum Stage {
     Correct,
 }
 
-impl ModeStepper {
+impl ComovingEtd {
     /// One pass of `stage` over the spectrum for a step of `h`, with the droplet of that stage
     /// moving at `(vx, vy)` and the solver's buffers holding its `Theta`, of area `area`.
     fn field_pass(&mut self, stage: Stage, h: f64, (vx, vy): (f64, f64), area: f64) {
@@ -221,7 +225,7 @@ impl ModeStepper {
     }
 }
 
-impl Scheme for ModeStepper {
+impl Scheme for ComovingEtd {
     fn state(&self) -> DropletState {
         DropletState::of_unknowns(&self.z, self.x, self.y).0
     }
@@ -255,7 +259,7 @@ impl Scheme for ModeStepper {
     }
 }
 
-impl Stepper for ModeStepper {
+impl Stepper for ComovingEtd {
     fn attempt(&mut self, h: f64, max_error: f64) -> Attempt {
         self.ensure_start();
         let area = self.start.as_ref().expect("forces at the start").area;
@@ -310,13 +314,13 @@ mod tests {
     use super::*;
     use crate::model::initial::InitialCondition;
     use crate::roots::named_state::md_state;
-    use crate::stepping::{comoving_etd::ComovingEtd, Scheme, Stepper};
+    use crate::stepping::{comoving_etd::TwoModeEtd, Scheme, Stepper};
 
     /// `(vx, vy, a_2..a_K, b_2..b_K)` after `steps` fixed steps of `h` from IC i with modes
     /// `3..K` at 0, and the centre.
     fn stepped(p: &ModelParams, n: usize, k: usize, h: f64, steps: usize) -> (Vec<f64>, f64) {
         let z0 = InitialCondition::parse("i").unwrap().unknowns(k);
-        let mut run = ModeStepper::new(p, n, &z0).unwrap();
+        let mut run = ComovingEtd::new(p, n, &z0).unwrap();
         for _ in 0..steps {
             run.step(h);
         }
@@ -336,7 +340,7 @@ mod tests {
         let diff = |h: f64| {
             let steps = (2.0 / h).round() as usize;
             let (z, x) = stepped(&p, 64, 2, h, steps);
-            let mut fast = ComovingEtd::new(p, 64, st0, false).unwrap();
+            let mut fast = TwoModeEtd::new(p, 64, st0, false).unwrap();
             for _ in 0..steps {
                 fast.step(h);
             }
@@ -379,14 +383,14 @@ mod tests {
     fn a_refused_step_changes_nothing() {
         let p = ModelParams::at(0.085, 0.112);
         let z0 = InitialCondition::parse("i").unwrap().unknowns(3);
-        let mut run = ModeStepper::new(&p, 64, &z0).unwrap();
+        let mut run = ComovingEtd::new(&p, 64, &z0).unwrap();
         run.step(0.02);
         let (z, x, t) = (run.z.clone(), run.x, run.t);
         let a = run.attempt(0.5, 1e-12);
         assert!(!a.accepted && a.error.unwrap() > 1e-12);
         assert_eq!((run.z.clone(), run.x, run.t), (z.clone(), x, t));
         // The step after the refusal is the step that would have been taken.
-        let mut twin = ModeStepper::new(&p, 64, &z0).unwrap();
+        let mut twin = ComovingEtd::new(&p, 64, &z0).unwrap();
         twin.step(0.02);
         run.step(0.02);
         twin.step(0.02);
@@ -419,7 +423,7 @@ mod tests {
             crate::contract::outcome::RunStatus::Steady,
             "{run:?}"
         );
-        let mut solver = crate::roots::mode_solver::ModeSolver::new(p, n).unwrap();
+        let mut solver = crate::roots::steady_solver::SteadySolver::new(p, n).unwrap();
         let st = md_state(&mut solver, 3).unwrap();
         let z = run.unknowns();
         assert!((z[0] - st.v).abs() < 1e-6, "{run:?} {st:?}");

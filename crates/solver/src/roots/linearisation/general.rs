@@ -1,9 +1,9 @@
-//! Linear stability of a steady state of the `K`-mode model, field included: the 2-mode
-//! construction of [`crate::roots::linearisation`] for the state
+//! Linear stability of a steady state of the model with shape modes `2..K`, field included:
+//! the construction of [`crate::roots::linearisation`] for the state
 //! `z = (vx, vy, a_2..a_K, b_2..b_K)` (`2K` unknowns). In the co-moving frame
 //!
 //! `du_t = D du + B dz`,  `M dz_t = E dz + C du`,  `M = diag(m, m, eta_k.., eta_k..)`
-//! (`eta_k` of [`ModeSolver::eta`]: `eta2` for every mode unless a friction law is set),
+//! (`eta_k` of [`SteadySolver::eta`]: `eta2` for every mode unless a friction law is set),
 //!
 //! with `D = -(1 + k^2) + i k.v`, `B`'s columns `i k_x u0`, `i k_y u0` and the shape
 //! derivatives of the source `Theta / A`, `C du` the forces of a field at the frozen shape and
@@ -15,7 +15,7 @@
 //! `lambda = 0` problem `M^(-1) (E + C (-D)^(-1) B)`.
 use crate::model::forces::quadrature::fill_operator;
 use crate::model::modes::Modes;
-use crate::roots::mode_solver::ModeSolver;
+use crate::roots::steady_solver::SteadySolver;
 use crate::roots::verdict::{assess, Spectrum, Verdict};
 use nalgebra::DMatrix;
 use rustfft::num_complex::Complex64;
@@ -26,7 +26,7 @@ type C64 = Complex64;
 const SHAPE_STEP: f64 = 1e-6;
 
 /// The linearisation of one `K`-mode state.
-pub struct ModeLinearization {
+pub struct Linearization {
     z0: Vec<f64>,
     d: Vec<C64>,
     b: Vec<Vec<C64>>,
@@ -37,10 +37,10 @@ pub struct ModeLinearization {
     c: Vec<C64>,
 }
 
-impl ModeLinearization {
+impl Linearization {
     /// Linearises `solver`'s model about `z0 = (vx, vy, a_2..a_K, b_2..b_K)` (a root of the
     /// force balance; taken wherever `z0` is). Needs inertia `m > 0`.
-    pub fn at(solver: &mut ModeSolver, z0: &[f64]) -> Self {
+    pub fn at(solver: &mut SteadySolver, z0: &[f64]) -> Self {
         let p = *solver.params();
         let dim = z0.len();
         let m0 = Modes::of_state(z0);
@@ -250,14 +250,14 @@ impl ModeLinearization {
     }
 }
 
-/// The forces of [`ModeSolver::sums`] on the shape `m` (`(Fx, Fy, G^(a)_k.., G^(b)_k..)`, `dim
+/// The forces of [`SteadySolver::sums`] on the shape `m` (`(Fx, Fy, G^(a)_k.., G^(b)_k..)`, `dim
 /// = 2K`) as real-linear functionals of a field's normalised half spectrum `u`:
 /// `F_i(u) = Sum_k Re(c_ik u_k)`, returned `[k][i]`. Each force is `Sum_x wx_i ux + wy_i uy`
 /// over the grid, with weights `Theta` times the modes' `w_k`; for a real weight field `w`,
 /// `Sum_x w IFFT(X) = Sum_k m_k Re(X_k conj(W_k))` over the half spectrum (`W` its transform,
 /// `m_k = 1` on the columns `kx = 0` and `N/2`, 2 elsewhere), and `X = i k u` for a
 /// derivative.
-fn force_functionals(solver: &mut ModeSolver, m: &Modes) -> Vec<C64> {
+fn force_functionals(solver: &mut SteadySolver, m: &Modes) -> Vec<C64> {
     let (_, lo, hi) = solver.quadrature_mut().sample(m);
     let grid = solver.grid().clone();
     let (n, k_max) = (grid.n, m.k_max());
@@ -304,7 +304,7 @@ fn force_functionals(solver: &mut ModeSolver, m: &Modes) -> Vec<C64> {
     c
 }
 
-impl ModeLinearization {
+impl Linearization {
     /// The unit null vector of `T(lambda)` (its smallest singular vector).
     pub fn mode(&self, lambda: C64) -> Vec<C64> {
         let t = self.t_matrix(lambda);
@@ -325,13 +325,13 @@ impl ModeLinearization {
     }
 }
 
-impl Spectrum for ModeLinearization {
+impl Spectrum for Linearization {
     fn eigenvalues(&self) -> Vec<C64> {
-        ModeLinearization::eigenvalues(self)
+        Linearization::eigenvalues(self)
     }
 
     fn mode(&self, lambda: C64) -> Vec<C64> {
-        ModeLinearization::mode(self, lambda)
+        Linearization::mode(self, lambda)
     }
 }
 
@@ -340,23 +340,27 @@ mod tests {
     use super::*;
     use crate::model::params::ModelParams;
     use crate::numerics::newton::fd_jacobian;
-    use crate::roots::linearisation::Linearization;
-    use crate::roots::steady_solver::SteadySolver;
+    use crate::roots::linearisation::TwoModeLinearization;
+    use crate::roots::steady_solver::TwoModeSolver;
 
     /// At the Fig. 1c point and grid size `n`: the 2-mode solver, the K-mode one and the
     /// 2-mode MD state `(v, 0, a2, 0)` (which both describe).
-    fn fig1c_two_mode_md(n: usize) -> (SteadySolver, ModeSolver, [f64; 4]) {
+    fn fig1c_two_mode_md(n: usize) -> (TwoModeSolver, SteadySolver, [f64; 4]) {
         let p = ModelParams::at(0.085, 0.112);
-        let mut two = SteadySolver::new(p, n).unwrap();
+        let mut two = TwoModeSolver::new(p, n).unwrap();
         let st = two.newton(0.59, -0.27, 1e-12).unwrap();
-        (two, ModeSolver::new(p, n).unwrap(), [st.v, 0.0, st.a2, 0.0])
+        (
+            two,
+            SteadySolver::new(p, n).unwrap(),
+            [st.v, 0.0, st.a2, 0.0],
+        )
     }
 
     #[test]
     fn with_two_modes_the_eigenvalues_are_the_two_mode_ones() {
         let (mut two, mut solver, z) = fig1c_two_mode_md(64);
-        let want = Linearization::at(&mut two, z).eigenvalues();
-        let lin = ModeLinearization::at(&mut solver, &z);
+        let want = TwoModeLinearization::at(&mut two, z).eigenvalues();
+        let lin = Linearization::at(&mut solver, &z);
         let got = lin.eigenvalues();
         assert_eq!(got.len(), want.len(), "{got:?} vs {want:?}");
         for (g, w) in got.iter().zip(&want) {
@@ -370,7 +374,7 @@ mod tests {
         // K = 3, a shape off every mirror line, and a field with every coefficient set:
         // `Sum_k Re(c_ik u_k)` against the sums over the grid of the field's gradient.
         let p = ModelParams::at(0.085, 0.112);
-        let mut solver = ModeSolver::new(p, 64).unwrap();
+        let mut solver = SteadySolver::new(p, 64).unwrap();
         let m = Modes::of_state(&[0.3, 0.05, -0.15, 0.03, 0.02, -0.01]);
         let c = force_functionals(&mut solver, &m);
         let len = solver.grid().spectral_len();
@@ -403,9 +407,9 @@ mod tests {
     fn t_at_zero_is_the_finite_difference_jacobian() {
         // K = 3, a moving deformed state (not a root: T(0) is defined anywhere).
         let p = ModelParams::at(0.085, 0.112);
-        let mut solver = ModeSolver::new(p, 64).unwrap();
+        let mut solver = SteadySolver::new(p, 64).unwrap();
         let z = [0.3, 0.05, -0.15, 0.03, 0.02, -0.01];
-        let lin = ModeLinearization::at(&mut solver, &z);
+        let lin = Linearization::at(&mut solver, &z);
         let j0 = lin.jacobian0();
         let fd = fd_jacobian(&mut |y: &[f64]| solver.residual(y), &z, 1e-6);
         for i in 0..z.len() {
@@ -423,8 +427,8 @@ mod tests {
     #[test]
     fn the_verdict_finds_the_rotation_mode_and_agrees_with_two_modes() {
         let (mut two, mut solver, z) = fig1c_two_mode_md(96);
-        let want = crate::roots::verdict::assess(&Linearization::at(&mut two, z), &z);
-        let got = ModeLinearization::at(&mut solver, &z).verdict();
+        let want = crate::roots::verdict::assess(&TwoModeLinearization::at(&mut two, z), &z);
+        let got = Linearization::at(&mut solver, &z).verdict();
         assert_eq!(got.stable(), want.stable(), "{got:?} {want:?}");
         match (got.rotation, want.rotation) {
             (Some(a), Some(b)) => assert!((a - b).abs() < 1e-8, "{got:?} {want:?}"),

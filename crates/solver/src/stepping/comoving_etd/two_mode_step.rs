@@ -1,15 +1,17 @@
-//! One step of [`ComovingEtd`] in its four parts: the predictor half (ETD1 scalars and the
+//! One step of [`TwoModeEtd`] in its four parts: the predictor half (ETD1 scalars and the
 //! first spectral pass, fused with the forces at the predictor), the scalar corrector, the
 //! embedded error estimate (where a step may be refused before its second half), and the
 //! field corrector (the second pass, fused with the forces at the new state).
 use crate::model::dynamics;
 use crate::model::forces::parseval::Forces;
 use crate::model::state::DropletState;
-use crate::stepping::comoving_etd::ComovingEtd;
+use crate::stepping::comoving_etd::spectral_pass::{
+    CorrectorPass, Modes, PredictorPass, PredictorShape,
+};
+use crate::stepping::comoving_etd::TwoModeEtd;
 use crate::stepping::etd::EtdCoef;
-use crate::stepping::spectral_pass::{CorrectorPass, Modes, PredictorPass, PredictorShape};
 
-impl ComovingEtd {
+impl TwoModeEtd {
     /// The first half of a step of size `h`: the ETD1 predictor of the scalars and the field
     /// predictor fused with the forces there (one spectral pass).
     pub(super) fn predict(&mut self, h: f64) -> Half {

@@ -1,4 +1,5 @@
-//! Linear stability of a steady or steadily moving state, field included (docs/model.md,
+//! The fast path of `K = 2` for the linear stability of a steady or steadily moving state,
+//! field included (docs/model.md,
 //! "Steady states as roots"). In the co-moving frame the linearisation about `(u0, z0)`, `z = (vx, vy, a2, b2)`,
 //! is
 //!
@@ -19,13 +20,13 @@
 //! started from `lambda = 0`.
 use crate::model::dynamics;
 use crate::model::forces::parseval::{spectral_forces, ColumnSums, ForceSums, Forces};
-use crate::roots::steady_solver::SteadySolver;
+use crate::roots::steady_solver::TwoModeSolver;
 use rustfft::num_complex::Complex64;
 
 type C64 = Complex64;
 
 /// The linearisation of one state.
-pub struct Linearization {
+pub struct TwoModeLinearization {
     /// `d(k)` for every stored mode.
     d: Vec<C64>,
     /// The columns of `B` (half spectra of real fields, normalised like the steady field).
@@ -46,10 +47,10 @@ fn as_array(f: &Forces) -> [f64; 4] {
 /// Step of the central differences in the shape.
 const SHAPE_STEP: f64 = 1e-6;
 
-impl Linearization {
+impl TwoModeLinearization {
     /// Linearises the steady state `z0 = (vx, vy, a2, b2)` of `solver`'s parameters (a root of
     /// the force balance; the linearisation is taken wherever `z0` is). Needs inertia `m > 0`.
-    pub fn at(solver: &mut SteadySolver, z0: [f64; 4]) -> Self {
+    pub fn at(solver: &mut TwoModeSolver, z0: [f64; 4]) -> Self {
         let p = *solver.params();
         let [vx, vy, a2, b2] = z0;
         let grid = solver.grid().clone();
@@ -380,13 +381,13 @@ fn null_vector(a: &[[C64; 4]; 4]) -> [C64; 4] {
     std::array::from_fn(|j| v_t[(k, j)].conj())
 }
 
-impl crate::roots::verdict::Spectrum for Linearization {
+impl crate::roots::verdict::Spectrum for TwoModeLinearization {
     fn eigenvalues(&self) -> Vec<C64> {
-        Linearization::eigenvalues(self)
+        TwoModeLinearization::eigenvalues(self)
     }
 
     fn mode(&self, lambda: C64) -> Vec<C64> {
-        Linearization::mode(self, lambda).to_vec()
+        TwoModeLinearization::mode(self, lambda).to_vec()
     }
 }
 
@@ -397,18 +398,18 @@ mod tests {
     use crate::model::params::ModelParams;
 
     fn eigs(p: ModelParams, z: [f64; 4]) -> Vec<C64> {
-        let mut s = SteadySolver::new(p, 192).unwrap();
-        Linearization::at(&mut s, z).eigenvalues()
+        let mut s = TwoModeSolver::new(p, 192).unwrap();
+        TwoModeLinearization::at(&mut s, z).eigenvalues()
     }
 
     #[test]
     fn lambda_zero_is_the_jacobian_of_the_steady_equations() {
         // The MD state of Fig. 1c, on the x axis.
         let p = ModelParams::at(0.085, 0.112);
-        let mut s = SteadySolver::new(p, 192).unwrap();
+        let mut s = TwoModeSolver::new(p, 192).unwrap();
         let st = s.newton(0.59, -0.27, 1e-12).unwrap();
         let z0 = [st.v, 0.0, st.a2, 0.0];
-        let lin = Linearization::at(&mut s, z0);
+        let lin = TwoModeLinearization::at(&mut s, z0);
         let j0 = lin.jacobian0();
         let mut residual = |z: &[f64]| {
             let f = s.forces(z[0], z[1], z[2], z[3]);
@@ -458,9 +459,9 @@ mod tests {
             2e-6,
         );
         let p = ModelParams::at(0.085, 0.112);
-        let mut s = SteadySolver::new(p, 192).unwrap();
+        let mut s = TwoModeSolver::new(p, 192).unwrap();
         let st = s.newton(0.59, -0.27, 1e-12).unwrap();
-        let md = Linearization::at(&mut s, [st.v, 0.0, st.a2, 0.0]).eigenvalues();
+        let md = TwoModeLinearization::at(&mut s, [st.v, 0.0, st.a2, 0.0]).eigenvalues();
         assert_close(&md, &[-0.008436, -0.052054, -0.361618, -0.434750], 2e-6);
     }
 
@@ -473,8 +474,8 @@ mod tests {
         let p = ModelParams::at(0.0763, 0.16);
         let n = 128;
         let lambda = {
-            let mut s = SteadySolver::new(p, n).unwrap();
-            Linearization::at(&mut s, [0.0; 4]).eigenvalues()
+            let mut s = TwoModeSolver::new(p, n).unwrap();
+            TwoModeLinearization::at(&mut s, [0.0; 4]).eigenvalues()
         };
         let settings = |t_max| SolverSettings {
             n,

@@ -1,9 +1,9 @@
-//! The exact co-moving steady state (docs/model.md, "Steady states as roots": in the droplet's
+//! The fast path of `K = 2` for the exact co-moving steady state (docs/model.md, "Steady states as roots": in the droplet's
 //! frame a steadily moving state is a fixed point, so it can be computed directly): for given `(v, a2, b2)` the field
 //! `u_hat = Theta_hat / (A (1 + k^2 - i k.v))` solves `0 = Lap u - u + v.grad u + Theta / A`
 //! (paper eq. S13), and the force balance `-eta_t v + F = 0`, `Ga - kappa2 a2 = 0`,
 //! `Gb - kappa2 b2 = 0` is solved by Newton. Same grid, `Theta` and force quadrature as
-//! [`crate::stepping::comoving_etd::ComovingEtd`], so its fixed points coincide with the solver's.
+//! [`crate::stepping::comoving_etd::TwoModeEtd`], so its fixed points coincide with the solver's.
 use crate::error::SolverError;
 use crate::model::dynamics;
 use crate::model::forces::parseval::{spectral_forces, Forces};
@@ -17,7 +17,7 @@ use crate::roots::forces_memo::ForcesMemo;
 use rustfft::num_complex::Complex64;
 
 /// Evaluates steady fields and force-balance residuals on an `N x N` co-moving grid.
-pub struct SteadySolver {
+pub struct TwoModeSolver {
     params: ModelParams,
     grid: Grid,
     fft: PrunedFft2,
@@ -44,7 +44,7 @@ struct Transformed {
 /// (a central difference), and one more.
 const SHAPES_KEPT: usize = 4;
 
-/// A mirror line of the periodic square box on which [`SteadySolver::newton_on`] works: the
+/// A mirror line of the periodic square box on which [`TwoModeSolver::newton_on`] works: the
 /// steady states symmetric about it form a 2-unknown problem (speed along it, one shape
 /// amplitude).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize)]
@@ -57,10 +57,10 @@ pub enum MirrorAxis {
     Diagonal,
 }
 
-/// A steady state found by [`SteadySolver::newton`].
+/// A steady state found by [`TwoModeSolver::newton`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SteadyState {
-    /// Speed along the axis (+x for [`SteadySolver::newton`]).
+    /// Speed along the axis (+x for [`TwoModeSolver::newton`]).
     pub v: f64,
     /// Shape amplitude on the axis: `a2` for [`MirrorAxis::X`] (`b2 = 0`; `a2 < 0` is a
     /// droplet elongated across the motion), `b2` for [`MirrorAxis::Diagonal`] (`a2 = 0`).
@@ -70,7 +70,7 @@ pub struct SteadyState {
     pub iterations: usize,
 }
 
-impl SteadySolver {
+impl TwoModeSolver {
     pub fn new(params: ModelParams, n: usize) -> Result<Self, SolverError> {
         params.validate()?;
         let grid = Grid::new(n, params.box_len)?;
@@ -349,7 +349,7 @@ impl SteadySolver {
 }
 
 /// The Jacobians of the force balance at the last few roots Newton found, for the chord
-/// method from a nearby start ([`SteadySolver::root_near`]): a run's later tries usually
+/// method from a nearby start ([`TwoModeSolver::root_near`]): a run's later tries usually
 /// start near a root found before.
 #[derive(Debug, Clone, Default)]
 pub struct KeptJacobians {

@@ -1,4 +1,4 @@
-//! Pseudo-spectral ETD2RK in the droplet's co-moving frame (docs/model.md, "Solving it in the droplet's frame": the lab-frame
+//! The fast path of `K = 2` of the pseudo-spectral ETD2RK in the droplet's co-moving frame (docs/model.md, "Solving it in the droplet's frame": the lab-frame
 //! version with the moving source explicit gave steady v = 0.613 / 0.643 at dt = 0.01 / 0.02
 //! against the exact 0.597; in the co-moving frame a steadily moving droplet is an exact fixed
 //! point).
@@ -19,18 +19,18 @@
 //! Cost per step: one shape transform (the new state's, [`crate::model::shape_transform`]: the
 //! point-symmetric half of the window, three row-pruned row transforms, one complex and one
 //! half-length real column transform; no inverse transform: forces by Parseval,
-//! [`crate::model::forces`]) and two fused passes over the spectrum that advance the field and
+//! [`crate::model::forces::parseval`]) and two fused passes over the spectrum that advance the field and
 //! accumulate the forces ([`super::spectral_pass`]), with no exponential or division per mode.
 //! The predictor's shape is extrapolated from the last two states
-//! ([`ComovingEtd::predictor_shape`]) rather than transformed.
+//! ([`TwoModeEtd::predictor_shape`]) rather than transformed.
 //!
 //! Profile at N = 192: the two passes about 46 %, transforms 27 %, sampling `Theta` 13 %
 //! (half of it `exp` in the tanh band); measured step times and what was tried and not kept
 //! are in docs/performance.md, "Speed".
 //!
-//! One step ([`Scheme::attempt`]) is [`ComovingEtd::predict`] (the first pass),
-//! [`ComovingEtd::correct_scalars`] and [`ComovingEtd::step_error`] (where a step may be
-//! refused), then [`ComovingEtd::correct_field`] (the second pass).
+//! One step ([`Scheme::attempt`]) is [`TwoModeEtd::predict`] (the first pass),
+//! [`TwoModeEtd::correct_scalars`] and [`TwoModeEtd::step_error`] (where a step may be
+//! refused), then [`TwoModeEtd::correct_field`] (the second pass).
 use crate::model::dynamics;
 use crate::model::forces::parseval::Forces;
 use crate::model::grid::Grid;
@@ -67,7 +67,7 @@ impl ShapeSpectra {
 }
 
 /// The co-moving spectral integrator of one run.
-pub struct ComovingEtd {
+pub struct TwoModeEtd {
     pub(super) params: ModelParams,
     pub(super) grid: Grid,
     pub(super) fft: PrunedFft2,
@@ -83,7 +83,7 @@ pub struct ComovingEtd {
     pub(super) n0: Vec<Complex64>,
     /// Shape spectra at the current state, at the state before it (valid when
     /// `prev_valid`), and at the candidate new state (or the predictor, see
-    /// [`ComovingEtd::predictor_shape`]).
+    /// [`TwoModeEtd::predictor_shape`]).
     pub(super) cur: ShapeSpectra,
     pub(super) prev: ShapeSpectra,
     pub(super) prev_valid: bool,
@@ -97,7 +97,7 @@ pub struct ComovingEtd {
     pub(super) inv_c: Vec<f64>,
 }
 
-impl ComovingEtd {
+impl TwoModeEtd {
     /// A run from `state` with `u = 0`, on an `n x n` grid.
     pub fn new(
         params: ModelParams,
@@ -246,7 +246,7 @@ impl ComovingEtd {
     }
 }
 
-impl Stepper for ComovingEtd {
+impl Stepper for TwoModeEtd {
     fn attempt(&mut self, h: f64, max_error: f64) -> Attempt {
         let half = self.predict(h);
         let (next, corrector_velocity) = self.correct_scalars(&half);
@@ -266,7 +266,7 @@ impl Stepper for ComovingEtd {
     }
 }
 
-impl Scheme for ComovingEtd {
+impl Scheme for TwoModeEtd {
     fn state(&self) -> DropletState {
         self.state
     }

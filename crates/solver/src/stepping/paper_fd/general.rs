@@ -7,10 +7,10 @@
 //! `u <- u + h (Lap u - u + Theta / A)`, `r_c <- r_c + h v`,
 //! `v <- v + (h / m) (-eta_t v + F)`, `a_k <- a_k + (h / eta2) (G_k^(a) - kappa_k a_k)` and the
 //! same for `b_k` (`kappa_k = (k^2 / 4) kappa2`, `eta_k = eta2` unless a friction law is
-//! set, [`ModeFd::set_eta_k_exponent`]), with the forces
+//! set, [`PaperFd::set_eta_k_exponent`]), with the forces
 //! `F = -Int grad u Theta dA` (eq. 35) and `G_k = -Int w_k . grad u Theta dA` (the smoothed
 //! eqs. dakdt_dl, dbkdt_dl; `w_k` of [`crate::model::modes::w_fields`]). With `K = 2` this is
-//! [`crate::stepping::paper_fd::PaperFd`] (tested to round-off).
+//! [`crate::stepping::paper_fd::TwoModeFd`] (tested to round-off).
 use crate::error::SolverError;
 use crate::model::friction::eta_k;
 use crate::model::grid::Grid;
@@ -18,14 +18,14 @@ use crate::model::modes::{w_fields, Modes};
 use crate::model::params::ModelParams;
 use crate::model::shape::ShapeParams;
 use crate::model::state::DropletState;
-use crate::stepping::paper_fd::central_gradient;
+use crate::stepping::paper_fd::finite_differences::central_gradient;
 use crate::stepping::{Attempt, Field, Scheme, Stepper};
 
 /// Explicit finite differences for the `K`-mode droplet on the lab grid. One step is
-/// [`ModeFd::max_rate`] (`Theta` and the forces at the present state, and the largest rate)
-/// then [`ModeFd::advance`] (a [`Stepper`] step measures the rate unless the run just did);
+/// [`PaperFd::max_rate`] (`Theta` and the forces at the present state, and the largest rate)
+/// then [`PaperFd::advance`] (a [`Stepper`] step measures the rate unless the run just did);
 /// the buffers are made once.
-pub struct ModeFd {
+pub struct PaperFd {
     params: ModelParams,
     shape: ShapeParams,
     n: usize,
@@ -52,7 +52,7 @@ pub struct ModeFd {
     fresh: bool,
 }
 
-impl ModeFd {
+impl PaperFd {
     /// The `K`-mode droplet (`K = z0.len() / 2`) at `z0`, centred at the origin, with `u = 0`
     /// on an `n x n` lab grid.
     pub fn new(params: &ModelParams, n: usize, z0: &[f64]) -> Result<Self, SolverError> {
@@ -186,7 +186,7 @@ impl ModeFd {
 
     /// One forward-Euler step of `h` from the state of the last [`Self::max_rate`].
     pub fn advance(&mut self, h: f64) {
-        crate::stepping::paper_fd::euler_field_step(
+        crate::stepping::paper_fd::finite_differences::euler_field_step(
             &mut self.u,
             &mut self.u_next,
             &self.theta,
@@ -203,7 +203,7 @@ impl ModeFd {
     }
 }
 
-impl Stepper for ModeFd {
+impl Stepper for PaperFd {
     /// Forward Euler has no error estimate: every step is taken.
     fn attempt(&mut self, h: f64, _max_error: f64) -> Attempt {
         if !self.fresh {
@@ -217,7 +217,7 @@ impl Stepper for ModeFd {
     }
 }
 
-impl Scheme for ModeFd {
+impl Scheme for PaperFd {
     fn state(&self) -> DropletState {
         DropletState::of_unknowns(&self.z, self.x, self.y).0
     }
@@ -227,7 +227,7 @@ impl Scheme for ModeFd {
     }
 
     fn mass(&self) -> f64 {
-        ModeFd::mass(self)
+        PaperFd::mass(self)
     }
 
     fn field(&mut self) -> Field {
@@ -246,11 +246,11 @@ impl Scheme for ModeFd {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::stepping::paper_fd::PaperFd;
+    use crate::stepping::paper_fd::TwoModeFd;
 
     #[test]
     fn two_modes_step_as_the_papers_scheme() {
-        // K = 2 from a moving, deformed droplet: 400 steps at N = 64 follow PaperFd to
+        // K = 2 from a moving, deformed droplet: 400 steps at N = 64 follow TwoModeFd to
         // round-off (Theta of the mode sum against the paper's plane shape: 1e-14).
         let p = ModelParams::at(0.085, 0.112);
         let (n, h) = (64, 2e-3);
@@ -262,8 +262,8 @@ mod tests {
             a2: -0.08,
             b2: 0.03,
         };
-        let mut paper = PaperFd::new(p, n, st, false).unwrap();
-        let mut fd = ModeFd::new(&p, n, &[0.3, -0.1, -0.08, 0.03]).unwrap();
+        let mut paper = TwoModeFd::new(p, n, st, false).unwrap();
+        let mut fd = PaperFd::new(&p, n, &[0.3, -0.1, -0.08, 0.03]).unwrap();
         for _ in 0..400 {
             paper.step(h);
             fd.max_rate();
@@ -282,13 +282,13 @@ mod tests {
     /// The largest force balance of the paper's scheme at the `K = 3` MD state of the spectral
     /// steady solver, its field included, against the largest force there.
     fn balance_at_spectral_md(n: usize) -> (f64, f64, f64) {
-        use crate::roots::{balances::lab_field, mode_solver::ModeSolver};
+        use crate::roots::{balances::lab_field, steady_solver::SteadySolver};
         let p = ModelParams::at(0.085, 0.112);
-        let mut solver = ModeSolver::new(p, n).unwrap();
+        let mut solver = SteadySolver::new(p, n).unwrap();
         let md = crate::roots::named_state::md_state(&mut solver, 3).unwrap();
-        let z = crate::roots::mode_solver::on_x_axis(md.v, &md.a);
+        let z = crate::roots::steady_solver::on_x_axis(md.v, &md.a);
         let field = lab_field(&mut solver, &z, 0.0, 0.0);
-        let mut fd = ModeFd::new(&p, n, &z).unwrap();
+        let mut fd = PaperFd::new(&p, n, &z).unwrap();
         assert!(fd.set_field(&field.values));
         fd.max_rate();
         let worst = fd.balance.iter().fold(0.0f64, |m, b| m.max(b.abs()));
@@ -323,7 +323,7 @@ mod tests {
         let (n, h, steps) = (64, 2e-3, 2000);
         let mut z = vec![0.0; 8];
         z[4] = 0.05;
-        let mut fd = ModeFd::new(&p, n, &z).unwrap();
+        let mut fd = PaperFd::new(&p, n, &z).unwrap();
         for _ in 0..steps {
             fd.max_rate();
             fd.advance(h);

@@ -1,4 +1,4 @@
-//! The two fused passes over the spectrum of one ETD2RK step of [`super::ComovingEtd`]: each
+//! The two fused passes over the spectrum of one ETD2RK step of [`super::TwoModeEtd`]: each
 //! advances the field by one stage and, in the same sweep, accumulates the Parseval sums of
 //! the forces at that stage's shape ([`crate::model::forces`]). No exponential or division per mode:
 //! the propagator comes from [`SeparableExp`].

@@ -1,16 +1,16 @@
-//! The paper's own scheme (Sect. 3): forward Euler, 5-point Laplacian, central differences,
-//! `Theta` evaluated on the lab grid at the droplet's position (minimum image).
-//! Kept as the baseline for speed and error comparisons; paper settings dx = 0.025, dt = 1e-4.
+//! The paper's scheme ([`crate::stepping::paper_fd`]) for the 2-mode droplet, with the mode-2
+//! shape's own sampler of `Theta`.
 use crate::model::dynamics;
 use crate::model::forces::parseval::Forces;
 use crate::model::grid::Grid;
 use crate::model::params::ModelParams;
 use crate::model::shape::ShapeParams;
 use crate::model::state::DropletState;
+use crate::stepping::paper_fd::finite_differences::{central_gradient, euler_field_step};
 use crate::stepping::{Attempt, Field, Scheme, Stepper};
 
 /// Explicit finite-difference integrator on the lab grid.
-pub struct PaperFd {
+pub struct TwoModeFd {
     params: ModelParams,
     shape: ShapeParams,
     n: usize,
@@ -24,7 +24,7 @@ pub struct PaperFd {
     touched: Vec<usize>,
 }
 
-impl PaperFd {
+impl TwoModeFd {
     /// A run from `state` with `u = 0` on an `n x n` lab grid.
     pub fn new(
         params: ModelParams,
@@ -102,7 +102,7 @@ impl PaperFd {
     }
 }
 
-impl Stepper for PaperFd {
+impl Stepper for TwoModeFd {
     /// Forward Euler has no embedded estimate: every attempt is taken.
     fn attempt(&mut self, h: f64, _max_error: f64) -> Attempt {
         self.euler_step(h);
@@ -113,7 +113,7 @@ impl Stepper for PaperFd {
     }
 }
 
-impl Scheme for PaperFd {
+impl Scheme for TwoModeFd {
     fn state(&self) -> DropletState {
         self.state
     }
@@ -131,48 +131,7 @@ impl Scheme for PaperFd {
     }
 }
 
-/// `grad u` at cell `(ix, iy)` of the periodic `n x n` field `u` by central differences
-/// (`inv2dx = 1 / (2 dx)`).
-pub(crate) fn central_gradient(
-    u: &[f64],
-    n: usize,
-    (ix, iy): (usize, usize),
-    inv2dx: f64,
-) -> (f64, f64) {
-    let ux = (u[iy * n + (ix + 1) % n] - u[iy * n + (ix + n - 1) % n]) * inv2dx;
-    let uy = (u[((iy + 1) % n) * n + ix] - u[((iy + n - 1) % n) * n + ix]) * inv2dx;
-    (ux, uy)
-}
-
-/// One forward-Euler step of `h` of the field on the periodic `n x n` lab grid of spacing
-/// `dx`: `u <- u + h (Lap u - u + Theta / A)`, the 5-point Laplacian, into `u` (`u_next` is
-/// scratch).
-pub(crate) fn euler_field_step(
-    u: &mut Vec<f64>,
-    u_next: &mut Vec<f64>,
-    theta: &[f64],
-    (n, dx): (usize, f64),
-    h: f64,
-    area: f64,
-) {
-    let inv_dx2 = 1.0 / (dx * dx);
-    let inv_a = 1.0 / area;
-    for iy in 0..n {
-        let up = ((iy + n - 1) % n) * n;
-        let dn = ((iy + 1) % n) * n;
-        let row = iy * n;
-        for ix in 0..n {
-            let l = if ix == 0 { n - 1 } else { ix - 1 };
-            let r = if ix == n - 1 { 0 } else { ix + 1 };
-            let c = u[row + ix];
-            let lap = (u[row + l] + u[row + r] + u[up + ix] + u[dn + ix] - 4.0 * c) * inv_dx2;
-            u_next[row + ix] = c + h * (lap - c + theta[row + ix] * inv_a);
-        }
-    }
-    std::mem::swap(u, u_next);
-}
-
-impl PaperFd {
+impl TwoModeFd {
     /// One forward-Euler step of the field and the droplet (paper Sect. 3).
     fn euler_step(&mut self, h: f64) {
         let [area, fx, fy, ga, gb] = self.fill_and_forces();

@@ -1,5 +1,4 @@
-//! Steady states of the paper's general model with shape modes `k = 2..K` (the first step of
-//! the `K`-mode model; the time stepper and the stability computation keep `K = 2`).
+//! Steady states of the paper's general model with shape modes `k = 2..K`, every `K`.
 //!
 //! For a droplet of shape `{a_k, b_k}` moving at `v` the co-moving field solves
 //! `0 = Lap u - u + v . grad u + Theta / A` (paper eq. S13, `Theta` of
@@ -11,10 +10,11 @@
 //! for `kappa_k`: `pi k^2 tau R`); `eta_k` sets only how fast the shape moves, not where it
 //! rests.
 //!
-//! The discretisation is [`crate::roots::steady_solver::SteadySolver`]'s: the same samples of
-//! `Theta`, the same spectral gradient (Nyquist mode zeroed), the sums over the grid taken in
-//! real space instead of by Parseval (equal to round-off for `K = 2`, tested). No symmetry of
-//! the shape is assumed (odd modes break the point symmetry the 2-mode solver uses).
+//! The discretisation is the 2-mode fast path's ([`crate::roots::steady_solver::TwoModeSolver`]):
+//! the same samples of `Theta`, the same spectral gradient (Nyquist mode zeroed), the sums over
+//! the grid taken in real space instead of by Parseval
+//! ([`crate::model::forces::quadrature`]; equal to round-off for `K = 2`, tested). No
+//! symmetry of the shape is assumed (odd modes break the point symmetry the fast path uses).
 use crate::error::SolverError;
 use crate::model::forces::quadrature::{fill_operator, ForceQuadrature, ShapeForces};
 use crate::model::grid::Grid;
@@ -28,7 +28,7 @@ use rustfft::num_complex::Complex64;
 
 /// A steady state moving along `x` with a shape symmetric about the x axis (`b_k = 0`).
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
-pub struct ModeState {
+pub struct AxisState {
     pub v: f64,
     /// `a_k` for `k = 2..=K`.
     pub a: Vec<f64>,
@@ -45,7 +45,7 @@ pub fn on_x_axis(v: f64, a: &[f64]) -> Vec<f64> {
 }
 
 /// Evaluates steady fields and force balances of `K`-mode droplets on an `N x N` grid.
-pub struct ModeSolver {
+pub struct SteadySolver {
     params: ModelParams,
     /// `Theta`, its transform and the forces of a field on it.
     quad: ForceQuadrature,
@@ -61,7 +61,7 @@ pub struct ModeSolver {
     memo: ForcesMemo<(f64, f64, Modes), ShapeForces>,
 }
 
-impl ModeSolver {
+impl SteadySolver {
     pub fn new(params: ModelParams, n: usize) -> Result<Self, SolverError> {
         params.validate()?;
         let grid = Grid::new(n, params.box_len)?;
@@ -226,7 +226,7 @@ impl ModeSolver {
     }
 
     /// Newton on [`Self::residual_x`] from `(v, a_2..a_K)`.
-    pub fn newton_x(&mut self, guess: &[f64], tol: f64) -> Result<ModeState, SolverError> {
+    pub fn newton_x(&mut self, guess: &[f64], tol: f64) -> Result<AxisState, SolverError> {
         let opts = NewtonOptions {
             tol,
             max_iter: 40,
@@ -234,7 +234,7 @@ impl ModeSolver {
             max_step: vec![0.1; guess.len()],
         };
         let sol = newton::solve(|y| self.residual_x(y), guess, &opts)?;
-        Ok(ModeState {
+        Ok(AxisState {
             v: sol.x[0],
             a: sol.x[1..].to_vec(),
             residual: sol.residual,
@@ -255,7 +255,7 @@ mod tests {
         // degrees (independent: no frame turned back). They agree, the off-line balances
         // vanish there, and the box makes the diagonal state differ from the axis one.
         let p = ModelParams::at(0.085, 0.112);
-        let mut solver = ModeSolver::new(p, 96).unwrap();
+        let mut solver = SteadySolver::new(p, 96).unwrap();
         let axis = crate::roots::named_state::md_state(&mut solver, 3).unwrap();
         let phi = std::f64::consts::FRAC_PI_4;
         let guess: Vec<f64> = std::iter::once(axis.v).chain(axis.a.clone()).collect();
@@ -283,13 +283,13 @@ mod tests {
         assert!((diag.v - axis.v).abs() > 1e-7, "{diag:?} {axis:?}");
     }
 
-    use crate::roots::steady_solver::SteadySolver;
+    use crate::roots::steady_solver::TwoModeSolver;
 
     #[test]
     fn two_modes_give_the_two_mode_solvers_forces() {
         let p = ModelParams::at(0.085, 0.112);
-        let mut modes = ModeSolver::new(p, 96).unwrap();
-        let mut two = SteadySolver::new(p, 96).unwrap();
+        let mut modes = SteadySolver::new(p, 96).unwrap();
+        let mut two = TwoModeSolver::new(p, 96).unwrap();
         for (vx, vy, a2, b2) in [
             (0.3, 0.1, -0.2, 0.05),
             (0.0, 0.0, 0.1, 0.0),
@@ -326,7 +326,7 @@ mod tests {
             sigma: 0.01,
             ..ModelParams::at(0.085, 0.112)
         };
-        let mut s = ModeSolver::new(p, 384).unwrap();
+        let mut s = SteadySolver::new(p, 384).unwrap();
         let m = Modes {
             a: vec![-0.1, 0.06, 0.03],
             b: vec![0.02, -0.04, 0.01],
@@ -378,7 +378,7 @@ mod tests {
     #[test]
     fn a_shape_at_rest_feels_no_net_force_and_mirrors_flip_odd_modes() {
         let p = ModelParams::at(0.085, 0.112);
-        let mut s = ModeSolver::new(p, 192).unwrap();
+        let mut s = SteadySolver::new(p, 192).unwrap();
         let mut m = Modes::circle(4);
         m.a[1] = 0.08;
         let f = s.forces(0.0, 0.0, &m);
@@ -406,7 +406,7 @@ mod tests {
     fn a_moving_droplet_has_a_mode_3_deformation_along_its_motion() {
         // Fig. 1c (eta_t = 0.085, kappa2 = 0.112): the 2-mode MD state, then with modes up
         // to 3: a3 != 0 (front-back asymmetry), the speed changes.
-        let mut s = ModeSolver::new(ModelParams::at(0.085, 0.112), 192).unwrap();
+        let mut s = SteadySolver::new(ModelParams::at(0.085, 0.112), 192).unwrap();
         let two = s.newton_x(&[0.59, -0.27], 1e-11).unwrap();
         assert!(
             (two.v - 0.592462).abs() < 1e-6 && (two.a[0] + 0.270056).abs() < 1e-6,
@@ -427,7 +427,7 @@ mod tests {
         // Mode 3's stiffness scaled by lam from 1000 (a3 ~ 0: the 2-mode state) down to 1:
         // Newton from each state to the next follows one branch, with no fold on the way, to
         // the 3-mode root Newton finds directly (not another root).
-        let mut s = ModeSolver::new(ModelParams::at(0.085, 0.112), 96).unwrap();
+        let mut s = SteadySolver::new(ModelParams::at(0.085, 0.112), 96).unwrap();
         let two = s.newton_x(&[0.59, -0.27], 1e-11).unwrap();
         let direct = s.newton_x(&[two.v, two.a[0], 0.0], 1e-11).unwrap();
         let k3 = s.kappa(3);
