@@ -13,9 +13,10 @@ use std::path::PathBuf;
 /// Follow steady states of the full model (field included, N x N spectral grid) as roots of
 /// the co-moving force balance, by pseudo-arclength continuation through folds in any model
 /// parameter (--param, the others fixed by --set; --kappa2 K and --eta-t E are the paper's
-/// lines), with the linear stability of every state (eigenvalues with Re > -1 of the 4 x 4
-/// nonlinear eigenproblem; the near-neutral rotation mode, a box effect, is reported apart
-/// and left out of the verdict). Pitchfork (P), saddle-node (SN) and Hopf (H) points are
+/// lines), with the linear stability of every state (eigenvalues with Re > -1 of the 2K x 2K
+/// nonlinear eigenproblem, 4 x 4 with the paper's two modes; the near-neutral rotation mode,
+/// a box effect, is reported apart and left out of the verdict), for the model with shape
+/// modes 2..K (--modes). Pitchfork (P), saddle-node (SN) and Hopf (H) points are
 /// located on the branch to ~1e-10 in the parameter. Writes DIR/<stem>.parquet (every state),
 /// DIR/<stem>_events.parquet and DIR/<stem>.png/.svg (solid stable, dashed unstable), with
 /// <stem> = continuation_<fixed parameter>_<value> on the paper's lines,
@@ -24,7 +25,7 @@ use std::path::PathBuf;
 #[derive(clap::Args)]
 #[command(
     allow_negative_numbers = true,
-    after_help = "Examples:\n  droplet continue --kappa2 0.13 --from 0.070 --to 0.100 --out results/continuation    # all branches, vary eta_t\n  droplet continue --eta-t 0.085 --from 0.100 --to 0.170 --out results/continuation   # vary kappa2\n  droplet continue --branch md --kappa2 0.13 --from 0.07 --to 0.1 --json             # the MD branch and its fold\n  droplet continue --param mass --set eta_t=0.078,kappa2=0.13 --from 0.01 --to 1    # in the inertia: stability only\n  droplet continue --modes 3 --kappa2 0.13 --from 0.075 --to 0.1 --json             # MD with modes 2..3, its fold"
+    after_help = "Examples:\n  droplet continue --kappa2 0.13 --from 0.070 --to 0.100 --out results/continuation    # all branches, vary eta_t\n  droplet continue --eta-t 0.085 --from 0.100 --to 0.170 --out results/continuation   # vary kappa2\n  droplet continue --branch md --kappa2 0.13 --from 0.07 --to 0.1 --json             # the MD branch and its fold\n  droplet continue --param mass --set eta_t=0.078,kappa2=0.13 --from 0.01 --to 1    # in the inertia: stability only\n  droplet continue --modes 3 --kappa2 0.13 --from 0.075 --to 0.1 --n 96 --json      # every branch with modes 2..3"
 )]
 pub struct Args {
     /// Which branch: all, ic, id, md (moving along its minor axis), md-major.
@@ -47,13 +48,11 @@ pub struct Args {
     /// Longest continuation step (arclength in (v, shape, parameter scaled to [0, 1])).
     #[arg(long, default_value_t = 0.03)]
     pub(super) ds_max: f64,
-    /// Shape modes 2..K (the paper's general model; default 2, the paper's). With K > 2 the
-    /// MD branch on the x axis (b_k = 0) is followed in eta_t or kappa2 from --from (where it
-    /// must exist) towards --to, through its folds, with the stability of every state (the
-    /// 2K x 2K eigenproblem with the field, the rotation mode set aside); writes
-    /// DIR/continuation_modes<K>_<fixed>_<value>.parquet (v, s = |a2|, the total deformation,
-    /// a2..aK, fold, stable, leading_re, rotation_eig, unstable) and .png/.svg. K from 2 to 16
-    /// and at most pi R N / (4 L).
+    /// Shape modes 2..K (the paper's general model; default 2, the paper's): every branch,
+    /// axis and parameter as with two modes; the states hold the modes their symmetry allows
+    /// (MD every one, ID the even ones, IC the multiples of 4 the square box drives). The
+    /// files are DIR/continuation_modes<K>_..., their tables with a3..aK, b3..bK after the
+    /// 2-mode columns. K from 2 to 16 and at most pi R N / (4 L).
     #[arg(long, default_value_t = 2)]
     pub(super) modes: usize,
     /// With --modes K > 2: the friction law of the modes k >= 3, eta_k = eta2 (k/2)^P (default
@@ -72,8 +71,7 @@ pub struct Args {
     /// Print one JSON object, the same keys for every K (modes, eta_k_exponent, line, n,
     /// seconds, branches [{branch, mirror, points, stable_points, ends}], events [{kind, what,
     /// branch, mirror, parameter, at, eta_t, kappa2, v, s, a_k [a2..aK], b_k [b2..bK],
-    /// eigenvalue, precision}], files; with --modes K > 2 the one branch md on x, its folds
-    /// the SN events, eigenvalue and precision null).
+    /// eigenvalue, precision}], files).
     #[arg(long)]
     pub(super) json: bool,
 }
@@ -94,15 +92,15 @@ pub fn run(a: Args) -> Result<(), CliError> {
     })?;
     let varied = study.varied();
     if a.json {
-        print_json(&json_summary(&done, a.n, varied));
+        print_json(&json_summary(&done, &study.line, varied));
     } else {
         print_text(&study, &done);
     }
     precise_events(&done.imprecise, varied)
 }
 
-/// The grid, the number of states and the step, whatever the model.
-pub(super) fn check_common(a: &Args) -> Result<(), CliError> {
+/// The grid, the number of states and the step.
+fn check_common(a: &Args) -> Result<(), CliError> {
     super::check_grid(a.n)?;
     if !(2..=100_000).contains(&a.max_points) {
         return Err(CliError::usage(format!(
@@ -131,6 +129,7 @@ fn study_of(a: &Args) -> Result<ContinuationStudy, CliError> {
             .map_err(|e: String| CliError::usage(format!("invalid --branch: {e}, or all")))?]
     };
     let (parameter, base) = a.line.line(a.mass)?;
+    droplet_solver::contract::limits::check_modes(&base, a.n, a.modes)?;
     Ok(ContinuationStudy {
         out: a.out.clone(),
         line: Line {
@@ -139,6 +138,8 @@ fn study_of(a: &Args) -> Result<ContinuationStudy, CliError> {
             parameter,
             from: a.line.span.from,
             to: a.line.span.to,
+            modes: a.modes,
+            eta_k_exponent: a.eta_k_exponent,
             max_points: a.max_points,
             opts: ArclengthOptions {
                 ds_max: a.ds_max,
@@ -164,12 +165,17 @@ fn print_text(study: &ContinuationStudy, done: &ContinuationWritten) {
         );
         for e in &b.events {
             outln!(
-                "  {:>2} at {varied} = {:.9}  v = {:.6}  s = {:.6}  ({})",
+                "  {:>2} at {varied} = {:.9}  v = {:.6}  s = {:.6}  ({}){}",
                 e.kind,
                 study.at(&e.point),
                 e.point.v,
                 e.point.s,
-                e.what
+                e.what,
+                if study.line.modes == 2 {
+                    String::new()
+                } else {
+                    format!("  a_k {:?}", e.point.a_k())
+                }
             );
         }
     }
@@ -180,7 +186,7 @@ fn print_text(study: &ContinuationStudy, done: &ContinuationWritten) {
 }
 
 /// The `--json` object: the line, the branches, every event with its precision, the files.
-fn json_summary(done: &ContinuationWritten, n: usize, varied: &str) -> serde_json::Value {
+fn json_summary(done: &ContinuationWritten, line: &Line, varied: &str) -> serde_json::Value {
     let events: Vec<_> = done
         .branches
         .iter()
@@ -190,8 +196,8 @@ fn json_summary(done: &ContinuationWritten, n: usize, varied: &str) -> serde_jso
                     "kind": e.kind, "what": e.what, "branch": b.family.as_str(),
                     "mirror": b.mirror, "parameter": varied, "at": e.point.at,
                     "eta_t": e.point.eta_t, "kappa2": e.point.kappa2,
-                    "v": e.point.v, "s": e.point.s, "a_k": [e.point.z[2]],
-                    "b_k": [e.point.z[3]], "eigenvalue": e.eigenvalue,
+                    "v": e.point.v, "s": e.point.s, "a_k": e.point.a_k(),
+                    "b_k": e.point.b_k(), "eigenvalue": e.eigenvalue,
                     "precision": e.precision,
                 })
             })
@@ -209,7 +215,8 @@ fn json_summary(done: &ContinuationWritten, n: usize, varied: &str) -> serde_jso
         })
         .collect();
     serde_json::json!({
-        "modes": 2, "eta_k_exponent": 0.0, "line": done.description, "n": n,
+        "modes": line.modes, "eta_k_exponent": line.eta_k_exponent,
+        "line": done.description, "n": line.n,
         "seconds": done.seconds, "branches": summary, "events": events, "files": done.files,
     })
 }

@@ -30,7 +30,6 @@ mod continuation;
 mod fit_h0;
 mod line;
 mod merge;
-mod mode_continuation;
 mod ode;
 mod param_line;
 mod plot;
@@ -87,7 +86,6 @@ pub fn main() -> i32 {
         Command::Bench(a) => bench::run(a),
         Command::Stability(a) => stability::run(a),
         // The general model's continuation (the MD branch on the x axis), or why not.
-        Command::Continue(a) if a.modes != 2 => mode_continuation::run(&a),
         Command::Continue(a) => continuation::run(a),
         Command::Boundaries(a) => boundaries::run(a),
         Command::Truncation(a) => truncation::run(a),

@@ -17,6 +17,7 @@ use crate::error::SolverError;
 use crate::model::classify::StateClass;
 use crate::model::param::ModelParam;
 use crate::model::params::ModelParams;
+use crate::roots::balances::Balances;
 use crate::roots::steady_solver::MirrorAxis;
 use crate::roots::verdict::Verdict;
 use serde::Serialize;
@@ -32,6 +33,10 @@ pub struct Line {
     pub parameter: ModelParam,
     pub from: f64,
     pub to: f64,
+    /// The model's shape modes `2..=modes`, and the friction law's exponent of the modes
+    /// `k >= 3` (eigenvalues only, [`crate::model::friction`]).
+    pub modes: usize,
+    pub eta_k_exponent: f64,
     /// Most points per direction.
     pub max_points: usize,
     pub opts: ArclengthOptions,
@@ -44,13 +49,28 @@ pub struct BranchPoint {
     pub at: f64,
     pub eta_t: f64,
     pub kappa2: f64,
-    /// `(vx, vy, a2, b2)`.
-    pub z: [f64; 4],
+    /// `(vx, vy, a_2..a_K, b_2..b_K)`; `(vx, vy, a2, b2)` for `K = 2`.
+    pub z: Vec<f64>,
     pub v: f64,
+    /// The mode-2 deformation `sqrt(a2^2 + b2^2)` (the paper's `s`).
     pub s: f64,
     /// The paper's class of the state (thresholds 0.01).
     pub class: StateClass,
     pub verdict: Verdict,
+}
+
+impl BranchPoint {
+    /// The shape amplitudes `a_2..a_K` of the state.
+    pub fn a_k(&self) -> &[f64] {
+        let k_max = self.z.len() / 2;
+        &self.z[2..k_max + 1]
+    }
+
+    /// The shape amplitudes `b_2..b_K` of the state.
+    pub fn b_k(&self) -> &[f64] {
+        let k_max = self.z.len() / 2;
+        &self.z[k_max + 1..]
+    }
 }
 
 /// A bifurcation point on a branch.
@@ -120,7 +140,8 @@ impl Tracer<'_> {
     pub(super) fn point(&mut self, y: &[f64], verdict: Verdict) -> BranchPoint {
         let p = self.prob.params_at(*y.last().expect("q"));
         let z = self.prob.state(y);
-        let (v, s) = (z[0].hypot(z[1]), z[2].hypot(z[3]));
+        let k_max = z.len() / 2;
+        let (v, s) = (z[0].hypot(z[1]), z[2].hypot(z[k_max + 1]));
         BranchPoint {
             at: self.prob.parameter.get(&p),
             eta_t: p.eta_t,
@@ -191,15 +212,8 @@ impl Tracer<'_> {
 /// Follows `family` on `mirror` along `line`. Errors: bad parameters, or no state of the
 /// family found anywhere on the line.
 pub fn follow(line: &Line, family: Family, mirror: MirrorAxis) -> Result<Branch, SolverError> {
-    let mut prob = Problem::new(
-        &line.base,
-        line.n,
-        family,
-        mirror,
-        line.parameter,
-        line.from,
-        line.to,
-    )?;
+    let balances = Balances::new(line.base, line.n, line.modes, line.eta_k_exponent)?;
+    let mut prob = Problem::new(balances, family, mirror, line.parameter, line.from, line.to);
     // Where to look for a first state: the ends, then ever finer points in between.
     let qs = [0.0, 1.0, 0.5, 0.25, 0.75, 0.125, 0.375, 0.625, 0.875];
     let y0 = qs

@@ -72,6 +72,8 @@ pub fn md_branch(
         parameter: x.param,
         from: x.range.0,
         to: x.range.1,
+        modes: 2,
+        eta_k_exponent: 0.0,
         max_points: 400,
         opts: ArclengthOptions::default(),
     };

@@ -6,8 +6,10 @@
 //! the PDE's own phase boundaries: in a window of the paper's plane ([`window`], [`boundaries`],
 //! at any number of shape modes) and in a plane of any
 //! two model parameters ([`plane`]), traced as zero sets ([`level_set`]) or continued
-//! ([`fold_curve`]); the MD branch of the `K`-mode model and its fold ([`mode_branch`]), the branch along a
-//! line with its stability ([`mode_line`]) and its boundaries ([`mode_boundaries`]).
+//! ([`fold_curve`]); the MD fold of the `K`-mode model found on its own ([`mode_branch`]) and
+//! the `K`-mode boundaries of a window ([`mode_boundaries`]). Families and branches hold the
+//! shape modes `2..K` ([`problem`], [`branch`]): `droplet continue --modes K` follows every
+//! branch, on either mirror line, in any model parameter.
 //!
 //! May use: `numerics`, `model`, `contract`, `reduced`, `roots`. Used by: the sweep crate and
 //! the CLI (`droplet continue`, `droplet boundaries`).
@@ -19,7 +21,6 @@ pub mod fold_curve;
 pub mod level_set;
 pub mod mode_boundaries;
 pub mod mode_branch;
-pub mod mode_line;
 pub mod plane;
 pub mod polyline;
 pub mod problem;

@@ -2,7 +2,8 @@
 //! along x, `b_k = 0`), followed in `eta_t` or `kappa2` by pseudo-arclength continuation of
 //! `(v, a_2..a_K, q)`, and its fold (the saddle-node that bounds the bistable bands): where
 //! the tangent's `q` component changes sign, located by bisection in arclength. The branch
-//! along a whole line, with every state's stability, is [`crate::continuation::mode_line`].
+//! along a whole line, with every state's stability and its events, is
+//! [`crate::continuation::branch::follow`] (tested against this fold).
 use crate::continuation::arclength::{
     point_at, start, ArclengthOptions, CurvePoint, Step, Stepper,
 };
@@ -150,18 +151,16 @@ mod tests {
     use crate::continuation::problem::Family;
     use crate::roots::steady_solver::MirrorAxis;
 
-    #[test]
-    fn with_two_modes_the_fold_is_the_two_mode_branchs() {
-        // kappa2 = 0.13, eta_t from 0.07: the 2-mode branch folds at 0.0792728 (N = 192;
-        // docs/continuation.md); at N = 96 both computations against each other.
-        let n = 96;
-        let base = ModelParams::at(0.07, 0.13);
+    /// The MD branch along eta_t at kappa2 = 0.13 from 0.077, by [`md_fold`] and by the one
+    /// continuation ([`follow`]) with modes `2..=k_max`.
+    fn both(k_max: usize, n: usize) -> (ModeFold, crate::continuation::branch::Branch) {
+        let base = ModelParams::at(0.077, 0.13);
         let line = ModeLine {
             base,
             n,
-            k_max: 2,
+            k_max,
             parameter: ModelParam::EtaT,
-            from: 0.07,
+            from: 0.077,
             to: 0.1,
             eta_k_exponent: 0.0,
         };
@@ -171,8 +170,10 @@ mod tests {
                 base,
                 n,
                 parameter: ModelParam::EtaT,
-                from: 0.07,
+                from: 0.077,
                 to: 0.1,
+                modes: k_max,
+                eta_k_exponent: 0.0,
                 max_points: 400,
                 opts: ArclengthOptions::default(),
             },
@@ -180,16 +181,41 @@ mod tests {
             MirrorAxis::X,
         )
         .unwrap();
-        let sn = branch.events.iter().find(|e| e.kind == "SN").unwrap();
-        assert!(
-            (fold.at - sn.point.at).abs() < 1e-7,
-            "{fold:?} vs {}",
-            sn.point.at
-        );
-        assert!(
-            (fold.v - sn.point.z[0]).abs() < 1e-4,
-            "{fold:?} vs {:?}",
-            sn.point.z
-        );
+        (fold, branch)
+    }
+
+    #[test]
+    fn the_continuation_folds_where_the_fold_search_does_and_loses_stability_there() {
+        // Two computations of one fold: the fold search here (its own arclength walk from the
+        // line's start, the tangent's q component bracketed) and the continuation's SN event
+        // (located on its own branch by the Illinois method), with modes 2..2 and 2..3 at
+        // N = 96 (the 2-mode branch folds at 0.0792728 at N = 192, docs/continuation.md).
+        for k_max in [2, 3] {
+            let (fold, branch) = both(k_max, 96);
+            // md_fold returns the first fold from the line's start, where the continuation
+            // starts too (its backward trace leaves the line at once).
+            let sns: Vec<_> = branch.events.iter().filter(|e| e.kind == "SN").collect();
+            let sn = &sns.first().expect("a fold").point;
+            assert!((fold.at - sn.at).abs() < 1e-9, "{fold:?} vs {}", sn.at);
+            assert!((fold.v - sn.v).abs() < 1e-6, "{fold:?} vs {:?}", sn.z);
+            for (a, b) in fold.a.iter().zip(sn.a_k()) {
+                assert!((a - b).abs() < 1e-6, "{fold:?} vs {:?}", sn.z);
+            }
+            // Every fold is a change of stability and every change a fold (no other event on
+            // this line): one real eigenvalue passes through zero at each, the rotation mode
+            // aside.
+            assert_eq!(sns.len(), branch.events.len(), "{:?}", branch.events);
+            let stable: Vec<bool> = branch.points.iter().map(|p| p.verdict.stable()).collect();
+            let changes = stable.windows(2).filter(|w| w[0] != w[1]).count();
+            assert_eq!(changes, sns.len(), "K = {k_max}: {stable:?}");
+            let near_zero = sn
+                .verdict
+                .eigenvalues
+                .iter()
+                .filter(|l| l[1].abs() < 1e-9 && Some(l[0]) != sn.verdict.rotation)
+                .map(|l| l[0].abs())
+                .fold(f64::INFINITY, f64::min);
+            assert!(near_zero < 1e-4, "K = {k_max}: {:?}", sn.verdict);
+        }
     }
 }

@@ -224,7 +224,19 @@ pub fn md_state(solver: &mut SteadySolver, k_max: usize) -> Result<AxisState, So
         MirrorAxis::X,
         None,
     )?;
-    let mut guess = vec![two.z[0], two.z[2]];
+    md_state_from(solver, k_max, two.z[0], two.z[2])
+}
+
+/// The moving state of the `k_max`-mode model on the solver's axis from the 2-mode one
+/// `(v, a2)` (moving along its minor axis, `a2 < 0`, or its major axis): Newton on modes
+/// `2..=2`, then one mode at a time, each from `a_k = 0` (then either side of it).
+pub fn md_state_from(
+    solver: &mut SteadySolver,
+    k_max: usize,
+    v: f64,
+    a2: f64,
+) -> Result<AxisState, SolverError> {
+    let mut guess = vec![v, a2];
     let mut st = solver.newton_x(&guess, 1e-11)?;
     for _ in 3..=k_max {
         let mut next = None;

@@ -26,6 +26,8 @@ fn branch(family: Family, kappa2: f64, from: f64, to: f64, n: usize) -> Branch {
         parameter: ModelParam::EtaT,
         from,
         to,
+        modes: 2,
+        eta_k_exponent: 0.0,
         max_points: 400,
         opts: ArclengthOptions::default(),
     };

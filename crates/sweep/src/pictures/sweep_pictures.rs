@@ -379,6 +379,8 @@ fn pde_branches(
         parameter,
         from,
         to,
+        modes: settings.modes,
+        eta_k_exponent: settings.eta_k_exponent,
         max_points: 400,
         opts: Default::default(),
     };

@@ -85,15 +85,27 @@ impl ContinuationStudy {
 
     /// The files' common stem: `continuation_<fixed>_<value>` (+ `_diagonal`) on the
     /// paper's lines, `continuation_<varied>_<fixed>_<value>...` on the others, each value to
-    /// ten significant digits (short and stable for any value within the limits).
+    /// ten significant digits (short and stable for any value within the limits); with shape
+    /// modes `2..K`, `K > 2`, `continuation_modes<K>_...`, and the friction law's exponent
+    /// when it is not 0 (`_eta_k_exponent_<p>`): a line of another model never takes
+    /// another's files.
     pub fn stem(&self) -> String {
+        let short = |v: f64| format!("{v:.9e}").parse::<f64>().unwrap_or(v);
         let mut parts = vec!["continuation".to_string()];
+        if self.line.modes != 2 {
+            parts.push(format!("modes{}", self.line.modes));
+        }
         if !matches!(self.line.parameter, ModelParam::EtaT | ModelParam::Kappa2) {
             parts.push(self.varied().to_string());
         }
         for (name, value) in self.fixed() {
-            let value = format!("{value:.9e}").parse::<f64>().unwrap_or(value);
-            parts.push(format!("{name}_{value}"));
+            parts.push(format!("{name}_{}", short(value)));
+        }
+        if self.line.eta_k_exponent != 0.0 {
+            parts.push(format!(
+                "eta_k_exponent_{}",
+                short(self.line.eta_k_exponent)
+            ));
         }
         if self.mirror == MirrorAxis::Diagonal {
             parts.push("diagonal".into());
@@ -142,8 +154,7 @@ impl ContinuationStudy {
             &stem,
             &branches,
             &description,
-            self.line.n,
-            &self.line.base,
+            &self.line,
         )?;
         let mut files = crate::pictures::branch_pictures::continuation(
             &self.out,
@@ -151,8 +162,13 @@ impl ContinuationStudy {
             &branches,
             self.line.parameter,
             &format!(
-                "PDE (N = {}), {fixed}: solid = stable, dashed = unstable",
-                self.line.n
+                "PDE (N = {}{}), {fixed}: solid = stable, dashed = unstable",
+                self.line.n,
+                if self.line.modes == 2 {
+                    String::new()
+                } else {
+                    format!(", modes 2..{}", self.line.modes)
+                }
             ),
         )?;
         files.extend(tables);

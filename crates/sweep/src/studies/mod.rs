@@ -2,8 +2,8 @@
 //! full model's exact phase boundaries in a window (`boundaries`, `droplet boundaries`; over a
 //! sweep outside the paper's plane, `across` (crossings of the paper's curves) or `pair`
 //! (continued in any two model parameters)) and
-//! branches of steady states followed in one parameter (`continuation`, `droplet continue`;
-//! the `K`-mode MD branch, `mode_continuation`, `droplet continue --modes K`),
+//! branches of steady states followed in one parameter at any number of shape modes
+//! (`continuation`, `droplet continue`),
 //! and the boundaries at several grid sizes with their shifts (`convergence`), and how far
 //! the paper's 2-mode truncation moves its results (`truncation`, `droplet truncation`).
 //! Each returns what it computed and the paths it wrote; the CLI only parses and prints.
@@ -13,6 +13,5 @@ pub mod across;
 pub mod boundaries;
 pub mod continuation;
 pub mod convergence;
-pub mod mode_continuation;
 pub mod pair;
 pub mod truncation;

@@ -1,12 +1,13 @@
 //! Continuation branches as Parquet: `<stem>.parquet` (every state: family, mirror axis,
-//! parameters, `vx, vy, a2, b2, v, s`, class, the two leading eigenvalues with the rotation
-//! mode set aside, the rotation mode's eigenvalue, unstable count, stability) and
+//! parameters, `vx, vy, a2, b2, v, s`, with shape modes `2..K`, `K > 2`, also `a3 .. aK`,
+//! `b3 .. bK`; class, the two leading eigenvalues with the rotation mode set aside, the
+//! rotation mode's eigenvalue, unstable count, stability) and
 //! `<stem>_events.parquet` (P / SN / H points with the crossing eigenvalue and the precision
 //! of their location in the varied parameter).
 use crate::error::SweepError;
 use crate::spec::axes::{ETA_T, KAPPA2};
 use crate::tables::sweep_tables::{metadata, write_parquet};
-use droplet_solver::continuation::{branch::Branch, branch::BranchPoint};
+use droplet_solver::continuation::branch::{Branch, BranchPoint, Line};
 use polars::prelude::*;
 use std::path::{Path, PathBuf};
 
@@ -25,7 +26,7 @@ fn lead(p: &BranchPoint, i: usize) -> f64 {
 
 fn state_columns(rows: &[(&Branch, &BranchPoint)]) -> Vec<Column> {
     let col = |f: &dyn Fn(&BranchPoint) -> f64| rows.iter().map(|(_, p)| f(p)).collect::<Vec<_>>();
-    vec![
+    let mut cols = vec![
         strs(
             "branch",
             rows.iter()
@@ -44,8 +45,8 @@ fn state_columns(rows: &[(&Branch, &BranchPoint)]) -> Vec<Column> {
         f64s("at", col(&|p| p.at)),
         f64s("vx", col(&|p| p.z[0])),
         f64s("vy", col(&|p| p.z[1])),
-        f64s("a2", col(&|p| p.z[2])),
-        f64s("b2", col(&|p| p.z[3])),
+        f64s("a2", col(&|p| p.a_k()[0])),
+        f64s("b2", col(&|p| p.b_k()[0])),
         f64s("v", col(&|p| p.v)),
         f64s("s", col(&|p| p.s)),
         strs(
@@ -76,18 +77,33 @@ fn state_columns(rows: &[(&Branch, &BranchPoint)]) -> Vec<Column> {
                 .map(|(_, p)| p.verdict.stable())
                 .collect::<Vec<bool>>(),
         ),
-    ]
+    ];
+    // The higher shape modes, after the 2-mode columns.
+    let k_max = rows.first().map_or(2, |(_, p)| p.a_k().len() + 1);
+    for (name, pick) in [("a", 0), ("b", 1)] {
+        for k in 3..=k_max {
+            let amplitude = |p: &BranchPoint| {
+                if pick == 0 {
+                    p.a_k()[k - 2]
+                } else {
+                    p.b_k()[k - 2]
+                }
+            };
+            cols.push(f64s(&format!("{name}{k}"), col(&amplitude)));
+        }
+    }
+    cols
 }
 
-/// Writes both tables into `dir`; `line` (e.g. `kappa2 = 0.13, eta_t from 0.07 to 0.1`) and
-/// the grid go into the metadata. Returns their paths.
+/// Writes both tables into `dir`; `description` (e.g. `kappa2 = 0.13, eta_t from 0.07 to
+/// 0.1`), the grid, the shape modes and the friction law's exponent go into the metadata.
+/// Returns their paths.
 pub fn write(
     dir: &Path,
     stem: &str,
     branches: &[Branch],
-    line: &str,
-    n: usize,
-    params: &droplet_solver::model::params::ModelParams,
+    description: &str,
+    line: &Line,
 ) -> Result<[PathBuf; 2], SweepError> {
     let rows: Vec<(&Branch, &BranchPoint)> = branches
         .iter()
@@ -121,12 +137,14 @@ pub fn write(
     cols.extend(state_columns(&ev_rows));
     let mut ev = DataFrame::new(events.len(), cols)?;
     let mut meta = metadata(None);
-    meta.push(("line".into(), line.to_string()));
-    meta.push(("n".into(), n.to_string()));
+    meta.push(("line".into(), description.to_string()));
+    meta.push(("n".into(), line.n.to_string()));
+    meta.push(("modes".into(), line.modes.to_string()));
+    meta.push(("eta_k_exponent".into(), line.eta_k_exponent.to_string()));
     // Every model parameter of the line at its start, the varied one included.
     meta.push((
         "params".into(),
-        serde_json::to_string(params).expect("parameters serialise"),
+        serde_json::to_string(&line.base).expect("parameters serialise"),
     ));
     meta.push((
         "ends".into(),

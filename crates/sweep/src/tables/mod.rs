@@ -1,7 +1,7 @@
 //! Parquet tables, each with key-value metadata (spec, versions, commit): a sweep's
 //! `runs.parquet` and `points.parquet` (`sweep_tables`), a run's time series (`series`), the
 //! reduced model's bifurcation diagrams (`bifurcation`), phase boundaries (`boundaries`),
-//! continuation branches (`continuation`; the `K`-mode MD branch, `mode_continuation`), the
+//! continuation branches at any number of shape modes (`continuation`), the
 //! truncation study (`truncation`) and the Appendix E fit (`h0`); a finished map's
 //! tables read back as typed rows (`read`).
 //!
@@ -11,7 +11,6 @@ pub mod boundaries;
 pub mod continuation;
 pub mod h0;
 pub mod mode_columns;
-pub mod mode_continuation;
 pub mod read;
 pub mod series;
 pub mod sweep_tables;

@@ -96,6 +96,37 @@ impl SteadySolver {
         self.params.kappa2 = kappa2;
     }
 
+    /// Moves the solver to another value of one parameter, as
+    /// [`crate::roots::steady_solver::TwoModeSolver::set_param`] does: `eta_t`, `kappa2`,
+    /// `eta2` and `mass` are set (they enter the force balance or the eigenvalues only);
+    /// `radius`, `sigma` and `box_len` sample the droplet (and for `box_len` the grid) again.
+    /// Refused, leaving the solver as it was, where the parameters would be invalid or the grid
+    /// would not resolve the droplet ([`crate::contract::limits::check_resolved`]).
+    pub fn set_param(
+        &mut self,
+        param: crate::model::param::ModelParam,
+        x: f64,
+    ) -> Result<(), SolverError> {
+        if param.get(&self.params) == x {
+            return Ok(());
+        }
+        let params = param.with(&self.params, x);
+        params.validate()?;
+        if param.is_geometric() {
+            let n = self.n();
+            let grid = Grid::new(n, params.box_len)?;
+            crate::contract::limits::check_resolved(&params, n)?;
+            let shape = ShapeParams {
+                radius: params.radius,
+                sigma: params.sigma,
+            };
+            self.quad = ForceQuadrature::new(grid, shape);
+            self.memo.clear();
+        }
+        self.params = params;
+        Ok(())
+    }
+
     /// Makes [`Self::residual_x`] work on the mirror line at angle `phi` to the x axis (the
     /// diagonal: `pi / 4`): its unknowns and balances are those of the state turned back by
     /// `phi`. Every x-axis computation on this solver (Newton, thresholds, folds) then holds
