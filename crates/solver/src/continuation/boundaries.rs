@@ -18,7 +18,7 @@
 //!   eta_t)` at each `kappa2`: one Newton solve per sample, continued from the last. Whether
 //!   MC is also stable there is the verdict's business; this line only says where a label
 //!   must change between MD and MC.
-use crate::continuation::fold_curve::md_fold_curve;
+use crate::continuation::fold_curve::{md_fold_curve, FoldModel};
 use crate::continuation::window::PlaneAxis;
 use crate::continuation::window::Window;
 use crate::error::SolverError;
@@ -144,7 +144,13 @@ pub fn boundaries(w: &Window) -> Result<Vec<Boundary>, SolverError> {
         let fold = scope.spawn(|| {
             let x = PlaneAxis::new(ModelParam::EtaT, w.eta_t);
             let y = PlaneAxis::new(ModelParam::Kappa2, w.kappa2);
-            md_fold_curve(&w.base, w.n, MirrorAxis::X, (x, y), &starts)
+            md_fold_curve(
+                &w.base,
+                FoldModel { n: w.n, modes: 2 },
+                MirrorAxis::X,
+                (x, y),
+                &starts,
+            )
         });
         let mc = mc_line(w, th.eta_t);
         let join = |h: std::thread::ScopedJoinHandle<'_, Curve>| {

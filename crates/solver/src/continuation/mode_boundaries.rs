@@ -13,8 +13,8 @@
 //!   at which its drift along x, its minor axis (the speed and the odd modes), has a zero
 //!   eigenvalue: a Schur complement of the `lambda = 0` Jacobian, as for the disk.
 //! - **MD saddle-node (x axis)**: pseudo-arclength continuation in `(v, a_2..a_K, qe, qk)` of
-//!   `R = 0, det dR/d(v, a) = 0`, started from the fold of the MD branch at the middle
-//!   `kappa2` ([`crate::continuation::mode_branch`]).
+//!   `R = 0, det dR/d(v, a) = 0` ([`crate::continuation::fold_curve`], every `K`), started
+//!   from the first fold of the MD branch at the middle `kappa2`.
 //!
 //! - **MC onset, s = 0.01 (x axis)**: the moving state with `a2 = -0.01` solves the `K` steady
 //!   equations on the x axis for `(v, a_3..a_K, eta_t)` at each `kappa2`, from the window's top
@@ -26,9 +26,8 @@
 //!   by 45 degrees ([`SteadySolver::set_axis`]); the box's square symmetry tells it from the
 //!   axis ID (for `K = 2`, as in the 2-mode model; from `K = 4` also through mode 4, which the
 //!   turn flips).
-use crate::continuation::fold_curve::{fold_options, fold_walk};
-use crate::continuation::mode_branch::{md_fold_from, ModeLine};
-use crate::continuation::window::Window;
+use crate::continuation::fold_curve::{md_fold_curve, FoldModel};
+use crate::continuation::window::{PlaneAxis, Window};
 use crate::error::SolverError;
 use crate::model::classify::CLASS_THRESHOLD;
 use crate::model::param::ModelParam;
@@ -36,15 +35,9 @@ use crate::model::params::ModelParams;
 use crate::numerics::newton::{fd_jacobian, NewtonOptions};
 use crate::reduced::boundaries::Boundary;
 use crate::roots::linearisation::Linearization;
-use crate::roots::named_state::{id_state, md_state, rest_shape};
-use crate::roots::steady_solver::SteadySolver;
+use crate::roots::named_state::{id_state, rest_shape};
+use crate::roots::steady_solver::{MirrorAxis, SteadySolver};
 use crate::roots::thresholds::{disk_thresholds, drift_threshold};
-
-/// The determinant of a square matrix (nalgebra's LU).
-fn det(a: Vec<Vec<f64>>) -> f64 {
-    let n = a.len();
-    nalgebra::DMatrix::from_fn(n, n, |i, j| a[i][j]).determinant()
-}
 
 /// The ID onset of motion at each of `w.id_samples` values of `kappa2` from the window's
 /// bottom up to where ID meets the disk (the mode-2 onset `top`), from the first `kappa2`
@@ -96,73 +89,18 @@ fn id_line(w: &Window, top: f64, axis: f64) -> Result<Vec<(f64, f64)>, SolverErr
     Ok(pts)
 }
 
-/// The MD fold curve: continued both ways from the fold on the middle `kappa2`.
+/// The MD fold curve: continued both ways from the fold on the middle `kappa2`
+/// ([`md_fold_curve`], the one fold curve of every `K`); none where the middle line has no
+/// moving state at its start or no fold.
 fn fold_curve(w: &Window) -> Result<Vec<(f64, f64)>, SolverError> {
     let mid = 0.5 * (w.kappa2.0 + w.kappa2.1);
-    let line = ModeLine {
-        base: ModelParams {
-            eta_t: w.eta_t.0,
-            kappa2: mid,
-            ..w.base
-        },
+    let x = PlaneAxis::new(ModelParam::EtaT, w.eta_t);
+    let y = PlaneAxis::new(ModelParam::Kappa2, w.kappa2);
+    let model = FoldModel {
         n: w.n,
-        k_max: w.modes,
-        parameter: ModelParam::EtaT,
-        from: w.eta_t.0,
-        to: w.eta_t.1,
-        eta_k_exponent: 0.0,
+        modes: w.modes,
     };
-    // No moving state at the middle line's start (the window's left edge is at rest there:
-    // Newton from the 2-mode state finds the disk, or nothing): no fold curve in this window.
-    // A failure further along the branch is the command's error.
-    let mut start = SteadySolver::new(line.base, line.n)?;
-    let Ok(st) = md_state(&mut start, line.k_max) else {
-        return Ok(Vec::new());
-    };
-    let fold = match md_fold_from(&line, start, &st) {
-        Ok(Some(fold)) => fold,
-        // No fold on the middle line: no fold curve in this window.
-        Ok(None) => return Ok(Vec::new()),
-        Err(e) => return Err(e),
-    };
-    let mut solver = SteadySolver::new(w.base, w.n)?;
-    let k_max = w.modes;
-    let (e, k) = (w.eta_t, w.kappa2);
-    let control = |y: &[f64]| {
-        (
-            e.0 + y[k_max] * (e.1 - e.0),
-            k.0 + y[k_max + 1] * (k.1 - k.0),
-        )
-    };
-    let det_scale = std::cell::Cell::new(1.0);
-    let mut f = |y: &[f64]| -> Vec<f64> {
-        let (eta, kap) = control(y);
-        solver.set_control(eta, kap);
-        let state = &y[..k_max];
-        let mut r = solver.residual_x(state);
-        let j = fd_jacobian(&mut |x: &[f64]| solver.residual_x(x), state, 1e-6);
-        r.push(det(j) / det_scale.get());
-        r
-    };
-    let y0: Vec<f64> = std::iter::once(fold.v)
-        .chain(fold.a.iter().copied())
-        .chain([(fold.at - e.0) / (e.1 - e.0), (mid - k.0) / (k.1 - k.0)])
-        .collect();
-    let j0 = fd_jacobian(&mut |y: &[f64]| f(y), &y0, 1e-5);
-    // Scale det by its own gradient (its size varies with K by orders of magnitude).
-    let grad: f64 = j0[k_max].iter().map(|g| g * g).sum::<f64>().sqrt();
-    if grad > 0.0 {
-        det_scale.set(grad);
-    }
-    let halves = fold_walk(&mut f, &y0, &fold_options());
-    let mut out: Vec<(f64, f64)> = Vec::new();
-    if let Some(back) = halves.first() {
-        out.extend(back.iter().rev().map(|y| control(y)));
-    }
-    if let Some(fwd) = halves.get(1) {
-        out.extend(fwd.iter().skip(1).map(|y| control(y)));
-    }
-    Ok(out)
+    md_fold_curve(&w.base, model, MirrorAxis::X, (x, y), &[mid])
 }
 
 /// The state `(vx, vy, a_2..a_K, b_2..b_K)` on the x axis with `a2 = -CLASS_THRESHOLD` from

@@ -25,7 +25,7 @@
 //! state and no real eigenvalue through zero.
 use crate::continuation::arclength::{last_where, start, ArclengthOptions, Stepper};
 use crate::continuation::branch::Branch;
-use crate::continuation::fold_curve::{fold_curve_from, fold_of, md_branch};
+use crate::continuation::fold_curve::{fold_curve_from, fold_of, md_branch, FoldModel};
 use crate::continuation::level_set::{zero_set, LevelSetOptions};
 use crate::continuation::window::PlaneAxis;
 use crate::error::SolverError;
@@ -277,6 +277,11 @@ fn mc_curve(w: &PlaneWindow, (v, x, y): (f64, f64, f64)) -> Result<Vec<(f64, f64
 }
 
 /// The MD fold and the MC onset, both started on MD branches followed in `x`.
+/// The 2-mode model on an `n x n` grid (a plane's curves are the paper's model's).
+fn two(n: usize) -> FoldModel {
+    FoldModel { n, modes: 2 }
+}
+
 fn moving_curves(w: &PlaneWindow) -> Result<Vec<Boundary>, SolverError> {
     let mut fold = None;
     let mut mc = None;
@@ -284,7 +289,7 @@ fn moving_curves(w: &PlaneWindow) -> Result<Vec<Boundary>, SolverError> {
     // window), then the rest.
     for f in [0.5, 1.0, 0.25, 0.75, 0.0] {
         let at = w.y.value(f);
-        let Ok(branch) = md_branch(&w.base, w.n, MirrorAxis::X, w.x, w.y, at) else {
+        let Ok(branch) = md_branch(&w.base, two(w.n), MirrorAxis::X, w.x, w.y, at) else {
             continue;
         };
         fold = fold.or_else(|| fold_of(&branch, MirrorAxis::X, at));
@@ -297,7 +302,7 @@ fn moving_curves(w: &PlaneWindow) -> Result<Vec<Boundary>, SolverError> {
     if let Some(first) = fold {
         out.push(Boundary {
             name: "MD saddle-node (x axis)",
-            points: fold_curve_from(&w.base, w.n, MirrorAxis::X, (w.x, w.y), first)?,
+            points: fold_curve_from(&w.base, two(w.n), MirrorAxis::X, (w.x, w.y), first)?,
         });
     }
     if let Some(seed) = mc {

@@ -3,7 +3,7 @@
 //! two-parameter fold curve, and the branches' meeting points against the exact thresholds.
 use droplet_solver::continuation::arclength::ArclengthOptions;
 use droplet_solver::continuation::boundaries::mc_line;
-use droplet_solver::continuation::fold_curve::md_fold_curve;
+use droplet_solver::continuation::fold_curve::{md_fold_curve, FoldModel};
 use droplet_solver::continuation::window::PlaneAxis;
 use droplet_solver::continuation::window::Window;
 use droplet_solver::continuation::{
@@ -166,7 +166,14 @@ fn the_fold_curve_passes_through_the_one_parameter_folds() {
         PlaneAxis::new(ModelParam::Kappa2, (0.1, 0.17)),
     );
     let base = ModelParams::at(0.07, 0.1);
-    let curve = md_fold_curve(&base, n, MirrorAxis::X, window, &[0.13]).unwrap();
+    let curve = md_fold_curve(
+        &base,
+        FoldModel { n, modes: 2 },
+        MirrorAxis::X,
+        window,
+        &[0.13],
+    )
+    .unwrap();
     assert!(curve.len() > 10, "{curve:?}");
     for &(eta_t, kappa2) in [curve[curve.len() / 4], curve[curve.len() / 2]].iter() {
         let b = branch(Family::MdMinor, kappa2, 0.07, 0.1, n);

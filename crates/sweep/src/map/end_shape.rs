@@ -1,5 +1,5 @@
 //! The shape a run ended with, as the K-mode columns of the runs and points tables show it
-//! (`crate::tables::mode_columns`): its `K`, the mode-2 deformation `s` and the amplitudes of
+//! (`crate::tables::shape_columns`): its `K`, the mode-2 deformation `s` and the amplitudes of
 //! modes `3..K`.
 use crate::store::run_store::RunRecord;
 

@@ -28,7 +28,7 @@ pub fn series_frame(series: &[SeriesRow]) -> Result<DataFrame, SweepError> {
 }
 /// The `a3..aK, b3..bK` columns of a `K`-mode run's series (`higher`: per row, `a_3..a_K`
 /// then `b_3..b_K`).
-fn mode_columns(higher: &[Vec<f64>]) -> Vec<Column> {
+fn shape_columns(higher: &[Vec<f64>]) -> Vec<Column> {
     let k = higher.first().map_or(2, |h| h.len() / 2 + 2);
     let mut cols = Vec::new();
     for (name, offset) in [("a", 0), ("b", k - 2)] {
@@ -52,7 +52,7 @@ pub fn write(
 ) -> Result<(), SweepError> {
     let mut df = series_frame(series)?;
     if !higher.is_empty() {
-        df = df.hstack(&mode_columns(higher))?;
+        df = df.hstack(&shape_columns(higher))?;
     }
     let mut meta = metadata(None);
     meta.push((

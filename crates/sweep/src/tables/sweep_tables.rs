@@ -101,7 +101,7 @@ pub fn runs_frame(
     let mut cols = input_columns(&rows);
     cols.extend(outcome_columns(&rows));
     let records: Vec<&RunRecord> = rows.iter().map(|(_, r)| *r).collect();
-    cols.extend(crate::tables::mode_columns::mode_columns(&records));
+    cols.extend(crate::tables::shape_columns::run_columns(&records));
     Ok(DataFrame::new(rows.len(), cols)?)
 }
 
@@ -316,7 +316,7 @@ pub fn points_frame(map: &PhaseMap) -> Result<DataFrame, SweepError> {
                 .collect::<Vec<u32>>(),
         ));
     }
-    cols.extend(crate::tables::mode_columns::point_mode_columns(map));
+    cols.extend(crate::tables::shape_columns::point_columns(map));
     Ok(DataFrame::new(n, cols)?)
 }
 

@@ -1,4 +1,4 @@
-//! The columns a sweep of the `K`-mode model (spec `params.modes` > 2) adds to its tables.
+//! The shape-mode columns a sweep of the `K`-mode model (spec `params.modes` > 2) adds to its tables.
 //! `runs.parquet`: `modes`, `eta_k_exponent` (the friction law of modes `k >= 3`), the higher amplitudes at each run's end `a3 .. aK`, `b3 .. bK`
 //! (null beyond a run's own `K`) and the total deformation `sqrt(sum_k a_k^2 + b_k^2)`.
 //! `points.parquet`: `modes`, and for each initial condition the state its run settled on,
@@ -33,7 +33,7 @@ fn amplitude_columns(shapes: &[Option<EndShape>], k_top: usize, suffix: &str) ->
 }
 
 /// The runs table's columns, empty when every run is a 2-mode run.
-pub fn mode_columns(records: &[&RunRecord]) -> Vec<Column> {
+pub fn run_columns(records: &[&RunRecord]) -> Vec<Column> {
     let k_top = records.iter().map(|r| r.settings.modes).max().unwrap_or(2);
     if k_top <= 2 {
         return Vec::new();
@@ -61,7 +61,7 @@ pub fn mode_columns(records: &[&RunRecord]) -> Vec<Column> {
 
 /// The points table's columns, empty for a 2-mode map: `modes` (the largest `K` of the
 /// point's runs), and per initial condition the settled run's deformation and amplitudes.
-pub fn point_mode_columns(map: &PhaseMap) -> Vec<Column> {
+pub fn point_columns(map: &PhaseMap) -> Vec<Column> {
     fn shapes(p: &MapEntry) -> impl Iterator<Item = usize> + '_ {
         p.shapes.iter().flatten().map(|e| e.modes)
     }
