@@ -103,9 +103,9 @@ pub fn run(a: Args) -> Result<(), CliError> {
                     "eigenvalues": r.fig1c_verdict.eigenvalues,
                     "rotation": r.fig1c_verdict.rotation,
                     "fig1c_seconds": r.fig1c_seconds, "onset_eta_t": r.disk.eta_t,
-                    "fold_eta_t": r.fold.as_ref().map(|f| f.at),
+                    "fold_eta_t": r.fold.as_ref().map(|f| f.x),
                     "fold_v": r.fold.as_ref().map(|f| f.v),
-                    "band_width": r.fold.as_ref().map(|f| f.at - r.disk.eta_t),
+                    "band_width": r.fold.as_ref().map(|f| f.x - r.disk.eta_t),
                     "fold_seconds": r.fold_seconds,
                     "boundaries_seconds": r.boundaries_seconds,
                 })
@@ -129,7 +129,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
             "band"
         );
         for r in &done.rows {
-            let fold = r.fold.as_ref().map_or(f64::NAN, |f| f.at);
+            let fold = r.fold.as_ref().map_or(f64::NAN, |f| f.x);
             outln!(
                 "{:>3} {:>9.6} {:>7} {:>9.6} {:>9.6} {:>11.7} {:>11.7} {:>11.7}",
                 r.k_max,

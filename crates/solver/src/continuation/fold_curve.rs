@@ -5,9 +5,9 @@
 //! fold located on a one-parameter MD branch followed in `x` at a fixed `y`. It ends where it
 //! leaves the window or where `v -> 0` (the fold reaches the onset of motion: there the
 //! pitchfork changes from sub- to supercritical).
-use crate::continuation::arclength::{start, ArclengthOptions, Stepper};
+use crate::continuation::arclength::{fold_point, start, ArclengthOptions, CurvePoint, Stepper};
 use crate::continuation::branch::{follow, Branch, Line};
-use crate::continuation::problem::Family;
+use crate::continuation::problem::{Family, Problem};
 use crate::continuation::window::PlaneAxis;
 use crate::error::SolverError;
 use crate::model::params::ModelParams;
@@ -106,9 +106,62 @@ pub fn md_branch(
     follow(&line, Family::MdMinor, mirror)
 }
 
-/// A fold: the speed along the mirror line, the shape `a_2..a_K` in its frame, and the two
-/// parameters there.
-pub type Fold = (f64, Vec<f64>, f64, f64);
+/// An MD fold in a plane of two parameters.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct Fold {
+    /// The speed along the mirror line.
+    pub v: f64,
+    /// The shape `a_2..a_K` in the mirror line's frame.
+    pub a: Vec<f64>,
+    /// The two parameters there.
+    pub x: f64,
+    pub y: f64,
+}
+
+/// The first fold of the MD branch on `mirror` along `x` with `balances` (their parameters
+/// those of the line `y = at`): from its state at `x`'s
+/// start ([`Problem::root_at`]) towards `x`'s end by pseudo-arclength, located where the
+/// tangent's parameter component changes sign ([`fold_point`]), before the branch leaves the
+/// line or meets rest (`v` below 1e-3). No verdicts on the way: at `K > 2` a state's `2K x 2K`
+/// eigenproblem costs more than its continuation step. `None` where the line's start has no
+/// moving state or the branch no fold.
+pub fn walk_to_fold(balances: Balances, mirror: MirrorAxis, x: PlaneAxis, at: f64) -> Option<Fold> {
+    let (from, to) = x.range;
+    let mut prob = Problem::new(balances, Family::MdMinor, mirror, x.param, from, to);
+    let Some(y0) = prob.root_at(from) else {
+        return None;
+    };
+    let opts = ArclengthOptions {
+        ds_max: 0.02,
+        ..ArclengthOptions::default()
+    };
+    let mut f = |y: &[f64]| prob.residual(y);
+    let mut prev = vec![0.0; y0.len()];
+    *prev.last_mut().expect("q") = 1.0;
+    let mut p = start(&mut f, &y0, &prev, &opts)?;
+    let q_of = |p: &CurvePoint| *p.tangent.last().expect("q");
+    let mut stepper = Stepper::new(opts.clone());
+    for _ in 0..2000 {
+        let step = stepper.advance(&mut f, &p)?;
+        let yv = &step.point.y;
+        let q = *yv.last().expect("q");
+        if !(0.0..=1.0).contains(&q) || yv[0] < 1e-3 {
+            return None;
+        }
+        if q_of(&step.point) * q_of(&p) < 0.0 {
+            let best = fold_point(&mut f, &p, &step, &opts).y;
+            let k = best.len() - 1;
+            return Some(Fold {
+                v: best[0],
+                a: best[1..k].to_vec(),
+                x: x.value(best[k]),
+                y: at,
+            });
+        }
+        p = step.point;
+    }
+    None
+}
 
 /// The first fold of `branch` (followed at `y = at`).
 pub fn fold_of(branch: &Branch, mirror: MirrorAxis, at: f64) -> Option<Fold> {
@@ -123,7 +176,12 @@ pub fn fold_of(branch: &Branch, mirror: MirrorAxis, at: f64) -> Option<Fold> {
             (back[0], back[2..k + 1].to_vec())
         }
     };
-    Some((v, a, e.point.at, at))
+    Some(Fold {
+        v,
+        a,
+        x: e.point.at,
+        y: at,
+    })
 }
 
 /// The MD fold on the first of the lines `y = starts[i]` (`x` across the window) that has
@@ -136,6 +194,11 @@ fn first_fold(
     starts: &[f64],
 ) -> Option<Fold> {
     starts.iter().find_map(|&at| {
+        // K = 2: the branch's SN event (its verdicts cost little).
+        if model.modes > 2 {
+            let balances = Balances::new(y.param.with(base, at), model.n, model.modes, 0.0).ok()?;
+            return walk_to_fold(balances, mirror, x, at);
+        }
         let branch = md_branch(base, model, mirror, x, y, at).ok()?;
         fold_of(&branch, mirror, at)
     })
@@ -215,7 +278,7 @@ pub fn fold_curve_from(
     model: FoldModel,
     mirror: MirrorAxis,
     (x, y): (PlaneAxis, PlaneAxis),
-    (v, a, at_x, at_y): Fold,
+    fold: Fold,
 ) -> Result<Vec<(f64, f64)>, SolverError> {
     let mut sys = FoldSystem {
         balances: Balances::new(*base, model.n, model.modes, 0.0)?,
@@ -224,9 +287,9 @@ pub fn fold_curve_from(
         y,
         det_scale: 1.0,
     };
-    let y0: Vec<f64> = std::iter::once(v)
-        .chain(a)
-        .chain([x.q(at_x), y.q(at_y)])
+    let y0: Vec<f64> = std::iter::once(fold.v)
+        .chain(fold.a)
+        .chain([x.q(fold.x), y.q(fold.y)])
         .collect();
     if !sys.place(&y0) {
         return Ok(Vec::new());
@@ -246,4 +309,71 @@ pub fn fold_curve_from(
         out.extend(fwd.iter().skip(1).map(to_plane));
     }
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::param::ModelParam;
+
+    /// The MD branch along eta_t at kappa2 = 0.13 from 0.077, by [`walk_to_fold`] and by the
+    /// one continuation ([`follow`]) with modes `2..=k_max`.
+    fn both(k_max: usize, n: usize) -> (Fold, Branch) {
+        let base = ModelParams::at(0.077, 0.13);
+        let x = PlaneAxis::new(ModelParam::EtaT, (0.077, 0.1));
+        let balances = Balances::new(base, n, k_max, 0.0).unwrap();
+        let fold = walk_to_fold(balances, MirrorAxis::X, x, 0.13).expect("a fold");
+        let branch = follow(
+            &Line {
+                base,
+                n,
+                parameter: ModelParam::EtaT,
+                from: 0.077,
+                to: 0.1,
+                modes: k_max,
+                eta_k_exponent: 0.0,
+                max_points: 400,
+                opts: ArclengthOptions::default(),
+            },
+            Family::MdMinor,
+            MirrorAxis::X,
+        )
+        .unwrap();
+        (fold, branch)
+    }
+
+    #[test]
+    fn the_continuation_folds_where_the_fold_search_does_and_loses_stability_there() {
+        // Two computations of one fold: the walk (its own arclength walk from the line's
+        // start, the tangent's q component bracketed) and the continuation's SN event
+        // (located on its own branch by the Illinois method), with modes 2..2 and 2..3 at
+        // N = 96 (the 2-mode branch folds at 0.0792728 at N = 192, docs/continuation.md).
+        for k_max in [2, 3] {
+            let (fold, branch) = both(k_max, 96);
+            // The walk returns the first fold from the line's start, where the continuation
+            // starts too (its backward trace leaves the line at once).
+            let sns: Vec<_> = branch.events.iter().filter(|e| e.kind == "SN").collect();
+            let sn = &sns.first().expect("a fold").point;
+            assert!((fold.x - sn.at).abs() < 1e-9, "{fold:?} vs {}", sn.at);
+            assert!((fold.v - sn.v).abs() < 1e-6, "{fold:?} vs {:?}", sn.z);
+            for (a, b) in fold.a.iter().zip(sn.a_k()) {
+                assert!((a - b).abs() < 1e-6, "{fold:?} vs {:?}", sn.z);
+            }
+            // Every fold is a change of stability and every change a fold (no other event on
+            // this line): one real eigenvalue passes through zero at each, the rotation mode
+            // aside.
+            assert_eq!(sns.len(), branch.events.len(), "{:?}", branch.events);
+            let stable: Vec<bool> = branch.points.iter().map(|p| p.verdict.stable()).collect();
+            let changes = stable.windows(2).filter(|w| w[0] != w[1]).count();
+            assert_eq!(changes, sns.len(), "K = {k_max}: {stable:?}");
+            let near_zero = sn
+                .verdict
+                .eigenvalues
+                .iter()
+                .filter(|l| l[1].abs() < 1e-9 && Some(l[0]) != sn.verdict.rotation)
+                .map(|l| l[0].abs())
+                .fold(f64::INFINITY, f64::min);
+            assert!(near_zero < 1e-4, "K = {k_max}: {:?}", sn.verdict);
+        }
+    }
 }

@@ -6,8 +6,8 @@
 //! the PDE's own phase boundaries: in a window of the paper's plane ([`window`], [`boundaries`],
 //! at any number of shape modes) and in a plane of any
 //! two model parameters ([`plane`]), traced as zero sets ([`level_set`]) or continued
-//! ([`fold_curve`]); the MD fold of the `K`-mode model found on its own ([`mode_branch`]) and
-//! the `K`-mode boundaries of a window ([`mode_boundaries`]). Families and branches hold the
+//! ([`fold_curve`], every `K`), the onset lines sampled in `kappa2` ([`onset_lines`]). Families
+//! and branches hold the
 //! shape modes `2..K` ([`problem`], [`branch`]): `droplet continue --modes K` follows every
 //! branch, on either mirror line, in any model parameter.
 //!
@@ -19,8 +19,7 @@ pub mod branch;
 pub mod events;
 pub mod fold_curve;
 pub mod level_set;
-pub mod mode_boundaries;
-pub mod mode_branch;
+pub mod onset_lines;
 pub mod plane;
 pub mod polyline;
 pub mod problem;

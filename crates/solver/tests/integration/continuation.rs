@@ -2,14 +2,15 @@
 //! and its response to small perturbations, the one-parameter fold against the
 //! two-parameter fold curve, and the branches' meeting points against the exact thresholds.
 use droplet_solver::continuation::arclength::ArclengthOptions;
-use droplet_solver::continuation::boundaries::mc_line;
 use droplet_solver::continuation::fold_curve::{md_fold_curve, FoldModel};
+use droplet_solver::continuation::onset_lines::mc_line;
 use droplet_solver::continuation::window::PlaneAxis;
 use droplet_solver::continuation::window::Window;
 use droplet_solver::continuation::{
     branch::follow, branch::Branch, branch::BranchPoint, branch::Line, problem::Family,
 };
 use droplet_solver::model::param::ModelParam;
+use droplet_solver::roots::balances::Balances;
 use droplet_solver::roots::steady_solver::{MirrorAxis, TwoModeSolver};
 use droplet_solver::roots::thresholds::{ic_thresholds, id_onset};
 use droplet_solver::stepping::{comoving_etd::TwoModeEtd, Scheme, Stepper};
@@ -201,7 +202,8 @@ fn the_mc_onset_line_is_where_the_moving_branch_has_s_at_the_threshold() {
         kappa2: (0.16, 0.17),
         id_samples: 3,
     };
-    let line = mc_line(&w, th.eta_t).unwrap();
+    let two = |w: &Window| Balances::new(w.base, w.n, 2, 0.0).unwrap();
+    let line = mc_line(two(&w), &w, th.eta_t).unwrap();
     assert_eq!(line.len(), 3, "{line:?}");
     let (eta_mc, k) = line[2];
     assert!((k - 0.16).abs() < 1e-12);
@@ -212,7 +214,7 @@ fn the_mc_onset_line_is_where_the_moving_branch_has_s_at_the_threshold() {
         id_samples: 5,
         ..w.clone()
     };
-    let stable_part = mc_line(&low, th.eta_t).unwrap();
+    let stable_part = mc_line(two(&low), &low, th.eta_t).unwrap();
     assert!(
         stable_part.len() == 2 && stable_part[1].1 == 0.16,
         "{stable_part:?}"

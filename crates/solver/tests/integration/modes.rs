@@ -1,5 +1,7 @@
 //! The model with shape modes `2..K`: where its runs end either side of its own MD fold.
-use droplet_solver::continuation::mode_branch::{md_fold, ModeLine};
+use droplet_solver::continuation::fold_curve::walk_to_fold;
+use droplet_solver::continuation::window::PlaneAxis;
+use droplet_solver::roots::{balances::Balances, steady_solver::MirrorAxis};
 
 use droplet_solver::contract::{outcome::RunStatus, settings::SolverSettings};
 use droplet_solver::model::{
@@ -10,18 +12,11 @@ use droplet_solver::stepping::SchemeKind;
 
 /// The `eta_t` of the MD branch's fold at `kappa2 = 0.13` with modes `2..=k_max` at N = 96.
 fn fold(k_max: usize) -> f64 {
-    md_fold(&ModeLine {
-        base: ModelParams::at(0.07, 0.13),
-        n: 96,
-        k_max,
-        parameter: ModelParam::EtaT,
-        from: 0.07,
-        to: 0.1,
-        eta_k_exponent: 0.0,
-    })
-    .unwrap()
-    .expect("the MD branch folds")
-    .at
+    let balances = Balances::new(ModelParams::at(0.07, 0.13), 96, k_max, 0.0).unwrap();
+    let line = PlaneAxis::new(ModelParam::EtaT, (0.07, 0.1));
+    walk_to_fold(balances, MirrorAxis::X, line, 0.13)
+        .expect("the MD branch folds")
+        .x
 }
 
 #[test]

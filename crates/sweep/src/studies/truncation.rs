@@ -8,8 +8,9 @@
 //! - the MD branch along `eta_t` at `kappa2` = 0.13 and its fold, the right edge of the IC/MD
 //!   bistable band (its left edge is the onset of motion);
 //! - the phase boundaries of the Fig. 2a window for the states on the x axis
-//!   (`droplet_solver::continuation::mode_boundaries`: the onsets, ID's onset of motion, the MD
-//!   fold curve, the MC onset), drawn for every `K` over each other;
+//!   (`droplet_solver::continuation::boundaries::general_boundaries`: the onsets, ID's onset of
+//!   motion, the MD fold curve, the MC onset, from the general solver at every `K`), drawn for
+//!   every `K` over each other;
 //!
 //! each with the time it took, as `truncation.parquet`, a picture of the Fig. 1c droplet's
 //! outline for each `K`, and the rows returned for the CLI.
@@ -17,16 +18,19 @@ use crate::error::SweepError;
 use crate::pictures::map_figure::{boundary_picture, outline_picture, Curve, CURVE_COLOURS};
 use crate::tables::boundaries::NamedCurve;
 use crate::tables::truncation::TruncationRow;
-use droplet_solver::continuation::mode_boundaries::mode_boundaries;
-use droplet_solver::continuation::mode_branch::{md_fold, ModeLine};
+use droplet_solver::continuation::boundaries::general_boundaries;
+use droplet_solver::continuation::fold_curve::walk_to_fold;
+use droplet_solver::continuation::window::PlaneAxis;
 use droplet_solver::continuation::window::Window;
 use droplet_solver::contract::settings::ModelKind;
 use droplet_solver::model::modes::Modes;
 use droplet_solver::model::param::ModelParam;
 use droplet_solver::model::params::ModelParams;
 use droplet_solver::model::shape::ShapeParams;
+use droplet_solver::roots::balances::Balances;
 use droplet_solver::roots::linearisation::Linearization;
 use droplet_solver::roots::named_state::md_state;
+use droplet_solver::roots::steady_solver::MirrorAxis;
 use droplet_solver::roots::steady_solver::SteadySolver;
 use droplet_solver::roots::thresholds::disk_thresholds;
 use std::path::{Path, PathBuf};
@@ -76,15 +80,13 @@ fn row(
     };
     let mut disk_solver = SteadySolver::new(line_base, n)?;
     let disk = disk_thresholds(&mut disk_solver, k_max);
-    let fold = md_fold(&ModeLine {
-        base: line_base,
-        n,
-        k_max,
-        parameter: ModelParam::EtaT,
-        from,
-        to,
-        eta_k_exponent: 0.0,
-    })?;
+    // The general balances at every K, K = 2 included (one method for every model).
+    let balances = Balances::General {
+        solver: SteadySolver::new(line_base, n)?,
+        modes: k_max,
+    };
+    let line = PlaneAxis::new(ModelParam::EtaT, (from, to));
+    let fold = walk_to_fold(balances, MirrorAxis::X, line, kappa2);
     let fold_seconds = started.elapsed().as_secs_f64();
     let started = Instant::now();
     // The general computation at every K, K = 2 included, so that the models are compared
@@ -101,7 +103,7 @@ fn row(
         kappa2: window_kappa2,
         id_samples: 30,
     };
-    let curves = mode_boundaries(&window)?
+    let curves = general_boundaries(&window)?
         .into_iter()
         .map(|b| NamedCurve {
             model: ModelKind::Pde,

@@ -7,7 +7,7 @@
 //! `truncation_boundaries.parquet`, curves named `K = k: <boundary>`).
 use crate::error::SweepError;
 use crate::tables::sweep_tables::{metadata, write_parquet};
-use droplet_solver::continuation::mode_branch::ModeFold;
+use droplet_solver::continuation::fold_curve::Fold;
 use droplet_solver::roots::steady_solver::AxisState;
 use droplet_solver::roots::thresholds::IcThresholds;
 use droplet_solver::roots::verdict::Verdict;
@@ -29,7 +29,7 @@ pub struct TruncationRow {
     /// The resting disk's onsets at the band line's `kappa2`.
     pub disk: IcThresholds,
     /// The MD fold on the band line, if found.
-    pub fold: Option<ModeFold>,
+    pub fold: Option<Fold>,
     pub fold_seconds: f64,
     /// The phase boundaries in the Fig. 2a window (`truncation_boundaries.parquet`).
     pub boundaries_seconds: f64,
@@ -70,11 +70,11 @@ pub fn write(dir: &Path, rows: &[TruncationRow], n: usize) -> Result<PathBuf, Sw
     }
     columns.extend([
         Column::new("onset_eta_t".into(), f(&|r| r.disk.eta_t)),
-        Column::new("fold_eta_t".into(), opt(&|r| r.fold.as_ref().map(|x| x.at))),
+        Column::new("fold_eta_t".into(), opt(&|r| r.fold.as_ref().map(|x| x.x))),
         Column::new("fold_v".into(), opt(&|r| r.fold.as_ref().map(|x| x.v))),
         Column::new(
             "band_width".into(),
-            opt(&|r| r.fold.as_ref().map(|x| x.at - r.disk.eta_t)),
+            opt(&|r| r.fold.as_ref().map(|x| x.x - r.disk.eta_t)),
         ),
         Column::new("fig1c_seconds".into(), f(&|r| r.fig1c_seconds)),
         Column::new("fold_seconds".into(), f(&|r| r.fold_seconds)),
