@@ -128,9 +128,7 @@ pub struct Fold {
 pub fn walk_to_fold(balances: Balances, mirror: MirrorAxis, x: PlaneAxis, at: f64) -> Option<Fold> {
     let (from, to) = x.range;
     let mut prob = Problem::new(balances, Family::MdMinor, mirror, x.param, from, to);
-    let Some(y0) = prob.root_at(from) else {
-        return None;
-    };
+    let y0 = prob.root_at(from)?;
     let opts = ArclengthOptions {
         ds_max: 0.02,
         ..ArclengthOptions::default()
