@@ -130,9 +130,26 @@ pub fn simulate(
         a2: y[2],
         b2: y[3],
     };
+    Ok(outcome(
+        status,
+        state,
+        (steps, dt),
+        t_steady,
+        started.elapsed().as_secs_f64(),
+    ))
+}
+
+/// The outcome of a reduced-model run that ended with `status` at `state` after `steps` steps
+/// of `dt`, its wall time `wall_s` (all of it stepping).
+fn outcome(
+    status: RunStatus,
+    state: DropletState,
+    (steps, dt): (u64, f64),
+    t_steady: Option<f64>,
+    wall_s: f64,
+) -> RunOutcome {
     let (v, s) = (state.speed(), state.deformation());
-    let wall_s = started.elapsed().as_secs_f64();
-    Ok(RunOutcome {
+    RunOutcome {
         status,
         class: (status == RunStatus::Steady).then(|| StateClass::of(v, s)),
         state,
@@ -161,7 +178,7 @@ pub fn simulate(
             stepping_s: wall_s,
             ..Default::default()
         },
-    })
+    }
 }
 
 #[cfg(test)]

@@ -265,30 +265,9 @@ fn by_point(rows: Vec<Row>) -> Result<BTreeMap<u32, Vec<Row>>, SweepError> {
 
 pub use crate::map::sample::Sample;
 
-/// Audits the map in `dir` (its `runs.parquet` and `points.parquet`), with the steady
-/// equations and eigenvalues of its model: the paper's 2-mode model, or the general one with
-/// the map's shape modes `2..K` (`params.modes`). Completeness and labels are checked at every
-/// point; the stable states at every point, or with `sample` at that sample of points (the
-/// full audit of a large map takes minutes; a sample shows a stale or edited map in seconds).
-pub fn audit(dir: &Path, sample: Option<Sample>) -> Result<Audit, SweepError> {
-    let runs_path = dir.join(tables::RUNS);
-    let runs = by_point(tables::runs(&runs_path)?)?;
-    let points = tables::points(&dir.join(tables::POINTS))?;
-    if points.is_empty() || runs.is_empty() {
-        return Err(SweepError::Invalid(format!(
-            "{}: the map has {} points and {} runs; there is nothing to certify",
-            dir.display(),
-            points.len(),
-            runs.len()
-        )));
-    }
-    let ics: Vec<String> = tables::stored_spec(&runs_path)?
-        .initial_conditions
-        .iter()
-        .map(|ic| ic.name.clone())
-        .collect();
-    let complete = completeness::completeness(&points, &runs, &ics);
-    let labelled: BTreeMap<u32, String> = points.into_iter().map(|p| (p.point, p.label)).collect();
+/// The one model of a map's runs, `(K, friction exponent)`; an error naming the map when its
+/// runs hold more than one.
+fn one_model(dir: &Path, runs: &BTreeMap<u32, Vec<Row>>) -> Result<(usize, f64), SweepError> {
     let modes = runs.values().flatten().map(|r| r.modes).max().unwrap_or(2);
     let law = runs
         .values()
@@ -308,25 +287,16 @@ pub fn audit(dir: &Path, sample: Option<Sample>) -> Result<Audit, SweepError> {
             r.eta_k_exponent
         )));
     }
-    let modes = (modes, law);
-    let mismatched: Vec<Contradiction> = runs
-        .iter()
-        .filter_map(|(p, rows)| {
-            let rows: Vec<&Row> = rows.iter().collect();
-            completeness::label_mismatch(&rows, labelled.get(p)?)
-        })
-        .collect();
-    let drawn = sample.map(|s| s.draw(runs.keys().copied().filter(|p| labelled.contains_key(p))));
-    let groups: Vec<(&String, Vec<&Row>)> = runs
-        .iter()
-        .filter(|(p, _)| drawn.as_ref().is_none_or(|d| d.contains(p)))
-        .filter_map(|(p, rows)| Some((labelled.get(p)?, rows.iter().collect())))
-        .collect();
-    if let Some(first) = groups.first().and_then(|(_, r)| r.first()) {
-        // Fails here, not in a worker, if the solver cannot be made.
-        point_model::for_map(modes, first.params, first.n)?;
-    }
-    let results: Vec<(Vec<Contradiction>, usize)> = groups
+    Ok((modes, law))
+}
+
+/// Every point's states checked against its label, the points spread over the workers: the
+/// contradictions and the number of states checked per point.
+fn check_points(
+    groups: &[(&String, Vec<&Row>)],
+    modes: (usize, f64),
+) -> Vec<(Vec<Contradiction>, usize)> {
+    groups
         .par_iter()
         .map_init(
             || None::<Balances>,
@@ -357,7 +327,52 @@ pub fn audit(dir: &Path, sample: Option<Sample>) -> Result<Audit, SweepError> {
                 (c, states)
             },
         )
+        .collect()
+}
+
+/// Audits the map in `dir` (its `runs.parquet` and `points.parquet`), with the steady
+/// equations and eigenvalues of its model: the paper's 2-mode model, or the general one with
+/// the map's shape modes `2..K` (`params.modes`). Completeness and labels are checked at every
+/// point; the stable states at every point, or with `sample` at that sample of points (the
+/// full audit of a large map takes minutes; a sample shows a stale or edited map in seconds).
+pub fn audit(dir: &Path, sample: Option<Sample>) -> Result<Audit, SweepError> {
+    let runs_path = dir.join(tables::RUNS);
+    let runs = by_point(tables::runs(&runs_path)?)?;
+    let points = tables::points(&dir.join(tables::POINTS))?;
+    if points.is_empty() || runs.is_empty() {
+        return Err(SweepError::Invalid(format!(
+            "{}: the map has {} points and {} runs; there is nothing to certify",
+            dir.display(),
+            points.len(),
+            runs.len()
+        )));
+    }
+    let ics: Vec<String> = tables::stored_spec(&runs_path)?
+        .initial_conditions
+        .iter()
+        .map(|ic| ic.name.clone())
         .collect();
+    let complete = completeness::completeness(&points, &runs, &ics);
+    let labelled: BTreeMap<u32, String> = points.into_iter().map(|p| (p.point, p.label)).collect();
+    let modes = one_model(dir, &runs)?;
+    let mismatched: Vec<Contradiction> = runs
+        .iter()
+        .filter_map(|(p, rows)| {
+            let rows: Vec<&Row> = rows.iter().collect();
+            completeness::label_mismatch(&rows, labelled.get(p)?)
+        })
+        .collect();
+    let drawn = sample.map(|s| s.draw(runs.keys().copied().filter(|p| labelled.contains_key(p))));
+    let groups: Vec<(&String, Vec<&Row>)> = runs
+        .iter()
+        .filter(|(p, _)| drawn.as_ref().is_none_or(|d| d.contains(p)))
+        .filter_map(|(p, rows)| Some((labelled.get(p)?, rows.iter().collect())))
+        .collect();
+    if let Some(first) = groups.first().and_then(|(_, r)| r.first()) {
+        // Fails here, not in a worker, if the solver cannot be made.
+        point_model::for_map(modes, first.params, first.n)?;
+    }
+    let results = check_points(&groups, modes);
     let states_checked = results.iter().map(|(_, s)| s).sum();
     let states_points = groups.len();
     let contradictions: Vec<Contradiction> = complete

@@ -299,30 +299,10 @@ impl BoundaryStudy {
             )?
         };
         files.push(path);
-        let (mut missing, mut from_tables) = (None, false);
-        if self.sweep_spec.is_some() {
-            use crate::pictures::sweep_pictures::{plot, plot_in, plot_tables};
-            let map = match held.as_ref().map(plot_in) {
-                Some(Err(SweepError::StaleRuns {
-                    missing: m, points, ..
-                })) => {
-                    from_tables = true;
-                    crate::pictures::sweep_pictures::Drawn {
-                        missing: m,
-                        points,
-                        ..plot_tables(&self.out)?
-                    }
-                }
-                Some(drawn) => drawn?,
-                None => plot(&self.out)?,
-            };
-            missing = Some((map.missing, map.points));
-            for f in map.files {
-                if !files.contains(&f) {
-                    files.push(f);
-                }
-            }
-        }
+        let (missing, from_tables) = match self.sweep_spec {
+            Some(_) => self.draw_over_map(held.as_ref(), &mut files)?,
+            None => (None, false),
+        };
         Ok(BoundariesWritten {
             curves,
             files,
@@ -330,5 +310,37 @@ impl BoundaryStudy {
             missing,
             from_tables,
         })
+    }
+
+    /// Redraws the sweep's map in `out` with the curves just written (from the tables when
+    /// the store's runs are stale), adding its files to `files`: the points the map lacks and
+    /// whether it came from the tables.
+    fn draw_over_map(
+        &self,
+        held: Option<&crate::store::run_store::Store>,
+        files: &mut Vec<std::path::PathBuf>,
+    ) -> Result<(Option<(usize, usize)>, bool), SweepError> {
+        let mut from_tables = false;
+        use crate::pictures::sweep_pictures::{plot, plot_in, plot_tables};
+        let map = match held.map(plot_in) {
+            Some(Err(SweepError::StaleRuns {
+                missing: m, points, ..
+            })) => {
+                from_tables = true;
+                crate::pictures::sweep_pictures::Drawn {
+                    missing: m,
+                    points,
+                    ..plot_tables(&self.out)?
+                }
+            }
+            Some(drawn) => drawn?,
+            None => plot(&self.out)?,
+        };
+        for f in map.files {
+            if !files.contains(&f) {
+                files.push(f);
+            }
+        }
+        Ok((Some((map.missing, map.points)), from_tables))
     }
 }
