@@ -48,7 +48,7 @@ pub struct BoundaryStudy {
     pub across: Option<Across>,
     /// Shape modes `2..=modes` (the paper's general model; 2 is the paper's). With more, the
     /// full model's curves are those of the states on the x axis
-    /// (`droplet_solver::continuation::mode_boundaries`), in the paper's plane only.
+    /// (`droplet_solver::continuation::boundaries`), in the paper's plane only.
     pub modes: usize,
     /// For a sweep in a plane of two model parameters that crossings do not give: the window
     /// its curves are continued in ([`crate::studies::pair`]; the reduced model's curves are
