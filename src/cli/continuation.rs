@@ -17,7 +17,8 @@ use std::path::PathBuf;
 /// nonlinear eigenproblem, 4 x 4 with the paper's two modes; the near-neutral rotation mode,
 /// a box effect, is reported apart and left out of the verdict), for the model with shape
 /// modes 2..K (--modes). Pitchfork (P), saddle-node (SN) and Hopf (H) points are
-/// located on the branch to ~1e-10 in the parameter. Writes DIR/<stem>.parquet (every state),
+/// located on the branch to ~1e-10 in the parameter (R: where the rotation mode's rate passes
+/// 0.05 and the verdict counts it, no eigenvalue crossing zero). Writes DIR/<stem>.parquet (every state),
 /// DIR/<stem>_events.parquet and DIR/<stem>.png/.svg (solid stable, dashed unstable), with
 /// <stem> = continuation_<fixed parameter>_<value> on the paper's lines,
 /// continuation_<varied>_eta_t_<E>_kappa2_<K>[_<other set parameter>_<value>...] on the others

@@ -141,12 +141,10 @@ pub fn check_grid(n: usize) -> Result<(), CliError> {
 }
 
 /// Parses `--axis`: the mirror line a state lies on.
-pub fn mirror_axis(
-    text: &str,
-) -> Result<droplet_solver::roots::steady_solver::MirrorAxis, CliError> {
+pub fn mirror_axis(text: &str) -> Result<droplet_solver::model::mirror::MirrorLine, CliError> {
     match text {
-        "x" => Ok(droplet_solver::roots::steady_solver::MirrorAxis::X),
-        "diagonal" => Ok(droplet_solver::roots::steady_solver::MirrorAxis::Diagonal),
+        "x" => Ok(droplet_solver::model::mirror::MirrorLine::X),
+        "diagonal" => Ok(droplet_solver::model::mirror::MirrorLine::Diagonal),
         other => Err(CliError::usage(format!(
             "invalid --axis `{other}`: x or diagonal"
         ))),

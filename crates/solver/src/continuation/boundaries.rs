@@ -19,10 +19,11 @@ use crate::continuation::fold_curve::{md_fold_curve, FoldModel};
 use crate::continuation::onset_lines::{id_line, mc_line};
 use crate::continuation::window::{PlaneAxis, Window};
 use crate::error::SolverError;
+use crate::model::mirror::MirrorLine;
 use crate::model::param::ModelParam;
 use crate::reduced::boundaries::Boundary;
 use crate::roots::balances::Balances;
-use crate::roots::steady_solver::{MirrorAxis, SteadySolver};
+use crate::roots::steady_solver::SteadySolver;
 use crate::roots::thresholds::{disk_thresholds, ic_thresholds, IcThresholds};
 
 /// Makes the balances of the window's model, once per curve (each curve on its own thread).
@@ -107,8 +108,8 @@ fn boundaries_with(w: &Window, make: Make) -> Result<Vec<Boundary>, SolverError>
     // the time of its slowest curve, not of all four).
     type Curve = Result<Vec<(f64, f64)>, SolverError>;
     let (diag, axis, fold, mc): (Curve, Curve, Curve, Curve) = std::thread::scope(|scope| {
-        let diag = scope.spawn(|| id_line(make()?, w, MirrorAxis::Diagonal, low.kappa2_b2));
-        let axis = scope.spawn(|| id_line(make()?, w, MirrorAxis::X, low.kappa2_a2));
+        let diag = scope.spawn(|| id_line(make()?, w, MirrorLine::Diagonal, low.kappa2_b2));
+        let axis = scope.spawn(|| id_line(make()?, w, MirrorLine::X, low.kappa2_a2));
         let fold = scope.spawn(|| {
             let x = PlaneAxis::new(ModelParam::EtaT, w.eta_t);
             let y = PlaneAxis::new(ModelParam::Kappa2, w.kappa2);
@@ -116,7 +117,7 @@ fn boundaries_with(w: &Window, make: Make) -> Result<Vec<Boundary>, SolverError>
                 n: w.n,
                 modes: w.modes,
             };
-            md_fold_curve(&w.base, model, MirrorAxis::X, (x, y), &starts)
+            md_fold_curve(&w.base, model, MirrorLine::X, (x, y), &starts)
         });
         let mc = mc_line(make()?, w, high.eta_t);
         let join = |h: std::thread::ScopedJoinHandle<'_, Curve>| {
@@ -163,8 +164,8 @@ mod tests {
         };
         let diagonal = std::f64::consts::FRAC_PI_4;
         let general = || Balances::new(w.base, w.n, 4, 0.0).unwrap();
-        let line = id_line(general(), &w, MirrorAxis::Diagonal, 0.118).unwrap();
-        let axis = id_line(general(), &w, MirrorAxis::X, 0.118).unwrap();
+        let line = id_line(general(), &w, MirrorLine::Diagonal, 0.118).unwrap();
+        let axis = id_line(general(), &w, MirrorLine::X, 0.118).unwrap();
         assert_eq!((line[0].1, axis[0].1), (k, k));
         let onset = line[0].0;
         let mut solver = SteadySolver::new(w.base, w.n).unwrap();

@@ -15,10 +15,10 @@ use crate::continuation::arclength::{start, ArclengthOptions, CurvePoint, Steppe
 use crate::continuation::problem::{Family, Problem};
 use crate::error::SolverError;
 use crate::model::classify::StateClass;
+use crate::model::mirror::MirrorLine;
 use crate::model::param::ModelParam;
 use crate::model::params::ModelParams;
 use crate::roots::balances::Balances;
-use crate::roots::steady_solver::MirrorAxis;
 use crate::roots::verdict::Verdict;
 use serde::Serialize;
 
@@ -76,7 +76,8 @@ impl BranchPoint {
 /// A bifurcation point on a branch.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct BranchEvent {
-    /// `P`, `SN` or `H`.
+    /// `P`, `SN` or `H`; `R` where the count of growing modes changes because the rotation
+    /// mode passes the rate the verdict sets aside ([`crate::roots::verdict::ROTATION_MAX`]).
     pub kind: &'static str,
     /// What happens there, e.g. "fold", "real eigenvalue crosses 0", "meets IC".
     pub what: String,
@@ -105,7 +106,7 @@ pub const PARAMETER_LIMIT: f64 = 10.0;
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Branch {
     pub family: Family,
-    pub mirror: MirrorAxis,
+    pub mirror: MirrorLine,
     /// In order along the branch.
     pub points: Vec<BranchPoint>,
     pub events: Vec<BranchEvent>,
@@ -211,7 +212,7 @@ impl Tracer<'_> {
 
 /// Follows `family` on `mirror` along `line`. Errors: bad parameters, or no state of the
 /// family found anywhere on the line.
-pub fn follow(line: &Line, family: Family, mirror: MirrorAxis) -> Result<Branch, SolverError> {
+pub fn follow(line: &Line, family: Family, mirror: MirrorLine) -> Result<Branch, SolverError> {
     let balances = Balances::new(line.base, line.n, line.modes, line.eta_k_exponent)?;
     let mut prob = Problem::new(balances, family, mirror, line.parameter, line.from, line.to);
     // Where to look for a first state: the ends, then ever finer points in between.

@@ -1,10 +1,13 @@
 //! The events along a branch, located on it: a fold (SN), a change in the number of unstable
 //! eigenvalues (P, or H for a complex pair), the end of the line, the meeting with another
-//! family; each by bisection on the arclength between two consecutive states.
+//! family; each by bisection on the arclength between two consecutive states. Where the count
+//! changes because the near-neutral rotation mode passes the largest rate the verdict sets
+//! aside as rotation ([`ROTATION_MAX`]), no eigenvalue crosses zero: that switch is reported
+//! as its own kind, R.
 use crate::continuation::arclength::{point_at, CurvePoint};
 use crate::continuation::branch::{q_of, BranchEvent, BranchPoint, Stop, Tracer, MAX_DEFORMATION};
 use crate::continuation::problem::{Family, Problem};
-use crate::roots::verdict::Verdict;
+use crate::roots::verdict::{Verdict, ROTATION_MAX};
 
 /// Largest `|Re lambda|` of the crossing eigenvalue at a located P or H event: located to
 /// `1e-12` in arclength it is below `1e-10` (every committed 2-mode event); beyond this the
@@ -152,25 +155,56 @@ impl Tracer<'_> {
             let verdict = self.prob.verdict(&p.y);
             let lambda = verdict.decisive().get(idx).copied();
             let complex = lambda.is_some_and(|l| l.im.abs() > 1e-7);
-            // The count can change by an eigenvalue that does not pass through zero here
-            // (two crossing in one step, or a root the eigenvalue search missed on one side):
-            // then the bracket located nothing, and the event is the whole step's.
             let crossed = lambda.is_some_and(|l| l.re.abs() < CROSSING_TOLERANCE);
-            let precision = if crossed {
-                precision
+            let (kind, what, eigenvalue, precision) = if crossed {
+                let (kind, what) = if complex {
+                    ("H", "complex pair crosses 0 (Hopf)")
+                } else {
+                    ("P", "real eigenvalue crosses 0")
+                };
+                (
+                    kind,
+                    what.to_string(),
+                    lambda.map(|l| [l.re, l.im]),
+                    precision,
+                )
+            } else if va.rotation.is_some() != vb.rotation.is_some() {
+                // The count changed because the rotation mode passed the largest rate the
+                // verdict sets aside as rotation: no eigenvalue crosses zero, the switch is
+                // located where it happens.
+                let rotation = verdict.rotation.or(va.rotation).or(vb.rotation);
+                (
+                    "R",
+                    format!(
+                        "the rotation mode passes |lambda| = {ROTATION_MAX} (beyond it, it counts)"
+                    ),
+                    rotation.map(|r| [r, 0.0]),
+                    precision,
+                )
             } else {
-                ((q_of(b) - q_of(a)).abs() * self.prob.span.abs()).max(precision)
+                // Another eigenvalue than the one located changed the count (two crossing in
+                // one step, or a root the eigenvalue search missed on one side): the bracket
+                // located nothing, and the event is the whole step's.
+                let step = (q_of(b) - q_of(a)).abs() * self.prob.span.abs();
+                let what = if complex {
+                    "complex pair crosses 0 (Hopf)"
+                } else {
+                    "real eigenvalue crosses 0"
+                };
+                let kind = if complex { "H" } else { "P" };
+                (
+                    kind,
+                    what.to_string(),
+                    lambda.map(|l| [l.re, l.im]),
+                    step.max(precision),
+                )
             };
             let pt = self.point(&p.y, verdict);
             Some(BranchEvent {
-                kind: if complex { "H" } else { "P" },
-                what: if complex {
-                    "complex pair crosses 0 (Hopf)".into()
-                } else {
-                    "real eigenvalue crosses 0".into()
-                },
+                kind,
+                what,
                 point: pt,
-                eigenvalue: lambda.map(|l| [l.re, l.im]),
+                eigenvalue,
                 precision,
             })
         } else {

@@ -10,11 +10,11 @@ use crate::continuation::branch::{follow, Branch, Line};
 use crate::continuation::problem::{Family, Problem};
 use crate::continuation::window::PlaneAxis;
 use crate::error::SolverError;
+use crate::model::mirror::MirrorLine;
 use crate::model::params::ModelParams;
 use crate::model::state::turned;
 use crate::numerics::newton::fd_jacobian;
 use crate::roots::balances::Balances;
-use crate::roots::steady_solver::MirrorAxis;
 
 /// The model of a fold curve: its grid and its shape modes `2..=modes` (the friction law
 /// moves no fold).
@@ -35,7 +35,7 @@ fn det(a: &[Vec<f64>]) -> f64 {
 /// The extended system of the MD fold: `y = (v, a_2..a_K, qx, qy)`.
 struct FoldSystem {
     balances: Balances,
-    mirror: MirrorAxis,
+    mirror: MirrorLine,
     x: PlaneAxis,
     y: PlaneAxis,
     /// Scale of `det` (the Jacobian's size squared at the start).
@@ -87,7 +87,7 @@ impl FoldSystem {
 pub fn md_branch(
     base: &ModelParams,
     model: FoldModel,
-    mirror: MirrorAxis,
+    mirror: MirrorLine,
     x: PlaneAxis,
     y: PlaneAxis,
     at: f64,
@@ -125,7 +125,7 @@ pub struct Fold {
 /// line or meets rest (`v` below 1e-3). No verdicts on the way: at `K > 2` a state's `2K x 2K`
 /// eigenproblem costs more than its continuation step. `None` where the line's start has no
 /// moving state or the branch no fold.
-pub fn walk_to_fold(balances: Balances, mirror: MirrorAxis, x: PlaneAxis, at: f64) -> Option<Fold> {
+pub fn walk_to_fold(balances: Balances, mirror: MirrorLine, x: PlaneAxis, at: f64) -> Option<Fold> {
     let (from, to) = x.range;
     let mut prob = Problem::new(balances, Family::MdMinor, mirror, x.param, from, to);
     let y0 = prob.root_at(from)?;
@@ -162,15 +162,15 @@ pub fn walk_to_fold(balances: Balances, mirror: MirrorAxis, x: PlaneAxis, at: f6
 }
 
 /// The first fold of `branch` (followed at `y = at`).
-pub fn fold_of(branch: &Branch, mirror: MirrorAxis, at: f64) -> Option<Fold> {
+pub fn fold_of(branch: &Branch, mirror: MirrorLine, at: f64) -> Option<Fold> {
     let e = branch.events.iter().find(|e| e.kind == "SN")?;
     let z = &e.point.z;
     let k = z.len() / 2;
     let (v, a) = match (mirror, k) {
-        (MirrorAxis::X, _) => (z[0], e.point.a_k().to_vec()),
-        (MirrorAxis::Diagonal, 2) => (e.point.v, vec![z[3]]),
-        (MirrorAxis::Diagonal, _) => {
-            let back = turned(z, -std::f64::consts::FRAC_PI_4);
+        (MirrorLine::X, _) => (z[0], e.point.a_k().to_vec()),
+        (MirrorLine::Diagonal, 2) => (e.point.v, vec![z[3]]),
+        (MirrorLine::Diagonal, _) => {
+            let back = turned(z, -mirror.angle());
             (back[0], back[2..k + 1].to_vec())
         }
     };
@@ -187,7 +187,7 @@ pub fn fold_of(branch: &Branch, mirror: MirrorAxis, at: f64) -> Option<Fold> {
 fn first_fold(
     base: &ModelParams,
     model: FoldModel,
-    mirror: MirrorAxis,
+    mirror: MirrorLine,
     (x, y): (PlaneAxis, PlaneAxis),
     starts: &[f64],
 ) -> Option<Fold> {
@@ -208,7 +208,7 @@ fn first_fold(
 pub fn md_fold_curve(
     base: &ModelParams,
     model: FoldModel,
-    mirror: MirrorAxis,
+    mirror: MirrorLine,
     (x, y): (PlaneAxis, PlaneAxis),
     starts: &[f64],
 ) -> Result<Vec<(f64, f64)>, SolverError> {
@@ -274,7 +274,7 @@ pub fn fold_walk(
 pub fn fold_curve_from(
     base: &ModelParams,
     model: FoldModel,
-    mirror: MirrorAxis,
+    mirror: MirrorLine,
     (x, y): (PlaneAxis, PlaneAxis),
     fold: Fold,
 ) -> Result<Vec<(f64, f64)>, SolverError> {
@@ -320,7 +320,7 @@ mod tests {
         let base = ModelParams::at(0.077, 0.13);
         let x = PlaneAxis::new(ModelParam::EtaT, (0.077, 0.1));
         let balances = Balances::new(base, n, k_max, 0.0).unwrap();
-        let fold = walk_to_fold(balances, MirrorAxis::X, x, 0.13).expect("a fold");
+        let fold = walk_to_fold(balances, MirrorLine::X, x, 0.13).expect("a fold");
         let branch = follow(
             &Line {
                 base,
@@ -334,7 +334,7 @@ mod tests {
                 opts: ArclengthOptions::default(),
             },
             Family::MdMinor,
-            MirrorAxis::X,
+            MirrorLine::X,
         )
         .unwrap();
         (fold, branch)

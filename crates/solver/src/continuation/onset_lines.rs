@@ -22,11 +22,12 @@
 use crate::continuation::window::Window;
 use crate::error::SolverError;
 use crate::model::classify::CLASS_THRESHOLD;
+use crate::model::mirror::MirrorLine;
 use crate::numerics::newton::{fd_jacobian, NewtonOptions};
 use crate::roots::balances::Balances;
 use crate::roots::linearisation::{Linearization, TwoModeLinearization};
 use crate::roots::named_state::{id_state, rest_shape};
-use crate::roots::steady_solver::{MirrorAxis, SteadySolver, TwoModeSolver};
+use crate::roots::steady_solver::{SteadySolver, TwoModeSolver};
 use crate::roots::thresholds::{drift_threshold, id_onset};
 
 /// The ID onset line on `mirror`: `(eta_t, kappa2)` for `kappa2` from the window's bottom up
@@ -35,7 +36,7 @@ use crate::roots::thresholds::{drift_threshold, id_onset};
 pub fn id_line(
     balances: Balances,
     w: &Window,
-    mirror: MirrorAxis,
+    mirror: MirrorLine,
     top: f64,
 ) -> Result<Vec<(f64, f64)>, SolverError> {
     match balances {
@@ -63,7 +64,7 @@ pub fn mc_line(
 fn two_mode_id_line(
     mut solver: TwoModeSolver,
     w: &Window,
-    mirror: MirrorAxis,
+    mirror: MirrorLine,
     hi: f64,
 ) -> Result<Vec<(f64, f64)>, SolverError> {
     let lo = w.kappa2.0;
@@ -95,13 +96,10 @@ fn general_id_line(
     mut solver: SteadySolver,
     k_max: usize,
     w: &Window,
-    mirror: MirrorAxis,
+    mirror: MirrorLine,
     top: f64,
 ) -> Result<Vec<(f64, f64)>, SolverError> {
-    let axis = match mirror {
-        MirrorAxis::X => 0.0,
-        MirrorAxis::Diagonal => std::f64::consts::FRAC_PI_4,
-    };
+    let axis = mirror.angle();
     solver.set_axis(axis);
     let (lo, hi) = (w.kappa2.0, top.min(w.kappa2.1));
     // The window lies above where this ID meets the disk.
@@ -167,7 +165,7 @@ fn two_mode_mc_line(
         let Ok(sol) = crate::numerics::newton::solve(
             |x| {
                 solver.set_control(x[1], k);
-                solver.residual_on(MirrorAxis::X, x[0], c).to_vec()
+                solver.residual_on(MirrorLine::X, x[0], c).to_vec()
             },
             &guess,
             &opts,

@@ -30,10 +30,11 @@ use crate::continuation::level_set::{zero_set, LevelSetOptions};
 use crate::continuation::window::PlaneAxis;
 use crate::error::SolverError;
 use crate::model::classify::CLASS_THRESHOLD;
+use crate::model::mirror::MirrorLine;
 use crate::model::params::ModelParams;
 use crate::reduced::boundaries::Boundary;
 use crate::roots::linearisation::TwoModeLinearization;
-use crate::roots::steady_solver::{MirrorAxis, TwoModeSolver};
+use crate::roots::steady_solver::TwoModeSolver;
 use crate::roots::thresholds::id_onset;
 use crate::roots::verdict::assess;
 
@@ -140,7 +141,7 @@ fn disk_onsets(w: &PlaneWindow) -> Result<Vec<Boundary>, SolverError> {
 }
 
 /// The ID onset of motion on `mirror`: a zero set.
-fn id_onsets(w: &PlaneWindow, mirror: MirrorAxis) -> Result<Vec<Boundary>, SolverError> {
+fn id_onsets(w: &PlaneWindow, mirror: MirrorLine) -> Result<Vec<Boundary>, SolverError> {
     let mut solver = TwoModeSolver::new(w.base, w.n)?;
     let mut memo: Memo<Option<f64>> = Memo::new();
     let mut seed = 0.3;
@@ -165,8 +166,8 @@ fn id_onsets(w: &PlaneWindow, mirror: MirrorAxis) -> Result<Vec<Boundary>, Solve
         top.map_or(f64::NAN, |k| k - p.eta_t)
     };
     let name = match mirror {
-        MirrorAxis::Diagonal => "ID onset of motion (diagonal ID)",
-        MirrorAxis::X => "ID onset of motion (axis ID)",
+        MirrorLine::Diagonal => "ID onset of motion (diagonal ID)",
+        MirrorLine::X => "ID onset of motion (axis ID)",
     };
     Ok(zero_set(&mut g, &w.level_set_options())
         .into_iter()
@@ -204,7 +205,7 @@ fn mc_curve(w: &PlaneWindow, (v, x, y): (f64, f64, f64)) -> Result<Vec<(f64, f64
         if !w.place(&mut solver, u[1], u[2]) {
             return vec![f64::NAN; 2];
         }
-        solver.residual_on(MirrorAxis::X, u[0], c).to_vec()
+        solver.residual_on(MirrorLine::X, u[0], c).to_vec()
     };
     let qy = w.y.q(y);
     let newton = crate::numerics::newton::NewtonOptions {
@@ -289,10 +290,10 @@ fn moving_curves(w: &PlaneWindow) -> Result<Vec<Boundary>, SolverError> {
     // window), then the rest.
     for f in [0.5, 1.0, 0.25, 0.75, 0.0] {
         let at = w.y.value(f);
-        let Ok(branch) = md_branch(&w.base, two(w.n), MirrorAxis::X, w.x, w.y, at) else {
+        let Ok(branch) = md_branch(&w.base, two(w.n), MirrorLine::X, w.x, w.y, at) else {
             continue;
         };
-        fold = fold.or_else(|| fold_of(&branch, MirrorAxis::X, at));
+        fold = fold.or_else(|| fold_of(&branch, MirrorLine::X, at));
         mc = mc.or_else(|| mc_crossing(&branch, at));
         if fold.is_some() && mc.is_some() {
             break;
@@ -302,7 +303,7 @@ fn moving_curves(w: &PlaneWindow) -> Result<Vec<Boundary>, SolverError> {
     if let Some(first) = fold {
         out.push(Boundary {
             name: "MD saddle-node (x axis)",
-            points: fold_curve_from(&w.base, two(w.n), MirrorAxis::X, (w.x, w.y), first)?,
+            points: fold_curve_from(&w.base, two(w.n), MirrorLine::X, (w.x, w.y), first)?,
         });
     }
     if let Some(seed) = mc {
@@ -327,8 +328,8 @@ pub fn boundaries_in(w: &PlaneWindow) -> Result<Vec<Boundary>, SolverError> {
     let (disk, diag, axis, moving): (Curves, Curves, Curves, Curves) =
         std::thread::scope(|scope| {
             let disk = scope.spawn(|| disk_onsets(w));
-            let diag = scope.spawn(|| id_onsets(w, MirrorAxis::Diagonal));
-            let axis = scope.spawn(|| id_onsets(w, MirrorAxis::X));
+            let diag = scope.spawn(|| id_onsets(w, MirrorLine::Diagonal));
+            let axis = scope.spawn(|| id_onsets(w, MirrorLine::X));
             let moving = moving_curves(w);
             let join = |h: std::thread::ScopedJoinHandle<'_, Curves>| {
                 h.join().expect("a boundary curve's thread panicked")

@@ -14,11 +14,12 @@
 //!
 //! The balances are [`Balances`]: for `K = 2` the 2-mode fast path, whose unknowns are
 //! `(c)` for ID and `(v, c)` for MD with `c` the mode-2 amplitude on the line.
+use crate::model::mirror::MirrorLine;
 use crate::model::param::ModelParam;
 use crate::model::params::ModelParams;
 use crate::numerics::newton::{self, NewtonOptions};
 use crate::roots::balances::Balances;
-use crate::roots::steady_solver::{MirrorAxis, TwoModeSolver};
+use crate::roots::steady_solver::TwoModeSolver;
 use crate::roots::verdict::Verdict;
 use serde::Serialize;
 
@@ -88,7 +89,7 @@ impl std::str::FromStr for Family {
 pub struct Problem {
     pub balances: Balances,
     pub family: Family,
-    pub mirror: MirrorAxis,
+    pub mirror: MirrorLine,
     pub parameter: ModelParam,
     /// Start of the line (`q = 0`).
     pub from: f64,
@@ -104,7 +105,7 @@ impl Problem {
     pub fn new(
         balances: Balances,
         family: Family,
-        mirror: MirrorAxis,
+        mirror: MirrorLine,
         parameter: ModelParam,
         from: f64,
         to: f64,
@@ -271,10 +272,7 @@ impl Problem {
             Balances::General { solver, modes } => {
                 let k_max = *modes;
                 let mut two = TwoModeSolver::new(*solver.params(), solver.n()).ok()?;
-                solver.set_axis(match mirror {
-                    MirrorAxis::X => 0.0,
-                    MirrorAxis::Diagonal => std::f64::consts::FRAC_PI_4,
-                });
+                solver.set_axis(mirror.angle());
                 match family {
                     Family::IC => self.y_of(0.0, &vec![0.0; k_max - 1], value),
                     Family::ID => {
@@ -330,7 +328,7 @@ impl Problem {
 fn two_mode_root(
     solver: &mut TwoModeSolver,
     family: Family,
-    mirror: MirrorAxis,
+    mirror: MirrorLine,
 ) -> Option<(f64, f64)> {
     let p = *solver.params();
     let coef = crate::reduced::coefficients::Coefficients::new(

@@ -12,6 +12,7 @@ pub mod forces;
 pub mod friction;
 pub mod grid;
 pub mod initial;
+pub mod mirror;
 pub mod modes;
 pub mod param;
 pub mod params;

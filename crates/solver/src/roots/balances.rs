@@ -6,6 +6,7 @@
 //! lab frame ([`lab_field`]).
 use crate::error::SolverError;
 use crate::model::dynamics;
+use crate::model::mirror::MirrorLine;
 use crate::model::param::ModelParam;
 use crate::model::params::ModelParams;
 use crate::model::state::{four, turned};
@@ -13,7 +14,7 @@ use crate::numerics::newton::NewtonOptions;
 use crate::roots::linearisation::Linearization;
 use crate::roots::linearisation::TwoModeLinearization;
 use crate::roots::steady_solver::SteadySolver;
-use crate::roots::steady_solver::{on_x_axis, KeptJacobians, MirrorAxis, TwoModeSolver};
+use crate::roots::steady_solver::{on_x_axis, KeptJacobians, TwoModeSolver};
 use crate::roots::verdict::{assess, Verdict};
 
 /// The steady force balances a finish solves: the 2-mode solver (with the chord method's
@@ -144,15 +145,15 @@ impl Balances {
     /// `a = a_2..a_K` in the line's own frame (mirror-symmetric about it): on the x axis
     /// `(v, 0, a, 0)`, on the diagonal that state turned by 45 degrees (mode `k` by `k` times
     /// 45; for `K = 2` exactly `(v, v, 0, a2 sqrt 2) / sqrt 2`).
-    pub fn on_mirror(&self, mirror: MirrorAxis, v: f64, a: &[f64]) -> Vec<f64> {
+    pub fn on_mirror(&self, mirror: MirrorLine, v: f64, a: &[f64]) -> Vec<f64> {
         match (self, mirror) {
-            (_, MirrorAxis::X) => on_x_axis(v, a),
-            (Balances::Two(_), MirrorAxis::Diagonal) => {
+            (_, MirrorLine::X) => on_x_axis(v, a),
+            (Balances::Two(_), MirrorLine::Diagonal) => {
                 let d = v * std::f64::consts::FRAC_1_SQRT_2;
                 vec![d, d, 0.0, a[0]]
             }
-            (Balances::General { .. }, MirrorAxis::Diagonal) => {
-                turned(&on_x_axis(v, a), std::f64::consts::FRAC_PI_4)
+            (Balances::General { .. }, MirrorLine::Diagonal) => {
+                turned(&on_x_axis(v, a), mirror.angle())
             }
         }
     }
@@ -160,14 +161,11 @@ impl Balances {
     /// The balances of [`Self::on_mirror`]'s state in the line's own frame: along the motion,
     /// then the shape balances of `a_2..a_K` (`K` values; the others vanish by the mirror
     /// symmetry).
-    pub fn residual_on(&mut self, mirror: MirrorAxis, v: f64, a: &[f64]) -> Vec<f64> {
+    pub fn residual_on(&mut self, mirror: MirrorLine, v: f64, a: &[f64]) -> Vec<f64> {
         match self {
             Balances::Two(solver) => solver.residual_on(mirror, v, a[0]).to_vec(),
             Balances::General { solver, .. } => {
-                solver.set_axis(match mirror {
-                    MirrorAxis::X => 0.0,
-                    MirrorAxis::Diagonal => std::f64::consts::FRAC_PI_4,
-                });
+                solver.set_axis(mirror.angle());
                 let y: Vec<f64> = std::iter::once(v).chain(a.iter().copied()).collect();
                 solver.residual_x(&y)
             }

@@ -7,14 +7,15 @@
 //! `2K` balances (the two differ by the box's anisotropy; the mirror symmetry keeps Newton on
 //! the diagonal).
 use crate::error::SolverError;
+use crate::model::mirror::MirrorLine;
 use crate::model::params::ModelParams;
 use crate::model::state::turned;
 use crate::numerics::newton::{self, NewtonOptions};
 use crate::reduced::bifurcation::md_states;
 use crate::reduced::coefficients::Coefficients;
 use crate::roots::balances::Balances;
+use crate::roots::steady_solver::TwoModeSolver;
 use crate::roots::steady_solver::{on_x_axis, AxisState, SteadySolver};
-use crate::roots::steady_solver::{MirrorAxis, TwoModeSolver};
 use crate::roots::verdict::Verdict;
 use rustfft::num_complex::Complex64;
 use serde::Serialize;
@@ -54,10 +55,10 @@ pub struct NamedState {
 }
 
 /// `(speed along the axis, shape amplitude on it)` -> `(vx, vy, a2, b2)`.
-fn on_axis(axis: MirrorAxis, v: f64, c: f64) -> [f64; 4] {
+fn on_axis(axis: MirrorLine, v: f64, c: f64) -> [f64; 4] {
     match axis {
-        MirrorAxis::X => [v, 0.0, c, 0.0],
-        MirrorAxis::Diagonal => {
+        MirrorLine::X => [v, 0.0, c, 0.0],
+        MirrorLine::Diagonal => {
             let d = v * std::f64::consts::FRAC_1_SQRT_2;
             [d, d, 0.0, c]
         }
@@ -86,7 +87,7 @@ pub fn md_seeds(c: &Coefficients, params: &ModelParams, sign: f64) -> Vec<(f64, 
 pub fn find(
     balances: &mut Balances,
     kind: StateKind,
-    axis: MirrorAxis,
+    axis: MirrorLine,
     seed: Option<(f64, f64)>,
 ) -> Result<NamedState, SolverError> {
     let mass = balances.params().mass;
@@ -138,7 +139,7 @@ pub fn find(
 fn two_mode_root(
     solver: &mut TwoModeSolver,
     kind: StateKind,
-    axis: MirrorAxis,
+    axis: MirrorLine,
     seed: Option<(f64, f64)>,
 ) -> Result<([f64; 4], f64), SolverError> {
     if kind == StateKind::IC {
@@ -183,7 +184,7 @@ fn general_root(
     solver: &mut SteadySolver,
     k_max: usize,
     kind: StateKind,
-    axis: MirrorAxis,
+    axis: MirrorLine,
 ) -> Result<Vec<f64>, SolverError> {
     let lost = || SolverError::NewtonFailed {
         residual: f64::NAN,
@@ -198,7 +199,7 @@ fn general_root(
         }
     };
     let z = on_x_axis(v, &shape);
-    if axis == MirrorAxis::X {
+    if axis == MirrorLine::X {
         return Ok(z);
     }
     let opts = NewtonOptions {
@@ -221,7 +222,7 @@ pub fn md_state(solver: &mut SteadySolver, k_max: usize) -> Result<AxisState, So
     let two = find(
         &mut Balances::new(*solver.params(), solver.n(), 2, 0.0)?,
         StateKind::MD,
-        MirrorAxis::X,
+        MirrorLine::X,
         None,
     )?;
     md_state_from(solver, k_max, two.z[0], two.z[2])
@@ -320,14 +321,14 @@ mod tests {
         let st = find(
             &mut two(0.085, 0.112, 192),
             StateKind::MD,
-            MirrorAxis::X,
+            MirrorLine::X,
             None,
         )
         .unwrap();
         assert!((st.z[0] - 0.592462).abs() < 1e-6, "{st:?}");
         assert!((st.z[2] + 0.270056).abs() < 1e-6, "{st:?}");
         assert!(st.eigenvalues.iter().all(|l| l.re < 0.0), "{st:?}");
-        let id = find(&mut two(0.1, 0.105, 96), StateKind::ID, MirrorAxis::X, None).unwrap();
+        let id = find(&mut two(0.1, 0.105, 96), StateKind::ID, MirrorLine::X, None).unwrap();
         assert!(id.z[2] > 0.1 && id.z[0] == 0.0, "{id:?}");
     }
 
@@ -337,9 +338,9 @@ mod tests {
         // and its 4 x 4 one: the same states and the same leading eigenvalues.
         let p = ModelParams::at(0.085, 0.112);
         for (kind, axis) in [
-            (StateKind::MD, MirrorAxis::X),
-            (StateKind::MD, MirrorAxis::Diagonal),
-            (StateKind::IC, MirrorAxis::X),
+            (StateKind::MD, MirrorLine::X),
+            (StateKind::MD, MirrorLine::Diagonal),
+            (StateKind::IC, MirrorLine::X),
         ] {
             let fast = find(&mut Balances::new(p, 96, 2, 0.0).unwrap(), kind, axis, None).unwrap();
             let mut general = Balances::General {
@@ -368,20 +369,20 @@ mod tests {
     #[test]
     fn with_three_modes_the_md_states_lie_on_their_mirror_lines_and_a_seed_is_refused() {
         let mut b = Balances::new(ModelParams::at(0.085, 0.112), 96, 3, 0.0).unwrap();
-        let x = find(&mut b, StateKind::MD, MirrorAxis::X, None).unwrap();
+        let x = find(&mut b, StateKind::MD, MirrorLine::X, None).unwrap();
         assert_eq!(x.z.len(), 6);
         assert!(x.z[1] == 0.0 && x.z[4] == 0.0 && x.z[5] == 0.0, "{x:?}");
         assert!(x.verdict.stable() && x.residual < 1e-10, "{x:?}");
         // On the diagonal: Newton on all six balances from the axis state turned by 45
         // degrees stays on the mirror line (here on a slower state: mode 3 turned by 45
         // degrees is not the axis state's mode 3, and the box tells them apart).
-        let d = find(&mut b, StateKind::MD, MirrorAxis::Diagonal, None).unwrap();
+        let d = find(&mut b, StateKind::MD, MirrorLine::Diagonal, None).unwrap();
         assert!(
             (d.z[0] - d.z[1]).abs() < 1e-9 && d.residual < 1e-10,
             "{d:?}"
         );
         assert!(d.z[0] > 0.1, "{d:?}");
-        let seeded = find(&mut b, StateKind::MD, MirrorAxis::X, Some((0.3, -0.1)));
+        let seeded = find(&mut b, StateKind::MD, MirrorLine::X, Some((0.3, -0.1)));
         assert!(
             matches!(
                 seeded,

@@ -9,11 +9,12 @@
 //! solver (the fast path); with modes `2..K` off the general solver's, by differences, where the
 //! drift couples to the odd modes through the box (a Schur complement over them).
 use crate::error::SolverError;
+use crate::model::mirror::MirrorLine;
 use crate::model::params::ModelParams;
 use crate::numerics::newton;
 use crate::roots::linearisation::TwoModeLinearization;
 use crate::roots::steady_solver::SteadySolver;
-use crate::roots::steady_solver::{MirrorAxis, TwoModeSolver};
+use crate::roots::steady_solver::TwoModeSolver;
 use serde::Serialize;
 
 /// Where the resting disk loses stability, at the grid and box of its parameters (its
@@ -158,7 +159,7 @@ fn top_eigenvalue(m: [[f64; 2]; 2]) -> f64 {
 /// its shape amplitude, or `None` where there is no ID state.
 pub fn id_onset(
     solver: &mut TwoModeSolver,
-    mirror: MirrorAxis,
+    mirror: MirrorLine,
     kappa2: f64,
     seed: f64,
 ) -> Option<(f64, f64)> {
@@ -169,8 +170,8 @@ pub fn id_onset(
         return None;
     }
     let z = match mirror {
-        MirrorAxis::X => [0.0, 0.0, st.a2, 0.0],
-        MirrorAxis::Diagonal => [0.0, 0.0, 0.0, st.a2],
+        MirrorLine::X => [0.0, 0.0, st.a2, 0.0],
+        MirrorLine::Diagonal => [0.0, 0.0, 0.0, st.a2],
     };
     let j = TwoModeLinearization::at(solver, z).jacobian0();
     let k = [[j[0][0] + eta_t, j[0][1]], [j[1][0], j[1][1] + eta_t]];
@@ -201,7 +202,7 @@ mod tests {
             find(
                 &mut Balances::new(ModelParams::at(eta_t, kappa2), 192, 2, 0.0).unwrap(),
                 StateKind::IC,
-                MirrorAxis::X,
+                MirrorLine::X,
                 None,
             )
             .unwrap()

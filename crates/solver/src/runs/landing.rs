@@ -40,9 +40,10 @@
 //! not grow on the way, and confirms the flow's root on its line ([`Landing::on_line`]),
 //! letting the run turn from there if that root is unstable in rotation
 //! ([`crate::runs::finish`], numerics 7).
+use crate::model::mirror::MirrorLine;
 use crate::model::state::{four, turned};
 use crate::numerics::bracket::illinois;
-use crate::roots::steady_solver::{MirrorAxis, TwoModeSolver};
+use crate::roots::steady_solver::TwoModeSolver;
 use std::f64::consts::{FRAC_1_SQRT_2, FRAC_PI_4};
 
 /// Largest distance of a run's shape amplitude from the family's, `|c_run - c*(v_run)|`, for
@@ -90,7 +91,7 @@ pub struct Landing {
 /// rest), the nearest first: each line, the box rotation `psi` (a multiple of 90 degrees)
 /// that brings the run next to it, and the run's lean from it. A run caught turning between
 /// the lines may be on the family of either (the box's anisotropy makes them differ).
-fn lines_near(orientation: f64) -> [(MirrorAxis, f64, f64); 2] {
+fn lines_near(orientation: f64) -> [(MirrorLine, f64, f64); 2] {
     let nearest = (orientation / FRAC_PI_4).round();
     let other = nearest
         + if orientation >= nearest * FRAC_PI_4 {
@@ -100,26 +101,26 @@ fn lines_near(orientation: f64) -> [(MirrorAxis, f64, f64); 2] {
         };
     [nearest, other].map(|n| {
         let (axis, base) = if (n as i64).rem_euclid(2) == 0 {
-            (MirrorAxis::X, 0.0)
+            (MirrorLine::X, 0.0)
         } else {
-            (MirrorAxis::Diagonal, FRAC_PI_4)
+            (MirrorLine::Diagonal, FRAC_PI_4)
         };
         (axis, n * FRAC_PI_4 - base, orientation - n * FRAC_PI_4)
     })
 }
 
 /// `(vx, vy, a2, b2)` of speed `v`, shape amplitude `c` on `axis`.
-fn on_line(axis: MirrorAxis, v: f64, c: f64) -> [f64; 4] {
+fn on_line(axis: MirrorLine, v: f64, c: f64) -> [f64; 4] {
     match axis {
-        MirrorAxis::X => [v, 0.0, c, 0.0],
-        MirrorAxis::Diagonal => [v * FRAC_1_SQRT_2, v * FRAC_1_SQRT_2, 0.0, c],
+        MirrorLine::X => [v, 0.0, c, 0.0],
+        MirrorLine::Diagonal => [v * FRAC_1_SQRT_2, v * FRAC_1_SQRT_2, 0.0, c],
     }
 }
 
 /// The scalar flows of one mirror line.
 pub struct SlowFlow<'a> {
     solver: &'a mut TwoModeSolver,
-    axis: MirrorAxis,
+    axis: MirrorLine,
     /// Samples taken.
     pub samples: usize,
     /// The shape balance's derivative in the shape amplitude at the last sample: the
@@ -128,7 +129,7 @@ pub struct SlowFlow<'a> {
 }
 
 impl<'a> SlowFlow<'a> {
-    pub fn new(solver: &'a mut TwoModeSolver, axis: MirrorAxis) -> Self {
+    pub fn new(solver: &'a mut TwoModeSolver, axis: MirrorLine) -> Self {
         Self {
             solver,
             axis,
@@ -238,7 +239,7 @@ pub struct Walks {
 
 #[derive(Debug, Clone, Copy)]
 struct Walk {
-    axis: MirrorAxis,
+    axis: MirrorLine,
     coordinate: Coordinate,
     dir: f64,
     from: f64,
@@ -251,7 +252,7 @@ impl Walks {
     /// going the way `dir`.
     fn passed(
         &self,
-        axis: MirrorAxis,
+        axis: MirrorLine,
         coordinate: Coordinate,
         dir: f64,
         x: f64,
@@ -282,7 +283,7 @@ fn land_moving(solver: &mut TwoModeSolver, z: [f64; 4], walks: &mut Walks) -> Op
 fn land_moving_on(
     solver: &mut TwoModeSolver,
     z: [f64; 4],
-    (axis, psi, lean): (MirrorAxis, f64, f64),
+    (axis, psi, lean): (MirrorLine, f64, f64),
     walks: &mut Walks,
 ) -> Option<Landing> {
     let here = four(&turned(&z, -psi));
@@ -290,8 +291,8 @@ fn land_moving_on(
     // The run's shape amplitude on the line, turned back by its lean.
     let back = four(&turned(&here, -lean));
     let c_run = match axis {
-        MirrorAxis::X => back[2],
-        MirrorAxis::Diagonal => back[3],
+        MirrorLine::X => back[2],
+        MirrorLine::Diagonal => back[3],
     };
     let mut flow = SlowFlow::new(solver, axis);
     let (g_run, c_fam) = flow.drift(v_run, c_run)?;
@@ -396,7 +397,7 @@ fn land_resting(solver: &mut TwoModeSolver, z: [f64; 4], walks: &mut Walks) -> O
 fn land_resting_on(
     solver: &mut TwoModeSolver,
     s_run: f64,
-    (axis, psi, lean): (MirrorAxis, f64, f64),
+    (axis, psi, lean): (MirrorLine, f64, f64),
     walks: &mut Walks,
 ) -> Option<Landing> {
     let mut flow = SlowFlow::new(solver, axis);
@@ -474,7 +475,7 @@ mod tests {
         // g > 0 below v ~ 0.29 (max +2.2e-5 near v = 0.175); c*(v) = -0.00177, -0.00697,
         // -0.01527 at v = 0.1, 0.2, 0.3.
         let mut s = solver(0.0763, 0.16);
-        let mut flow = SlowFlow::new(&mut s, MirrorAxis::X);
+        let mut flow = SlowFlow::new(&mut s, MirrorLine::X);
         let (g, c) = flow.drift(0.1, 0.0).unwrap();
         assert!(g > 0.0 && (c + 0.00177).abs() < 2e-5, "{g} {c}");
         let (g, c) = flow.drift(0.2, c).unwrap();
@@ -485,7 +486,7 @@ mod tests {
         assert!(g < 0.0 && (c + 0.01527).abs() < 2e-5, "{g} {c}");
         // (0.0765, 0.16): g < 0 for all 0 < v <= 0.45, -1.8e-5 at v = 0.2.
         let mut s = solver(0.0765, 0.16);
-        let mut flow = SlowFlow::new(&mut s, MirrorAxis::X);
+        let mut flow = SlowFlow::new(&mut s, MirrorLine::X);
         let (g, _) = flow.drift(0.2, -0.007).unwrap();
         assert!((g + 1.8e-5).abs() < 2e-6, "{g}");
     }
@@ -513,7 +514,7 @@ mod tests {
         assert!(l.z.iter().all(|x| x.abs() < 1e-9), "{l:?}");
         // Inside the IC/MD band the unstable MD root is the separatrix (~0.27).
         let mut s = solver(0.078, 0.13);
-        let mut flow = SlowFlow::new(&mut s, MirrorAxis::X);
+        let mut flow = SlowFlow::new(&mut s, MirrorLine::X);
         let (c2, c33) = (
             flow.shape_at(0.2, 0.0).unwrap(),
             flow.shape_at(0.33, 0.0).unwrap(),

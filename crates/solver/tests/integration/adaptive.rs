@@ -1,7 +1,7 @@
 //! Adaptive ETD2RK stepping: same fixed points as fixed steps, error bounded by the tolerance,
 //! errors falling with the tolerance, steps growing during relaxation, recording times hit,
 //! and large fixed steps flagged.
-use droplet_solver::roots::steady_solver::MirrorAxis;
+use droplet_solver::model::mirror::MirrorLine;
 use droplet_solver::{
     contract::outcome::RunStatus, contract::settings::SolverSettings, model::classify::StateClass,
     model::initial::InitialCondition, model::params::ModelParams,
@@ -144,8 +144,8 @@ fn diagonal_newton_matches_the_x_axis_for_a_rotation_invariant_state() {
     // deep in the ID region (far from thresholds) the two agree closely.
     let p = ModelParams::at(0.1, 0.105);
     let mut s = TwoModeSolver::new(p, 64).unwrap();
-    let x = s.newton_on(MirrorAxis::X, 0.0, 0.2, 1e-13).unwrap();
-    let d = s.newton_on(MirrorAxis::Diagonal, 0.0, 0.2, 1e-13).unwrap();
+    let x = s.newton_on(MirrorLine::X, 0.0, 0.2, 1e-13).unwrap();
+    let d = s.newton_on(MirrorLine::Diagonal, 0.0, 0.2, 1e-13).unwrap();
     assert!(x.a2 > 0.1, "{x:?}");
     assert!((x.a2 - d.a2).abs() < 0.02 * x.a2, "{x:?} vs {d:?}");
 }

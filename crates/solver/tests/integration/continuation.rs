@@ -9,9 +9,10 @@ use droplet_solver::continuation::window::Window;
 use droplet_solver::continuation::{
     branch::follow, branch::Branch, branch::BranchPoint, branch::Line, problem::Family,
 };
+use droplet_solver::model::mirror::MirrorLine;
 use droplet_solver::model::param::ModelParam;
 use droplet_solver::roots::balances::Balances;
-use droplet_solver::roots::steady_solver::{MirrorAxis, TwoModeSolver};
+use droplet_solver::roots::steady_solver::TwoModeSolver;
 use droplet_solver::roots::thresholds::{ic_thresholds, id_onset};
 use droplet_solver::stepping::{comoving_etd::TwoModeEtd, Scheme, Stepper};
 use droplet_solver::{
@@ -32,7 +33,7 @@ fn branch(family: Family, kappa2: f64, from: f64, to: f64, n: usize) -> Branch {
         max_points: 400,
         opts: ArclengthOptions::default(),
     };
-    follow(&line, family, MirrorAxis::X).unwrap()
+    follow(&line, family, MirrorLine::X).unwrap()
 }
 
 /// The branch's state at `eta_t` (the line's first point is located exactly at `from`).
@@ -170,7 +171,7 @@ fn the_fold_curve_passes_through_the_one_parameter_folds() {
     let curve = md_fold_curve(
         &base,
         FoldModel { n, modes: 2 },
-        MirrorAxis::X,
+        MirrorLine::X,
         window,
         &[0.13],
     )
@@ -258,7 +259,7 @@ fn branches_meet_ic_and_id_at_the_exact_thresholds() {
     let md = branch(Family::MdMinor, 0.117, 0.07, 0.1, n);
     let meet = md.events.iter().find(|e| e.what == "meets ID").unwrap();
     let mut solver = TwoModeSolver::new(ModelParams::at(0.085, 0.117), n).unwrap();
-    let (onset, _) = id_onset(&mut solver, MirrorAxis::X, 0.117, 0.1).unwrap();
+    let (onset, _) = id_onset(&mut solver, MirrorLine::X, 0.117, 0.1).unwrap();
     assert!(
         (meet.point.eta_t - onset).abs() < 1e-9,
         "{meet:?} vs {onset}"
@@ -291,4 +292,36 @@ fn the_resting_disks_drift_eigenvalue_is_the_time_steppers_decay_rate() {
         (rate - drift).abs() < 1e-3,
         "rate {rate} vs eigenvalue {drift}"
     );
+}
+
+#[test]
+fn a_count_changed_by_the_rotation_mode_is_its_own_event_and_every_crossing_is_at_zero() {
+    // ID on the diagonal at eta_t = 0.085, kappa2 from 0.1 to 0.17, N = 64: its rotation
+    // mode's rate passes 0.05 (the most the verdict sets aside) and the count of growing
+    // modes changes without any eigenvalue crossing zero: R events, located where the rate is
+    // 0.05. Every P or H event's eigenvalue is zero at its located point.
+    let line = Line {
+        base: ModelParams::at(0.085, 0.1),
+        n: 64,
+        parameter: ModelParam::Kappa2,
+        from: 0.1,
+        to: 0.17,
+        modes: 2,
+        eta_k_exponent: 0.0,
+        max_points: 400,
+        opts: ArclengthOptions::default(),
+    };
+    let b = follow(&line, Family::ID, MirrorLine::Diagonal).unwrap();
+    let rotations: Vec<_> = b.events.iter().filter(|e| e.kind == "R").collect();
+    assert!(!rotations.is_empty(), "{:?}", b.events);
+    for e in rotations {
+        let l = e.eigenvalue.expect("the rotation mode's rate");
+        assert!((l[0].abs() - 0.05).abs() < 1e-6, "{e:?}");
+        assert!(e.precision < 1e-7, "{e:?}");
+    }
+    for e in b.events.iter().filter(|e| e.kind == "P" || e.kind == "H") {
+        if let Some(l) = e.eigenvalue {
+            assert!(l[0].abs() < 1e-6, "{e:?}");
+        }
+    }
 }

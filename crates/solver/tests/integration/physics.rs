@@ -260,7 +260,7 @@ fn moving_steady_state_is_independent_of_dt() {
 /// the mirror axis (b2 = vy = 0), where they stay exactly, because the periodic box (the
 /// droplet's images) breaks the rotational symmetry of an ID droplet's orientation: near
 /// thresholds an ID droplet settles on the diagonal with s several % off the axis-aligned
-/// steady state (6 % at (0.085, 0.116), even at N = 384; see `MirrorAxis`).
+/// steady state (6 % at (0.085, 0.116), even at N = 384; see `MirrorLine`).
 #[test]
 fn time_integration_reaches_the_newton_state() {
     let n = 64;

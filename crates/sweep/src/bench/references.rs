@@ -5,7 +5,7 @@
 //! fixed step.
 use crate::bench::plan::{BenchPlan, Case, Profile};
 use crate::error::SweepError;
-use droplet_solver::roots::steady_solver::MirrorAxis;
+use droplet_solver::model::mirror::MirrorLine;
 use droplet_solver::{
     contract::outcome::RunOutcome, contract::outcome::RunStatus,
     contract::settings::SolverSettings, model::classify::StateClass,
@@ -92,7 +92,7 @@ pub fn references(plan: &BenchPlan) -> Result<References, SweepError> {
 fn nearest_mirror(
     st: &droplet_solver::model::state::DropletState,
     class: StateClass,
-) -> MirrorAxis {
+) -> MirrorLine {
     let diagonal = if class == StateClass::MD {
         let ang = st.vy.atan2(st.vx).rem_euclid(std::f64::consts::FRAC_PI_2);
         (ang - std::f64::consts::FRAC_PI_4).abs() < std::f64::consts::FRAC_PI_8
@@ -100,9 +100,9 @@ fn nearest_mirror(
         st.b2.abs() > st.a2.abs()
     };
     if diagonal {
-        MirrorAxis::Diagonal
+        MirrorLine::Diagonal
     } else {
-        MirrorAxis::X
+        MirrorLine::X
     }
 }
 

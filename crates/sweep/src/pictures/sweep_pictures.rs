@@ -386,14 +386,7 @@ fn pde_branches(
     };
     let branches = [Family::IC, Family::ID, Family::MdMinor, Family::MdMajor]
         .iter()
-        .filter_map(|f| {
-            follow(
-                &line,
-                *f,
-                droplet_solver::roots::steady_solver::MirrorAxis::X,
-            )
-            .ok()
-        })
+        .filter_map(|f| follow(&line, *f, droplet_solver::model::mirror::MirrorLine::X).ok())
         .collect();
     Some(branches)
 }

@@ -5,8 +5,8 @@ use crate::error::SweepError;
 use droplet_solver::continuation::branch::{follow, Branch, BranchPoint, Line, EVENT_PRECISION};
 use droplet_solver::continuation::problem::Family;
 use droplet_solver::error::SolverError;
+use droplet_solver::model::mirror::MirrorLine;
 use droplet_solver::model::{param::ModelParam, params::ModelParams};
-use droplet_solver::roots::steady_solver::MirrorAxis;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -18,7 +18,7 @@ pub struct ContinuationStudy {
     /// The families to follow; with more than one, a family with no state on the line is
     /// skipped, with one it is an error.
     pub families: Vec<Family>,
-    pub mirror: MirrorAxis,
+    pub mirror: MirrorLine,
 }
 
 /// Where a study is, for a progress line.
@@ -107,7 +107,7 @@ impl ContinuationStudy {
                 short(self.line.eta_k_exponent)
             ));
         }
-        if self.mirror == MirrorAxis::Diagonal {
+        if self.mirror == MirrorLine::Diagonal {
             parts.push("diagonal".into());
         }
         parts.join("_")

@@ -23,6 +23,7 @@ use droplet_solver::continuation::fold_curve::walk_to_fold;
 use droplet_solver::continuation::window::PlaneAxis;
 use droplet_solver::continuation::window::Window;
 use droplet_solver::contract::settings::ModelKind;
+use droplet_solver::model::mirror::MirrorLine;
 use droplet_solver::model::modes::Modes;
 use droplet_solver::model::param::ModelParam;
 use droplet_solver::model::params::ModelParams;
@@ -30,7 +31,6 @@ use droplet_solver::model::shape::ShapeParams;
 use droplet_solver::roots::balances::Balances;
 use droplet_solver::roots::linearisation::Linearization;
 use droplet_solver::roots::named_state::md_state;
-use droplet_solver::roots::steady_solver::MirrorAxis;
 use droplet_solver::roots::steady_solver::SteadySolver;
 use droplet_solver::roots::thresholds::disk_thresholds;
 use std::path::{Path, PathBuf};
@@ -86,7 +86,7 @@ fn row(
         modes: k_max,
     };
     let line = PlaneAxis::new(ModelParam::EtaT, (from, to));
-    let fold = walk_to_fold(balances, MirrorAxis::X, line, kappa2);
+    let fold = walk_to_fold(balances, MirrorLine::X, line, kappa2);
     let fold_seconds = started.elapsed().as_secs_f64();
     let started = Instant::now();
     // The general computation at every K, K = 2 included, so that the models are compared

@@ -2,7 +2,8 @@
 //! parameters, `vx, vy, a2, b2, v, s`, with shape modes `2..K`, `K > 2`, also `a3 .. aK`,
 //! `b3 .. bK`; class, the two leading eigenvalues with the rotation mode set aside, the
 //! rotation mode's eigenvalue, unstable count, stability) and
-//! `<stem>_events.parquet` (P / SN / H points with the crossing eigenvalue and the precision
+//! `<stem>_events.parquet` (P / SN / H points, and R where the rotation mode passes the rate the
+//! verdict sets aside, with the crossing eigenvalue and the precision
 //! of their location in the varied parameter).
 use crate::error::SweepError;
 use crate::spec::axes::{ETA_T, KAPPA2};

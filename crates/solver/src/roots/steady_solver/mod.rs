@@ -16,4 +16,4 @@ pub mod general;
 pub mod two_mode;
 
 pub use general::{on_x_axis, AxisState, SteadySolver};
-pub use two_mode::{KeptJacobians, MirrorAxis, SteadyState, TwoModeSolver};
+pub use two_mode::{KeptJacobians, SteadyState, TwoModeSolver};

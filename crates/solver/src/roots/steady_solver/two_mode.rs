@@ -8,6 +8,7 @@ use crate::error::SolverError;
 use crate::model::dynamics;
 use crate::model::forces::parseval::{spectral_forces, Forces};
 use crate::model::grid::Grid;
+use crate::model::mirror::MirrorLine;
 use crate::model::params::ModelParams;
 use crate::model::shape::ShapeParams;
 use crate::model::shape_transform::ShapeTransform;
@@ -44,26 +45,13 @@ struct Transformed {
 /// (a central difference), and one more.
 const SHAPES_KEPT: usize = 4;
 
-/// A mirror line of the periodic square box on which [`TwoModeSolver::newton_on`] works: the
-/// steady states symmetric about it form a 2-unknown problem (speed along it, one shape
-/// amplitude).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize)]
-#[serde(rename_all = "lowercase")]
-pub enum MirrorAxis {
-    /// Motion along x, shape `(a2, 0)`.
-    X,
-    /// Motion along `(1, 1) / sqrt 2`, shape `(0, b2)`. The box's images make this orientation
-    /// differ from `X` near thresholds (an ID droplet settles on the diagonal).
-    Diagonal,
-}
-
 /// A steady state found by [`TwoModeSolver::newton`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SteadyState {
     /// Speed along the axis (+x for [`TwoModeSolver::newton`]).
     pub v: f64,
-    /// Shape amplitude on the axis: `a2` for [`MirrorAxis::X`] (`b2 = 0`; `a2 < 0` is a
-    /// droplet elongated across the motion), `b2` for [`MirrorAxis::Diagonal`] (`a2 = 0`).
+    /// Shape amplitude on the axis: `a2` for [`MirrorLine::X`] (`b2 = 0`; `a2 < 0` is a
+    /// droplet elongated across the motion), `b2` for [`MirrorLine::Diagonal`] (`a2 = 0`).
     pub a2: f64,
     /// Max norm of the residual at the solution.
     pub residual: f64,
@@ -231,11 +219,11 @@ impl TwoModeSolver {
 
     /// The residual of [`Self::residual`] on a mirror axis: speed `v` along it, shape
     /// amplitude `c` on it.
-    pub fn residual_on(&mut self, axis: MirrorAxis, v: f64, c: f64) -> [f64; 2] {
+    pub fn residual_on(&mut self, axis: MirrorLine, v: f64, c: f64) -> [f64; 2] {
         let p = self.params;
         match axis {
-            MirrorAxis::X => self.residual(v, c),
-            MirrorAxis::Diagonal => {
+            MirrorLine::X => self.residual(v, c),
+            MirrorLine::Diagonal => {
                 let d = v * std::f64::consts::FRAC_1_SQRT_2;
                 let f = self.forces(d, d, 0.0, c);
                 let r = dynamics::force_balance(&p, [d, d, 0.0, c], &f);
@@ -248,7 +236,7 @@ impl TwoModeSolver {
     /// Newton solve from `(v, a2)` on the x axis. With `v = 0` only `a2` is solved (ID and IC
     /// states, where `F = 0` by symmetry); otherwise `(v, a2)` (MD, MC states moving along x).
     pub fn newton(&mut self, v0: f64, a20: f64, tol: f64) -> Result<SteadyState, SolverError> {
-        self.newton_on(MirrorAxis::X, v0, a20, tol)
+        self.newton_on(MirrorLine::X, v0, a20, tol)
     }
 
     /// Newton on all four force balances from `z = (vx, vy, a2, b2)`, no mirror symmetry
@@ -301,7 +289,7 @@ impl TwoModeSolver {
     /// small-deformation model, at most 50 iterations).
     pub fn newton_on(
         &mut self,
-        axis: MirrorAxis,
+        axis: MirrorLine,
         v0: f64,
         a20: f64,
         tol: f64,
