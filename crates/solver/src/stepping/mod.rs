@@ -122,3 +122,17 @@ pub trait Scheme: Stepper {
         false
     }
 }
+
+/// The inertia a scheme of the model with shape modes `2..K` needs: it integrates the
+/// velocity (`m dv/dt = -eta_t v + F`), so `m > 0` (the modes and the droplet the grid
+/// resolves are the caller's to check, `contract::limits::check_run`).
+pub(crate) fn require_inertia(
+    params: &crate::model::params::ModelParams,
+) -> Result<(), SolverError> {
+    crate::error::require(
+        params.mass > 0.0,
+        "mass",
+        params.mass,
+        "a finite number > 0 (the K-mode run integrates the velocity)",
+    )
+}

@@ -107,19 +107,10 @@ impl SteadySolver {
         param: crate::model::param::ModelParam,
         x: f64,
     ) -> Result<(), SolverError> {
-        if param.get(&self.params) == x {
+        let Some((params, sampled)) = super::moved(&self.params, self.n(), param, x)? else {
             return Ok(());
-        }
-        let params = param.with(&self.params, x);
-        params.validate()?;
-        if param.is_geometric() {
-            let n = self.n();
-            let grid = Grid::new(n, params.box_len)?;
-            crate::contract::limits::check_resolved(&params, n)?;
-            let shape = ShapeParams {
-                radius: params.radius,
-                sigma: params.sigma,
-            };
+        };
+        if let Some((grid, shape)) = sampled {
             self.quad = ForceQuadrature::new(grid, shape);
             self.memo.clear();
         }

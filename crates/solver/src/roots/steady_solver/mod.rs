@@ -17,3 +17,38 @@ pub mod two_mode;
 
 pub use general::{on_x_axis, AxisState, SteadySolver};
 pub use two_mode::{KeptJacobians, SteadyState, TwoModeSolver};
+
+use crate::error::SolverError;
+use crate::model::grid::Grid;
+use crate::model::param::ModelParam;
+use crate::model::params::ModelParams;
+use crate::model::shape::ShapeParams;
+
+/// A steady solver's parameters moved to the value `x` of `param`, checked, and, for a
+/// parameter that changes the droplet or the box (`radius`, `sigma`, `box_len`), the grid of
+/// `n` points and the droplet it must sample again: `Ok(None)` when `x` is the value already
+/// held. Refused where the parameters would be invalid or the grid would not resolve the
+/// droplet ([`crate::contract::limits::check_resolved`]).
+#[allow(clippy::type_complexity)]
+pub(crate) fn moved(
+    params: &ModelParams,
+    n: usize,
+    param: ModelParam,
+    x: f64,
+) -> Result<Option<(ModelParams, Option<(Grid, ShapeParams)>)>, SolverError> {
+    if param.get(params) == x {
+        return Ok(None);
+    }
+    let params = param.with(params, x);
+    params.validate()?;
+    if !param.is_geometric() {
+        return Ok(Some((params, None)));
+    }
+    let grid = Grid::new(n, params.box_len)?;
+    crate::contract::limits::check_resolved(&params, n)?;
+    let shape = ShapeParams {
+        radius: params.radius,
+        sigma: params.sigma,
+    };
+    Ok(Some((params, Some((grid, shape)))))
+}

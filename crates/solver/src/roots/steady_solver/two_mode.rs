@@ -132,18 +132,10 @@ impl TwoModeSolver {
         param: crate::model::param::ModelParam,
         x: f64,
     ) -> Result<(), SolverError> {
-        if param.get(&self.params) == x {
+        let Some((params, sampled)) = super::moved(&self.params, self.grid.n, param, x)? else {
             return Ok(());
-        }
-        let params = param.with(&self.params, x);
-        params.validate()?;
-        if param.is_geometric() {
-            let grid = Grid::new(self.grid.n, params.box_len)?;
-            crate::contract::limits::check_resolved(&params, self.grid.n)?;
-            let shape = ShapeParams {
-                radius: params.radius,
-                sigma: params.sigma,
-            };
+        };
+        if let Some((grid, shape)) = sampled {
             self.shapes = ShapeTransform::new(&grid, shape);
             self.grid = grid;
             self.transformed.clear();

@@ -72,14 +72,7 @@ impl ComovingEtd {
     /// The `K`-mode model (`K = z0.len() / 2`) at `z0` with the field 0.
     pub fn new(params: &ModelParams, n: usize, z0: &[f64]) -> Result<Self, SolverError> {
         params.validate()?;
-        // The modes and the droplet the grid resolves are the caller's to check
-        // (`contract::limits::check_run`); the velocity is integrated, so it needs inertia.
-        crate::error::require(
-            params.mass > 0.0,
-            "mass",
-            params.mass,
-            "a finite number > 0 (the K-mode run integrates the velocity)",
-        )?;
+        crate::stepping::require_inertia(params)?;
         let grid = Grid::new(n, params.box_len)?;
         let len = grid.spectral_len();
         let inv_c = grid.inverse_rates();

@@ -58,14 +58,7 @@ impl PaperFd {
     pub fn new(params: &ModelParams, n: usize, z0: &[f64]) -> Result<Self, SolverError> {
         params.validate()?;
         let k_max = z0.len() / 2;
-        // The modes the grid resolves are the caller's to check
-        // (`contract::limits::check_run`); the velocity is integrated, so it needs inertia.
-        crate::error::require(
-            params.mass > 0.0,
-            "mass",
-            params.mass,
-            "a finite number > 0 (the K-mode run integrates the velocity)",
-        )?;
+        crate::stepping::require_inertia(params)?;
         let grid = Grid::new(n, params.box_len)?;
         let mut inertia = vec![params.mass; 2];
         let mut stiffness = vec![params.eta_t; 2];
