@@ -53,6 +53,20 @@ fn corrupt_stored_runs_are_moved_aside_and_recomputed_and_merge_refuses_gaps() {
     let pace = st["pace_s"].as_f64().unwrap();
     assert!((300.0..310.0).contains(&pace), "{st}");
     assert!((eta(&st) - 4.0 * pace / 11.0).abs() < 1e-9, "{st}");
+    // No run stored for 4 min, longer than that estimate (4 x 300 s / 11): the runs left are
+    // slower than the finished ones, and the text says so instead of an ETA.
+    for f in files.iter().filter(|f| *f != &files[7]) {
+        age(f, 240);
+    }
+    age(&files[6], 300);
+    let st = json(&run(&["status", out.to_str().unwrap(), "--json"]));
+    let since = st["since_last_s"].as_f64().unwrap();
+    assert!((240.0..250.0).contains(&since) && eta(&st) < since, "{st}");
+    let text = String::from_utf8_lossy(&run(&["status", out.to_str().unwrap()]).stdout).to_string();
+    assert!(
+        text.contains("ETA: unknown") && text.contains("no run has been stored for 4 min"),
+        "{text}"
+    );
 
     // The sweep moves them aside (never deletes), recomputes them, and the tables are whole.
     let o = sweep(&spec, &out, &[]);

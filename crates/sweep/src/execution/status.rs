@@ -42,6 +42,10 @@ pub struct SweepStatus {
     /// Wall seconds until the known runs are done at that pace, measured from the first of
     /// those runs to now (`None` when none was stored in the window, or nothing remains).
     pub eta_s: Option<f64>,
+    /// Seconds since the newest run of the window was stored (`None` when none was). Longer
+    /// than `eta_s`: the estimate is already passed, the runs left are slower than the
+    /// finished ones (a sweep's slow tail, next to its boundaries).
+    pub since_last_s: Option<f64>,
     /// Read from the directory's tables (`points.parquet`, `runs.parquet`), which has no run
     /// store: a committed result directory.
     pub from_tables: bool,
@@ -123,6 +127,7 @@ pub fn status(dir: &Path) -> Result<SweepStatus, SweepError> {
         .then(|| remaining as f64 * pace_span_s / recent.runs as f64);
     let runs_recent = recent.runs;
     let pace_s = if runs_recent > 0 { pace_span_s } else { 0.0 };
+    let since_last_s = recent.newest.map(|d| d.as_secs_f64());
     Ok(SweepStatus {
         name: spec.name,
         output: dir.to_path_buf(),
@@ -141,6 +146,7 @@ pub fn status(dir: &Path) -> Result<SweepStatus, SweepError> {
         runs_recent,
         pace_s,
         eta_s,
+        since_last_s,
         from_tables: false,
     })
 }
@@ -186,6 +192,7 @@ fn status_from_tables(dir: &Path) -> Result<SweepStatus, SweepError> {
         runs_recent: 0,
         pace_s: 0.0,
         eta_s: None,
+        since_last_s: None,
         from_tables: true,
     })
 }

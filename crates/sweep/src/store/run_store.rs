@@ -55,6 +55,8 @@ pub struct Recent {
     pub runs: usize,
     /// Age of the oldest of them (zero when there are none).
     pub oldest: std::time::Duration,
+    /// Age of the newest of them (`None` when there are none).
+    pub newest: Option<std::time::Duration>,
 }
 
 impl Store {
@@ -393,6 +395,7 @@ impl Store {
             if let Some(age) = age.filter(|age| *age <= window) {
                 recent.runs += 1;
                 recent.oldest = recent.oldest.max(age);
+                recent.newest = Some(recent.newest.map_or(age, |n| n.min(age)));
             }
         }
         recent
