@@ -24,7 +24,7 @@ use crate::model::param::ModelParam;
 use crate::reduced::boundaries::Boundary;
 use crate::roots::balances::Balances;
 use crate::roots::steady_solver::SteadySolver;
-use crate::roots::thresholds::{disk_thresholds, ic_thresholds, IcThresholds};
+use crate::roots::thresholds::{disk_thresholds, two_mode_thresholds, IcThresholds};
 
 /// Makes the balances of the window's model, once per curve (each curve on its own thread).
 type Make<'a> = &'a (dyn Fn() -> Result<Balances, SolverError> + Sync);
@@ -33,8 +33,8 @@ type Make<'a> = &'a (dyn Fn() -> Result<Balances, SolverError> + Sync);
 /// computation: then they do not depend on `kappa2` at all).
 fn disk_at_ends(make: Make, w: &Window) -> Result<(IcThresholds, IcThresholds), SolverError> {
     match make()? {
-        Balances::Two(_) => {
-            let th = ic_thresholds(&w.base, w.n, 2)?;
+        Balances::Two(mut solver) => {
+            let th = two_mode_thresholds(&mut solver);
             Ok((th.clone(), th))
         }
         Balances::General { mut solver, modes } => {

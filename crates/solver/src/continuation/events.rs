@@ -156,49 +156,42 @@ impl Tracer<'_> {
             let lambda = verdict.decisive().get(idx).copied();
             let complex = lambda.is_some_and(|l| l.im.abs() > 1e-7);
             let crossed = lambda.is_some_and(|l| l.re.abs() < CROSSING_TOLERANCE);
-            let (kind, what, eigenvalue, precision) = if crossed {
-                let (kind, what) = if complex {
-                    ("H", "complex pair crosses 0 (Hopf)")
-                } else {
-                    ("P", "real eigenvalue crosses 0")
-                };
-                (
-                    kind,
-                    what.to_string(),
-                    lambda.map(|l| [l.re, l.im]),
-                    precision,
-                )
-            } else if va.rotation.is_some() != vb.rotation.is_some() {
-                // The count changed because the rotation mode passed the largest rate the
-                // verdict sets aside as rotation: no eigenvalue crosses zero, the switch is
-                // located where it happens.
-                let rotation = verdict.rotation.or(va.rotation).or(vb.rotation);
-                (
-                    "R",
-                    format!(
+            let (kind, what, eigenvalue, precision) =
+                if !crossed && va.rotation.is_some() != vb.rotation.is_some() {
+                    // The count changed because the rotation mode passed the largest rate the
+                    // verdict sets aside as rotation: no eigenvalue crosses zero, the switch is
+                    // located where it happens.
+                    let rotation = verdict.rotation.or(va.rotation).or(vb.rotation);
+                    (
+                        "R",
+                        format!(
                         "the rotation mode passes |lambda| = {ROTATION_MAX} (beyond it, it counts)"
                     ),
-                    rotation.map(|r| [r, 0.0]),
-                    precision,
-                )
-            } else {
-                // Another eigenvalue than the one located changed the count (two crossing in
-                // one step, or a root the eigenvalue search missed on one side): the bracket
-                // located nothing, and the event is the whole step's.
-                let step = (q_of(b) - q_of(a)).abs() * self.prob.span.abs();
-                let what = if complex {
-                    "complex pair crosses 0 (Hopf)"
+                        rotation.map(|r| [r, 0.0]),
+                        precision,
+                    )
                 } else {
-                    "real eigenvalue crosses 0"
+                    let (kind, what) = if complex {
+                        ("H", "complex pair crosses 0 (Hopf)")
+                    } else {
+                        ("P", "real eigenvalue crosses 0")
+                    };
+                    // Not crossed: another eigenvalue than the one located changed the count (two
+                    // crossing in one step, or a root the eigenvalue search missed on one side);
+                    // the bracket located nothing, and the event is the whole step's.
+                    let step = (q_of(b) - q_of(a)).abs() * self.prob.span.abs();
+                    let precision = if crossed {
+                        precision
+                    } else {
+                        step.max(precision)
+                    };
+                    (
+                        kind,
+                        what.to_string(),
+                        lambda.map(|l| [l.re, l.im]),
+                        precision,
+                    )
                 };
-                let kind = if complex { "H" } else { "P" };
-                (
-                    kind,
-                    what.to_string(),
-                    lambda.map(|l| [l.re, l.im]),
-                    step.max(precision),
-                )
-            };
             let pt = self.point(&p.y, verdict);
             Some(BranchEvent {
                 kind,

@@ -24,4 +24,17 @@ impl MirrorLine {
             Self::Diagonal => std::f64::consts::FRAC_PI_4,
         }
     }
+
+    /// The 2-mode state `(vx, vy, a2, b2)` moving at `v` along the line with the mode-2
+    /// amplitude `c` on it: `(v, 0, c, 0)` on the x axis, `(v / sqrt 2, v / sqrt 2, 0, c)` on
+    /// the diagonal (mode 2 turned by 90 degrees).
+    pub fn two_mode_state(self, v: f64, c: f64) -> [f64; 4] {
+        match self {
+            Self::X => [v, 0.0, c, 0.0],
+            Self::Diagonal => {
+                let d = v * std::f64::consts::FRAC_1_SQRT_2;
+                [d, d, 0.0, c]
+            }
+        }
+    }
 }

@@ -147,11 +147,8 @@ impl Balances {
     /// 45; for `K = 2` exactly `(v, v, 0, a2 sqrt 2) / sqrt 2`).
     pub fn on_mirror(&self, mirror: MirrorLine, v: f64, a: &[f64]) -> Vec<f64> {
         match (self, mirror) {
-            (_, MirrorLine::X) => on_x_axis(v, a),
-            (Balances::Two(_), MirrorLine::Diagonal) => {
-                let d = v * std::f64::consts::FRAC_1_SQRT_2;
-                vec![d, d, 0.0, a[0]]
-            }
+            (Balances::Two(_), _) => mirror.two_mode_state(v, a[0]).to_vec(),
+            (Balances::General { .. }, MirrorLine::X) => on_x_axis(v, a),
             (Balances::General { .. }, MirrorLine::Diagonal) => {
                 turned(&on_x_axis(v, a), mirror.angle())
             }

@@ -54,17 +54,6 @@ pub struct NamedState {
     pub verdict: Verdict,
 }
 
-/// `(speed along the axis, shape amplitude on it)` -> `(vx, vy, a2, b2)`.
-fn on_axis(axis: MirrorLine, v: f64, c: f64) -> [f64; 4] {
-    match axis {
-        MirrorLine::X => [v, 0.0, c, 0.0],
-        MirrorLine::Diagonal => {
-            let d = v * std::f64::consts::FRAC_1_SQRT_2;
-            [d, d, 0.0, c]
-        }
-    }
-}
-
 /// Newton's start for an ID state: the reduced model's amplitude (at least 0.05), positive
 /// (long axis along x on the x axis, along the diagonal on the diagonal).
 pub fn id_seed(c: &Coefficients, params: &ModelParams) -> f64 {
@@ -143,7 +132,7 @@ fn two_mode_root(
     seed: Option<(f64, f64)>,
 ) -> Result<([f64; 4], f64), SolverError> {
     if kind == StateKind::IC {
-        return Ok((on_axis(axis, 0.0, 0.0), 0.0));
+        return Ok((axis.two_mode_state(0.0, 0.0), 0.0));
     }
     let params = *solver.params();
     let c = Coefficients::new(params.radius, crate::contract::settings::H0_PAPER);
@@ -161,7 +150,7 @@ fn two_mode_root(
         let v0 = if kind == StateKind::ID { 0.0 } else { v0 };
         match solver.newton_on(axis, v0, c0, 1e-12) {
             Ok(st) if kind == StateKind::ID || st.v.abs() > 1e-6 => {
-                return Ok((on_axis(axis, st.v, st.a2), st.residual));
+                return Ok((axis.two_mode_state(st.v, st.a2), st.residual));
             }
             Ok(st) => {
                 last = Some(SolverError::RestingRoot {

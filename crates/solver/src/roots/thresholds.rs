@@ -51,16 +51,22 @@ pub fn ic_thresholds(
     if modes > 2 {
         return Ok(disk_thresholds(&mut SteadySolver::new(*params, n)?, modes));
     }
-    let mut solver = TwoModeSolver::new(*params, n)?;
-    let j0 = TwoModeLinearization::at(&mut solver, [0.0; 4]).jacobian0();
+    Ok(two_mode_thresholds(&mut TwoModeSolver::new(*params, n)?))
+}
+
+/// The resting disk's thresholds with two shape modes, read off the 2-mode solver's 4 x 4
+/// `lambda = 0` Jacobian (the fast path of [`ic_thresholds`]).
+pub fn two_mode_thresholds(solver: &mut TwoModeSolver) -> IcThresholds {
+    let params = *solver.params();
+    let j0 = TwoModeLinearization::at(solver, [0.0; 4]).jacobian0();
     let (a2, b2) = (j0[2][2] + params.kappa2, j0[3][3] + params.kappa2);
-    Ok(IcThresholds {
+    IcThresholds {
         eta_t: j0[0][0] + params.eta_t,
         kappa2_a2: a2,
         kappa2_b2: b2,
         kappa2_a: vec![a2],
         kappa2_b: vec![b2],
-    })
+    }
 }
 
 /// The resting disk's thresholds with shape modes `2..=k_max` from the general solver, at any
@@ -169,10 +175,7 @@ pub fn id_onset(
     if st.a2.abs() < 1e-4 {
         return None;
     }
-    let z = match mirror {
-        MirrorLine::X => [0.0, 0.0, st.a2, 0.0],
-        MirrorLine::Diagonal => [0.0, 0.0, 0.0, st.a2],
-    };
+    let z = mirror.two_mode_state(0.0, st.a2);
     let j = TwoModeLinearization::at(solver, z).jacobian0();
     let k = [[j[0][0] + eta_t, j[0][1]], [j[1][0], j[1][1] + eta_t]];
     Some((top_eigenvalue(k), st.a2))
