@@ -14,3 +14,20 @@ pub mod two_mode;
 
 pub use general::Linearization;
 pub use two_mode::TwoModeLinearization;
+
+use rustfft::num_complex::Complex64;
+
+/// Largest `|Im lambda|` of an eigenvalue taken to be real: Newton in the complex plane leaves
+/// a real root of `det T` with an imaginary part of round-off (`1e-24` measured at K = 4),
+/// and a verdict tells the rotation mode, and a continuation a real crossing from a complex
+/// one, by `Im lambda == 0`.
+pub const REAL_EIGENVALUE: f64 = 1e-10;
+
+/// `lambda`, its imaginary part set to 0 where it is round-off ([`REAL_EIGENVALUE`]).
+pub fn real_if_round_off(lambda: Complex64) -> Complex64 {
+    if lambda.im.abs() < REAL_EIGENVALUE {
+        Complex64::new(lambda.re, 0.0)
+    } else {
+        lambda
+    }
+}

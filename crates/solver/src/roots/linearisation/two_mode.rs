@@ -330,11 +330,7 @@ impl TwoModeLinearization {
             }
             let root_ok = self.det(lambda).norm() <= 1e-9 * self.det(lambda + 0.1).norm();
             if lambda.re > -0.999 && root_ok {
-                found.push(if lambda.im.abs() < 1e-10 {
-                    C64::new(lambda.re, 0.0)
-                } else {
-                    lambda
-                });
+                found.push(super::real_if_round_off(lambda));
             }
         }
         found.sort_by(|a, b| b.re.total_cmp(&a.re));
