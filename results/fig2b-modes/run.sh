@@ -5,7 +5,7 @@
 # `python3 results/fig2b-modes/summarise.py` writes events.md (against results/continuation,
 # the same lines with two modes).
 set -uo pipefail
-d=./target/release/droplet
+d=${DROPLET:-./target/release/droplet}
 out=results/fig2b-modes
 for e in 0.082 0.090; do
   $d continue --modes 4 --n 192 --eta-t $e --from 0.100 --to 0.170 --out $out --json > $out/continue_etat$e.json
