@@ -81,8 +81,11 @@ pub const ODE_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numeri
 /// ETD2RK with its error estimate on the 2-mode runs' clock, adaptive steps under `tol` and
 /// `dt_max` by default (was exponential Euler at fixed steps `dt`), run on as 2-mode runs; 4:
 /// the 2-mode runs' Newton finish (its orientation check, turn search and diagnosis) and
-/// verdict (`roots::verdict::assess`) at every `K`.
-pub const MODES_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-9+modes-4");
+/// verdict (`roots::verdict::assess`) at every `K`; 5: a real eigenvalue is real (its
+/// imaginary part of round-off dropped), so the verdict finds the rotation mode at every `K`,
+/// and a run to turn from a root unstable only in rotation ends once it has settled on that
+/// root (before, only once within the box's anisotropy of the turned one).
+pub const MODES_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-9+modes-5");
 
 /// The numerics version of a model's runs with shape modes `2..=modes`, part of their cache
 /// key: a change to one model's results invalidates its stored runs only.

@@ -12,11 +12,18 @@ pub struct Finding {
     /// The root, `(vx, vy, a_2..a_K, b_2..b_K)`.
     pub z: Vec<f64>,
     pub verdict: Verdict,
-    /// The root of the turned state (the run is to turn there), not the one near the run.
-    pub turned: bool,
+    /// For the root of a turned state (the run is to turn there): the root near the run,
+    /// unstable only in its rotation mode, whose speed and deformation the run settles to
+    /// before it turns. `None`: the root is the one near the run.
+    pub turned_from: Option<Vec<f64>>,
 }
 
 impl Finding {
+    /// Whether the root is that of a turned state, not the one near the run.
+    pub fn turned(&self) -> bool {
+        self.turned_from.is_some()
+    }
+
     /// Largest real part of all eigenvalues, the rotation mode included.
     pub fn slowest(&self) -> f64 {
         self.verdict.eigenvalues.first().map_or(-1.0, |l| l[0])

@@ -241,7 +241,7 @@ impl NewtonFinish {
         Ok(Finding {
             z: root,
             verdict,
-            turned: false,
+            turned_from: None,
         })
     }
 
@@ -302,17 +302,22 @@ impl NewtonFinish {
         // root's, against what the linear decay at the slowest decisive rate predicts from
         // the run's present change. Its orientation relaxes at the rotation rate, slowly: it
         // need only be within ORIENTATION of the root's, or closer to it than at the last try
-        // (turning towards it), or the root be the turned one.
+        // (turning towards it), or the root be the turned one. A run that is to turn has
+        // settled when it has settled on the root it turns from (the two differ by the box's
+        // anisotropy, 3 % in v for the fast MD with modes 2..4) or already on the turned one.
         let rate = f.verdict.max_re.abs().max(1e-12);
-        let settled = invariant_distance(z, &f.z)
-            <= (10.0 * (change / self.window) / rate).min(MAX_SETTLED) + 1e-9;
+        let bound = (10.0 * (change / self.window) / rate).min(MAX_SETTLED) + 1e-9;
+        let settled = invariant_distance(z, &f.z) <= bound
+            || f.turned_from
+                .as_ref()
+                .is_some_and(|near| invariant_distance(z, near) <= bound);
         let lean = angle_to(z, &f.z);
         let turn = lean.abs();
         let turning_to = self.last_turn.as_ref().is_some_and(|(root, before)| {
             root.iter().zip(&f.z).all(|(a, b)| (a - b).abs() < 1e-6) && turn < *before
         });
         self.last_turn = Some((f.z.clone(), turn));
-        let approaching = settled && (f.turned || turn <= ORIENTATION || turning_to);
+        let approaching = settled && (f.turned() || turn <= ORIENTATION || turning_to);
         // The basin check of a root stable in rotation, left to here: only a run that would
         // end on it pays for the flow's samples (the same decisions, fewer samples).
         if may_end
@@ -387,7 +392,7 @@ impl NewtonFinish {
     /// With `leap_departures`, the leap of a run at `z` (time `t`) leaving the saddle `f`
     /// along one growing mode, if the previous try saw it on that mode too.
     fn departure(&mut self, t: f64, z: &[f64], f: &Finding) -> Option<Leap> {
-        if !self.leap_departures || f.verdict.unstable == 0 || f.turned {
+        if !self.leap_departures || f.verdict.unstable == 0 || f.turned() {
             self.sighting = None;
             return None;
         }
@@ -442,7 +447,7 @@ impl NewtonFinish {
     /// `f` that it cannot leave before `t_max`: its distance grown at the largest rate stays
     /// below [`LEAVE`], and the class is the same everywhere within that distance.
     fn cannot_leave(&self, t: f64, z: &[f64], f: &Finding) -> Option<String> {
-        if !self.stop_beside_saddle || f.verdict.unstable == 0 || f.turned {
+        if !self.stop_beside_saddle || f.verdict.unstable == 0 || f.turned() {
             return None;
         }
         let distance = max_distance(z, &f.z);

@@ -109,7 +109,7 @@ impl NewtonFinish {
             {
                 return (
                     Finding {
-                        turned: true,
+                        turned_from: Some(near.z.clone()),
                         ..other
                     },
                     true,
@@ -310,7 +310,7 @@ impl NewtonFinish {
             && angle_to(&found.z, &near.z).abs() > 1e-6
             && invariant_distance(&found.z, &near.z) <= MAX_SETTLED;
         let found = ends.then_some(Finding {
-            turned: true,
+            turned_from: Some(near.z.clone()),
             ..found
         });
         self.turns.push((near.z.clone(), lean, to, found.clone()));
