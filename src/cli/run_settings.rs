@@ -127,10 +127,11 @@ pub struct Args {
     /// --tol and --dt-max as a 2-mode run, or fixed steps --dt with --tol 0) from the IC
     /// (modes 3..K as --ic custom gives them, else 0; field 0), ended like a 2-mode run by
     /// the Newton finish: steady on a root of the 2K force balances whose eigenvalues all
-    /// decay, else unsettled where a 2-mode run gives up (as a sweep with params.modes: K
+    /// decay (or where its slow flow lands, as a 2-mode run), else unsettled where a 2-mode
+    /// run gives up (as a sweep with params.modes: K
     /// runs it). Its --series gains a3..aK, b3..bK; --picture draws every mode. With
     /// --scheme paper-fd: the paper's forward Euler with every mode to t_max, ended by the
-    /// steady test (every rate below --steady-tol). No pinning or landing.
+    /// steady test (every rate below --steady-tol). No pinning, orientation flow or leap.
     #[arg(long, default_value_t = 2)]
     pub(super) modes: usize,
     /// With --modes K > 2: the friction law of the modes k >= 3, eta_k = eta2 (k/2)^P

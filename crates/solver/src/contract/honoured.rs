@@ -33,7 +33,7 @@ impl SolverSettings {
             "tol" | "dt_max" if !spectral => Some("the paper's scheme takes fixed steps dt"),
             "dt_max" if !self.adaptive() => Some("tol = 0 gives fixed steps dt; dt_max caps adaptive steps only"),
             "landing" | "orientation_flow" | "stop_beside_saddle" | "leap_departures" | "run_on" if !newton => Some("it acts in the Newton finish; steady = test ends a run by the paper's test alone"),
-            "landing" | "orientation_flow" | "stop_beside_saddle" | "leap_departures" if k_modes => Some("runs with modes > 2 end by the Newton finish and its turn search, without the landing, the orientation flow, the saddle stop or the leap (2-mode runs only)"),
+            "orientation_flow" | "stop_beside_saddle" | "leap_departures" if k_modes => Some("runs with modes > 2 end by the Newton finish, its turn search and the landing, without the orientation flow, the saddle stop or the leap (2-mode runs only)"),
             "steady_window" if k_modes => Some("runs with modes > 2 are steady when every rate is below steady_tol; steady_window is the 2-mode test's window"),
             "pinned" if ode || k_modes => Some("only a 2-mode PDE run can hold its centre fixed"),
             _ => None,
@@ -167,7 +167,6 @@ mod tests {
     fn settings_a_run_does_not_read_give_the_same_honoured_settings() {
         let base = k_modes(3);
         let changed = SolverSettings {
-            landing: false,
             orientation_flow: false,
             steady_window: 0.5,
             h0: 192.0,
@@ -207,17 +206,23 @@ mod tests {
     #[test]
     fn a_given_setting_that_is_not_read_is_named_with_the_reason() {
         let k3 = SolverSettings {
+            orientation_flow: false,
+            ..k_modes(3)
+        };
+        let (field, why) = k3
+            .first_unread(&["dt", "tol", "orientation_flow"])
+            .unwrap();
+        assert!(
+            field == "orientation_flow" && why.contains("Newton finish, its turn search"),
+            "{why}"
+        );
+        // K-mode runs step as 2-mode runs do, fixed or adaptive, and land as they do.
+        let no_landing = SolverSettings {
             landing: false,
             ..k_modes(3)
         };
-        let (field, why) = k3.first_unread(&["dt", "tol", "landing"]).unwrap();
-        assert!(
-            field == "landing" && why.contains("Newton finish and its turn search"),
-            "{why}"
-        );
-        // K-mode runs step as 2-mode runs do: fixed or adaptive.
-        assert!(k_modes(3)
-            .first_unread(&["dt", "tol", "dt_max", "t_max", "run_on"])
+        assert!(no_landing
+            .first_unread(&["dt", "tol", "dt_max", "t_max", "run_on", "landing"])
             .is_none());
         let test = SolverSettings {
             steady: SteadyMethod::Test,

@@ -155,6 +155,17 @@ impl Balances {
         }
     }
 
+    /// The shape amplitudes `a_2..a_K` in the frame of `mirror` of a state `z` lying along
+    /// it (the inverse of [`Self::on_mirror`] for the shape): on the x axis `a_k`; on the
+    /// diagonal the amplitudes of `z` turned back by 45 degrees (for `K = 2` exactly `b2`).
+    pub fn shape_on(&self, mirror: MirrorLine, z: &[f64]) -> Vec<f64> {
+        match (self, mirror) {
+            (Balances::Two(_), MirrorLine::X) => vec![z[2]],
+            (Balances::Two(_), MirrorLine::Diagonal) => vec![z[3]],
+            (Balances::General { modes, .. }, _) => turned(z, -mirror.angle())[2..=*modes].to_vec(),
+        }
+    }
+
     /// The balances of [`Self::on_mirror`]'s state in the line's own frame: along the motion,
     /// then the shape balances of `a_2..a_K` (`K` values; the others vanish by the mirror
     /// symmetry).

@@ -9,8 +9,9 @@
 //! a 2-mode run the change of `(vx, vy, a2, b2)` over the paper's window of 0.1, a `K`-mode
 //! run the largest rate `|dz/dt|` its scheme measures (the Newton finish is tried once that is
 //! below [`crate::runs::finish::TRIGGER_FACTOR`] steady tolerances; the paper's test fires
-//! below one). The landing, the orientation flow, the saddle stop and the leap solve the
-//! 2-mode balances: off for `K > 2` ([`crate::contract::limits::check_run`] and the finish).
+//! below one). The landing walks the families of every `K`; the orientation flow, the saddle
+//! stop and the leap are off for `K > 2` ([`crate::contract::limits::check_run`] and the
+//! finish).
 use crate::contract::ending::{Ending, SteadyMethod};
 use crate::contract::outcome::{RunOutcome, RunStatus, Unsettled};
 use crate::contract::profile::{self, Part};

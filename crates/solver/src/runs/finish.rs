@@ -163,8 +163,8 @@ impl NewtonFinish {
     /// For a run of `settings` (its grid, steady tolerance and window, and `t_max`).
     ///
     /// Runs with shape modes `2..K`, `K > 2`, are finished by Newton on all `2K` balances,
-    /// the turn search and the diagnosis, as 2-mode runs are; the landing, the saddle stop and
-    /// the leap solve the 2-mode balances only and are off for them
+    /// the turn search, the landing and the diagnosis, as 2-mode runs are; the saddle stop and
+    /// the leap scale a 2-mode run's field and are off for them
     /// ([`crate::contract::honoured`] says so). So is the orientation's flow: on coarse grids
     /// the lattice gives the fast balances at a fixed orientation several solutions, and the
     /// flow followed from a root need not be the run's (modes 2..3, N = 96, (0.088, 0.1095)
@@ -183,7 +183,7 @@ impl NewtonFinish {
             t_max: settings.t_max,
             stop_beside_saddle: settings.stop_beside_saddle && two,
             leap_departures: settings.leap_departures && two,
-            landing: settings.landing && two,
+            landing: settings.landing,
             sighting: None,
             last_turn: None,
             last_lean: None,
@@ -420,7 +420,7 @@ impl NewtonFinish {
         Ok(self.solver.as_mut().expect("made above"))
     }
 
-    /// The run's 2-mode steady solver (for the landing, the orientation flow and the leap),
+    /// The run's 2-mode steady solver (for the leap's root field),
     /// made at its first use; refused for runs with more shape modes.
     pub(super) fn steady_solver(&mut self) -> Result<&mut TwoModeSolver, SolverError> {
         match self.balances()? {

@@ -8,9 +8,10 @@
 //!
 //! Speed family (a moving run): on a mirror line of the box (x axis, or the diagonal; the
 //! run's direction of motion turned onto the nearest one), fix the speed `v`, take the
-//! co-moving steady field at that speed (exact, [`TwoModeSolver`]), solve only the shape
-//! balance `G(v, c) = kappa2 c` for the shape amplitude `c*(v)` on the line, and evaluate
-//! what is left of the velocity balance,
+//! co-moving steady field at that speed (exact, [`Balances`]), solve only the shape
+//! balances `G_k(v, c) = kappa_k c_k` for the shape amplitudes `c*(v) = (a_2..a_K)*(v)` on
+//! the line (mirror-symmetric about it: in the line's frame `b_k = 0`), and evaluate what is
+//! left of the velocity balance,
 //!
 //! `g(v) = F(v, c*(v)) - eta_t v`    (the paper's eq. 36 at steady field and shape).
 //!
@@ -21,15 +22,17 @@
 //! `g < 0` all the way down to `v = 0`.
 //!
 //! Shape family (a resting run): with `v = 0` the velocity balance holds by symmetry, and
-//! `h(c) = G(0, c) - kappa2 c` (paper eq. 38) plays the part of `g`, with `c >= 0` the
-//! deformation along the line's long axis (the disk, `c = 0`, is always a zero).
+//! `h(c) = G_2(0, c) - kappa2 c` (paper eq. 38) plays the part of `g`, with `c >= 0` the
+//! mode-2 deformation along the line's long axis (the disk, `c = 0`, is always a zero) and
+//! the modes `3..K` solved from their own balances at each `c` (the odd ones vanish at rest by
+//! the point symmetry).
 //!
 //! The certificate that a run's future is decided ([`land`]): its fast residual is small
-//! (its shape within [`FAMILY_TOL`] of `c*(v_run)`), the walk along the family from the run
+//! (every shape amplitude within [`FAMILY_TOL`] of `c*(v_run)`'s), the walk along the family from the run
 //! to the landing root finds no zero in between (steps of at most [`MAX_STEP`], and at most
 //! half the distance to the zero that the local slope of `g` points at, so a dip of `g`
 //! towards zero is resolved before it can be stepped over), and the caller confirms that the
-//! landing root is a root of all four force-balance equations and is stable
+//! landing root is a root of all `2K` force-balance equations and is stable
 //! ([`crate::runs::finish`]).
 //!
 //! Limits: where two modes are slow at once (where the moving branch's fold meets the onset
@@ -40,14 +43,17 @@
 //! not grow on the way, and confirms the flow's root on its line ([`Landing::on_line`]),
 //! letting the run turn from there if that root is unstable in rotation
 //! ([`crate::runs::finish`], numerics 7).
+//!
+//! Every `K` walks the same families through [`Balances`] (for `K = 2` its fast path, the
+//! same arithmetic as before the general model had a landing).
 use crate::model::mirror::MirrorLine;
-use crate::model::state::{four, turned};
+use crate::model::state::turned;
 use crate::numerics::bracket::illinois;
-use crate::roots::steady_solver::TwoModeSolver;
-use std::f64::consts::{FRAC_1_SQRT_2, FRAC_PI_4};
+use crate::roots::balances::Balances;
+use std::f64::consts::FRAC_PI_4;
 
-/// Largest distance of a run's shape amplitude from the family's, `|c_run - c*(v_run)|`, for
-/// the run to be on the family (its fast parts relaxed).
+/// Largest distance of a run's shape amplitudes from the family's, `max_k |c_run - c*(v_run)|`,
+/// for the run to be on the family (its fast parts relaxed).
 pub const FAMILY_TOL: f64 = 2e-3;
 
 /// Largest step of the walk along the family (in `v` or `c`).
@@ -72,13 +78,13 @@ pub enum Coordinate {
 }
 
 /// Where the run lands, and how it was found.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Landing {
-    /// The landing root `(vx, vy, a2, b2)` in the run's own orientation (on the mirror line
-    /// nearest the run, turned by the run's lean from it).
-    pub z: [f64; 4],
+    /// The landing root `(vx, vy, a_2..a_K, b_2..b_K)` in the run's own orientation (on the
+    /// mirror line nearest the run, turned by the run's lean from it).
+    pub z: Vec<f64>,
     /// The same root on the mirror line the flow walked, before the run's lean.
-    pub on_line: [f64; 4],
+    pub on_line: Vec<f64>,
     pub coordinate: Coordinate,
     /// The run's coordinate, and the landing root's.
     pub from: f64,
@@ -109,66 +115,97 @@ fn lines_near(orientation: f64) -> [(MirrorLine, f64, f64); 2] {
     })
 }
 
-/// `(vx, vy, a2, b2)` of speed `v`, shape amplitude `c` on `axis`.
-fn on_line(axis: MirrorLine, v: f64, c: f64) -> [f64; 4] {
-    match axis {
-        MirrorLine::X => [v, 0.0, c, 0.0],
-        MirrorLine::Diagonal => [v * FRAC_1_SQRT_2, v * FRAC_1_SQRT_2, 0.0, c],
+/// The shape balances `r` (the line's `a_k`, from index `from` of [`Balances::residual_on`])
+/// in the amplitudes `c` (`c[..from - 1]` held): `c` moved by `dc` where needed.
+type Shape<'b> = &'b mut dyn FnMut(&[f64]) -> Vec<f64>;
+
+/// Newton's step `-J^(-1) r` (for one unknown `-r / J`), or `None` if `J` is singular.
+fn newton_step(j: &[Vec<f64>], r: &[f64]) -> Option<Vec<f64>> {
+    if r.len() == 1 {
+        return Some(vec![-r[0] / j[0][0]]);
     }
+    let m = nalgebra::DMatrix::from_fn(r.len(), r.len(), |i, k| j[i][k]);
+    let b = nalgebra::DVector::from_iterator(r.len(), r.iter().map(|x| -x));
+    m.lu().solve(&b).map(|x| x.iter().copied().collect())
+}
+
+/// The largest `|x_i|`.
+fn max_abs(x: &[f64]) -> f64 {
+    x.iter().fold(0.0f64, |m, v| m.max(v.abs()))
 }
 
 /// The scalar flows of one mirror line.
 pub struct SlowFlow<'a> {
-    solver: &'a mut TwoModeSolver,
+    balances: &'a mut Balances,
     axis: MirrorLine,
     /// Samples taken.
     pub samples: usize,
-    /// The shape balance's derivative in the shape amplitude at the last sample: the
-    /// next sample's Newton steps start with it (it changes little between samples).
-    slope: Option<f64>,
+    /// The shape balances' Jacobian in the shape amplitudes at the last sample: the next
+    /// sample's Newton steps start with it (it changes little between samples).
+    slope: Option<Vec<Vec<f64>>>,
+    /// At rest, the amplitudes of the modes `3..K` at the last sample (the next one's start).
+    higher: Vec<f64>,
 }
 
 impl<'a> SlowFlow<'a> {
-    pub fn new(solver: &'a mut TwoModeSolver, axis: MirrorLine) -> Self {
+    pub fn new(balances: &'a mut Balances, axis: MirrorLine) -> Self {
+        let higher = vec![0.0; balances.modes() - 2];
         Self {
-            solver,
+            balances,
             axis,
             samples: 0,
             slope: None,
+            higher,
         }
     }
 
-    /// The family's shape amplitude `c*(v)` at speed `v` (the shape balance solved from
-    /// `c0` by Newton steps with the derivative of the last sample, taken again by central
-    /// differences whenever a step does not shrink the residual tenfold), or `None` if it does not
-    /// converge.
-    pub fn shape_at(&mut self, v: f64, c0: f64) -> Option<f64> {
+    /// The family's shape amplitudes `c*(v) = (a_2..a_K)` on the line at speed `v` (the shape
+    /// balances solved from `c0` by Newton steps with the Jacobian of the last sample, taken
+    /// again by central differences whenever a step does not shrink the residual tenfold),
+    /// or `None` if they do not converge.
+    pub fn shape_at(&mut self, v: f64, c0: &[f64]) -> Option<Vec<f64>> {
+        let (balances, axis) = (&mut *self.balances, self.axis);
+        let mut shape = |c: &[f64]| balances.residual_on(axis, v, c)[1..].to_vec();
+        Self::solve(&mut shape, &mut self.slope, c0)
+    }
+
+    /// Newton on `shape(c) = 0` from `c0` with the kept Jacobian `slope` ([`Self::shape_at`]).
+    fn solve(shape: Shape<'_>, slope: &mut Option<Vec<Vec<f64>>>, c0: &[f64]) -> Option<Vec<f64>> {
         let h = 1e-7;
-        let mut c = c0;
+        let mut c = c0.to_vec();
         let mut before = f64::INFINITY;
         for _ in 0..60 {
-            let r = self.solver.residual_on(self.axis, v, c)[1];
-            if r.abs() < 1e-13 {
+            let r = shape(&c);
+            if max_abs(&r) < 1e-13 {
                 return Some(c);
             }
-            let d = match self.slope {
-                Some(d) if r.abs() <= 0.1 * before => d,
+            let d = match slope.take() {
+                Some(d) if max_abs(&r) <= 0.1 * before => d,
                 _ => {
-                    let d = (self.solver.residual_on(self.axis, v, c + h)[1]
-                        - self.solver.residual_on(self.axis, v, c - h)[1])
-                        / (2.0 * h);
-                    self.slope = Some(d);
+                    let mut d = vec![vec![0.0; c.len()]; c.len()];
+                    for k in 0..c.len() {
+                        let (mut up, mut down) = (c.clone(), c.clone());
+                        up[k] += h;
+                        down[k] -= h;
+                        let (ru, rd) = (shape(&up), shape(&down));
+                        for (row, (u, l)) in d.iter_mut().zip(ru.iter().zip(&rd)) {
+                            row[k] = (u - l) / (2.0 * h);
+                        }
+                    }
                     d
                 }
             };
-            before = r.abs();
-            let step = -r / d;
-            if !step.is_finite() {
-                self.slope = None;
+            before = max_abs(&r);
+            let step = newton_step(&d, &r);
+            *slope = Some(d);
+            let Some(step) = step.filter(|s| s.iter().all(|x| x.is_finite())) else {
+                *slope = None;
                 return None;
+            };
+            for (x, dx) in c.iter_mut().zip(&step) {
+                *x += dx.clamp(-0.005, 0.005);
             }
-            c += step.clamp(-0.005, 0.005);
-            if step.abs() < 1e-14 {
+            if max_abs(&step) < 1e-14 {
                 return Some(c);
             }
         }
@@ -176,16 +213,32 @@ impl<'a> SlowFlow<'a> {
     }
 
     /// `g(v)` on the speed family, and `c*(v)` (Newton from `c0`).
-    pub fn drift(&mut self, v: f64, c0: f64) -> Option<(f64, f64)> {
+    pub fn drift(&mut self, v: f64, c0: &[f64]) -> Option<(f64, Vec<f64>)> {
         self.samples += 1;
         let c = self.shape_at(v, c0)?;
-        Some((self.solver.residual_on(self.axis, v, c)[0], c))
+        Some((self.balances.residual_on(self.axis, v, &c)[0], c))
     }
 
-    /// `h(c)` on the shape family at rest.
-    pub fn shape_drive(&mut self, c: f64) -> f64 {
+    /// `h(c)` on the shape family at rest (the modes `3..K` solved at `c`; `NaN` where they
+    /// do not converge), and the shape `(c, a_3..a_K)`.
+    pub fn shape_drive(&mut self, c: f64) -> (f64, Vec<f64>) {
         self.samples += 1;
-        self.solver.residual_on(self.axis, 0.0, c)[1]
+        let (balances, axis) = (&mut *self.balances, self.axis);
+        let at = |higher: &[f64]| -> Vec<f64> { std::iter::once(c).chain(higher.iter().copied()).collect() };
+        let shape: Vec<f64> = if self.higher.is_empty() {
+            vec![c]
+        } else {
+            let mut higher = |y: &[f64]| balances.residual_on(axis, 0.0, &at(y))[2..].to_vec();
+            let mut slope = None;
+            match Self::solve(&mut higher, &mut slope, &self.higher) {
+                Some(y) => {
+                    self.higher.clone_from(&y);
+                    at(&y)
+                }
+                None => return (f64::NAN, at(&self.higher)),
+            }
+        };
+        (balances.residual_on(axis, 0.0, &shape)[1], shape)
     }
 }
 
@@ -204,25 +257,25 @@ fn step_size(x: f64, f: f64, prev: Option<(f64, f64)>) -> f64 {
     step.max(MIN_STEP)
 }
 
-/// Where a run at `z = (vx, vy, a2, b2)` may land, the likelier first: along the speed
+/// Where a run at `z = (vx, vy, a_2..a_K, b_2..b_K)` may land, the likelier first: along the speed
 /// family if it moves at all, along the shape family if it is nearly at rest (speed at most
 /// [`RESTING_SPEED`]: a resting deformed droplet whose drift grows slowly leaves along the
 /// speed family; one whose drift decays stays on the shape family). Each is a landing the
 /// walk found (see the module's certificate); the caller takes the first whose root it
 /// confirms stable.
-pub fn landings(solver: &mut TwoModeSolver, z: [f64; 4], walks: &mut Walks) -> Vec<Landing> {
+pub fn landings(balances: &mut Balances, z: &[f64], walks: &mut Walks) -> Vec<Landing> {
     let speed = z[0].hypot(z[1]);
     let moving = (speed > 0.0)
-        .then(|| land_moving(solver, z, walks))
+        .then(|| land_moving(balances, z, walks))
         .flatten();
     let resting = (speed <= RESTING_SPEED)
-        .then(|| land_resting(solver, z, walks))
+        .then(|| land_resting(balances, z, walks))
         .flatten();
     moving.into_iter().chain(resting).collect()
 }
 
 /// The first of [`landings`] (no walks kept).
-pub fn land(solver: &mut TwoModeSolver, z: [f64; 4]) -> Option<Landing> {
+pub fn land(solver: &mut Balances, z: &[f64]) -> Option<Landing> {
     landings(solver, z, &mut Walks::default())
         .into_iter()
         .next()
@@ -237,14 +290,14 @@ pub struct Walks {
     done: Vec<Walk>,
 }
 
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 struct Walk {
     axis: MirrorLine,
     coordinate: Coordinate,
     dir: f64,
     from: f64,
     to: f64,
-    c_to: f64,
+    c_to: Vec<f64>,
 }
 
 impl Walks {
@@ -256,7 +309,7 @@ impl Walks {
         coordinate: Coordinate,
         dir: f64,
         x: f64,
-    ) -> Option<(f64, f64)> {
+    ) -> Option<(f64, Vec<f64>)> {
         self.done
             .iter()
             .find(|w| {
@@ -266,7 +319,7 @@ impl Walks {
                     && (x - w.from) * dir >= 0.0
                     && (w.to - x) * dir > 0.0
             })
-            .map(|w| (w.to, w.c_to))
+            .map(|w| (w.to, w.c_to.clone()))
     }
 
     fn keep(&mut self, walk: Walk) {
@@ -274,29 +327,26 @@ impl Walks {
     }
 }
 
-fn land_moving(solver: &mut TwoModeSolver, z: [f64; 4], walks: &mut Walks) -> Option<Landing> {
+fn land_moving(balances: &mut Balances, z: &[f64], walks: &mut Walks) -> Option<Landing> {
     let [near, other] = lines_near(z[1].atan2(z[0]));
-    land_moving_on(solver, z, near, walks).or_else(|| land_moving_on(solver, z, other, walks))
+    land_moving_on(balances, z, near, walks).or_else(|| land_moving_on(balances, z, other, walks))
 }
 
 /// [`land_moving`] on one mirror line (`(axis, psi, lean)` of [`lines_near`]).
 fn land_moving_on(
-    solver: &mut TwoModeSolver,
-    z: [f64; 4],
+    balances: &mut Balances,
+    z: &[f64],
     (axis, psi, lean): (MirrorLine, f64, f64),
     walks: &mut Walks,
 ) -> Option<Landing> {
-    let here = four(&turned(&z, -psi));
+    let here = turned(z, -psi);
     let v_run = z[0].hypot(z[1]);
-    // The run's shape amplitude on the line, turned back by its lean.
-    let back = four(&turned(&here, -lean));
-    let c_run = match axis {
-        MirrorLine::X => back[2],
-        MirrorLine::Diagonal => back[3],
-    };
-    let mut flow = SlowFlow::new(solver, axis);
-    let (g_run, c_fam) = flow.drift(v_run, c_run)?;
-    if (c_fam - c_run).abs() > FAMILY_TOL || g_run == 0.0 {
+    // The run's shape amplitudes on the line, turned back by its lean.
+    let c_run = balances.shape_on(axis, &turned(&here, -lean));
+    let mut flow = SlowFlow::new(balances, axis);
+    let (g_run, c_fam) = flow.drift(v_run, &c_run)?;
+    let off = c_fam.iter().zip(&c_run).map(|(f, r)| (f - r).abs());
+    if off.fold(0.0f64, f64::max) > FAMILY_TOL || g_run == 0.0 {
         return None;
     }
     let dir = g_run.signum();
@@ -310,19 +360,20 @@ fn land_moving_on(
                 dir,
                 from: v_run,
                 to,
-                c_to,
+                c_to: c_to.clone(),
             });
             (to, c_to)
         }
     };
-    let line_root = on_line(axis, to, c_to);
+    let samples = flow.samples;
+    let line_root = balances.on_mirror(axis, to, &c_to);
     Some(Landing {
-        z: four(&turned(&turned(&line_root, lean), psi)),
-        on_line: four(&turned(&line_root, psi)),
+        z: turned(&turned(&line_root, lean), psi),
+        on_line: turned(&line_root, psi),
         coordinate: Coordinate::Speed,
         from: v_run,
         to,
-        samples: flow.samples,
+        samples,
     })
 }
 
@@ -330,8 +381,8 @@ fn land_moving_on(
 /// the next zero of `g` (see the module's certificate): the zero and the family's shape there.
 fn walk_speed(
     flow: &mut SlowFlow<'_>,
-    (v_run, g_run, c_fam): (f64, f64, f64),
-) -> Option<(f64, f64)> {
+    (v_run, g_run, c_fam): (f64, f64, Vec<f64>),
+) -> Option<(f64, Vec<f64>)> {
     let dir = g_run.signum();
     let (mut v, mut g, mut c) = (v_run, g_run, c_fam);
     let mut prev: Option<(f64, f64)> = None;
@@ -344,7 +395,7 @@ fn walk_speed(
         if next > MAX_COORDINATE {
             return None;
         }
-        let (gn, cn) = flow.drift(next, c)?;
+        let (gn, cn) = flow.drift(next, &c)?;
         if next == 0.0 {
             // g(0) = 0 by symmetry (a sample there is round-off): the resting state.
             break (0.0, cn);
@@ -362,14 +413,19 @@ fn walk_speed(
 /// A zero of `g` between two samples `(v, g, c)` of opposite sign (or a zero sample), to
 /// 1e-10 in `v` (Illinois, the shape tracked from sample to sample): the zero and the
 /// family's shape there.
-fn bisect(flow: &mut SlowFlow<'_>, a: (f64, f64, f64), b: (f64, f64, f64)) -> Option<(f64, f64)> {
+fn bisect(
+    flow: &mut SlowFlow<'_>,
+    a: (f64, f64, Vec<f64>),
+    b: (f64, f64, Vec<f64>),
+) -> Option<(f64, Vec<f64>)> {
     if b.1 == 0.0 {
         return Some((b.0, b.2));
     }
+    let (lo, hi) = ((a.0, a.1), (b.0, b.1));
     let mut sampled = vec![(a.0, a.2), (b.0, b.2)];
     let mut drift = |v: f64| {
-        let guess = sampled.last().expect("two samples").1;
-        match flow.drift(v, guess) {
+        let guess = sampled.last().expect("two samples").1.clone();
+        match flow.drift(v, &guess) {
             Some((g, c)) => {
                 sampled.push((v, c));
                 g
@@ -377,64 +433,67 @@ fn bisect(flow: &mut SlowFlow<'_>, a: (f64, f64, f64), b: (f64, f64, f64)) -> Op
             None => f64::NAN,
         }
     };
-    let zero = illinois(&mut drift, (a.0, a.1), (b.0, b.1), 1e-10)?;
-    let &(_, c) = sampled.iter().rev().find(|(v, _)| *v == zero)?;
+    let zero = illinois(&mut drift, lo, hi, 1e-10)?;
+    let (_, c) = sampled.into_iter().rev().find(|(v, _)| *v == zero)?;
     Some((zero, c))
 }
 
-fn land_resting(solver: &mut TwoModeSolver, z: [f64; 4], walks: &mut Walks) -> Option<Landing> {
-    let s_run = z[2].hypot(z[3]);
+fn land_resting(balances: &mut Balances, z: &[f64], walks: &mut Walks) -> Option<Landing> {
+    // Mode 2's amplitudes (a2, b2).
+    let (a2, b2) = (z[2], z[z.len() / 2 + 1]);
+    let s_run = a2.hypot(b2);
     if s_run == 0.0 {
         return None;
     }
-    let [near, other] = lines_near(0.5 * z[3].atan2(z[2]));
-    land_resting_on(solver, s_run, near, walks)
-        .or_else(|| land_resting_on(solver, s_run, other, walks))
+    let [near, other] = lines_near(0.5 * b2.atan2(a2));
+    land_resting_on(balances, s_run, near, walks)
+        .or_else(|| land_resting_on(balances, s_run, other, walks))
 }
 
 /// [`land_resting`] on one mirror line (`(axis, psi, lean)` of [`lines_near`]): the
 /// deformation is the family's coordinate itself, so a resting run is on it.
 fn land_resting_on(
-    solver: &mut TwoModeSolver,
+    balances: &mut Balances,
     s_run: f64,
     (axis, psi, lean): (MirrorLine, f64, f64),
     walks: &mut Walks,
 ) -> Option<Landing> {
-    let mut flow = SlowFlow::new(solver, axis);
-    let h_run = flow.shape_drive(s_run);
-    if h_run == 0.0 {
+    let mut flow = SlowFlow::new(balances, axis);
+    let (h_run, _) = flow.shape_drive(s_run);
+    if h_run == 0.0 || !h_run.is_finite() {
         return None;
     }
     let dir = h_run.signum();
-    let to = match walks.passed(axis, Coordinate::Shape, dir, s_run) {
-        Some((to, _)) => to,
+    let (to, c_to) = match walks.passed(axis, Coordinate::Shape, dir, s_run) {
+        Some(known) => known,
         None => {
-            let to = walk_shape(&mut flow, (s_run, h_run))?;
+            let (to, c_to) = walk_shape(&mut flow, (s_run, h_run))?;
             walks.keep(Walk {
                 axis,
                 coordinate: Coordinate::Shape,
                 dir,
                 from: s_run,
                 to,
-                c_to: to,
+                c_to: c_to.clone(),
             });
-            to
+            (to, c_to)
         }
     };
-    let line_root = on_line(axis, 0.0, to);
+    let samples = flow.samples;
+    let line_root = balances.on_mirror(axis, 0.0, &c_to);
     Some(Landing {
-        z: four(&turned(&turned(&line_root, lean), psi)),
-        on_line: four(&turned(&line_root, psi)),
+        z: turned(&turned(&line_root, lean), psi),
+        on_line: turned(&line_root, psi),
         coordinate: Coordinate::Shape,
         from: s_run,
         to,
-        samples: flow.samples,
+        samples,
     })
 }
 
 /// The walk along the shape family at rest from the run's sample `(c, h)`, the way `h`
-/// points, to the next zero of `h`.
-fn walk_shape(flow: &mut SlowFlow<'_>, (s_run, h_run): (f64, f64)) -> Option<f64> {
+/// points, to the next zero of `h`: the zero and the family's shape there `(c, a_3..a_K)`.
+fn walk_shape(flow: &mut SlowFlow<'_>, (s_run, h_run): (f64, f64)) -> Option<(f64, Vec<f64>)> {
     let dir = h_run.signum();
     let (mut c, mut h) = (s_run, h_run);
     let mut prev: Option<(f64, f64)> = None;
@@ -446,18 +505,29 @@ fn walk_shape(flow: &mut SlowFlow<'_>, (s_run, h_run): (f64, f64)) -> Option<f64
         if next == 0.0 {
             break 0.0;
         }
-        let hn = flow.shape_drive(next);
+        let (hn, _) = flow.shape_drive(next);
+        if !hn.is_finite() {
+            return None;
+        }
         if hn == 0.0 {
             break next;
         }
         if hn.signum() != dir {
             // The zero in (c, next], to 1e-10 (Illinois).
-            break illinois(&mut |x| flow.shape_drive(x), (c, h), (next, hn), 1e-10)?;
+            break illinois(&mut |x| flow.shape_drive(x).0, (c, h), (next, hn), 1e-10)?;
         }
         prev = Some((c, h));
         (c, h) = (next, hn);
     };
-    Some(to)
+    // The family's shape at the zero (the modes 3..K solved there; none at the disk).
+    let shape = if to == 0.0 || flow.higher.is_empty() {
+        std::iter::once(to)
+            .chain(flow.higher.iter().map(|_| 0.0))
+            .collect()
+    } else {
+        flow.shape_drive(to).1
+    };
+    Some((to, shape))
 }
 
 #[cfg(test)]
@@ -465,8 +535,8 @@ mod tests {
     use super::*;
     use crate::model::params::ModelParams;
 
-    fn solver(eta_t: f64, kappa2: f64) -> TwoModeSolver {
-        TwoModeSolver::new(ModelParams::at(eta_t, kappa2), 192).unwrap()
+    fn solver(eta_t: f64, kappa2: f64) -> Balances {
+        Balances::new(ModelParams::at(eta_t, kappa2), 192, 2, 0.0).unwrap()
     }
 
     #[test]
@@ -476,18 +546,18 @@ mod tests {
         // -0.01527 at v = 0.1, 0.2, 0.3.
         let mut s = solver(0.0763, 0.16);
         let mut flow = SlowFlow::new(&mut s, MirrorLine::X);
-        let (g, c) = flow.drift(0.1, 0.0).unwrap();
-        assert!(g > 0.0 && (c + 0.00177).abs() < 2e-5, "{g} {c}");
-        let (g, c) = flow.drift(0.2, c).unwrap();
-        assert!(g > 0.0 && (c + 0.00697).abs() < 2e-5, "{g} {c}");
-        let (g175, _) = flow.drift(0.175, c).unwrap();
+        let (g, c) = flow.drift(0.1, &[0.0]).unwrap();
+        assert!(g > 0.0 && (c[0] + 0.00177).abs() < 2e-5, "{g} {c:?}");
+        let (g, c) = flow.drift(0.2, &c).unwrap();
+        assert!(g > 0.0 && (c[0] + 0.00697).abs() < 2e-5, "{g} {c:?}");
+        let (g175, _) = flow.drift(0.175, &c).unwrap();
         assert!((g175 - 2.2e-5).abs() < 2e-6, "{g175}");
-        let (g, c) = flow.drift(0.3, c).unwrap();
-        assert!(g < 0.0 && (c + 0.01527).abs() < 2e-5, "{g} {c}");
+        let (g, c) = flow.drift(0.3, &c).unwrap();
+        assert!(g < 0.0 && (c[0] + 0.01527).abs() < 2e-5, "{g} {c:?}");
         // (0.0765, 0.16): g < 0 for all 0 < v <= 0.45, -1.8e-5 at v = 0.2.
         let mut s = solver(0.0765, 0.16);
         let mut flow = SlowFlow::new(&mut s, MirrorLine::X);
-        let (g, _) = flow.drift(0.2, -0.007).unwrap();
+        let (g, _) = flow.drift(0.2, &[-0.007]).unwrap();
         assert!((g + 1.8e-5).abs() < 2e-6, "{g}");
     }
 
@@ -497,8 +567,8 @@ mod tests {
         // (along x; here leaning 3 degrees and moving along -y: the same root, turned).
         let mut s = solver(0.0763, 0.16);
         let turn = std::f64::consts::FRAC_PI_2 + 3f64.to_radians();
-        let run = four(&turned(&[0.05, 0.0, -0.0005, 0.0], turn));
-        let l = land(&mut s, run).unwrap();
+        let run = turned(&[0.05, 0.0, -0.0005, 0.0], turn);
+        let l = land(&mut s, &run).unwrap();
         let (v, sd) = (l.z[0].hypot(l.z[1]), l.z[2].hypot(l.z[3]));
         assert!(
             (v - 0.2926).abs() < 5e-4 && l.coordinate == Coordinate::Speed,
@@ -510,21 +580,21 @@ mod tests {
         );
         // Just above it, a run decays to rest however fast it moves.
         let mut s = solver(0.0765, 0.16);
-        let l = land(&mut s, [0.3, 0.0, -0.0153, 0.0]).unwrap();
+        let l = land(&mut s, &[0.3, 0.0, -0.0153, 0.0]).unwrap();
         assert!(l.z.iter().all(|x| x.abs() < 1e-9), "{l:?}");
         // Inside the IC/MD band the unstable MD root is the separatrix (~0.27).
         let mut s = solver(0.078, 0.13);
         let mut flow = SlowFlow::new(&mut s, MirrorLine::X);
         let (c2, c33) = (
-            flow.shape_at(0.2, 0.0).unwrap(),
-            flow.shape_at(0.33, 0.0).unwrap(),
+            flow.shape_at(0.2, &[0.0]).unwrap()[0],
+            flow.shape_at(0.33, &[0.0]).unwrap()[0],
         );
-        let low = land(&mut s, [0.2, 0.0, c2 + 1e-3, 0.0]).unwrap();
+        let low = land(&mut s, &[0.2, 0.0, c2 + 1e-3, 0.0]).unwrap();
         assert_eq!(low.to, 0.0, "{low:?}");
-        let high = land(&mut s, [0.33, 0.0, c33, 0.0]).unwrap();
+        let high = land(&mut s, &[0.33, 0.0, c33, 0.0]).unwrap();
         assert!(high.to > 0.33, "{high:?}");
         // A run off the family (its shape far from c*(v)) is not placed on it.
-        assert!(land(&mut s, [0.2, 0.0, c2 + 0.01, 0.0]).is_none());
+        assert!(land(&mut s, &[0.2, 0.0, c2 + 0.01, 0.0]).is_none());
     }
 
     #[test]
@@ -532,7 +602,7 @@ mod tests {
         // (0.085, 0.112): the disk is unstable to deformation (docs/model.md reference values), a
         // slightly deformed resting run grows to the ID state; along the diagonal here.
         let mut s = solver(0.085, 0.112);
-        let l = land(&mut s, [0.0, 0.0, 0.0, 0.02]).unwrap();
+        let l = land(&mut s, &[0.0, 0.0, 0.0, 0.02]).unwrap();
         assert_eq!(l.coordinate, Coordinate::Shape);
         assert!(
             l.to > 0.05 && l.z[2].abs() < 1e-12 && l.z[3] > 0.05,
@@ -540,7 +610,7 @@ mod tests {
         );
         // Above the onset the disk is stable: a deformed resting run relaxes to it.
         let mut s = solver(0.085, 0.13);
-        let l = land(&mut s, [0.0, 0.0, 0.03, 0.0]).unwrap();
+        let l = land(&mut s, &[0.0, 0.0, 0.03, 0.0]).unwrap();
         assert_eq!(l.to, 0.0, "{l:?}");
     }
 }

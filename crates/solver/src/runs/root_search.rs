@@ -5,8 +5,7 @@
 //! lines is caught between ([`NewtonFinish::turn_root`]), and the root on the nearest mirror
 //! line ([`NewtonFinish::aligned_root`]).
 use crate::contract::profile::{self, Part};
-use crate::model::state::{four, turned};
-use crate::roots::balances::Balances;
+use crate::model::state::turned;
 use crate::runs::finding::{Finding, MAX_SETTLED};
 use crate::runs::finish::{same_root, NewtonFinish};
 use crate::runs::landing::landings;
@@ -165,11 +164,9 @@ impl NewtonFinish {
     pub fn flow_root(&mut self, z: &[f64], lean_shrinking: bool) -> Option<Finding> {
         let found = {
             let _timed = profile::enter(Part::Landing);
-            self.steady_solver().ok()?;
-            let Some(Balances::Two(solver)) = self.solver.as_mut() else {
-                return None;
-            };
-            landings(solver, four(z), &mut self.walks)
+            self.balances().ok()?;
+            let balances = self.solver.as_mut().expect("made above");
+            landings(balances, z, &mut self.walks)
         };
         for landing in found {
             let Ok(near) = self.root_near(&landing.on_line) else {
