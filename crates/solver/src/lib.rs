@@ -83,8 +83,11 @@ pub const ODE_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numeri
 /// the 2-mode runs' Newton finish (its orientation check, turn search and diagnosis) and
 /// verdict (`roots::verdict::assess`) at every `K`; 5: a real eigenvalue is real (its
 /// imaginary part of round-off dropped), so the verdict finds the rotation mode at every `K`,
-/// and a run to turn from a root unstable only in rotation ends once it has settled on that
-/// root (before, only once within the box's anisotropy of the turned one).
+/// a run to turn from a root unstable only in rotation ends once it has settled on that root
+/// (before, only once within the box's anisotropy of the turned one), the landing walks
+/// the families of every `K` (a leaning run held by a root stable in rotation only within
+/// 0.05 degrees of its line), and the finish is tried once the rates across the rotation are
+/// below its trigger (a turning run then ends only on a turned root).
 pub const MODES_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-9+modes-5");
 
 /// The numerics version of a model's runs with shape modes `2..=modes`, part of their cache

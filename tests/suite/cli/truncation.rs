@@ -372,10 +372,10 @@ fn a_k_mode_run_settles_on_the_k_mode_steady_state() {
         "0.112",
         "--modes",
         "3",
-        "--no-landing",
+        "--no-orientation-flow",
     ]);
     assert_eq!(o.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&o.stderr).contains("--no-landing"));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--no-orientation-flow"));
 }
 
 #[test]

@@ -614,18 +614,18 @@ fn catalogue() -> Vec<Case> {
         ),
         fast(simc("--tol with --modes 3 and paper-fd", &["--modes", "3", "--n", "64", "--scheme", "paper-fd", "--tol", "1e-5"], &["--tol", "fixed step"], 1.0)),
         fast(simc("--dt-max with --modes 3 and --tol 0", &["--modes", "3", "--n", "64", "--tol", "0", "--dt-max", "0.1"], &["--dt-max", "fixed steps"], 1.0)),
-        fast(simc("--no-landing with --modes 3", &["--modes", "3", "--n", "64", "--no-landing"], &["--no-landing", "2-mode runs only"], 1.0)),
+        fast(simc("--no-orientation-flow with --modes 3", &["--modes", "3", "--n", "64", "--no-orientation-flow"], &["--no-orientation-flow", "2-mode runs only"], 1.0)),
         fast(simc("--no-run-on with paper-fd", &["--scheme", "paper-fd", "--no-run-on"], &["--no-run-on", "Newton finish"], 1.0)),
         fast(simc("--dt-max with fixed steps", &["--tol", "0", "--dt-max", "0.5"], &["--dt-max", "fixed steps"], 1.0)),
         fast(simc("--modes 0", &["--modes", "0"], &["--modes 0", "from 2"], 1.0)),
         fast(simc("--modes 1", &["--modes", "1"], &["--modes 1", "from 2"], 1.0)),
         spec_case("spec h0 for a PDE run", ("dt: 0.05", "dt: 0.05\n  h0: 0.2"), &["solver.h0", "ODE"]),
         spec_case(
-            "spec landing with params.modes 3",
+            "spec orientation_flow with params.modes 3",
             ("name: m\n", "name: m\nparams: {modes: 3}\n"),
             &[],
         )
-        .replaced("  t_max: 10\n", "  t_max: 10\n  landing: false\n", &["solver.landing", "modes > 2"]),
+        .replaced("  t_max: 10\n", "  t_max: 10\n  orientation_flow: false\n", &["solver.orientation_flow", "modes > 2"]),
         spec_case(
             "spec landing with steady test",
             ("dt: 0.05", "dt: 0.05\n  steady: test\n  landing: false"),

@@ -209,9 +209,7 @@ mod tests {
             orientation_flow: false,
             ..k_modes(3)
         };
-        let (field, why) = k3
-            .first_unread(&["dt", "tol", "orientation_flow"])
-            .unwrap();
+        let (field, why) = k3.first_unread(&["dt", "tol", "orientation_flow"]).unwrap();
         assert!(
             field == "orientation_flow" && why.contains("Newton finish, its turn search"),
             "{why}"

@@ -22,6 +22,7 @@ use crate::model::classify::StateClass;
 use crate::model::initial::InitialCondition;
 use crate::model::params::ModelParams;
 use crate::model::state::{four, DropletState};
+use crate::roots::verdict::{rotation_generator, ROTATION_MIN_NORM};
 use crate::runs::clock::{Clock, Recorder, Step};
 use crate::runs::finding::Diagnosis;
 use crate::runs::finish::{Decision, NewtonFinish};
@@ -134,15 +135,15 @@ impl Run {
             let Some(change) = watch.judge(clock.t, &z, self.scheme.as_mut()) else {
                 continue;
             };
-            if !change.is_finite() {
+            if !change.test.is_finite() {
                 end.status = RunStatus::Diverged;
                 break;
             }
-            let fired = change < cfg.steady_tol;
+            let fired = change.test < cfg.steady_tol;
             let decision = match finish.as_mut() {
                 None if fired => Decision::End(Ending::Test, z),
                 None => Decision::Continue,
-                Some(f) => f.consider(clock.t, &z, change, fired),
+                Some(f) => f.consider(clock.t, &z, (change.test, change.finish), fired),
             };
             match decision {
                 Decision::Continue => {}
@@ -274,8 +275,21 @@ impl Run {
 enum Watch {
     /// The change of `(vx, vy, a2, b2)` over the paper's window (2-mode runs).
     Window(SteadyTest),
-    /// The largest rate `|dz/dt|` the scheme measures (`K > 2`).
+    /// The rates `dz/dt` the scheme measures (`K > 2`).
     Rate,
+}
+
+/// A run's change as its watch measures it.
+struct Change {
+    /// What the paper's test compares with the steady tolerance: the change over the window,
+    /// or the largest rate `|dz/dt|`.
+    test: f64,
+    /// What the Newton finish is tried and judged by: the same, but for a `K`-mode run the
+    /// largest rate left when the part along the rotation generator is taken out (a run
+    /// whose speed and shape have settled and that only turns, at the box's slow rotation
+    /// rate, is tried as a 2-mode run is; its rate across the turn, `v dphi/dt`, stays above
+    /// the trigger for the thousands of time units the turn takes).
+    finish: f64,
 }
 
 impl Watch {
@@ -294,13 +308,34 @@ impl Watch {
 
     /// The run's change now (`None` while the window has not passed), scaled to the steady
     /// tolerance's meaning: per window of 0.1, or per unit time (a rate).
-    fn judge(&mut self, t: f64, z: &[f64], scheme: &mut dyn Scheme) -> Option<f64> {
+    fn judge(&mut self, t: f64, z: &[f64], scheme: &mut dyn Scheme) -> Option<Change> {
         match self {
-            Watch::Window(test) => test.judge(t, four(z)),
+            Watch::Window(test) => test
+                .judge(t, four(z))
+                .map(|c| Change { test: c, finish: c }),
             Watch::Rate => {
                 let _timed = profile::enter(Part::Stepping);
                 // NaN (the run left the model) if the scheme measured none.
-                Some(scheme.rate().unwrap_or(f64::NAN))
+                let Some(rates) = scheme.rates() else {
+                    return Some(Change {
+                        test: f64::NAN,
+                        finish: f64::NAN,
+                    });
+                };
+                let largest = |r: &[f64]| r.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+                let g = rotation_generator(z);
+                let gg: f64 = g.iter().map(|x| x * x).sum();
+                let across = if gg.sqrt() > ROTATION_MIN_NORM {
+                    let along = rates.iter().zip(&g).map(|(r, g)| r * g).sum::<f64>() / gg;
+                    let rest: Vec<f64> = rates.iter().zip(&g).map(|(r, g)| r - along * g).collect();
+                    largest(&rest)
+                } else {
+                    largest(&rates)
+                };
+                Some(Change {
+                    test: largest(&rates),
+                    finish: across,
+                })
             }
         }
     }

@@ -137,6 +137,14 @@ pub struct NewtonFinish {
     /// Whether the orientation's slow flow decides where a leaning run ends (numerics 8 and
     /// 9; the setting `orientation_flow`).
     pub(super) orientation_flow: bool,
+    /// Whether the landing may end a run leaning from its mirror line by more than
+    /// [`crate::runs::rotation_flow::LINEAR_LEAN`] on the line's root when that root is
+    /// stable in rotation: 2-mode runs (with the orientation flow's basin check, or without
+    /// it as numerics 7 did), not runs with more modes, which have no flow: on coarse grids
+    /// the lattice holds them at roots a few degrees off the line (modes 2..3, N = 96,
+    /// (0.088, 0.1095) from iv: 5.9 degrees off the diagonal, where the landing put it on
+    /// the diagonal).
+    pub(super) landing_holds_lean: bool,
     /// What is known of the orientation's flow beside roots stable in rotation, per root and
     /// side (lean > 0) ([`crate::runs::rotation_flow::FlowScan`]).
     pub(super) flows: Vec<(Vec<f64>, bool, crate::runs::rotation_flow::FlowScan)>,
@@ -190,6 +198,7 @@ impl NewtonFinish {
             mirror_symmetric: true,
             assessed: Vec::new(),
             orientation_flow: settings.orientation_flow && two,
+            landing_holds_lean: two,
             flows: Vec::new(),
             turns: Vec::new(),
             modes: settings.modes,
@@ -282,11 +291,25 @@ impl NewtonFinish {
     }
 
     /// One judged window at time `t`: the state `z`, its change over the window (scaled to
-    /// one window), and whether the paper's test fired.
-    pub fn consider(&mut self, t: f64, z: &[f64], change: f64, test_fired: bool) -> Decision {
+    /// one window; `(all, across)`: all of it, and what is left across the rotation, see
+    /// [`crate::runs::driver`]), and whether the paper's test fired. A run whose change
+    /// across the rotation is below the trigger but not all of it is turning: it is tried,
+    /// and ends only on a turned root (the turn search from a root unstable only in
+    /// rotation) or by the landing; a root stable in rotation near it holds it only once it
+    /// has stopped turning (without the orientation's flow nothing says whether the turn
+    /// stops there: modes 2..3, N = 96, (0.088, 0.1095) from i passes the x-axis MD, stable
+    /// in rotation, 9 degrees off it and turns on to 26.9).
+    pub fn consider(
+        &mut self,
+        t: f64,
+        z: &[f64],
+        (all, change): (f64, f64),
+        test_fired: bool,
+    ) -> Decision {
         if t < self.next_try || !(test_fired || change < self.trigger) {
             return Decision::Continue;
         }
+        let turning = !test_fired && all >= self.trigger;
         let found = self.stable_root(z);
         let Some((f, may_end, basin_left)) = found else {
             // No root near (a run passing the ghost of a saddle-node, or caught mid-turn):
@@ -322,6 +345,7 @@ impl NewtonFinish {
         // end on it pays for the flow's samples (the same decisions, fewer samples).
         if may_end
             && (test_fired || approaching)
+            && (!turning || f.turned())
             && (!basin_left || self.within_rotation_basin(&f, lean))
         {
             let ending = if test_fired {

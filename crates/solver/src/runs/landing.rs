@@ -224,7 +224,9 @@ impl<'a> SlowFlow<'a> {
     pub fn shape_drive(&mut self, c: f64) -> (f64, Vec<f64>) {
         self.samples += 1;
         let (balances, axis) = (&mut *self.balances, self.axis);
-        let at = |higher: &[f64]| -> Vec<f64> { std::iter::once(c).chain(higher.iter().copied()).collect() };
+        let at = |higher: &[f64]| -> Vec<f64> {
+            std::iter::once(c).chain(higher.iter().copied()).collect()
+        };
         let shape: Vec<f64> = if self.higher.is_empty() {
             vec![c]
         } else {

@@ -179,6 +179,12 @@ impl NewtonFinish {
                 continue;
             }
             let lean = angle_to(&landing.z, &landing.on_line);
+            let oriented = near.verdict.rotation.is_some();
+            if !self.landing_holds_lean && lean.abs() > LINEAR_LEAN && near.stable() && oriented {
+                // A root stable in rotation holds a leaning run only where the orientation's
+                // flow says so; without the flow the run steps on.
+                continue;
+            }
             let far = invariant_distance(z, &near.z) > MAX_SETTLED;
             let (found, may_end) = self.settle(near, lean, far && lean_shrinking);
             if may_end {

@@ -96,10 +96,11 @@ pub trait Scheme: Stepper {
     fn unknowns(&self) -> Vec<f64> {
         self.state().monitored().to_vec()
     }
-    /// The largest rate `|dz/dt|` of the unknowns at the present state, for schemes that
-    /// measure it: those of `K > 2` modes, whose runs are watched by it (2-mode runs by the
-    /// change over the paper's window, [`crate::contract::stop_rule::SteadyTest`]).
-    fn rate(&mut self) -> Option<f64> {
+    /// The rates `dz/dt` of the unknowns `(vx, vy, a_2..a_K, b_2..b_K)` at the present state,
+    /// for schemes that measure them: those of `K > 2` modes, whose runs are watched by them
+    /// (2-mode runs by the change over the paper's window,
+    /// [`crate::contract::stop_rule::SteadyTest`]).
+    fn rates(&mut self) -> Option<Vec<f64>> {
         None
     }
     /// `Integral u dA`.

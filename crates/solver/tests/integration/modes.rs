@@ -260,3 +260,51 @@ fn a_four_mode_run_leaning_off_a_line_unstable_in_rotation_ends_where_it_turns_t
     assert!((orientation_deg(&out) - 45.0).abs() < 1e-6, "{out:?}");
     assert!(out.t_end < 100.0, "{out:?}");
 }
+
+#[test]
+fn a_four_mode_run_leaving_the_disk_lands_where_time_stepping_takes_it() {
+    // Modes 2..4 at (0.076, 0.144), N = 96, from iii: the resting disk is unstable (its drift
+    // pair grows at 3.8e-3) and the run leaves it slowly. Without the landing it steps to
+    // t = 3055 and ends by Newton on the diagonal MD (v = 0.594758); the landing walks the
+    // speed family (the shape modes 2..4 solved at each speed) to that root at t = 22.
+    let settings = SolverSettings {
+        n: 96,
+        modes: 4,
+        ..SolverSettings::default()
+    };
+    let run = |landing: bool| {
+        simulate(
+            &ModelParams::at(0.076, 0.144),
+            &InitialCondition::parse("iii").unwrap(),
+            &SolverSettings {
+                landing,
+                ..settings
+            },
+        )
+        .unwrap()
+    };
+    let (landed, stepped) = (run(true), run(false));
+    for out in [&landed, &stepped] {
+        assert_eq!(out.status, RunStatus::Steady, "{out:?}");
+        assert_eq!(out.class, Some(StateClass::MD), "{out:?}");
+    }
+    assert_eq!(
+        landed.ended_by,
+        Some(droplet_solver::contract::ending::Ending::Landing),
+        "{landed:?}"
+    );
+    assert!(
+        landed.t_end < 100.0 && stepped.t_end > 1000.0,
+        "{landed:?} {stepped:?}"
+    );
+    assert!(
+        (landed.v - stepped.v).abs() < 1e-9,
+        "{landed:?} {stepped:?}"
+    );
+    assert!(
+        (landed.s - stepped.s).abs() < 1e-9,
+        "{landed:?} {stepped:?}"
+    );
+    let turn = orientation_deg(&landed) - orientation_deg(&stepped);
+    assert!(turn.abs() < 1e-6, "{landed:?} {stepped:?}");
+}

@@ -13,6 +13,14 @@
 //! the modes. The roots are found by Newton on `det T` divided by the roots already found
 //! (its logarithmic derivative `tr(T^(-1) T')`, exact), started from the eigenvalues of the
 //! `lambda = 0` problem `M^(-1) (E + C (-D)^(-1) B)`.
+//!
+//! The sums run over every stored mode (`N (N/2 + 1)`, 18 624 at N = 192), for each of the
+//! some hundred `lambda` Newton visits. Only the slow modes need it: where `|d_k| >=`
+//! [`FAR`], `1 / (lambda - d_k) = -Sum_p lambda^p / d_k^(p+1)`, so the fast modes' part of
+//! the sums is `-Sum_p lambda^p M_p` with the moments `M_p = Sum_far c_k b_k^T / d_k^(p+1)`,
+//! made once per state ([`FarField`]); for `|lambda| <=` [`SERIES_RADIUS`] the first
+//! [`TERMS`] of them leave `(SERIES_RADIUS / FAR)^TERMS = 4e-15` of each fast mode's term. The
+//! slow modes (a few hundred at every N) are summed as they are.
 use crate::model::forces::quadrature::fill_operator;
 use crate::model::modes::Modes;
 use crate::roots::steady_solver::SteadySolver;
@@ -25,6 +33,72 @@ type C64 = Complex64;
 /// Step of the central differences in the shape.
 const SHAPE_STEP: f64 = 1e-6;
 
+/// Smallest `|d_k|` of a mode whose part of the response is taken from the moments.
+pub const FAR: f64 = 256.0;
+
+/// Largest `|lambda|` at which the response is summed with the moments (else every mode is
+/// summed as it is).
+pub const SERIES_RADIUS: f64 = 4.0;
+
+/// Moments kept: `(SERIES_RADIUS / FAR)^TERMS = 3.5e-15`.
+pub const TERMS: usize = 8;
+
+/// The fast modes' part of the response, as moments ([`Linearization`]'s module notes).
+struct FarField {
+    /// The stored modes with `|d_k| <` [`FAR`].
+    near: Vec<usize>,
+    /// `M_p[j][i] = Sum_far c_ik b_jk / d_k^(p+1)` for `p < TERMS`.
+    moments: Vec<Vec<Vec<C64>>>,
+}
+
+impl FarField {
+    /// The moments of the modes with `|d_k| >= far`.
+    fn new(d: &[C64], b: &[Vec<C64>], c: &[C64], far: f64) -> Self {
+        let dim = b.len();
+        let zero = C64::default();
+        let mut moments = vec![vec![vec![zero; dim]; dim]; TERMS];
+        let mut near = Vec::new();
+        for (k, d) in d.iter().enumerate() {
+            if d.norm() < far {
+                near.push(k);
+                continue;
+            }
+            let w = d.inv();
+            let ck = &c[k * dim..(k + 1) * dim];
+            for (j, b) in b.iter().enumerate() {
+                let mut t = b[k] * w;
+                for m in moments.iter_mut() {
+                    for (acc, c) in m[j].iter_mut().zip(ck) {
+                        *acc += t * c;
+                    }
+                    t *= w;
+                }
+            }
+        }
+        Self { near, moments }
+    }
+
+    /// `-Sum_p l^p M_p[j]` and, with `slope`, `-Sum_p p l^(p-1) M_p[j]`, added to `s` and `ds`.
+    fn add(&self, j: usize, l: C64, s: &mut [C64], ds: Option<&mut [C64]>) {
+        let mut power = C64::new(1.0, 0.0);
+        for m in &self.moments {
+            for (s, m) in s.iter_mut().zip(&m[j]) {
+                *s -= power * m;
+            }
+            power *= l;
+        }
+        if let Some(ds) = ds {
+            let mut power = C64::new(1.0, 0.0);
+            for (p, m) in self.moments.iter().enumerate().skip(1) {
+                for (s, m) in ds.iter_mut().zip(&m[j]) {
+                    *s -= power * m * p as f64;
+                }
+                power *= l;
+            }
+        }
+    }
+}
+
 /// The linearisation of one `K`-mode state.
 pub struct Linearization {
     z0: Vec<f64>,
@@ -35,6 +109,7 @@ pub struct Linearization {
     /// The forces on the frozen shape as functionals of a field's half spectrum
     /// ([`force_functionals`]), `[k][i]`: `dim` values per stored mode.
     c: Vec<C64>,
+    far: FarField,
 }
 
 impl Linearization {
@@ -98,6 +173,7 @@ impl Linearization {
         let mut m = vec![p.mass, p.mass];
         m.extend((2..=k_max).chain(2..=k_max).map(|k| solver.eta(k)));
         let c = force_functionals(solver, &m0);
+        let far = FarField::new(&d, &b, &c, FAR);
         Self {
             z0: z0.to_vec(),
             d,
@@ -105,6 +181,7 @@ impl Linearization {
             e,
             m,
             c,
+            far,
         }
     }
 
@@ -116,13 +193,27 @@ impl Linearization {
     /// pass over the spectrum per column, no transform.
     /// With `slope`, its derivative in `lambda` too, `-C (lambda - D)^(-2) B` (the same
     /// reflection: `(S'(lambda) + conj S'(conj lambda)) / 2`).
+    /// With `lambda` within [`SERIES_RADIUS`], the fast modes' part comes from the moments
+    /// ([`FarField`]).
     fn response(&self, lambda: C64, slope: bool) -> (Vec<Vec<C64>>, Vec<Vec<C64>>) {
         let dim = self.z0.len();
         let zero = C64::default();
-        let g: Vec<(C64, C64)> = self
-            .d
+        let series = lambda.norm() <= SERIES_RADIUS;
+        let all: Vec<usize>;
+        let modes = if series {
+            &self.far.near
+        } else {
+            all = (0..self.d.len()).collect();
+            &all
+        };
+        let g: Vec<(C64, C64)> = modes
             .iter()
-            .map(|d| ((lambda - d).inv(), (lambda.conj() - d).inv()))
+            .map(|&k| {
+                (
+                    (lambda - self.d[k]).inv(),
+                    (lambda.conj() - self.d[k]).inv(),
+                )
+            })
             .collect();
         let mut r = vec![vec![zero; dim]; dim];
         let mut dr = vec![vec![zero; if slope { dim } else { 0 }]; dim];
@@ -132,7 +223,12 @@ impl Linearization {
             let (pq, dpq) = acc.split_at_mut(2 * dim);
             let (p, q) = pq.split_at_mut(dim);
             let (dp, dq) = dpq.split_at_mut(dim);
-            for (((g1, g2), b), c) in g.iter().zip(b).zip(self.c.chunks_exact(dim)) {
+            if series {
+                self.far.add(j, lambda, p, slope.then_some(&mut *dp));
+                self.far.add(j, lambda.conj(), q, slope.then_some(&mut *dq));
+            }
+            for ((g1, g2), &k) in g.iter().zip(modes) {
+                let (b, c) = (&b[k], &self.c[k * dim..(k + 1) * dim]);
                 let (t1, t2) = (g1 * b, g2 * b);
                 for ((p, q), c) in p.iter_mut().zip(q.iter_mut()).zip(c) {
                     *p += t1 * c;
@@ -345,6 +441,49 @@ mod tests {
 
     /// At the Fig. 1c point and grid size `n`: the 2-mode solver, the K-mode one and the
     /// 2-mode MD state `(v, 0, a2, 0)` (which both describe).
+    impl Linearization {
+        /// The same linearisation with every mode summed as it is (no moments).
+        fn summing_every_mode(mut self) -> Self {
+            self.far = FarField::new(&self.d, &self.b, &self.c, f64::INFINITY);
+            self
+        }
+    }
+
+    #[test]
+    fn the_fast_modes_moments_give_the_full_sums() {
+        // Modes 2..4, the x-axis MD at (0.085, 0.112), N = 96 (4704 stored modes, 1280 of
+        // them slow): T(lambda) and T'(lambda) with the moments against every mode summed,
+        // inside the series' radius and at its edge; the eigenvalues both ways.
+        let p = ModelParams::at(0.085, 0.112);
+        let mut solver = SteadySolver::new(p, 96).unwrap();
+        let st = crate::roots::named_state::md_state(&mut solver, 4).unwrap();
+        let z = [st.v, 0.0, st.a[0], st.a[1], st.a[2], 0.0, 0.0, 0.0];
+        let fast = Linearization::at(&mut solver, &z);
+        assert!(
+            fast.far.near.len() < fast.d.len() / 3,
+            "{}",
+            fast.far.near.len()
+        );
+        let full = Linearization::at(&mut solver, &z).summing_every_mode();
+        for l in [
+            C64::new(0.0, 0.0),
+            C64::new(-0.3, 0.2),
+            C64::new(0.01, -0.5),
+            C64::new(-2.8, 2.8),
+        ] {
+            let (t, dt) = fast.t_and_slope(l, true);
+            let (u, du) = full.t_and_slope(l, true);
+            let scale = u.iter().fold(0.0f64, |m, x| m.max(x.norm()));
+            assert!((t - &u).iter().all(|x| x.norm() < 1e-13 * scale), "{l}");
+            assert!((dt - du).iter().all(|x| x.norm() < 1e-13 * scale), "{l}");
+        }
+        let (a, b) = (fast.eigenvalues(), full.eigenvalues());
+        assert_eq!(a.len(), b.len(), "{a:?} {b:?}");
+        for (x, y) in a.iter().zip(&b) {
+            assert!((x - y).norm() < 1e-10, "{a:?} {b:?}");
+        }
+    }
+
     fn fig1c_two_mode_md(n: usize) -> (TwoModeSolver, SteadySolver, [f64; 4]) {
         let p = ModelParams::at(0.085, 0.112);
         let mut two = TwoModeSolver::new(p, n).unwrap();

@@ -151,15 +151,15 @@ impl ComovingEtd {
         }
     }
 
-    /// The largest rate `|dz/dt|` = `|f / m - r z|` at the present state.
-    pub fn max_rate(&mut self) -> f64 {
+    /// The rates `dz/dt = f / m - r z` at the present state.
+    pub fn rates(&mut self) -> Vec<f64> {
         self.ensure_start();
         let f = &self.start.as_ref().expect("forces at the start").forces;
         f.iter()
             .zip(&self.z)
             .zip(self.rate_of.iter().zip(&self.inertia))
-            .map(|((f, z), (r, m))| (f / m - r * z).abs())
-            .fold(0.0f64, f64::max)
+            .map(|((f, z), (r, m))| f / m - r * z)
+            .collect()
     }
 }
 
@@ -227,8 +227,8 @@ impl Scheme for ComovingEtd {
         self.z.clone()
     }
 
-    fn rate(&mut self) -> Option<f64> {
-        Some(self.max_rate())
+    fn rates(&mut self) -> Option<Vec<f64>> {
+        Some(ComovingEtd::rates(self))
     }
 
     fn mass(&self) -> f64 {

@@ -22,7 +22,7 @@ use crate::stepping::paper_fd::finite_differences::central_gradient;
 use crate::stepping::{Attempt, Field, Scheme, Stepper};
 
 /// Explicit finite differences for the `K`-mode droplet on the lab grid. One step is
-/// [`PaperFd::max_rate`] (`Theta` and the forces at the present state, and the largest rate)
+/// [`PaperFd::rates`] (`Theta` and the forces at the present state, and the rates)
 /// then [`PaperFd::advance`] (a [`Stepper`] step measures the rate unless the run just did);
 /// the buffers are made once.
 pub struct PaperFd {
@@ -165,19 +165,19 @@ impl PaperFd {
     }
 
     /// `Theta` and the force balances at the present state, kept for [`Self::advance`], and
-    /// the largest rate `|dz/dt|` = `|balance / inertia|`.
-    pub fn max_rate(&mut self) -> f64 {
+    /// the rates `dz/dt` = `balance / inertia`.
+    pub fn rates(&mut self) -> Vec<f64> {
         self.fill_and_forces();
         self.fresh = true;
-        let mut largest = 0.0f64;
+        let mut rates = Vec::with_capacity(self.balance.len());
         for (i, b) in self.balance.iter_mut().enumerate() {
             *b -= self.stiffness[i] * self.z[i];
-            largest = largest.max((*b / self.inertia[i]).abs());
+            rates.push(*b / self.inertia[i]);
         }
-        largest
+        rates
     }
 
-    /// One forward-Euler step of `h` from the state of the last [`Self::max_rate`].
+    /// One forward-Euler step of `h` from the state of the last [`Self::rates`].
     pub fn advance(&mut self, h: f64) {
         crate::stepping::paper_fd::finite_differences::euler_field_step(
             &mut self.u,
@@ -200,7 +200,7 @@ impl Stepper for PaperFd {
     /// Forward Euler has no error estimate: every step is taken.
     fn attempt(&mut self, h: f64, _max_error: f64) -> Attempt {
         if !self.fresh {
-            self.max_rate();
+            self.rates();
         }
         self.advance(h);
         Attempt {
@@ -231,8 +231,8 @@ impl Scheme for PaperFd {
         }
     }
 
-    fn rate(&mut self) -> Option<f64> {
-        Some(self.max_rate())
+    fn rates(&mut self) -> Option<Vec<f64>> {
+        Some(PaperFd::rates(self))
     }
 }
 
@@ -259,7 +259,7 @@ mod tests {
         let mut fd = PaperFd::new(&p, n, &[0.3, -0.1, -0.08, 0.03]).unwrap();
         for _ in 0..400 {
             paper.step(h);
-            fd.max_rate();
+            fd.rates();
             fd.advance(h);
         }
         let s = paper.state();
@@ -283,7 +283,7 @@ mod tests {
         let field = lab_field(&mut solver, &z, 0.0, 0.0);
         let mut fd = PaperFd::new(&p, n, &z).unwrap();
         assert!(fd.set_field(&field.values));
-        fd.max_rate();
+        fd.rates();
         let worst = fd.balance.iter().fold(0.0f64, |m, b| m.max(b.abs()));
         (worst, p.eta_t * md.v, md.a[1])
     }
@@ -318,7 +318,7 @@ mod tests {
         z[4] = 0.05;
         let mut fd = PaperFd::new(&p, n, &z).unwrap();
         for _ in 0..steps {
-            fd.max_rate();
+            fd.rates();
             fd.advance(h);
         }
         let want = 1.0 - (1.0 - h).powi(steps);
