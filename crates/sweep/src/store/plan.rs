@@ -273,12 +273,24 @@ mod tests {
         assert_ne!(with(0.1), with(-0.1));
         assert!(!key_material(&p, &ic, &s).contains("ic_higher"));
         // What a run does not read is not part of its key: a PDE run's h0 (the spec bug set
-        // it to n), a K-mode run's landing. A run that sets neither keeps its key. A K-mode
-        // run's tol is read (its steps are adaptive, as a 2-mode run's).
+        // it to n), a K-mode run's orientation flow. A run that sets neither keeps its key.
+        // A K-mode run's tol and landing are read (its steps are adaptive and it lands, as
+        // a 2-mode run does).
         assert_eq!(k, run_key(&p, &ic, &SolverSettings { h0: 192.0, ..s }));
         assert_eq!(k, written_key(&p, &ic, &s));
         assert_ne!(k, written_key(&p, &ic, &SolverSettings { h0: 192.0, ..s }));
         assert_eq!(
+            run_key(&p, &ic, &k4),
+            run_key(
+                &p,
+                &ic,
+                &SolverSettings {
+                    orientation_flow: false,
+                    ..k4
+                }
+            )
+        );
+        assert_ne!(
             run_key(&p, &ic, &k4),
             run_key(
                 &p,
