@@ -14,7 +14,7 @@ summary = {}
 for path in sorted(glob.glob(os.path.join(here, "runs", "pure-*.json"))):
     kn = os.path.basename(path)[len("pure-"):-len(".json")]
     pure = load("pure-" + kn)
-    for tag in ["newton", "before"]:
+    for tag in ["modes6", "newton", "before"]:
         p = os.path.join(here, "runs", f"{tag}-{kn}.json")
         if not os.path.exists(p):
             continue

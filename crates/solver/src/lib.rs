@@ -87,8 +87,11 @@ pub const ODE_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numeri
 /// (before, only once within the box's anisotropy of the turned one), the landing walks
 /// the families of every `K` (a leaning run held by a root stable in rotation only within
 /// 0.05 degrees of its line), and the finish is tried once the rates across the rotation are
-/// below its trigger (a turning run then ends only on a turned root).
-pub const MODES_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-9+modes-5");
+/// below its trigger (a turning run then ends only on a turned root); 6: a run caught turning
+/// between two mirror lines lands on the line's root stable in rotation only if it turns
+/// towards it (modes 2..3, N = 192, (0.085, 0.112) from iv turned away from it to a root of
+/// the lattice, and had landed 42.75 degrees from where stepping ends).
+pub const MODES_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-9+modes-6");
 
 /// The numerics version of a model's runs with shape modes `2..=modes`, part of their cache
 /// key: a change to one model's results invalidates its stored runs only.

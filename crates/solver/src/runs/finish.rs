@@ -279,7 +279,7 @@ impl NewtonFinish {
             Err(e) => (format!("not diagnosed: {e}"), Unsettled::NotDiagnosed, None),
         };
         if reason != Unsettled::Turning && reason != Unsettled::Converging {
-            if let Some(landed) = self.landing_root(z, false) {
+            if let Some(landed) = self.landing_root(z, false, None) {
                 heading = Some(class_of(&landed.z));
             }
         }
@@ -402,13 +402,17 @@ impl NewtonFinish {
             });
         // A landing on the resting disk, which has no orientation, needs no lean.
         let round = |z: &[f64]| z.iter().all(|x| x.abs() < 1e-9);
+        let quarter = std::f64::consts::FRAC_PI_4;
+        let orientation_before = before
+            .filter(|((_, moved), _, _)| *moved == line.1)
+            .map(|((multiple, _), lean_before, _)| multiple as f64 * quarter + lean_before);
         let found = if turning_away {
             match self.flow_root(z, false) {
                 Some(found) if round(&found.z) => found,
-                _ => self.turn_root(z)?,
+                _ => self.turn_root(z, orientation_before)?,
             }
         } else {
-            self.landing_root(z, lean_shrinking)?
+            self.landing_root(z, lean_shrinking, orientation_before)?
         };
         Some(Decision::End(Ending::Landing, found.z))
     }

@@ -155,9 +155,16 @@ impl NewtonFinish {
     /// ([`Self::turn_root`]).
     /// `lean_shrinking`: the run's lean from its line shrank since the last try (numerics 9
     /// then lets it end on a turn only once it is on the family, [`Self::settle`]).
-    pub fn landing_root(&mut self, z: &[f64], lean_shrinking: bool) -> Option<Finding> {
+    /// `before`: the run's orientation at the last try, if it had the same kind (moving or
+    /// at rest).
+    pub fn landing_root(
+        &mut self,
+        z: &[f64],
+        lean_shrinking: bool,
+        before: Option<f64>,
+    ) -> Option<Finding> {
         self.flow_root(z, lean_shrinking)
-            .or_else(|| self.turn_root(z))
+            .or_else(|| self.turn_root(z, before))
     }
 
     /// [`Self::landing_root`] along the slow flow alone (no [`Self::turn_root`]).
@@ -179,10 +186,8 @@ impl NewtonFinish {
                 continue;
             }
             let lean = angle_to(&landing.z, &landing.on_line);
-            let oriented = near.verdict.rotation.is_some();
-            if !self.landing_holds_lean && lean.abs() > LINEAR_LEAN && near.stable() && oriented {
-                // A root stable in rotation holds a leaning run only where the orientation's
-                // flow says so; without the flow the run steps on.
+            if near.stable() && !self.landing_holds(&near, lean, false) {
+                // Without the orientation's flow the run steps on.
                 continue;
             }
             let far = invariant_distance(z, &near.z) > MAX_SETTLED;
@@ -201,8 +206,11 @@ impl NewtonFinish {
     /// away from the second towards the first and ends there, provided that both roots have
     /// the run's class and the run's speed and deformation lie between theirs (within
     /// [`crate::runs::landing::FAMILY_TOL`]): it is on the circle of states joining them. Both
-    /// stable (two orientations, each with its basin) or both unstable: no decision.
-    pub fn turn_root(&mut self, z: &[f64]) -> Option<Finding> {
+    /// stable (two orientations, each with its basin) or both unstable: no decision. The
+    /// run must also be turning that way since its last try (`before`, its orientation then)
+    /// where nothing else checks that the stable root's basin reaches it
+    /// ([`Self::landing_holds`]).
+    pub fn turn_root(&mut self, z: &[f64], before: Option<f64>) -> Option<Finding> {
         let quarter = std::f64::consts::FRAC_PI_4;
         let phi = orientation(z);
         let nearest = (phi / quarter).round() * quarter;
@@ -234,7 +242,31 @@ impl NewtonFinish {
             _ => return None,
         };
         let lean = angle_to(z, &found.z);
-        self.within_rotation_basin(&found, lean).then_some(found)
+        let turning_to = before.is_some_and(|phi| {
+            let d = phi - orientation(&found.z);
+            let lean_before = d - std::f64::consts::PI * (d / std::f64::consts::PI).round();
+            lean.abs() < lean_before.abs()
+        });
+        (self.landing_holds(&found, lean, turning_to) && self.within_rotation_basin(&found, lean))
+            .then_some(found)
+    }
+
+    /// Whether the landing may end a run leaning by `lean` on `near`, a root stable in
+    /// rotation (the one rule of [`Self::flow_root`] and [`Self::turn_root`]): 2-mode runs
+    /// always (the orientation's flow then checks the basin); runs with more shape modes,
+    /// which have no flow, within [`LINEAR_LEAN`] of it (or on a root with no orientation),
+    /// or, caught turning between two mirror lines, if they turn towards it
+    /// (`turning_to`). On their grids the lattice puts roots between the box's mirror
+    /// lines, so the root stable in rotation on the line next to a run need not be where it
+    /// turns to: modes 2..3, N = 96, (0.088, 0.1095) from iv ends 5.9 degrees off the
+    /// diagonal, where the slow flow of the diagonal's family lands it; modes 2..3, N = 192,
+    /// (0.085, 0.112) from iv, 28 degrees past the y-axis MD (stable in rotation) and
+    /// turning away from it, turns on to a root 2.25 degrees short of the diagonal.
+    fn landing_holds(&self, near: &Finding, lean: f64, turning_to: bool) -> bool {
+        self.landing_holds_lean
+            || near.verdict.rotation.is_none()
+            || lean.abs() <= LINEAR_LEAN
+            || turning_to
     }
 
     /// Whether a run leaning by `lean` from the stable root `near` on a mirror line turns
@@ -340,5 +372,49 @@ impl NewtonFinish {
             first.get_or_insert(found);
         }
         first
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::contract::settings::SolverSettings;
+    use crate::model::params::ModelParams;
+    use crate::runs::finish::NewtonFinish;
+    use crate::runs::orientation::{orientation, speed_and_deformation};
+
+    #[test]
+    fn a_k_mode_run_between_mirror_lines_lands_on_the_stable_ones_root_only_turning_to_it() {
+        // Modes 2..3, N = 192, (0.085, 0.112): pure time stepping from iv at t = 1500, 121
+        // degrees, between the y-axis MD (stable in rotation) and the diagonal's (unstable in
+        // rotation), turning on to a root 2.25 degrees short of the diagonal (t = 18 210).
+        let p = ModelParams::at(0.085, 0.112);
+        let settings = SolverSettings {
+            n: 192,
+            modes: 3,
+            ..SolverSettings::default()
+        };
+        let mut f = NewtonFinish::new(&p, &settings);
+        let z = [
+            -0.13618994343820798,
+            0.22656697591483954,
+            0.08324112946895097,
+            -0.039973868618470174,
+            0.1593975130540181,
+            -0.0020022723949766944,
+        ];
+        let phi = orientation(&z);
+        let degree = 1f64.to_radians();
+        assert!(f.turn_root(&z, Some(phi - 0.5 * degree)).is_none());
+        assert!(f.turn_root(&z, None).is_none());
+        // Turning towards the y axis, it would land there (the MD of results/truncation).
+        let y_axis = f
+            .turn_root(&z, Some(phi + 0.5 * degree))
+            .expect("turning to it");
+        assert!(
+            (orientation(&y_axis.z) - 90.0 * degree).abs() < 1e-6,
+            "{y_axis:?}"
+        );
+        let (v, _) = speed_and_deformation(&y_axis.z);
+        assert!((v - 0.2706023).abs() < 1e-6, "{v}");
     }
 }
