@@ -90,8 +90,11 @@ pub const ODE_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numeri
 /// below its trigger (a turning run then ends only on a turned root); 6: a run caught turning
 /// between two mirror lines lands on the line's root stable in rotation only if it turns
 /// towards it (modes 2..3, N = 192, (0.085, 0.112) from iv turned away from it to a root of
-/// the lattice, and had landed 42.75 degrees from where stepping ends).
-pub const MODES_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-9+modes-6");
+/// the lattice, and had landed 42.75 degrees from where stepping ends). 7: the time step's
+/// predictor droplet is extrapolated from the last two states' (sampled and transformed once
+/// per step, not twice), as the 2-mode scheme's is: the same fixed points, transients changed
+/// at `O(h^2)`; at K = 2 the general step now equals the fast path's to round-off.
+pub const MODES_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-9+modes-7");
 
 /// The numerics version of a model's runs with shape modes `2..=modes`, part of their cache
 /// key: a change to one model's results invalidates its stored runs only.

@@ -95,7 +95,8 @@ impl Modes {
 
     /// `Theta` at offset `(x, y)` from the droplet centre.
     pub fn theta(&self, shape: &ShapeParams, x: f64, y: f64) -> f64 {
-        let r = x.hypot(y);
+        // The square root of the squared radius, as the 2-mode shape takes it.
+        let r = (x * x + y * y).sqrt();
         if r == 0.0 {
             return 1.0;
         }

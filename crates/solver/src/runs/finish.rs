@@ -35,7 +35,10 @@
 //! stable root on the side it leans to, looked for by Newton from the state turned by [`crate::runs::orientation::TURN_SEARCH`] degrees (a pitchfork pair a degree or
 //! so off the line, else the root on the next mirror line), and the run ends there: speed and
 //! deformation settle long before the orientation, and that root's `v` and `s` are what the
-//! time stepper reaches after the turn.
+//! time stepper reaches after the turn. Runs with more shape modes (no orientation flow) end
+//! on such a turned root only while they leave the root they turn from (within
+//! [`crate::runs::rotation_flow::LINEAR_LEAN`] of it) or turn towards the turned root
+//! (numerics modes-7): on their grids the lattice holds roots between the mirror lines.
 //!
 //! Slow runs (setting `landing`, on by default): when Newton near the run does not end it,
 //! the run's one-dimensional slow flow ([`crate::runs::landing`]) says which root it lands on;
@@ -75,6 +78,7 @@ use crate::runs::orientation::{
     angle_to, class_of, invariant_distance, lean_from_mirror_line, one_class_within,
     speed_and_deformation, LEAN_FLOOR, ORIENTATION,
 };
+use crate::runs::rotation_flow::LINEAR_LEAN;
 use rustfft::num_complex::Complex64;
 
 /// Newton is first tried when the change per window is below this many steady tolerances.
@@ -340,7 +344,19 @@ impl NewtonFinish {
             root.iter().zip(&f.z).all(|(a, b)| (a - b).abs() < 1e-6) && turn < *before
         });
         self.last_turn = Some((f.z.clone(), turn));
-        let approaching = settled && (f.turned() || turn <= ORIENTATION || turning_to);
+        // A turned root ends a run that leaves the root it turns from (within LINEAR_LEAN
+        // of it, where that root's rotation eigenvalue decides), or one turning towards it;
+        // 2-mode runs always (their orientation's flow found it). Runs with more shape
+        // modes have no flow, and their grid's lattice holds roots between the box's mirror
+        // lines: modes 2..3, N = 192, (0.085, 0.112) from iv, 17 degrees from the diagonal
+        // MD (unstable in rotation) and turning towards it, to a root 2.25 degrees short of
+        // it, had ended on the y-axis MD the turn search finds from the diagonal.
+        let leaving = f
+            .turned_from
+            .as_ref()
+            .is_some_and(|from| self.landing_holds_lean || angle_to(z, from).abs() <= LINEAR_LEAN);
+        let turned = f.turned() && (leaving || turning_to);
+        let approaching = settled && (turned || turn <= ORIENTATION || turning_to);
         // The basin check of a root stable in rotation, left to here: only a run that would
         // end on it pays for the flow's samples (the same decisions, fewer samples).
         if may_end

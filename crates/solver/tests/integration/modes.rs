@@ -154,6 +154,34 @@ fn three_mode_runs_end_where_pure_time_stepping_ends() {
 }
 
 #[test]
+fn a_three_mode_run_turning_to_a_root_of_the_lattice_ends_there() {
+    // Modes 2..3 at N = 192, (0.085, 0.112) from iv: at t = 619 the run is 17 degrees from the
+    // diagonal MD (unstable in rotation), settled in speed and deformation, and turning
+    // towards it, to a root 2.25 degrees short of it where pure time stepping ends
+    // (results/k-mode-endings/runs/pure-k3-n192.json). The turn search from the diagonal
+    // finds the y-axis MD, which the run is turning away from; the run must not end there
+    // (numerics modes-7: it did with the predictor extrapolated and the old rule).
+    let pure = committed("pure-k3-n192");
+    let end = pure
+        .iter()
+        .find(|e| e.eta_t == 0.085 && e.kappa2 == 0.112 && e.ic == "iv")
+        .unwrap();
+    assert!(
+        (end.orientation_deg - 132.75).abs() < 0.01,
+        "{}",
+        end.orientation_deg
+    );
+    let settings = SolverSettings {
+        n: 192,
+        modes: 3,
+        ..SolverSettings::default()
+    };
+    let p = ModelParams::at(0.085, 0.112);
+    let out = simulate(&p, &InitialCondition::parse("iv").unwrap(), &settings).unwrap();
+    assert!(same_end(&out, end), "{out:?}");
+}
+
+#[test]
 fn a_three_mode_run_ends_steady_on_the_three_mode_md_state() {
     // Fig. 1c with modes 2..3 at N = 96 from IC i: the Newton finish ends the run on the
     // MD state of the steady solver, a3 included, long before the rates fall to the test.

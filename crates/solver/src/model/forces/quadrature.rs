@@ -53,17 +53,53 @@ pub fn fill_operator(grid: &Grid, vx: f64, vy: f64, out: &mut [Complex64]) {
     }
 }
 
+/// One sampled droplet: `Theta` on the rows and columns `lo..=hi` of the grid (row-major
+/// `N x N`; nothing outside that window is read), its raw transform (`[kx][ky]`, not divided
+/// by `A N^2`) and its area. A time step keeps the last two states' ([`ForceQuadrature::exchange`])
+/// to extrapolate its predictor's ([`ForceQuadrature::extrapolate`]).
+pub struct SampledShape {
+    pub theta: Vec<f64>,
+    pub spec: Vec<Complex64>,
+    pub area: f64,
+    pub lo: usize,
+    pub hi: usize,
+}
+
+impl SampledShape {
+    /// Empty buffers for `grid`.
+    pub fn new(grid: &Grid) -> Self {
+        let n = grid.n;
+        Self {
+            theta: vec![0.0; n * n],
+            spec: vec![Complex64::default(); grid.spectral_len()],
+            area: 0.0,
+            lo: n / 2,
+            hi: n / 2,
+        }
+    }
+
+    /// `Theta` at the flat index `i` of row `iy`, column `ix` (0 outside the window).
+    #[inline(always)]
+    fn at(&self, iy: usize, ix: usize, i: usize) -> f64 {
+        if (self.lo..=self.hi).contains(&iy) && (self.lo..=self.hi).contains(&ix) {
+            self.theta[i]
+        } else {
+            0.0
+        }
+    }
+}
+
 /// `Theta` of a droplet of any shape on an `N x N` grid, its transform and the forces of a
 /// field on it.
 pub struct ForceQuadrature {
     grid: Grid,
     shape: ShapeParams,
     fft: PrunedFft2,
-    /// `Theta` on the grid, and a copy the forward transform may overwrite.
-    theta: Vec<f64>,
+    /// `Theta` and its transform.
+    sampled: SampledShape,
+    /// A copy of `Theta` the forward transform may overwrite.
     real: Vec<f64>,
-    /// Its transform, and the spectral derivatives of the field.
-    spec: Vec<Complex64>,
+    /// The spectral derivatives of the field.
     dx_spec: Vec<Complex64>,
     dy_spec: Vec<Complex64>,
     /// The field's gradient on the droplet's rows.
@@ -79,9 +115,8 @@ impl ForceQuadrature {
         Self {
             shape,
             fft: PrunedFft2::new(n),
-            theta: vec![0.0; n * n],
+            sampled: SampledShape::new(&grid),
             real: vec![0.0; n * n],
-            spec: vec![Complex64::default(); len],
             dx_spec: vec![Complex64::default(); len],
             dy_spec: vec![Complex64::default(); len],
             ux: vec![0.0; n * n],
@@ -113,7 +148,7 @@ impl ForceQuadrature {
         let mut count = 0.0;
         for iy in lo..=hi {
             let y = self.grid.coord(iy);
-            let row = &mut self.theta[iy * n..(iy + 1) * n];
+            let row = &mut self.sampled.theta[iy * n..(iy + 1) * n];
             row.fill(0.0);
             for (ix, t) in row.iter_mut().enumerate().take(hi + 1).skip(lo) {
                 let x = self.grid.coord(ix);
@@ -128,7 +163,9 @@ impl ForceQuadrature {
                 count += *t;
             }
         }
-        (count * self.grid.dx * self.grid.dx, lo, hi)
+        let area = count * self.grid.dx * self.grid.dx;
+        (self.sampled.area, self.sampled.lo, self.sampled.hi) = (area, lo, hi);
+        (area, lo, hi)
     }
 
     /// Transforms the source `Theta / A` of `m` into a normalised half spectrum (`[kx][ky]`,
@@ -137,7 +174,7 @@ impl ForceQuadrature {
     pub fn source(&mut self, m: &Modes) -> (f64, usize, usize) {
         let (area, lo, hi) = self.theta_spectrum(m);
         let norm = self.source_scale(area);
-        for c in self.spec.iter_mut() {
+        for c in self.sampled.spec.iter_mut() {
             *c *= norm;
         }
         (area, lo, hi)
@@ -149,8 +186,9 @@ impl ForceQuadrature {
     pub fn theta_spectrum(&mut self, m: &Modes) -> (f64, usize, usize) {
         let n = self.grid.n;
         let (area, lo, hi) = self.sample(m);
-        self.real[lo * n..(hi + 1) * n].copy_from_slice(&self.theta[lo * n..(hi + 1) * n]);
-        self.fft.forward(&mut self.real, &mut self.spec, lo, hi);
+        self.real[lo * n..(hi + 1) * n].copy_from_slice(&self.sampled.theta[lo * n..(hi + 1) * n]);
+        self.fft
+            .forward(&mut self.real, &mut self.sampled.spec, lo, hi);
         (area, lo, hi)
     }
 
@@ -161,7 +199,37 @@ impl ForceQuadrature {
 
     /// `Theta` of the last [`Self::sample`] (row-major `N x N`, rows `lo..=hi`).
     pub fn theta(&self) -> &[f64] {
-        &self.theta
+        &self.sampled.theta
+    }
+
+    /// Exchanges the last sampled droplet (`Theta`, its transform after
+    /// [`Self::theta_spectrum`], area and window) with `other`, without copying.
+    pub fn exchange(&mut self, other: &mut SampledShape) {
+        std::mem::swap(&mut self.sampled, other);
+    }
+
+    /// Makes `Theta` the extrapolation `base + alpha (base - back)` of two sampled droplets
+    /// on the union of their windows, and the area likewise: `(area, lo, hi)` as
+    /// [`Self::sample`] returns them. The transform is not formed (a time step forms it on the
+    /// fly, [`crate::stepping::comoving_etd`]); [`Self::source_spectrum`] is stale after it.
+    pub fn extrapolate(
+        &mut self,
+        base: &SampledShape,
+        back: &SampledShape,
+        alpha: f64,
+    ) -> (f64, usize, usize) {
+        let n = self.grid.n;
+        let (lo, hi) = (base.lo.min(back.lo), base.hi.max(back.hi));
+        for iy in lo..=hi {
+            for ix in lo..=hi {
+                let i = iy * n + ix;
+                let b = base.at(iy, ix, i);
+                self.sampled.theta[i] = b + alpha * (b - back.at(iy, ix, i));
+            }
+        }
+        let area = base.area + alpha * (base.area - back.area);
+        (self.sampled.area, self.sampled.lo, self.sampled.hi) = (area, lo, hi);
+        (area, lo, hi)
     }
 
     /// The unnormalised transform (`[kx][ky]`) of a real field whose rows outside `lo..=hi`
@@ -175,7 +243,7 @@ impl ForceQuadrature {
     /// The last [`Self::source`]'s normalised half spectrum (raw after
     /// [`Self::theta_spectrum`]).
     pub fn source_spectrum(&self) -> &[Complex64] {
-        &self.spec
+        &self.sampled.spec
     }
 
     /// The gradient of the real field with the normalised half spectrum `u` on the rows
@@ -210,7 +278,7 @@ impl ForceQuadrature {
             let y = self.grid.coord(iy);
             for ix in lo..=hi {
                 let i = iy * n + ix;
-                let t = self.theta[i];
+                let t = self.sampled.theta[i];
                 if t == 0.0 {
                     continue;
                 }
