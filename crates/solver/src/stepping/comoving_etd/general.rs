@@ -159,8 +159,8 @@ impl ComovingEtd {
         self.linear_parts();
     }
 
-    /// The forces of the field `u` on the droplet the quadrature holds (rows `lo..=hi`),
-    /// `(Fx, Fy, G^(a)_2.., G^(b)_2..)`.
+    /// The forces of the field (the predictor's with `u_is_predictor`) on the droplet the
+    /// quadrature holds (rows `lo..=hi`), `(Fx, Fy, G^(a)_2.., G^(b)_2..)`.
     fn forces_on(&mut self, u_is_predictor: bool, lo: usize, hi: usize, area: f64) -> Vec<f64> {
         let k_max = self.z.len() / 2;
         let u = if u_is_predictor {
