@@ -78,7 +78,6 @@ use crate::runs::orientation::{
     angle_to, class_of, invariant_distance, lean_from_mirror_line, one_class_within,
     speed_and_deformation, LEAN_FLOOR, ORIENTATION,
 };
-use crate::runs::rotation_flow::LINEAR_LEAN;
 use rustfft::num_complex::Complex64;
 
 /// Newton is first tried when the change per window is below this many steady tolerances.
@@ -351,11 +350,10 @@ impl NewtonFinish {
         // lines: modes 2..3, N = 192, (0.085, 0.112) from iv, 17 degrees from the diagonal
         // MD (unstable in rotation) and turning towards it, to a root 2.25 degrees short of
         // it, had ended on the y-axis MD the turn search finds from the diagonal.
-        let leaving = f
+        let turned = f
             .turned_from
             .as_ref()
-            .is_some_and(|from| self.landing_holds_lean || angle_to(z, from).abs() <= LINEAR_LEAN);
-        let turned = f.turned() && (leaving || turning_to);
+            .is_some_and(|from| self.lean_holds(angle_to(z, from), turning_to));
         let approaching = settled && (turned || turn <= ORIENTATION || turning_to);
         // The basin check of a root stable in rotation, left to here: only a run that would
         // end on it pays for the flow's samples (the same decisions, fewer samples).

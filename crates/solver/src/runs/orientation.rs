@@ -77,7 +77,11 @@ pub(crate) fn angle_to(z: &[f64], root: &[f64]) -> f64 {
     if ra.hypot(rb) <= 1e-9 {
         return 0.0;
     }
-    let d = 0.5 * (zb.atan2(za) - rb.atan2(ra));
+    modulo_half_turn(0.5 * (zb.atan2(za) - rb.atan2(ra)))
+}
+
+/// The angle `d` modulo pi, in [-pi/2, pi/2] (orientations of long axes, or of lines).
+pub(crate) fn modulo_half_turn(d: f64) -> f64 {
     d - std::f64::consts::PI * (d / std::f64::consts::PI).round()
 }
 

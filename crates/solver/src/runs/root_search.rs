@@ -10,8 +10,8 @@ use crate::runs::finding::{Finding, MAX_SETTLED};
 use crate::runs::finish::{same_root, NewtonFinish};
 use crate::runs::landing::landings;
 use crate::runs::orientation::{
-    angle_to, class_of, invariant_distance, orientation, speed_and_deformation, LEAN_FLOOR,
-    TURN_SEARCH,
+    angle_to, class_of, invariant_distance, modulo_half_turn, orientation, speed_and_deformation,
+    LEAN_FLOOR, TURN_SEARCH,
 };
 use crate::runs::rotation_flow::{flow_zero, FlowScan, LINEAR_LEAN};
 
@@ -242,11 +242,8 @@ impl NewtonFinish {
             _ => return None,
         };
         let lean = angle_to(z, &found.z);
-        let turning_to = before.is_some_and(|phi| {
-            let d = phi - orientation(&found.z);
-            let lean_before = d - std::f64::consts::PI * (d / std::f64::consts::PI).round();
-            lean.abs() < lean_before.abs()
-        });
+        let turning_to = before
+            .is_some_and(|phi| lean.abs() < modulo_half_turn(phi - orientation(&found.z)).abs());
         (self.landing_holds(&found, lean, turning_to) && self.within_rotation_basin(&found, lean))
             .then_some(found)
     }
@@ -263,10 +260,15 @@ impl NewtonFinish {
     /// (0.085, 0.112) from iv, 28 degrees past the y-axis MD (stable in rotation) and
     /// turning away from it, turns on to a root 2.25 degrees short of the diagonal.
     fn landing_holds(&self, near: &Finding, lean: f64, turning_to: bool) -> bool {
-        self.landing_holds_lean
-            || near.verdict.rotation.is_none()
-            || lean.abs() <= LINEAR_LEAN
-            || turning_to
+        near.verdict.rotation.is_none() || self.lean_holds(lean, turning_to)
+    }
+
+    /// The rule on a run's lean shared by the landing ([`Self::landing_holds`]) and the
+    /// Newton finish's turned roots: 2-mode runs always; runs with more shape modes within
+    /// [`LINEAR_LEAN`] (where the root's own rotation eigenvalue decides), or if they are
+    /// turning towards the root (`turning_to`).
+    pub(super) fn lean_holds(&self, lean: f64, turning_to: bool) -> bool {
+        self.landing_holds_lean || lean.abs() <= LINEAR_LEAN || turning_to
     }
 
     /// Whether a run leaning by `lean` from the stable root `near` on a mirror line turns

@@ -188,8 +188,7 @@ impl ComovingEtd {
         self.start = Some(AtStart { forces, area });
     }
 
-    /// Puts the predictor's droplet, of shape `shape` (`(a_2..a_K, b_2..b_K)`), in the
-    /// quadrature: `(alpha, area, lo, hi)`. When the last step is known and the predictor's
+    /// Puts the predictor's droplet, the state `z_a`'s, in the quadrature: `(alpha, area, lo, hi)`. When the last step is known and the predictor's
     /// shape change projects onto it by `|alpha| <= 2`, its `Theta` and transform are the
     /// extrapolation `cur + alpha (cur - prev)` (no sample, no transform; `alpha` returned);
     /// else it is sampled and transformed (`alpha = None`).
@@ -200,8 +199,9 @@ impl ComovingEtd {
     /// second order; at a fixed point the shape does not change and the extrapolation is
     /// exact, so the scheme's fixed points are the steady states. The 2-mode fast path
     /// extrapolates its shape transforms by the same rule.
-    fn predictor_shape(&mut self, shape: &[f64]) -> (Option<f64>, f64, usize, usize) {
+    fn predictor_shape(&mut self, z_a: &[f64]) -> (Option<f64>, f64, usize, usize) {
         const MAX_ALPHA: f64 = 2.0;
+        let shape = &z_a[2..];
         if self.cur.valid && self.prev.valid {
             let (c, q) = (&self.cur.shape, &self.prev.shape);
             let (mut dot, mut norm2) = (0.0, 0.0);
@@ -217,11 +217,7 @@ impl ComovingEtd {
                 return (Some(alpha), area, lo, hi);
             }
         }
-        let m = Modes {
-            a: shape[..shape.len() / 2].to_vec(),
-            b: shape[shape.len() / 2..].to_vec(),
-        };
-        let (area, lo, hi) = self.quad.theta_spectrum(&m);
+        let (area, lo, hi) = self.quad.theta_spectrum(&Modes::of_state(z_a));
         (None, area, lo, hi)
     }
 
@@ -350,16 +346,13 @@ impl Stepper for ComovingEtd {
             .pass(grid, Stage::Predict, h, velocity, (start_source, scale));
         // The mechanics' predictor, its droplet and the forces there.
         let coefs: Vec<EtdCoef> = self.rate_of.iter().map(|r| EtdCoef::new(-r, h)).collect();
-        let f0 = self
-            .start
-            .as_ref()
-            .expect("forces at the start")
-            .forces
-            .clone();
+        // The start's forces, put back if the step is refused.
+        let start = self.start.take().expect("forces at the start");
+        let f0 = &start.forces;
         let z_a: Vec<f64> = (0..self.z.len())
             .map(|j| coefs[j].predict(self.z[j], f0[j] / self.inertia[j]))
             .collect();
-        let (alpha, area_a, lo, hi) = self.predictor_shape(&z_a[2..]);
+        let (alpha, area_a, lo, hi) = self.predictor_shape(&z_a);
         let f_a = self.forces_on(true, lo, hi, area_a);
         let next: Vec<f64> = (0..self.z.len())
             .map(|j| {
@@ -377,6 +370,7 @@ impl Stepper for ComovingEtd {
             }
         });
         if max_error.is_finite() && (error.is_nan() || error > max_error) {
+            self.start = Some(start);
             return Attempt {
                 accepted: false,
                 error: Some(error),
@@ -403,7 +397,6 @@ impl Stepper for ComovingEtd {
         self.x += 0.5 * h * (v0.0 + v_a.0);
         self.y += 0.5 * h * (v0.1 + v_a.1);
         self.z = next;
-        self.start = None;
         self.t += h;
         Attempt {
             accepted: true,
