@@ -75,8 +75,7 @@ use crate::roots::verdict::Verdict;
 use crate::runs::finding::{Diagnosis, Finding, MAX_SETTLED};
 use crate::runs::leap::{leap, Leap, Sighting};
 use crate::runs::orientation::{
-    angle_to, class_of, invariant_distance, lean_from_mirror_line, one_class_within,
-    speed_and_deformation, LEAN_FLOOR, ORIENTATION,
+    angle_to, class_of, invariant_distance, one_class_within, ORIENTATION,
 };
 use rustfft::num_complex::Complex64;
 
@@ -127,7 +126,7 @@ pub struct NewtonFinish {
     pub(super) eta_k_exponent: f64,
     pub(super) solver: Option<Balances>,
     /// Whether the run started on a mirror line of the box (its own mirror image there), so
-    /// that a lean below [`LEAN_FLOOR`] is none; else such a lean is round-off that grows.
+    /// that a lean below [`crate::runs::orientation::LEAN_FLOOR`] is none; else such a lean is round-off that grows.
     pub(super) mirror_symmetric: bool,
     /// The run's nearest mirror line, its lean from it and its coordinate (speed, or
     /// deformation at rest) at the last landing try.
@@ -219,7 +218,7 @@ impl NewtonFinish {
     /// For a run that starts at `(vx, vy, a2, b2)`: only a run that starts mirror-symmetric
     /// ([`crate::runs::orientation::mirror_symmetric`]; the paper's i' and ii') stays on an
     /// unstable line for ever (numerics 7). A finish made without its start (a diagnosis)
-    /// takes a lean below [`LEAN_FLOOR`] to be none.
+    /// takes a lean below [`crate::runs::orientation::LEAN_FLOOR`] to be none.
     pub fn starting_at(mut self, z0: &[f64]) -> Self {
         self.mirror_symmetric = crate::runs::orientation::mirror_symmetric(z0);
         self
@@ -381,54 +380,6 @@ impl NewtonFinish {
         }
         self.back_off(t);
         Decision::Continue
-    }
-
-    /// With `landing`, the end of the run at `z` on the stable root its slow flow
-    /// lands on ([`Self::landing_root`]).
-    /// The flow walks along a mirror line with the run's lean held fixed, so it lands only a
-    /// run whose lean is not growing (numerics 7): below the floor, or on the same side of
-    /// the same line as at the previous landing try and grown since by at most
-    /// [`LEAN_GROWTH`] times the relative change of the run's coordinate (its speed, or its
-    /// deformation at rest), so that over the whole departure the lean changes by a small
-    /// power of the coordinate's change. A run
-    /// turning away from its line (the family's states unstable in rotation on the way) may
-    /// end on another orientation than the flow's; it goes on by time stepping, or ends
-    /// where it is caught turning to ([`Self::turn_root`]). The first try knows no growth
-    /// and lands only a run without lean. Landings on the resting disk (no orientation)
-    /// need none of this.
-    fn land_now(&mut self, z: &[f64]) -> Option<Decision> {
-        if !self.landing {
-            return None;
-        }
-        let (line, lean) = lean_from_mirror_line(z);
-        let (v, s) = speed_and_deformation(z);
-        let coordinate = if v > 1e-9 { v } else { s };
-        let before = self.last_lean.replace((line, lean, coordinate));
-        let lean_shrinking = before.is_some_and(|(line_before, lean_before, _)| {
-            line_before == line && lean.abs() < lean_before.abs()
-        });
-        let turning_away = lean.abs() >= LEAN_FLOOR
-            && before.is_none_or(|(line_before, lean_before, coordinate_before)| {
-                line_before != line
-                    || lean.signum() != lean_before.signum()
-                    || (lean / lean_before).ln()
-                        > LEAN_GROWTH * (coordinate / coordinate_before).ln().abs()
-            });
-        // A landing on the resting disk, which has no orientation, needs no lean.
-        let round = |z: &[f64]| z.iter().all(|x| x.abs() < 1e-9);
-        let quarter = std::f64::consts::FRAC_PI_4;
-        let orientation_before = before
-            .filter(|((_, moved), _, _)| *moved == line.1)
-            .map(|((multiple, _), lean_before, _)| multiple as f64 * quarter + lean_before);
-        let found = if turning_away {
-            match self.flow_root(z, false) {
-                Some(found) if round(&found.z) => found,
-                _ => self.turn_root(z, orientation_before)?,
-            }
-        } else {
-            self.landing_root(z, lean_shrinking, orientation_before)?
-        };
-        Some(Decision::End(Ending::Landing, found.z))
     }
 
     /// With `leap_departures`, the leap of a run at `z` (time `t`) leaving the saddle `f`

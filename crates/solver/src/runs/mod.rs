@@ -14,3 +14,4 @@ pub mod leap;
 pub mod orientation;
 pub mod root_search;
 pub mod rotation_flow;
+pub mod turning;

@@ -3,17 +3,19 @@
 //! ([`NewtonFinish::stable_root`]), the root its one-dimensional slow flow lands on
 //! ([`NewtonFinish::landing_root`]), the stable one of two roots a run turning between mirror
 //! lines is caught between ([`NewtonFinish::turn_root`]), and the root on the nearest mirror
-//! line ([`NewtonFinish::aligned_root`]).
+//! line ([`NewtonFinish::aligned_root`]); and when the landing ends a run
+//! ([`NewtonFinish::land_now`]).
+use crate::contract::ending::Ending;
 use crate::contract::profile::{self, Part};
 use crate::model::state::turned;
 use crate::runs::finding::{Finding, MAX_SETTLED};
-use crate::runs::finish::{same_root, NewtonFinish};
+use crate::runs::finish::{same_root, Decision, NewtonFinish, LEAN_GROWTH};
 use crate::runs::landing::landings;
 use crate::runs::orientation::{
-    angle_to, class_of, invariant_distance, modulo_half_turn, orientation, speed_and_deformation,
-    LEAN_FLOOR, TURN_SEARCH,
+    angle_to, class_of, invariant_distance, lean_from_mirror_line, modulo_half_turn, orientation,
+    speed_and_deformation, LEAN_FLOOR, TURN_SEARCH,
 };
-use crate::runs::rotation_flow::{flow_zero, FlowScan, LINEAR_LEAN};
+use crate::runs::rotation_flow::LINEAR_LEAN;
 
 impl NewtonFinish {
     /// The root the run at `z` ends at, if Newton finds one, and whether it may
@@ -248,6 +250,54 @@ impl NewtonFinish {
             .then_some(found)
     }
 
+    /// With `landing`, the end of the run at `z` on the stable root its slow flow
+    /// lands on ([`Self::landing_root`]).
+    /// The flow walks along a mirror line with the run's lean held fixed, so it lands only a
+    /// run whose lean is not growing (numerics 7): below the floor, or on the same side of
+    /// the same line as at the previous landing try and grown since by at most
+    /// [`LEAN_GROWTH`] times the relative change of the run's coordinate (its speed, or its
+    /// deformation at rest), so that over the whole departure the lean changes by a small
+    /// power of the coordinate's change. A run
+    /// turning away from its line (the family's states unstable in rotation on the way) may
+    /// end on another orientation than the flow's; it goes on by time stepping, or ends
+    /// where it is caught turning to ([`Self::turn_root`]). The first try knows no growth
+    /// and lands only a run without lean. Landings on the resting disk (no orientation)
+    /// need none of this.
+    pub(super) fn land_now(&mut self, z: &[f64]) -> Option<Decision> {
+        if !self.landing {
+            return None;
+        }
+        let (line, lean) = lean_from_mirror_line(z);
+        let (v, s) = speed_and_deformation(z);
+        let coordinate = if v > 1e-9 { v } else { s };
+        let before = self.last_lean.replace((line, lean, coordinate));
+        let lean_shrinking = before.is_some_and(|(line_before, lean_before, _)| {
+            line_before == line && lean.abs() < lean_before.abs()
+        });
+        let turning_away = lean.abs() >= LEAN_FLOOR
+            && before.is_none_or(|(line_before, lean_before, coordinate_before)| {
+                line_before != line
+                    || lean.signum() != lean_before.signum()
+                    || (lean / lean_before).ln()
+                        > LEAN_GROWTH * (coordinate / coordinate_before).ln().abs()
+            });
+        // A landing on the resting disk, which has no orientation, needs no lean.
+        let round = |z: &[f64]| z.iter().all(|x| x.abs() < 1e-9);
+        let quarter = std::f64::consts::FRAC_PI_4;
+        let orientation_before = before
+            .filter(|((_, moved), _, _)| *moved == line.1)
+            .map(|((multiple, _), lean_before, _)| multiple as f64 * quarter + lean_before);
+        let found = if turning_away {
+            match self.flow_root(z, false) {
+                Some(found) if round(&found.z) => found,
+                _ => self.turn_root(z, orientation_before)?,
+            }
+        } else {
+            self.landing_root(z, lean_shrinking, orientation_before)?
+        };
+        Some(Decision::End(Ending::Landing, found.z))
+    }
+
     /// Whether the landing may end a run leaning by `lean` on `near`, a root stable in
     /// rotation (the one rule of [`Self::flow_root`] and [`Self::turn_root`]): 2-mode runs
     /// always (the orientation's flow then checks the basin); runs with more shape modes,
@@ -269,89 +319,6 @@ impl NewtonFinish {
     /// turning towards the root (`turning_to`).
     pub(super) fn lean_holds(&self, lean: f64, turning_to: bool) -> bool {
         self.landing_holds_lean || lean.abs() <= LINEAR_LEAN || turning_to
-    }
-
-    /// Whether a run leaning by `lean` from the stable root `near` on a mirror line turns
-    /// back to it (setting `orientation_flow`; without it, always): the orientation's slow
-    /// flow points back to the line all the way from the run
-    /// ([`crate::runs::rotation_flow::FlowScan`]). A root stable in
-    /// rotation is not enough: the box's anisotropy can put an unstable root between the
-    /// line and the run (at (0.072, 0.132) 4.8 degrees off the x-axis MD; a run leaning 6.5
-    /// degrees turns on to the stable root at 8.7). A lean below
-    /// [`crate::runs::rotation_flow::LINEAR_LEAN`], or a root with no orientation, always
-    /// holds.
-    pub(super) fn within_rotation_basin(&mut self, near: &Finding, lean: f64) -> bool {
-        if !self.orientation_flow || near.verdict.rotation.is_none() || lean.abs() < LEAN_FLOOR {
-            return true;
-        }
-        // What earlier tries learnt of this root's flow on this side (a run's later tries find
-        // the same root at a similar lean; the flow is sampled once).
-        let side = lean > 0.0;
-        let known = self
-            .flows
-            .iter()
-            .position(|(z, s, _)| *s == side && same_root(z, &near.z));
-        let mut scan = known.map_or_else(FlowScan::new, |i| self.flows[i].2);
-        if let Some(verdict) = scan.verdict(lean) {
-            return verdict;
-        }
-        let Ok(balances) = self.balances() else {
-            return true;
-        };
-        let timed = profile::enter(Part::Flow);
-        scan.extend(balances, &near.z, lean);
-        drop(timed);
-        match known {
-            Some(i) => self.flows[i].2 = scan,
-            None => self.flows.push((near.z.clone(), side, scan)),
-        }
-        scan.verdict(lean).unwrap_or(true)
-    }
-
-    /// With `orientation_flow`: the stable root that the orientation's flow takes a run
-    /// leaning `lean` from `near` to ([`flow_zero`]; `away` as there), confirmed by Newton on
-    /// all four balances (at the flow's zero to 1e-4 rad) and by its eigenvalues; a root of
-    /// the run's family (within [`MAX_SETTLED`] of `near`), not `near` itself.
-    fn flow_turn(&mut self, near: &Finding, lean: f64, away: bool) -> Option<Finding> {
-        if !self.orientation_flow {
-            return None;
-        }
-        // The flow was followed from `from` to `to` (its zero, or where the fast balances
-        // failed), pointing that way all along: a run leaning in between (a later try, as
-        // the run turns) ends the same way.
-        let between = |from: f64, to: f64| {
-            lean * from > 0.0 && lean.abs() >= from.abs() && lean.abs() < to.abs()
-        };
-        if let Some((.., found)) = self
-            .turns
-            .iter()
-            .find(|(root, from, to, _)| same_root(root, &near.z) && between(*from, *to))
-        {
-            return found.clone();
-        }
-        let zero = {
-            let _timed = profile::enter(Part::Flow);
-            flow_zero(self.balances().ok()?, &near.z, lean, away)
-        };
-        let z = match zero {
-            Ok(z) => z,
-            Err(failed_at) => {
-                self.turns.push((near.z.clone(), lean, failed_at, None));
-                return None;
-            }
-        };
-        let found = self.root_near(&z).ok()?;
-        let to = angle_to(&z, &near.z);
-        let ends = found.stable()
-            && angle_to(&found.z, &z).abs() < 1e-4
-            && angle_to(&found.z, &near.z).abs() > 1e-6
-            && invariant_distance(&found.z, &near.z) <= MAX_SETTLED;
-        let found = ends.then_some(Finding {
-            turned_from: Some(near.z.clone()),
-            ..found
-        });
-        self.turns.push((near.z.clone(), lean, to, found.clone()));
-        found
     }
 
     /// The root of a run caught mid-turn, between the box's mirror lines, where Newton from

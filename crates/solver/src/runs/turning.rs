@@ -1,0 +1,97 @@
+//! The Newton finish's questions to the orientation's slow flow
+//! ([`crate::runs::rotation_flow`], setting `orientation_flow`): whether a run leaning from a
+//! stable root turns back to it, and to which stable root a run leaning from a root unstable
+//! in rotation turns.
+use crate::contract::profile::{self, Part};
+use crate::runs::finding::{Finding, MAX_SETTLED};
+use crate::runs::finish::{same_root, NewtonFinish};
+use crate::runs::orientation::{angle_to, invariant_distance, LEAN_FLOOR};
+use crate::runs::rotation_flow::{flow_zero, FlowScan};
+
+/// The finish's questions to the flow: whether a leaning run turns back to a stable root
+/// ([`NewtonFinish::within_rotation_basin`]) and where it turns to from an unstable one
+/// ([`NewtonFinish::flow_turn`]), each flow sampled once per root and side.
+impl NewtonFinish {
+    /// Whether a run leaning by `lean` from the stable root `near` on a mirror line turns
+    /// back to it (setting `orientation_flow`; without it, always): the orientation's slow
+    /// flow points back to the line all the way from the run
+    /// ([`crate::runs::rotation_flow::FlowScan`]). A root stable in
+    /// rotation is not enough: the box's anisotropy can put an unstable root between the
+    /// line and the run (at (0.072, 0.132) 4.8 degrees off the x-axis MD; a run leaning 6.5
+    /// degrees turns on to the stable root at 8.7). A lean below
+    /// [`crate::runs::rotation_flow::LINEAR_LEAN`], or a root with no orientation, always
+    /// holds.
+    pub(super) fn within_rotation_basin(&mut self, near: &Finding, lean: f64) -> bool {
+        if !self.orientation_flow || near.verdict.rotation.is_none() || lean.abs() < LEAN_FLOOR {
+            return true;
+        }
+        // What earlier tries learnt of this root's flow on this side (a run's later tries find
+        // the same root at a similar lean; the flow is sampled once).
+        let side = lean > 0.0;
+        let known = self
+            .flows
+            .iter()
+            .position(|(z, s, _)| *s == side && same_root(z, &near.z));
+        let mut scan = known.map_or_else(FlowScan::new, |i| self.flows[i].2);
+        if let Some(verdict) = scan.verdict(lean) {
+            return verdict;
+        }
+        let Ok(balances) = self.balances() else {
+            return true;
+        };
+        let timed = profile::enter(Part::Flow);
+        scan.extend(balances, &near.z, lean);
+        drop(timed);
+        match known {
+            Some(i) => self.flows[i].2 = scan,
+            None => self.flows.push((near.z.clone(), side, scan)),
+        }
+        scan.verdict(lean).unwrap_or(true)
+    }
+
+    /// With `orientation_flow`: the stable root that the orientation's flow takes a run
+    /// leaning `lean` from `near` to ([`flow_zero`]; `away` as there), confirmed by Newton on
+    /// all four balances (at the flow's zero to 1e-4 rad) and by its eigenvalues; a root of
+    /// the run's family (within [`MAX_SETTLED`] of `near`), not `near` itself.
+    pub(super) fn flow_turn(&mut self, near: &Finding, lean: f64, away: bool) -> Option<Finding> {
+        if !self.orientation_flow {
+            return None;
+        }
+        // The flow was followed from `from` to `to` (its zero, or where the fast balances
+        // failed), pointing that way all along: a run leaning in between (a later try, as
+        // the run turns) ends the same way.
+        let between = |from: f64, to: f64| {
+            lean * from > 0.0 && lean.abs() >= from.abs() && lean.abs() < to.abs()
+        };
+        if let Some((.., found)) = self
+            .turns
+            .iter()
+            .find(|(root, from, to, _)| same_root(root, &near.z) && between(*from, *to))
+        {
+            return found.clone();
+        }
+        let zero = {
+            let _timed = profile::enter(Part::Flow);
+            flow_zero(self.balances().ok()?, &near.z, lean, away)
+        };
+        let z = match zero {
+            Ok(z) => z,
+            Err(failed_at) => {
+                self.turns.push((near.z.clone(), lean, failed_at, None));
+                return None;
+            }
+        };
+        let found = self.root_near(&z).ok()?;
+        let to = angle_to(&z, &near.z);
+        let ends = found.stable()
+            && angle_to(&found.z, &z).abs() < 1e-4
+            && angle_to(&found.z, &near.z).abs() > 1e-6
+            && invariant_distance(&found.z, &near.z) <= MAX_SETTLED;
+        let found = ends.then_some(Finding {
+            turned_from: Some(near.z.clone()),
+            ..found
+        });
+        self.turns.push((near.z.clone(), lean, to, found.clone()));
+        found
+    }
+}
