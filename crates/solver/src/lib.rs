@@ -93,8 +93,11 @@ pub const ODE_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numeri
 /// the lattice, and had landed 42.75 degrees from where stepping ends). 7: the time step's
 /// predictor droplet is extrapolated from the last two states' (sampled and transformed once
 /// per step, not twice), as the 2-mode scheme's is: the same fixed points, transients changed
-/// at `O(h^2)`; at K = 2 the general step now equals the fast path's to round-off.
-pub const MODES_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-9+modes-7");
+/// at `O(h^2)`; at K = 2 the general step now equals the fast path's to round-off. 8: the
+/// Newton finish solves by the chord method with the Jacobians kept at earlier roots, as
+/// 2-mode runs do, and forms a Jacobian by forward differences (2K field solves, not 4K), a
+/// droplet's source sampled once for both velocity columns: the same roots to about 1e-9.
+pub const MODES_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-9+modes-8");
 
 /// The numerics version of a model's runs with shape modes `2..=modes`, part of their cache
 /// key: a change to one model's results invalidates its stored runs only.

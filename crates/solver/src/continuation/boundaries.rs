@@ -181,6 +181,7 @@ mod tests {
                 max_iter: 30,
                 fd_step: 1e-7,
                 max_step: vec![0.05; z.len()],
+                one_sided: false,
             };
             let z = crate::numerics::newton::solve(|y| solver.residual(y), &z, &opts)
                 .unwrap()

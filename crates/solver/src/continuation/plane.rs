@@ -213,6 +213,7 @@ fn mc_curve(w: &PlaneWindow, (v, x, y): (f64, f64, f64)) -> Result<Vec<(f64, f64
         max_iter: 30,
         fd_step: 1e-7,
         max_step: vec![0.05, 0.05],
+        one_sided: false,
     };
     let Ok(sol) = crate::numerics::newton::solve(|u| f(&[u[0], u[1], qy]), &[v, w.x.q(x)], &newton)
     else {

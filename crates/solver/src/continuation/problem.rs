@@ -224,6 +224,7 @@ impl Problem {
             max_iter: 30,
             fd_step: 1e-7,
             max_step: vec![0.05; rest.max(2)],
+            one_sided: false,
         };
         let sol = newton::solve(
             |x| {
@@ -296,6 +297,7 @@ impl Problem {
             max_iter: 40,
             fd_step: 1e-7,
             max_step: vec![0.2; n.max(1)],
+            one_sided: false,
         };
         let x = if n == 0 {
             Vec::new()

@@ -18,6 +18,10 @@ pub struct NewtonOptions {
     /// Largest change of each unknown in one step (the whole step is scaled down to respect
     /// every cap; `f64::INFINITY` for none).
     pub max_step: Vec<f64>,
+    /// The Jacobian by forward differences ([`forward_jacobian`]: `n` evaluations of `f` for
+    /// `n` unknowns, first order in `fd_step`) instead of central ones (`2 n`, second order).
+    /// Either converges to the same root under `tol`: the residual decides, not the step.
+    pub one_sided: bool,
 }
 
 /// A converged solve.
@@ -52,6 +56,32 @@ pub fn fd_jacobian(f: &mut impl FnMut(&[f64]) -> Vec<f64>, x: &[f64], h: f64) ->
         );
     }
     (0..cols.first().map_or(0, Vec::len))
+        .map(|i| cols.iter().map(|c| c[i]).collect())
+        .collect()
+}
+
+/// The Jacobian of `f` at `x`, where `f(x) = fx`, by forward differences of step `h`
+/// (`jac[row][col]`).
+pub fn forward_jacobian(
+    f: &mut impl FnMut(&[f64]) -> Vec<f64>,
+    x: &[f64],
+    fx: &[f64],
+    h: f64,
+) -> Vec<Vec<f64>> {
+    let mut cols = Vec::with_capacity(x.len());
+    let mut y = x.to_vec();
+    for j in 0..x.len() {
+        y[j] = x[j] + h;
+        let fp = f(&y);
+        y[j] = x[j];
+        cols.push(
+            fp.iter()
+                .zip(fx)
+                .map(|(p, c)| (p - c) / h)
+                .collect::<Vec<f64>>(),
+        );
+    }
+    (0..fx.len())
         .map(|i| cols.iter().map(|c| c[i]).collect())
         .collect()
 }
@@ -103,7 +133,10 @@ pub fn solve_keeping(
         if it == opts.max_iter || !norm.is_finite() {
             break;
         }
-        let jac = fd_jacobian(&mut f, &x, opts.fd_step);
+        let jac = match opts.one_sided {
+            true => forward_jacobian(&mut f, &x, &r, opts.fd_step),
+            false => fd_jacobian(&mut f, &x, opts.fd_step),
+        };
         let minus_r: Vec<f64> = r.iter().map(|v| -v).collect();
         *last = Some(jac.clone());
         let dx = lu_solve(jac, &minus_r).ok_or_else(|| failed(norm, it))?;
@@ -193,6 +226,7 @@ mod tests {
             max_iter: 50,
             fd_step: 1e-6,
             max_step: vec![f64::INFINITY; 2],
+            one_sided: false,
         };
         let sol = solve(f, &[2.0, 0.3], &opts).unwrap();
         assert!(sol.residual < 1e-13 && sol.iterations <= 8, "{sol:?}");
@@ -206,6 +240,21 @@ mod tests {
                 assert!((j[i][k] - exact[i][k]).abs() < 1e-8);
             }
         }
+        // Forward differences: first order in the step, and the same root to the tolerance.
+        let g0 = g(&[1.0, 2.0]);
+        let j1 = forward_jacobian(&mut g, &[1.0, 2.0], &g0, 1e-6);
+        for i in 0..2 {
+            for k in 0..2 {
+                assert!((j1[i][k] - exact[i][k]).abs() < 1e-5);
+            }
+        }
+        let one_sided = NewtonOptions {
+            one_sided: true,
+            ..opts.clone()
+        };
+        let sol1 = solve(f, &[2.0, 0.3], &one_sided).unwrap();
+        assert!(sol1.residual < 1e-13 && sol1.iterations <= 9, "{sol1:?}");
+        assert!((sol1.x[0] - x).abs() < 1e-12 && (sol1.x[1] - y).abs() < 1e-12);
         // A step cap slows it down but it still converges; no root -> a typed error.
         let capped = NewtonOptions {
             max_step: vec![0.05; 2],
@@ -232,6 +281,7 @@ mod tests {
             max_iter: 30,
             fd_step: 1e-7,
             max_step: vec![f64::INFINITY; 2],
+            one_sided: false,
         };
         let near = fd_jacobian(&mut f, &[1.1, 1.9], 1e-7);
         let sol = chord(f, &[1.05, 1.95], &near, &opts).unwrap();

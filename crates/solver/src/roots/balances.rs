@@ -1,7 +1,8 @@
 //! The co-moving steady force balances of the model with shape modes `2..K`, one interface
-//! over its two solvers: the 2-mode steady solver (the fast path: its chord method with kept
-//! Jacobians, and the constrained solves of the landing) and the general one
-//! ([`crate::roots::steady_solver::SteadySolver`]). States are `(vx, vy, a_2..a_K, b_2..b_K)`,
+//! over its two solvers: the 2-mode steady solver (the fast path, with the constrained solves
+//! of the landing) and the general one ([`crate::roots::steady_solver::SteadySolver`]), both
+//! solved by the chord method with kept Jacobians where one is near
+//! ([`crate::roots::kept_jacobians`]). States are `(vx, vy, a_2..a_K, b_2..b_K)`,
 //! for `K = 2` `(vx, vy, a2, b2)`. With them, the steady field of a droplet of any `K` in the
 //! lab frame ([`lab_field`]).
 use crate::error::SolverError;
@@ -11,14 +12,15 @@ use crate::model::param::ModelParam;
 use crate::model::params::ModelParams;
 use crate::model::state::{four, turned};
 use crate::numerics::newton::NewtonOptions;
+use crate::roots::kept_jacobians::KeptJacobians;
 use crate::roots::linearisation::Linearization;
 use crate::roots::linearisation::TwoModeLinearization;
 use crate::roots::steady_solver::SteadySolver;
-use crate::roots::steady_solver::{on_x_axis, KeptJacobians, TwoModeSolver};
+use crate::roots::steady_solver::{on_x_axis, TwoModeSolver};
 use crate::roots::verdict::{assess, Verdict};
 
-/// The steady force balances a finish solves: the 2-mode solver (with the chord method's
-/// kept Jacobians, and the constrained solves of the landing and the orientation flow), or
+/// The steady force balances a finish solves: the 2-mode solver (with the constrained solves
+/// of the landing and the orientation flow), or
 /// the general one with shape modes `2..K`.
 pub enum Balances {
     Two(TwoModeSolver),
@@ -31,7 +33,7 @@ pub enum Balances {
 
 impl Balances {
     /// Newton on all the balances from `z`: `(vx, vy, a2, b2)`, or `(vx, vy, a_2..a_K,
-    /// b_2..b_K)`.
+    /// b_2..b_K)`; by the chord method where `jacobians` holds one near `z`.
     pub fn root_near(
         &mut self,
         z: &[f64],
@@ -46,21 +48,24 @@ impl Balances {
                     max_iter: 12,
                     fd_step: 1e-6,
                     max_step: vec![f64::INFINITY, f64::INFINITY, 0.2, 0.2],
+                    one_sided: false,
                 };
                 Ok(solver.root_near(four(z), &opts, jacobians)?.to_vec())
             }
             Balances::General { solver, .. } => {
                 // The settings K-mode runs have been finished with: to 1e-11, every
-                // unknown's step limited.
+                // unknown's step limited; the Jacobian by forward differences (2K field solves
+                // where central ones take 4K, the same roots: numerics modes-8).
                 let opts = NewtonOptions {
                     tol: 1e-11,
                     max_iter: 12,
                     fd_step: 1e-7,
                     max_step: vec![0.2; z.len()],
+                    one_sided: true,
                 };
-                let found = crate::numerics::newton::solve(|y| solver.residual(y), z, &opts)?;
-                if found.x.iter().all(|x| x.is_finite()) {
-                    Ok(found.x)
+                let found = jacobians.solve(|y| solver.residual(y), z, &opts)?;
+                if found.iter().all(|x| x.is_finite()) {
+                    Ok(found)
                 } else {
                     Err(SolverError::NewtonFailed {
                         residual: f64::NAN,

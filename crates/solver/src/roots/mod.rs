@@ -3,13 +3,15 @@
 //! (field included, docs/numerics.md "Stability"), the stability verdict with the rotation mode
 //! set aside, the steady balances of any `K` behind one interface (`balances`), the named
 //! states of the paper (IC, ID, MD on a mirror axis of the box, any `K`), where resting states
-//! lose stability (`thresholds`) and the Appendix E fit of `h0`.
+//! lose stability (`thresholds`) and the Appendix E fit of `h0`, and the Jacobians kept at roots for the chord method
+//! (`kept_jacobians`).
 //!
 //! May use: `numerics`, `model`, `contract`, `reduced` (starting guesses). Used by: `runs`,
 //! `continuation`.
 pub mod balances;
 mod forces_memo;
 pub mod h0_fit;
+pub mod kept_jacobians;
 pub mod linearisation;
 pub mod named_state;
 pub mod steady_solver;

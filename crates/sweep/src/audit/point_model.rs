@@ -76,12 +76,14 @@ pub fn root_near(balances: &mut Balances, state: &[f64]) -> Option<Root> {
             max_iter: 30,
             fd_step: 1e-6,
             max_step: vec![f64::INFINITY, f64::INFINITY, 0.2, 0.2],
+            one_sided: false,
         },
         _ => NewtonOptions {
             tol: 1e-11,
             max_iter: 30,
             fd_step: 1e-7,
             max_step: vec![0.2; state.len()],
+            one_sided: false,
         },
     };
     let x = balances.root_from(state, &opts).ok()?;

@@ -59,6 +59,10 @@ pub struct SteadySolver {
     eta_k_exponent: f64,
     /// The forces of the last droplets the residuals asked for.
     memo: ForcesMemo<(f64, f64, Modes), ShapeForces>,
+    /// The shape whose source `quad` holds, with its area and rows: a droplet of the same
+    /// shape at another velocity (the velocity columns of a difference Jacobian) samples and
+    /// transforms nothing.
+    sourced: Option<(Modes, (f64, usize, usize))>,
 }
 
 impl SteadySolver {
@@ -79,6 +83,7 @@ impl SteadySolver {
             axis: 0.0,
             eta_k_exponent: 0.0,
             memo: ForcesMemo::default(),
+            sourced: None,
         })
     }
 
@@ -113,6 +118,7 @@ impl SteadySolver {
         if let Some((grid, shape)) = sampled {
             self.quad = ForceQuadrature::new(grid, shape);
             self.memo.clear();
+            self.sourced = None;
         }
         self.params = params;
         Ok(())
@@ -141,7 +147,14 @@ impl SteadySolver {
     /// The forces of the steady field of the droplet `m` moving at `(vx, vy)`.
     pub fn forces(&mut self, vx: f64, vy: f64, m: &Modes) -> ShapeForces {
         crate::contract::profile::field_solve();
-        let (area, lo, hi) = self.quad.source(m);
+        let (area, lo, hi) = match &self.sourced {
+            Some((held, window)) if held == m => *window,
+            _ => {
+                let window = self.quad.source(m);
+                self.sourced = Some((m.clone(), window));
+                window
+            }
+        };
         // u_hat = source / (1 + k^2 - i k.v) = -source / D.
         fill_operator(self.quad.grid(), vx, vy, &mut self.d);
         let source = self.quad.source_spectrum();
@@ -165,6 +178,7 @@ impl SteadySolver {
     /// The quadrature of the forces, for computations that take its steps in their own order
     /// (the linearisation); the solver's last field stays.
     pub(crate) fn quadrature_mut(&mut self) -> &mut ForceQuadrature {
+        self.sourced = None;
         &mut self.quad
     }
 
@@ -254,6 +268,7 @@ impl SteadySolver {
             max_iter: 40,
             fd_step: 1e-7,
             max_step: vec![0.1; guess.len()],
+            one_sided: false,
         };
         let sol = newton::solve(|y| self.residual_x(y), guess, &opts)?;
         Ok(AxisState {
@@ -289,6 +304,7 @@ mod tests {
             max_iter: 30,
             fd_step: 1e-7,
             max_step: vec![0.2; 6],
+            one_sided: false,
         };
         let full = newton::solve(
             |y| solver.residual(y),
@@ -458,6 +474,7 @@ mod tests {
             max_iter: 40,
             fd_step: 1e-7,
             max_step: vec![0.05; 3],
+            one_sided: false,
         };
         let mut y = vec![two.v, two.a[0], 0.0];
         let mut last_v = f64::INFINITY;

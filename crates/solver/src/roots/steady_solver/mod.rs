@@ -8,15 +8,14 @@
 //! - [`general`]: [`SteadySolver`], every shape with modes `2..K` (forces by quadrature,
 //!   [`crate::model::forces::quadrature`]);
 //! - [`two_mode`]: [`TwoModeSolver`], the fast path of `K = 2` (the droplet's point symmetry,
-//!   forces by Parseval, the chord method with kept Jacobians, and the solves constrained to a
-//!   mirror line that the landing uses).
+//!   forces by Parseval, and the solves constrained to a mirror line that the landing uses).
 //!
 //! At `K = 2` the two give the same forces to round-off (tested in [`general`]).
 pub mod general;
 pub mod two_mode;
 
 pub use general::{on_x_axis, AxisState, SteadySolver};
-pub use two_mode::{KeptJacobians, SteadyState, TwoModeSolver};
+pub use two_mode::{SteadyState, TwoModeSolver};
 
 use crate::error::SolverError;
 use crate::model::grid::Grid;

@@ -15,6 +15,7 @@ use crate::model::shape_transform::ShapeTransform;
 use crate::numerics::fft2::PrunedFft2;
 use crate::numerics::newton::{self, NewtonOptions};
 use crate::roots::forces_memo::ForcesMemo;
+use crate::roots::kept_jacobians::KeptJacobians;
 use rustfft::num_complex::Complex64;
 
 /// Evaluates steady fields and force-balance residuals on an `N x N` co-moving grid.
@@ -242,8 +243,7 @@ impl TwoModeSolver {
     }
 
     /// [`Self::root_from`], first by the chord method with a Jacobian `kept` from an earlier
-    /// solve near `z` (one field solve a step instead of nine), by Newton when there is none
-    /// or the chord steps do not converge; a Newton solve's last Jacobian is kept.
+    /// solve near `z` ([`KeptJacobians::solve`]).
     pub fn root_near(
         &mut self,
         z: [f64; 4],
@@ -251,28 +251,11 @@ impl TwoModeSolver {
         kept: &mut KeptJacobians,
     ) -> Result<[f64; 4], SolverError> {
         let p = self.params;
-        let mut balance = |x: &[f64]| {
+        let balance = |x: &[f64]| {
             let f = self.forces(x[0], x[1], x[2], x[3]);
             dynamics::force_balance(&p, [x[0], x[1], x[2], x[3]], &f).to_vec()
         };
-        let chord = NewtonOptions {
-            max_iter: 40,
-            ..opts.clone()
-        };
-        let chorded = kept
-            .near(&z)
-            .and_then(|jac| newton::chord(&mut balance, &z, jac, &chord).ok());
-        let x = match chorded {
-            Some(sol) => sol.x,
-            None => {
-                let mut last = None;
-                let sol = newton::solve_keeping(&mut balance, &z, opts, &mut last);
-                if let (Ok(sol), Some(jac)) = (&sol, last) {
-                    kept.keep(&sol.x, jac);
-                }
-                sol?.x
-            }
-        };
+        let x = kept.solve(balance, &z, opts)?;
         Ok([x[0], x[1], x[2], x[3]])
     }
 
@@ -296,6 +279,7 @@ impl TwoModeSolver {
             } else {
                 vec![0.2]
             },
+            one_sided: false,
         };
         let sol = if moving {
             newton::solve(
@@ -325,44 +309,5 @@ impl TwoModeSolver {
 
     pub fn grid(&self) -> &Grid {
         &self.grid
-    }
-}
-
-/// The Jacobians of the force balance at the last few roots Newton found, for the chord
-/// method from a nearby start ([`TwoModeSolver::root_near`]): a run's later tries usually
-/// start near a root found before.
-#[derive(Debug, Clone, Default)]
-pub struct KeptJacobians {
-    entries: Vec<([f64; 4], Vec<Vec<f64>>)>,
-}
-
-impl KeptJacobians {
-    /// Roots whose Jacobians are kept.
-    const KEPT: usize = 4;
-    /// Largest distance (max over the unknowns) of a start from a kept root for its Jacobian
-    /// to be tried.
-    const REACH: f64 = 0.05;
-
-    /// The Jacobian kept at the root nearest `z`, if within [`Self::REACH`].
-    pub fn near(&self, z: &[f64; 4]) -> Option<&[Vec<f64>]> {
-        let distance = |at: &[f64; 4]| {
-            at.iter()
-                .zip(z)
-                .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()))
-        };
-        self.entries
-            .iter()
-            .map(|(at, jac)| (distance(at), jac))
-            .filter(|(d, _)| *d <= Self::REACH)
-            .min_by(|a, b| a.0.total_cmp(&b.0))
-            .map(|(_, jac)| jac.as_slice())
-    }
-
-    /// Keeps the Jacobian `jac` of the root `at` (the oldest dropped beyond [`Self::KEPT`]).
-    pub fn keep(&mut self, at: &[f64], jac: Vec<Vec<f64>>) {
-        if self.entries.len() == Self::KEPT {
-            self.entries.remove(0);
-        }
-        self.entries.push(([at[0], at[1], at[2], at[3]], jac));
     }
 }
