@@ -1,5 +1,5 @@
 """Compares the runs of runs/*.json: each Newton-finished set against pure time stepping at the
-same K and N (modes7 against pure-*.json, stepped by the scheme of numerics modes-7; the older
+same K and N (modes8 and modes7 against pure-*.json, stepped by the scheme of numerics modes-7; the older
 sets against pure6-*.json, the scheme of modes-3 to modes-6) (class; |dv|, |ds|; the orientation's difference in degrees; t_end and wall time).
 Writes summary.json and prints a table.  python3 summarise.py"""
 import json, glob, os
@@ -14,8 +14,8 @@ def turn(a, b):
 summary = {}
 for path in sorted(glob.glob(os.path.join(here, "runs", "pure-*.json"))):
     kn = os.path.basename(path)[len("pure-"):-len(".json")]
-    for tag in ["modes7", "modes6", "newton", "before"]:
-        pure = load(("pure-" if tag == "modes7" else "pure6-") + kn)
+    for tag in ["modes8", "modes7", "modes6", "newton", "before"]:
+        pure = load(("pure-" if tag in ("modes8", "modes7") else "pure6-") + kn)
         p = os.path.join(here, "runs", f"{tag}-{kn}.json")
         if not os.path.exists(p):
             continue
