@@ -111,3 +111,68 @@ fn boundaries_onto_a_committed_map_take_its_window_from_its_tables() {
     unique.dedup();
     assert_eq!(unique.len(), files.len(), "each file named once: {r}");
 }
+
+#[test]
+fn plot_beside_draws_two_committed_maps_and_counts_what_the_modes_change() {
+    // The 4-mode level 0 beside the paper's 2-mode map: the six labels results/fig2a-modes
+    // lists change at the 171 points both hold, and each map's labels tile the window.
+    let tmp = tempfile::tempdir().unwrap();
+    let modes = tables_only_copy("fig2a-modes", tmp.path());
+    let two = tables_only_copy("fig2a-map", tmp.path());
+    let out = droplet()
+        .args(["plot", modes.to_str().unwrap(), "--beside"])
+        .arg(&two)
+        .arg("--json")
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let c = json(&out);
+    assert!(modes.join("beside.png").is_file() && modes.join("beside.svg").is_file());
+    assert_eq!(c["common_points"], 171, "{c}");
+    let changes: Vec<(String, String, u64)> = c["changes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|ch| {
+            (
+                ch["from"].as_str().unwrap().to_string(),
+                ch["to"].as_str().unwrap().to_string(),
+                ch["points"].as_u64().unwrap(),
+            )
+        })
+        .collect();
+    let expected = [("IC/MD", "IC", 1), ("ID", "MD", 4), ("ID/MD", "MD", 1)];
+    assert_eq!(changes.len(), expected.len(), "{c}");
+    for (from, to, n) in expected {
+        assert!(
+            changes.contains(&(from.to_string(), to.to_string(), n)),
+            "{from} -> {to}: {c}"
+        );
+    }
+    // Both maps cover the window (0.068..0.100 x 0.100..0.172) edge to edge.
+    for side in ["this", "other"] {
+        let total: f64 = c["areas"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|a| a[side].as_f64().unwrap())
+            .sum();
+        assert!((total - 0.032 * 0.072).abs() < 1e-12, "{side}: {total}");
+    }
+    assert_eq!(c["other_model"], "PDE");
+    assert_eq!(c["this_model"], "PDE (shape modes 2..4)");
+
+    // A 1-D sweep is no map to compare: refused as bad input.
+    let line = tables_only_copy("fig2b-i", tmp.path());
+    let out = droplet()
+        .args(["plot", modes.to_str().unwrap(), "--beside"])
+        .arg(&line)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("two axes"));
+}

@@ -1,6 +1,7 @@
 //! Pictures, each drawn as PNG and SVG by one scaffold (`render`): the phase map of Fig. 2a
-//! (`map_figure`, colours and legend in `legend`; a 3-axis sweep's slices side by side in
-//! `slice_figure`), the single-run panels of Fig. 1
+//! (`map_figure`, colours and legend in `legend`; maps side by side in `slice_figure`: a
+//! 3-axis sweep's slices, or two maps of one plane compared in `map_comparison`), the
+//! single-run panels of Fig. 1
 //! (`run_figure`), `v` and `s` against a parameter of Fig. 2b/3b (`line_figure`), the
 //! Appendix E fit (`h0_figure`), a sweep's pictures from its runs with the boundaries
 //! (`sweep_pictures`), bifurcation diagrams of the reduced model and of continuation
@@ -13,6 +14,7 @@ pub mod branch_pictures;
 pub mod h0_figure;
 pub mod legend;
 pub mod line_figure;
+pub mod map_comparison;
 pub mod map_figure;
 pub mod render;
 pub mod run_figure;

@@ -6,7 +6,7 @@ use crate::map::phase_map::PhaseMap;
 use crate::pictures::branch_pictures::branch_drawing;
 use crate::pictures::line_figure::{vs_parameter, Marker};
 use crate::pictures::map_figure::{phase_map, Curve, MapPoint};
-use crate::pictures::slice_figure::slice_maps;
+use crate::pictures::slice_figure::{slice_maps, Panel};
 use crate::spec::axes::{Param, Point};
 use crate::spec::lattice::Node;
 use crate::spec::SweepSpec;
@@ -170,45 +170,8 @@ pub fn draw(
     spec: &SweepSpec,
     drawing: &MapDrawing,
 ) -> Result<Vec<PathBuf>, SweepError> {
-    // A refined map: each point drawn as the quarters of the unsplit cells it is a corner of,
-    // in its own slice.
-    let mut tiles: HashMap<(u64, Node), Vec<[f64; 4]>> = HashMap::new();
-    if let Some(lattice) = spec.refine {
-        let mut by_slice: BTreeMap<u64, BTreeSet<Node>> = BTreeMap::new();
-        for &([x, y, z], _) in &drawing.points {
-            by_slice
-                .entry(z.to_bits())
-                .or_default()
-                .insert(lattice.node_of((x, y)));
-        }
-        for (z, nodes) in by_slice {
-            tiles.extend(lattice.tiles(&nodes).into_iter().map(|(n, t)| ((z, n), t)));
-        }
-    }
-    let pts: Vec<(f64, MapPoint)> = drawing
-        .points
-        .iter()
-        .map(|&([x, y, z], ref label)| {
-            let node = spec.refine.map(|l| l.node_of((x, y)));
-            let point = MapPoint {
-                x,
-                y,
-                label: label.clone(),
-                tiles: node
-                    .and_then(|n| tiles.remove(&(z.to_bits(), n)))
-                    .unwrap_or_default(),
-            };
-            (z, point)
-        })
-        .collect();
-    let model = match spec.solver.modes {
-        2 => spec.solver.model.as_str().to_uppercase(),
-        // The K-mode model's map; the reduced model's curves drawn over it are the 2-mode ODE's.
-        k => format!(
-            "{} (shape modes 2..{k})",
-            spec.solver.model.as_str().to_uppercase()
-        ),
-    };
+    let pts = map_points(spec, drawing);
+    let model = model_title(spec);
     let title = format!(
         "{}: {model} phase map ({} ICs per point)",
         spec.name,
@@ -251,6 +214,52 @@ pub fn draw(
     Ok(files)
 }
 
+/// The points of a sweep's drawing as drawn: a refined map's point with the quarters of the
+/// unsplit cells it is a corner of, in its own slice; each with its slice's coordinate.
+pub(crate) fn map_points(spec: &SweepSpec, drawing: &MapDrawing) -> Vec<(f64, MapPoint)> {
+    let mut tiles: HashMap<(u64, Node), Vec<[f64; 4]>> = HashMap::new();
+    if let Some(lattice) = spec.refine {
+        let mut by_slice: BTreeMap<u64, BTreeSet<Node>> = BTreeMap::new();
+        for &([x, y, z], _) in &drawing.points {
+            by_slice
+                .entry(z.to_bits())
+                .or_default()
+                .insert(lattice.node_of((x, y)));
+        }
+        for (z, nodes) in by_slice {
+            tiles.extend(lattice.tiles(&nodes).into_iter().map(|(n, t)| ((z, n), t)));
+        }
+    }
+    drawing
+        .points
+        .iter()
+        .map(|&([x, y, z], ref label)| {
+            let node = spec.refine.map(|l| l.node_of((x, y)));
+            let point = MapPoint {
+                x,
+                y,
+                label: label.clone(),
+                tiles: node
+                    .and_then(|n| tiles.remove(&(z.to_bits(), n)))
+                    .unwrap_or_default(),
+            };
+            (z, point)
+        })
+        .collect()
+}
+
+/// The model a sweep maps, as its pictures name it: `PDE`, `PDE (shape modes 2..K)`, `ODE`.
+pub(crate) fn model_title(spec: &SweepSpec) -> String {
+    match spec.solver.modes {
+        2 => spec.solver.model.as_str().to_uppercase(),
+        // The K-mode model's map; the reduced model's curves drawn over it are the 2-mode ODE's.
+        k => format!(
+            "{} (shape modes 2..{k})",
+            spec.solver.model.as_str().to_uppercase()
+        ),
+    }
+}
+
 /// A sweep outside the paper's plane: the boundaries `droplet boundaries` put in its
 /// directory in its own plane ([`crate::studies::across`]), the full model's solid and the
 /// reduced model's dashed.
@@ -273,24 +282,27 @@ fn slices(
     z: &crate::spec::GridAxis,
     pts: Vec<(f64, MapPoint)>,
 ) -> Result<Vec<PathBuf>, SweepError> {
-    let mut panels: Vec<(String, Vec<MapPoint>)> = z
+    let mut panels: Vec<Panel> = z
         .values
         .iter()
-        .map(|v| (format!("{} = {v}", z.param), Vec::new()))
+        .map(|v| Panel {
+            title: format!("{} = {v}", z.param),
+            ..Panel::default()
+        })
         .collect();
     for (at, p) in pts {
         if let Some(i) = z.values.iter().position(|&v| v == at) {
-            panels[i].1.push(p);
+            panels[i].pts.push(p);
         }
     }
     let mut files = slice_maps(dir, "phase_map", title, names, &panels)?;
-    for (v, (name, points)) in z.values.iter().zip(&panels) {
-        if points.is_empty() {
+    for (v, panel) in z.values.iter().zip(&panels) {
+        if panel.pts.is_empty() {
             continue;
         }
         let stem = format!("phase_map_{}_{v}", z.param);
-        let one = format!("{title}, {name}");
-        files.extend(phase_map(dir, &stem, &one, names, points, &[])?);
+        let one = format!("{title}, {}", panel.title);
+        files.extend(phase_map(dir, &stem, &one, names, &panel.pts, &[])?);
     }
     Ok(files)
 }
