@@ -175,4 +175,12 @@ fn plot_beside_draws_two_committed_maps_and_counts_what_the_modes_change() {
         .unwrap();
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("two axes"));
+    // So is a directory without a finished map.
+    let out = droplet()
+        .args(["plot", modes.to_str().unwrap(), "--beside"])
+        .arg(tmp.path().join("nothing"))
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("no finished map"));
 }

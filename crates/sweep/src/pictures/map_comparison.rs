@@ -64,6 +64,13 @@ struct Map {
 impl Map {
     /// The map whose tables are in `dir`: refused unless it has two axes and no third.
     fn load(dir: &Path) -> Result<Self, SweepError> {
+        if !dir.join(read::POINTS).is_file() {
+            return Err(SweepError::Invalid(format!(
+                "{}: no finished map here (no {}): compare maps whose sweep has ended",
+                dir.display(),
+                read::POINTS
+            )));
+        }
         let spec = read::stored_spec(&dir.join(read::POINTS))?;
         let (grid, y) = (&spec.grid, spec.grid.y.as_ref());
         let Some(y) =
@@ -81,10 +88,16 @@ impl Map {
             ModelKind::Pde,
         )?;
         let drawing = MapDrawing::from_tables(dir)?;
-        let points = map_points(&spec, &drawing)
+        let points: Vec<MapPoint> = map_points(&spec, &drawing)
             .into_iter()
             .map(|(_, p)| p)
             .collect();
+        if points.is_empty() {
+            return Err(SweepError::Invalid(format!(
+                "{}: the map has no points to compare",
+                dir.display()
+            )));
+        }
         Ok(Self {
             spec,
             points,
