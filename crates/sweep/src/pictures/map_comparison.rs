@@ -132,9 +132,11 @@ impl Map {
     }
 
     /// Its boundaries as drawn on both panels: the compared map's solid in [`THIS`], the
-    /// other's dashed in [`OTHER`], each set under one legend entry naming its model.
+    /// other's dashed in [`OTHER`], each set under one legend entry naming its panel and
+    /// sweep (two maps of one model stay apart; the panels' titles name the models).
     fn curves(&self, this: bool) -> Vec<Curve> {
-        let label = format!("{}: exact boundaries", model_title(&self.spec));
+        let side = if this { "right" } else { "left" };
+        let label = format!("{side}: {} boundaries", self.spec.name);
         self.boundaries
             .iter()
             .map(|c| Curve {
