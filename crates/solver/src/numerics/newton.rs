@@ -39,25 +39,16 @@ fn max_norm(r: &[f64]) -> f64 {
 
 /// The Jacobian of `f` at `x` by central differences of step `h` (`jac[row][col]`).
 pub fn fd_jacobian(f: &mut impl FnMut(&[f64]) -> Vec<f64>, x: &[f64], h: f64) -> Vec<Vec<f64>> {
-    let n = x.len();
-    let mut cols = Vec::with_capacity(n);
-    let mut y = x.to_vec();
-    for j in 0..n {
+    by_columns(x, |y, j| {
         y[j] = x[j] + h;
-        let fp = f(&y);
+        let fp = f(y);
         y[j] = x[j] - h;
-        let fm = f(&y);
-        y[j] = x[j];
-        cols.push(
-            fp.iter()
-                .zip(&fm)
-                .map(|(p, m)| (p - m) / (2.0 * h))
-                .collect::<Vec<f64>>(),
-        );
-    }
-    (0..cols.first().map_or(0, Vec::len))
-        .map(|i| cols.iter().map(|c| c[i]).collect())
-        .collect()
+        let fm = f(y);
+        fp.iter()
+            .zip(&fm)
+            .map(|(p, m)| (p - m) / (2.0 * h))
+            .collect()
+    })
 }
 
 /// The Jacobian of `f` at `x`, where `f(x) = fx`, by forward differences of step `h`
@@ -68,20 +59,25 @@ pub fn forward_jacobian(
     fx: &[f64],
     h: f64,
 ) -> Vec<Vec<f64>> {
-    let mut cols = Vec::with_capacity(x.len());
-    let mut y = x.to_vec();
-    for j in 0..x.len() {
+    by_columns(x, |y, j| {
         y[j] = x[j] + h;
-        let fp = f(&y);
-        y[j] = x[j];
-        cols.push(
-            fp.iter()
-                .zip(fx)
-                .map(|(p, c)| (p - c) / h)
-                .collect::<Vec<f64>>(),
-        );
-    }
-    (0..fx.len())
+        let fp = f(y);
+        fp.iter().zip(fx).map(|(p, c)| (p - c) / h).collect()
+    })
+}
+
+/// A Jacobian from its columns: `column(y, j)` is the derivative along unknown `j`, with `y`
+/// a copy of `x` it may change in place `j` (restored after each column).
+fn by_columns(x: &[f64], mut column: impl FnMut(&mut [f64], usize) -> Vec<f64>) -> Vec<Vec<f64>> {
+    let mut y = x.to_vec();
+    let cols: Vec<Vec<f64>> = (0..x.len())
+        .map(|j| {
+            let c = column(&mut y, j);
+            y[j] = x[j];
+            c
+        })
+        .collect();
+    (0..cols.first().map_or(0, Vec::len))
         .map(|i| cols.iter().map(|c| c[i]).collect())
         .collect()
 }
