@@ -334,3 +334,67 @@ fn a_k_mode_run_draws_its_picture_with_every_mode() {
         assert!(std::fs::metadata(f).unwrap().len() > 10_000, "{f}");
     }
 }
+
+#[test]
+fn mode_four_closes_the_papers_bistable_band_right_of_its_md_fold() {
+    // At kappa2 = 0.13 the 2-mode MD fold lies at eta_t = 0.0793 and the K = 4 one at 0.0781
+    // (N = 192; results/truncation), the disk's onset of motion left of both (0.0765).
+    // (0.0775, 0.13) lies between the onset and both folds; (0.0786, 0.13) inside the 2-mode
+    // band but right of the K = 4 fold. N = 96 keeps this order.
+    let text = |modes: u32| {
+        format!(
+            "name: band{modes}\nparams: {{modes: {modes}}}\ngrid:\n  eta_t: [0.0775, 0.0786]\n  \
+             kappa2: [0.13]\ninitial_conditions: [i, ii, iii, iv]\nsolver:\n  n: 96\n"
+        )
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let map = |modes: u32| {
+        let out = dir.path().join(format!("band{modes}"));
+        let spec = write_spec(dir.path(), &format!("band{modes}.yaml"), &text(modes));
+        let o = sweep(&spec, &out, &[]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let runs = read(&out.join("runs.parquet"));
+        let strings = |t: &polars::prelude::DataFrame, c: &str| -> Vec<String> {
+            let s = t.column(c).unwrap().str().unwrap().clone();
+            (0..s.len())
+                .map(|i| s.get(i).unwrap_or("-").to_string())
+                .collect()
+        };
+        let points = read(&out.join("points.parquet"));
+        let labels: Vec<(f64, String)> = floats(&points, "eta_t")
+            .into_iter()
+            .zip(strings(&points, "class"))
+            .collect();
+        let ends: Vec<(f64, String, String, f64)> = floats(&runs, "eta_t")
+            .into_iter()
+            .zip(strings(&runs, "ic"))
+            .zip(strings(&runs, "class"))
+            .zip(floats(&runs, "v"))
+            .map(|(((e, ic), c), v)| (e, ic, c, v))
+            .collect();
+        (labels, ends)
+    };
+    let label = |labels: &[(f64, String)], eta: f64| {
+        labels.iter().find(|(e, _)| *e == eta).unwrap().1.clone()
+    };
+    // The paper's two modes: both points bistable.
+    let (two, _) = map(2);
+    assert_eq!(label(&two, 0.0775), "IC/MD", "{two:?}");
+    assert_eq!(label(&two, 0.0786), "IC/MD", "{two:?}");
+    // Modes 2..4: right of the fold every run, the moving starts i and ii too, comes to rest
+    // on the disk; left of it the moving starts keep moving (MD) and the resting ones iii
+    // and iv stay on the disk, whose onset of motion lies further left.
+    let (four, ends) = map(4);
+    assert_eq!(label(&four, 0.0786), "IC", "{four:?}");
+    assert_eq!(label(&four, 0.0775), "IC/MD", "{four:?}");
+    for (eta, ic, class, v) in &ends {
+        let moving_start = ic == "i" || ic == "ii";
+        let expect = if *eta == 0.0775 && moving_start {
+            "MD"
+        } else {
+            "IC"
+        };
+        assert_eq!(class, expect, "{ends:?}");
+        assert_eq!(*v > 0.1, expect == "MD", "{ends:?}");
+    }
+}
