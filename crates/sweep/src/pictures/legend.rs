@@ -46,6 +46,24 @@ pub(crate) const ORDER: [&str; 14] = [
     MISSING,
 ];
 
+/// The distinct `labels` in legend order: those of [`ORDER`] in its order, then any other
+/// alphabetically.
+pub(crate) fn legend_order<S: AsRef<str> + Ord>(labels: impl IntoIterator<Item = S>) -> Vec<S> {
+    let mut distinct: Vec<S> = labels
+        .into_iter()
+        .collect::<std::collections::BTreeSet<S>>()
+        .into_iter()
+        .collect();
+    // Stable: the labels outside ORDER keep their alphabetical order.
+    distinct.sort_by_key(|l| {
+        ORDER
+            .iter()
+            .position(|o| *o == l.as_ref())
+            .unwrap_or(usize::MAX)
+    });
+    distinct
+}
+
 /// One entry of a legend drawn beside a chart.
 pub(crate) enum LegendKey {
     Box(RGBColor),

@@ -187,18 +187,9 @@ pub fn compare(dir: &Path, other: &Path) -> Result<Comparison, SweepError> {
     let title = format!("{other_model} beside {this_model}");
     let files = slice_maps(dir, STEM, &title, this.names(), &panels)?;
     let (mine, theirs) = (this.areas(), that.areas());
-    let labels = crate::pictures::legend::ORDER
-        .iter()
-        .map(|l| l.to_string())
-        .filter(|l| mine.contains_key(l) || theirs.contains_key(l))
-        .chain(
-            mine.keys()
-                .chain(theirs.keys())
-                .filter(|l| !crate::pictures::legend::ORDER.contains(&l.as_str()))
-                .cloned()
-                .collect::<std::collections::BTreeSet<_>>(),
-        );
+    let labels = crate::pictures::legend::legend_order(mine.keys().chain(theirs.keys()).cloned());
     let areas = labels
+        .into_iter()
         .map(|label| LabelArea {
             this: mine.get(&label).copied().unwrap_or(0.0),
             other: theirs.get(&label).copied().unwrap_or(0.0),

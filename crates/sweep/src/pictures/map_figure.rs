@@ -1,7 +1,7 @@
 //! The phase map (paper Fig. 2a): one tile per point in its label's colour, boundary curves
 //! over it, the legend beside it; and the boundaries alone.
 use crate::error::SweepError;
-use crate::pictures::legend::{class_colour, draw_legend, LegendKey, ORDER};
+use crate::pictures::legend::{class_colour, draw_legend, legend_order, LegendKey};
 use crate::pictures::render::perr;
 use crate::pictures::render::{render, Figure};
 use crate::spec::axes::{ETA_T, KAPPA2};
@@ -139,12 +139,7 @@ where
     }
     let mut chart = plane_chart(area, title, names, (x0, x1), (y0, y1), false)?;
     let mut classes = Vec::new();
-    for label in ORDER.iter().copied().chain(
-        pts.iter()
-            .map(|p| p.label.as_str())
-            .filter(|l| !ORDER.contains(l))
-            .collect::<std::collections::BTreeSet<_>>(),
-    ) {
+    for label in legend_order(pts.iter().map(|p| p.label.as_str())) {
         let mine: Vec<&MapPoint> = pts.iter().filter(|p| p.label == label).collect();
         if mine.is_empty() {
             continue;
