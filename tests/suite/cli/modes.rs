@@ -398,3 +398,49 @@ fn mode_four_closes_the_papers_bistable_band_right_of_its_md_fold() {
         assert_eq!(*v > 0.1, expect == "MD", "{ends:?}");
     }
 }
+
+#[test]
+fn a_k_mode_droplet_whose_boundary_reaches_its_centre_has_diverged() {
+    // At (0.084, 0.1) from the resting start iii, modes 2..6 stretch the droplet without
+    // bound (a2, a4 and a6 grow together; with modes 2..4 it starts to move instead): the run
+    // ends `diverged` once its boundary f(theta) reaches the centre, at t ~ 10, instead of
+    // stepping on at ever smaller steps.
+    let end = |modes: &str| {
+        json(&run(&[
+            "simulate", "--eta-t", "0.084", "--kappa2", "0.1", "--ic", "iii", "--modes", modes,
+            "--n", "96", "--json",
+        ]))
+    };
+    let six = end("6");
+    assert_eq!(six["status"], "diverged", "{six}");
+    assert_eq!(six["unsettled"], "diverged", "{six}");
+    assert!(six["class"].is_null(), "{six}");
+    let t = six["t_end"].as_f64().unwrap();
+    assert!(t > 5.0 && t < 15.0, "{six}");
+    // Every amplitude below 1 at the end, yet the boundary has reached the centre.
+    let amp = |key: &str| -> Vec<f64> {
+        six[key]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect()
+    };
+    let (a, b) = (amp("a_k"), amp("b_k"));
+    assert!(a.iter().chain(&b).all(|c| c.abs() < 1.0), "{six}");
+    let smallest = (0..3600)
+        .map(|i| {
+            let th = std::f64::consts::TAU * i as f64 / 3600.0;
+            1.0 + (0..a.len())
+                .map(|j| {
+                    let k = (j + 2) as f64;
+                    a[j] * (k * th).cos() + b[j] * (k * th).sin()
+                })
+                .sum::<f64>()
+        })
+        .fold(f64::INFINITY, f64::min);
+    assert!(smallest < 0.05, "smallest radius {smallest}: {six}");
+    let four = end("4");
+    assert_eq!(four["status"], "steady", "{four}");
+    assert_eq!(four["class"], "MD", "{four}");
+}

@@ -13,7 +13,8 @@ pub enum RunStatus {
     Steady,
     /// `t_max` was reached first.
     TMax,
-    /// A value became non-finite, or `s >= 1` (outside the small-deformation model).
+    /// A value became non-finite, or the boundary reached the centre (outside the
+    /// small-deformation model; `s >= 1` with two modes, [`crate::contract::stop_rule`]).
     Diverged,
     /// The adaptive controller took [`crate::contract::limits::adaptive_step_cap`] steps before `t_max`
     /// (steps far below `dt_max` throughout): ended instead of running for ever.
@@ -57,7 +58,7 @@ pub enum Unsettled {
     NoRoot,
     /// Not diagnosed (the paper's scheme, pinned runs, the paper's steady test alone).
     NotDiagnosed,
-    /// Left the model: a non-finite value, or `s >= 1`.
+    /// Left the model: a non-finite value, or a boundary that reaches the centre.
     Diverged,
 }
 

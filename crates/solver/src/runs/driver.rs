@@ -16,7 +16,7 @@ use crate::contract::ending::{Ending, SteadyMethod};
 use crate::contract::outcome::{RunOutcome, RunStatus, Unsettled};
 use crate::contract::profile::{self, Part};
 use crate::contract::settings::{ModelKind, SolverSettings};
-use crate::contract::stop_rule::{diverged, SteadyTest};
+use crate::contract::stop_rule::{diverged, shape_collapsed, SteadyTest};
 use crate::error::SolverError;
 use crate::model::classify::StateClass;
 use crate::model::initial::InitialCondition;
@@ -127,7 +127,10 @@ impl Run {
             }
             let st = self.scheme.state();
             let z = self.scheme.unknowns();
-            if diverged(st.monitored(), &[st.x, st.y]) || !z.iter().all(|x| x.is_finite()) {
+            if diverged(st.monitored(), &[st.x, st.y])
+                || !z.iter().all(|x| x.is_finite())
+                || shape_collapsed(&z[2..])
+            {
                 end.status = RunStatus::Diverged;
                 break;
             }
@@ -207,7 +210,7 @@ impl Run {
         let found = match status {
             RunStatus::Steady => None,
             RunStatus::Diverged => Some(Diagnosis {
-                text: "left the model (a non-finite value, or s >= 1)".into(),
+                text: "left the model (a non-finite value, or a boundary f(theta) that reaches the centre: s >= 1 with two modes)".into(),
                 reason: Unsettled::Diverged,
                 heading: None,
             }),
