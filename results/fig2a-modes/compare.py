@@ -1,8 +1,9 @@
 """Level 0 of the Fig. 2a window with two models, point by point.
 
-Usage: python3 compare.py TWO_MODE_DIR K_MODE_DIR > compare.json
+Usage: python3 compare.py TWO_MODE_DIR K_MODE_DIR [NAME NAME] > compare.json
 Each DIR is a sweep's output (points.parquet, runs.parquet) of the same grid and initial
-conditions. Prints one JSON object: per model the point classes, how the runs ended and their
+conditions; NAME NAME (default two_modes k_modes) name the two models in the output (for
+two K-mode models: modes4 modes6). Prints one JSON object: per model the point classes, how the runs ended and their
 run time (the sum of the runs' wall_s, one machine); the points whose class differs; and per
 initial condition the runs whose class differs.
 """
@@ -28,6 +29,7 @@ def model(d):
     }
 
 
+first, second = sys.argv[3:5] if len(sys.argv) > 4 else ("two_modes", "k_modes")
 two_pts, two_runs, two = model(sys.argv[1])
 k_pts, k_runs, k = model(sys.argv[2])
 key = ["eta_t", "kappa2"]
@@ -40,13 +42,13 @@ runs = two_runs.select(key + ["ic", "class", "v"]).join(
 )
 run_changes = runs.filter(pl.col("class").ne_missing(pl.col("class_k")))
 out = {
-    "two_modes": two,
-    "k_modes": k,
+    first: two,
+    second: k,
     "run_time_ratio": round(k["run_time_s"] / two["run_time_s"], 3),
     "points_compared": both.height,
     "points_changed": changed.height,
     "changes": [
-        {"eta_t": e, "kappa2": q, "two_modes": a, "k_modes": b}
+        {"eta_t": e, "kappa2": q, first: a, second: b}
         for e, q, a, b in changed.iter_rows()
     ],
     "run_class_changes": dict(
