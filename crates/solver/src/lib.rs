@@ -99,8 +99,8 @@ pub const ODE_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numeri
 /// droplet's source sampled once for both velocity columns: the same roots to about 1e-9.
 /// 9: a run whose boundary `f(theta)` reaches the centre ends `diverged` (it had only the
 /// 2-mode rule `s >= 1`): at K = 6 the resting droplet at (0.084, 0.1) from iii stretches
-/// (a2, a4, a6 growing together) until a4, a6 reach 1 and 17, and had gone on stepping at
-/// ever smaller steps; runs that never leave the model are unchanged to the last digit.
+/// (a2, a4, a6 growing together; a4 = -0.9 and b6 = 17 by t = 10) and had gone on stepping
+/// at ever smaller steps; runs that never leave the model are unchanged to the last digit.
 pub const MODES_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-9+modes-9");
 
 /// The numerics version of a model's runs with shape modes `2..=modes`, part of their cache

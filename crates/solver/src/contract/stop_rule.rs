@@ -16,7 +16,7 @@ pub fn diverged(monitored: [f64; 4], extra: &[f64]) -> bool {
 /// angle, so `r = f(theta)` bounds no droplet. With mode 2 alone the smallest radius is
 /// `R (1 - s)` and the rule is [`diverged`]'s `s >= 1`; with more modes the smallest of `32 K`
 /// equally spaced angles is taken (between them `f` is off its sampled minimum by at most
-/// `(pi / 32 K)^2 / 2 sum_k k^2 |c_k|`, a few per cent of the deformation: a collapsing run
+/// `(pi / 32 K)^2 / 2 sum_k k^2 |c_k|`, below 1 % of the deformation: a collapsing run
 /// passes the line within a step or two).
 pub fn shape_collapsed(shape: &[f64]) -> bool {
     let m = shape.len() / 2;
