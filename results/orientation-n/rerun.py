@@ -2,14 +2,15 @@
 
     python3 results/orientation-n/rerun.py BINARY MAP_DIR MODES SAMPLE SEED N [N ...]
     SELECT=off-mirror python3 results/orientation-n/rerun.py ...
+    NAME=k4map python3 results/orientation-n/rerun.py ...   # files named k4map-n{N}.json
 
 Draws SAMPLE runs of MAP_DIR/runs.parquet at random (SEED): two thirds of them from the
 moving runs (MD, MC), the rest from the others; with SELECT=off-mirror, from the moving runs
 whose direction is more than 0.1 degree off the box's mirror lines (the axes and diagonals),
 all of them if SAMPLE is larger. It reruns each (point, initial condition)
 with `droplet simulate --modes MODES --n N --json` (the map's settings are the defaults) at
-every N given, one run at a time. Writes results/orientation-n/runs/k{MODES}-n{N}.json
-(k{MODES}-off-n{N}.json with SELECT=off-mirror): per
+every N given, one run at a time. Writes results/orientation-n/runs/{NAME}-n{N}.json
+({NAME}-off-n{N}.json with SELECT=off-mirror; NAME defaults to k{MODES}): per
 run the point, the initial condition, the committed end (class, v, s, vx, vy) and the rerun's
 (status, class, v, s, vx, vy, ended_by, t_end, wall_s).
 """
@@ -67,7 +68,8 @@ for n in ns:
         rows.append(row)
         print(n, r["eta_t"], r["kappa2"], r["ic"], row["rerun"].get("class"), flush=True)
     tag = "-off" if select == "off-mirror" else ""
-    path = os.path.join(here, "runs", f"k{modes}{tag}-n{n}.json")
+    name = os.environ.get("NAME", f"k{modes}")
+    path = os.path.join(here, "runs", f"{name}{tag}-n{n}.json")
     with open(path + ".tmp", "w") as f:
         json.dump({"binary_args": sys.argv[2:], "runs": rows}, f, indent=1)
     os.replace(path + ".tmp", path)

@@ -1,5 +1,6 @@
 """Compares the reruns of results/orientation-n/runs at N and 1.5 N (the off-mirror sample of
-K = 2 also at 2 N), and the reruns at N = 192 with the map.
+K = 2 also at 2 N), and the reruns at N = 192 with the map; the samples of the refined 4-mode
+map (k4map, k4map-off) where their files exist.
 
     python3 results/orientation-n/summarise.py > results/orientation-n/summary.json
 
@@ -60,7 +61,9 @@ def compare(tag, k, n0, n1):
 
 
 out = {"k2": compare("k2", 2, 192, 288), "k4": compare("k4", 4, 192, 288)}
-for tag, k, ns in (("k2-off", 2, (192, 288, 384)), ("k4-off", 4, (192, 288))):
+# The refined 4-mode map (results/fig2a-modes/map), random and off the mirror lines.
+for tag, k, ns in (("k2-off", 2, (192, 288, 384)), ("k4-off", 4, (192, 288)),
+                   ("k4map", 4, (192, 288)), ("k4map-off", 4, (192, 288))):
     for n0, n1 in zip(ns, ns[1:]):
         if os.path.exists(os.path.join(here, "runs", f"{tag}-n{n1}.json")):
             out[f"{tag}-{n0}-{n1}"] = compare(tag, k, n0, n1)
