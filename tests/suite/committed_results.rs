@@ -184,3 +184,59 @@ fn plot_beside_draws_two_committed_maps_and_counts_what_the_modes_change() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("no finished map"));
 }
+
+#[test]
+fn the_refined_k_mode_map_beside_the_papers_changes_the_labels_its_table_lists() {
+    // results/fig2a-modes/map beside results/fig2a-map: `plot --beside` counts, per kind of
+    // change, the rows of label_changes.csv (written from the two points tables by
+    // changes.py, a separate computation).
+    let tmp = tempfile::tempdir().unwrap();
+    let modes = tables_only_copy("fig2a-modes/map", tmp.path());
+    let two = tables_only_copy("fig2a-map", tmp.path());
+    let out = droplet()
+        .args(["plot", modes.to_str().unwrap(), "--beside"])
+        .arg(&two)
+        .arg("--json")
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let c = json(&out);
+    assert_eq!(c["common_points"], 1555, "{c}");
+    let mut listed = std::collections::BTreeMap::<(String, String), u64>::new();
+    let csv = std::fs::read_to_string(modes.join("label_changes.csv")).unwrap();
+    for line in csv.lines().skip(1) {
+        let f: Vec<&str> = line.splitn(5, ',').collect();
+        *listed.entry((f[2].into(), f[3].into())).or_default() += 1;
+    }
+    let counted: std::collections::BTreeMap<(String, String), u64> = c["changes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|ch| {
+            (
+                (
+                    ch["from"].as_str().unwrap().to_string(),
+                    ch["to"].as_str().unwrap().to_string(),
+                ),
+                ch["points"].as_u64().unwrap(),
+            )
+        })
+        .collect();
+    assert_eq!(counted, listed, "{c}");
+    assert_eq!(listed.values().sum::<u64>(), 200);
+    // The bistable bands shrink with modes 3 and 4 (README: IC/MD -39 %, ID/MD -83 %).
+    let area = |label: &str, side: &str| {
+        c["areas"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|a| a["label"] == label)
+            .map_or(0.0, |a| a[side].as_f64().unwrap())
+    };
+    assert!(area("IC/MD", "this") < 0.65 * area("IC/MD", "other"), "{c}");
+    assert!(area("ID/MD", "this") < 0.2 * area("ID/MD", "other"), "{c}");
+}
