@@ -3,6 +3,7 @@
 //! `plot` redraws the committed picture byte for byte.
 
 use crate::common::{droplet, json, read};
+use std::collections::BTreeMap;
 use std::path::Path;
 
 /// A copy of `results/<name>` without its `runs/`.
@@ -112,16 +113,12 @@ fn boundaries_onto_a_committed_map_take_its_window_from_its_tables() {
     assert_eq!(unique.len(), files.len(), "each file named once: {r}");
 }
 
-#[test]
-fn plot_beside_draws_two_committed_maps_and_counts_what_the_modes_change() {
-    // The 4-mode level 0 beside the paper's 2-mode map: the six labels results/fig2a-modes
-    // lists change at the 171 points both hold, and each map's labels tile the window.
-    let tmp = tempfile::tempdir().unwrap();
-    let modes = tables_only_copy("fig2a-modes", tmp.path());
-    let two = tables_only_copy("fig2a-map", tmp.path());
+/// `droplet plot THIS --beside OTHER --json` (it must succeed) and its label changes per
+/// kind, `(from, to) -> points`.
+fn beside(this: &Path, other: &Path) -> (serde_json::Value, BTreeMap<(String, String), u64>) {
     let out = droplet()
-        .args(["plot", modes.to_str().unwrap(), "--beside"])
-        .arg(&two)
+        .args(["plot", this.to_str().unwrap(), "--beside"])
+        .arg(other)
         .arg("--json")
         .output()
         .unwrap();
@@ -131,28 +128,39 @@ fn plot_beside_draws_two_committed_maps_and_counts_what_the_modes_change() {
         String::from_utf8_lossy(&out.stderr)
     );
     let c = json(&out);
-    assert!(modes.join("beside.png").is_file() && modes.join("beside.svg").is_file());
-    assert_eq!(c["common_points"], 171, "{c}");
-    let changes: Vec<(String, String, u64)> = c["changes"]
+    let changes = c["changes"]
         .as_array()
         .unwrap()
         .iter()
         .map(|ch| {
             (
-                ch["from"].as_str().unwrap().to_string(),
-                ch["to"].as_str().unwrap().to_string(),
+                (
+                    ch["from"].as_str().unwrap().to_string(),
+                    ch["to"].as_str().unwrap().to_string(),
+                ),
                 ch["points"].as_u64().unwrap(),
             )
         })
         .collect();
-    let expected = [("IC/MD", "IC", 1), ("ID", "MD", 4), ("ID/MD", "MD", 1)];
-    assert_eq!(changes.len(), expected.len(), "{c}");
-    for (from, to, n) in expected {
-        assert!(
-            changes.contains(&(from.to_string(), to.to_string(), n)),
-            "{from} -> {to}: {c}"
-        );
-    }
+    (c, changes)
+}
+
+#[test]
+fn plot_beside_draws_two_committed_maps_and_counts_what_the_modes_change() {
+    // The 4-mode level 0 beside the paper's 2-mode map: the six labels results/fig2a-modes
+    // lists change at the 171 points both hold, and each map's labels tile the window.
+    let tmp = tempfile::tempdir().unwrap();
+    let modes = tables_only_copy("fig2a-modes", tmp.path());
+    let two = tables_only_copy("fig2a-map", tmp.path());
+    let (c, changes) = beside(&modes, &two);
+    assert!(modes.join("beside.png").is_file() && modes.join("beside.svg").is_file());
+    assert_eq!(c["common_points"], 171, "{c}");
+    let expected: BTreeMap<(String, String), u64> =
+        [("IC/MD", "IC", 1), ("ID", "MD", 4), ("ID/MD", "MD", 1)]
+            .into_iter()
+            .map(|(from, to, n)| ((from.to_string(), to.to_string()), n))
+            .collect();
+    assert_eq!(changes, expected, "{c}");
     // Both maps cover the window (0.068..0.100 x 0.100..0.172) edge to edge.
     for side in ["this", "other"] {
         let total: f64 = c["areas"]
@@ -193,39 +201,14 @@ fn the_refined_k_mode_map_beside_the_papers_changes_the_labels_its_table_lists()
     let tmp = tempfile::tempdir().unwrap();
     let modes = tables_only_copy("fig2a-modes/map", tmp.path());
     let two = tables_only_copy("fig2a-map", tmp.path());
-    let out = droplet()
-        .args(["plot", modes.to_str().unwrap(), "--beside"])
-        .arg(&two)
-        .arg("--json")
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let c = json(&out);
+    let (c, counted) = beside(&modes, &two);
     assert_eq!(c["common_points"], 1555, "{c}");
-    let mut listed = std::collections::BTreeMap::<(String, String), u64>::new();
+    let mut listed = BTreeMap::<(String, String), u64>::new();
     let csv = std::fs::read_to_string(modes.join("label_changes.csv")).unwrap();
     for line in csv.lines().skip(1) {
         let f: Vec<&str> = line.splitn(5, ',').collect();
         *listed.entry((f[2].into(), f[3].into())).or_default() += 1;
     }
-    let counted: std::collections::BTreeMap<(String, String), u64> = c["changes"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|ch| {
-            (
-                (
-                    ch["from"].as_str().unwrap().to_string(),
-                    ch["to"].as_str().unwrap().to_string(),
-                ),
-                ch["points"].as_u64().unwrap(),
-            )
-        })
-        .collect();
     assert_eq!(counted, listed, "{c}");
     assert_eq!(listed.values().sum::<u64>(), 200);
     // The bistable bands shrink with modes 3 and 4 (README: IC/MD -39 %, ID/MD -83 %).

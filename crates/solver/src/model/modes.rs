@@ -83,6 +83,28 @@ impl Modes {
         shape.radius * (1.0 + self.relative(c, s))
     }
 
+    /// Whether the boundary `f(theta)` reaches the centre at some angle: the shape has left the
+    /// model, `r = f(theta)` bounding no droplet. With mode 2 alone the smallest radius is
+    /// `R (1 - s)` and this is the 2-mode rule `s >= 1` ([`crate::contract::stop_rule`]); with
+    /// more modes the smallest of `32 K` equally spaced angles is taken (between them `f` is
+    /// off its sampled minimum by at most `(pi / 32 K)^2 / 2 sum_k k^2 |c_k|`, below 1 % of the
+    /// deformation: a collapsing run passes the line within a step or two).
+    pub fn reaches_centre(&self) -> bool {
+        if self.a.len() <= 1 {
+            return self
+                .a
+                .first()
+                .zip(self.b.first())
+                .is_some_and(|(a, b)| a.hypot(*b) >= 1.0);
+        }
+        let samples = 32 * self.k_max();
+        let step = std::f64::consts::TAU / samples as f64;
+        (0..samples).any(|i| {
+            let (s, c) = (i as f64 * step).sin_cos();
+            1.0 + self.relative(c, s) <= 0.0
+        })
+    }
+
     /// Radius outside of which `Theta = 0`.
     pub fn outer_radius(&self, shape: &ShapeParams) -> f64 {
         shape.radius * (1.0 + self.reach()) + BAND_Q * shape.sigma
@@ -119,6 +141,38 @@ mod tests {
         radius: 1.0,
         sigma: 0.03,
     };
+
+    #[test]
+    fn a_shape_reaches_its_centre_where_its_boundary_does() {
+        // (a_2..a_K, b_2..b_K) as a state holds them.
+        let m = |shape: &[f64]| Modes::of_state(&[[0.0, 0.0].as_slice(), shape].concat());
+        // Two modes: exactly s >= 1.
+        assert!(!m(&[0.6, 0.79]).reaches_centre());
+        assert!(m(&[0.6, 0.8]).reaches_centre());
+        // Modes 2..4 on the x axis, (a2, a3, a4, b2, b3, b4): f(0) = 1 + a2 + a3 + a4.
+        assert!(!m(&[-0.51, 0.0, 0.11, 0.0, 0.0, 0.0]).reaches_centre());
+        assert!(m(&[-0.6, 0.0, -0.45, 0.0, 0.0, 0.0]).reaches_centre());
+        // Every amplitude below 1 and s < 1: the rule agrees with a scan of 100 000 angles
+        // (smallest radius -0.11, 0.087 and 0.31 R).
+        for shape in [
+            [0.4, -0.3, 0.35, 0.2, 0.1, -0.3],
+            [-0.5, 0.45, 0.1, 0.0, 0.0, 0.2],
+            [0.2, 0.2, 0.2, 0.2, 0.2, 0.2],
+        ] {
+            let fine = (0..100_000)
+                .map(|i| {
+                    let t = std::f64::consts::TAU * i as f64 / 1e5;
+                    1.0 + (0..3)
+                        .map(|j| {
+                            let k = (j + 2) as f64;
+                            shape[j] * (k * t).cos() + shape[j + 3] * (k * t).sin()
+                        })
+                        .sum::<f64>()
+                })
+                .fold(f64::INFINITY, f64::min);
+            assert_eq!(m(&shape).reaches_centre(), fine <= 0.0, "{shape:?}: {fine}");
+        }
+    }
 
     #[test]
     fn two_modes_are_the_paper_plane_shape() {

@@ -16,10 +16,11 @@ use crate::contract::ending::{Ending, SteadyMethod};
 use crate::contract::outcome::{RunOutcome, RunStatus, Unsettled};
 use crate::contract::profile::{self, Part};
 use crate::contract::settings::{ModelKind, SolverSettings};
-use crate::contract::stop_rule::{diverged, shape_collapsed, SteadyTest};
+use crate::contract::stop_rule::{diverged, SteadyTest};
 use crate::error::SolverError;
 use crate::model::classify::StateClass;
 use crate::model::initial::InitialCondition;
+use crate::model::modes::Modes;
 use crate::model::params::ModelParams;
 use crate::model::state::{four, DropletState};
 use crate::roots::verdict::{rotation_generator, ROTATION_MIN_NORM};
@@ -129,7 +130,8 @@ impl Run {
             let z = self.scheme.unknowns();
             if diverged(st.monitored(), &[st.x, st.y])
                 || !z.iter().all(|x| x.is_finite())
-                || shape_collapsed(&z[2..])
+                // With mode 2 alone that is `diverged`'s `s >= 1`.
+                || (z.len() > 6 && Modes::of_state(&z).reaches_centre())
             {
                 end.status = RunStatus::Diverged;
                 break;
