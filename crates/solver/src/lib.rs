@@ -101,7 +101,14 @@ pub const ODE_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numeri
 /// 2-mode rule `s >= 1`): at K = 6 the resting droplet at (0.084, 0.1) from iii stretches
 /// (a2, a4, a6 growing together; a4 = -0.9 and b6 = 17 by t = 10) and had gone on stepping
 /// at ever smaller steps; runs that never leave the model are unchanged to the last digit.
-pub const MODES_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-9+modes-9");
+/// 10: two slow tails of the 4-mode map cut, each run on the state it reached before:
+/// the landing ends a run on the resting disk although the box holds its mode 4 at an
+/// amplitude of its own (a4 = -2.8e-5 at (0.0765, 0.16425): the disk was taken to have an
+/// orientation, and such runs crept to the Newton finish for 7000 time units); the turn
+/// search takes a stable root it finds past the next mirror line as its mirror image in that
+/// line (the run from ii at (0.076, 0.14175) turns from the x-axis MD to the root 5 degrees
+/// short of the diagonal, which it had reached by the paper's test at t = 101 884).
+pub const MODES_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-9+modes-10");
 
 /// The numerics version of a model's runs with shape modes `2..=modes`, part of their cache
 /// key: a change to one model's results invalidates its stored runs only.

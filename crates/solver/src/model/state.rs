@@ -80,6 +80,24 @@ pub fn turned(z: &[f64], phi: f64) -> Vec<f64> {
     out
 }
 
+/// The co-moving unknowns of the droplet `z` reflected in the line through its centre at the
+/// angle `alpha` (`r(theta) -> r(2 alpha - theta)`): the velocity `v -> e^(2 i alpha) conj(v)`,
+/// shape mode `k`, `a_k + i b_k -> e^(2 k i alpha) conj(a_k + i b_k)`. In one of the box's
+/// mirror lines (`alpha` a multiple of 45 degrees) a root's image is a root, as stable.
+pub fn reflected(z: &[f64], alpha: f64) -> Vec<f64> {
+    let k_max = z.len() / 2;
+    let mirror = |x: f64, y: f64, angle: f64| {
+        let (c, s) = (angle.cos(), angle.sin());
+        (c * x + s * y, s * x - c * y)
+    };
+    let mut out = z.to_vec();
+    (out[0], out[1]) = mirror(z[0], z[1], 2.0 * alpha);
+    for k in 2..=k_max {
+        (out[k], out[k_max - 1 + k]) = mirror(z[k], z[k_max - 1 + k], 2.0 * k as f64 * alpha);
+    }
+    out
+}
+
 /// The 2-mode unknowns `(vx, vy, a2, b2)` of a state of `K = 2`.
 pub fn four(z: &[f64]) -> [f64; 4] {
     z.try_into().expect("a state of the 2-mode model")
@@ -88,6 +106,21 @@ pub fn four(z: &[f64]) -> [f64; 4] {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn reflecting_twice_in_a_line_is_the_identity_and_in_two_lines_a_turn() {
+        let z = [0.3, 0.1, -0.07, 0.01, 2e-3, 0.02, -1e-3, 5e-4];
+        let quarter = std::f64::consts::FRAC_PI_4;
+        let back = reflected(&reflected(&z, quarter), quarter);
+        assert!(z.iter().zip(&back).all(|(a, b)| (a - b).abs() < 1e-15));
+        // Reflections in lines alpha and beta compose to the turn by 2 (beta - alpha).
+        let both = reflected(&reflected(&z, 0.0), quarter);
+        let turn = turned(&z, 2.0 * quarter);
+        assert!(both.iter().zip(&turn).all(|(a, b)| (a - b).abs() < 1e-15));
+        // In the x axis: vy, b_k change sign.
+        let x = reflected(&z, 0.0);
+        assert_eq!(x, vec![0.3, -0.1, -0.07, 0.01, 2e-3, -0.02, 1e-3, -5e-4]);
+    }
 
     #[test]
     fn turning_a_state_turns_its_motion_once_and_shape_mode_k_k_times() {

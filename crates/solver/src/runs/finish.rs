@@ -148,6 +148,13 @@ pub struct NewtonFinish {
     /// (0.088, 0.1095) from iv: 5.9 degrees off the diagonal, where the landing put it on
     /// the diagonal).
     pub(super) landing_holds_lean: bool,
+    /// Whether the turn search takes a stable root found past the next mirror line as its
+    /// mirror image in that line (runs with more shape modes, numerics modes-10: at
+    /// (0.076, 0.14175), modes 2..4, from ii the run turns from the x-axis MD to the stable
+    /// root 5 degrees short of the diagonal, and Newton from the turned states finds only
+    /// its image 5 degrees past it). 2-mode runs keep numerics 10's search: their
+    /// orientation flow finds such roots first.
+    pub(super) reflect_past_line: bool,
     /// What is known of the orientation's flow beside roots stable in rotation, per root and
     /// side (lean > 0) ([`crate::runs::rotation_flow::FlowScan`]).
     pub(super) flows: Vec<(Vec<f64>, bool, crate::runs::rotation_flow::FlowScan)>,
@@ -202,6 +209,7 @@ impl NewtonFinish {
             assessed: Vec::new(),
             orientation_flow: settings.orientation_flow && two,
             landing_holds_lean: two,
+            reflect_past_line: !two,
             flows: Vec::new(),
             turns: Vec::new(),
             modes: settings.modes,

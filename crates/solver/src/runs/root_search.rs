@@ -7,13 +7,13 @@
 //! ([`NewtonFinish::land_now`]).
 use crate::contract::ending::Ending;
 use crate::contract::profile::{self, Part};
-use crate::model::state::turned;
+use crate::model::state::{reflected, turned};
 use crate::runs::finding::{Finding, MAX_SETTLED};
 use crate::runs::finish::{same_root, Decision, NewtonFinish, LEAN_GROWTH};
 use crate::runs::landing::landings;
 use crate::runs::orientation::{
     angle_to, class_of, invariant_distance, lean_from_mirror_line, modulo_half_turn, orientation,
-    speed_and_deformation, LEAN_FLOOR, TURN_SEARCH,
+    speed_and_deformation, unoriented, LEAN_FLOOR, TURN_SEARCH,
 };
 use crate::runs::rotation_flow::LINEAR_LEAN;
 
@@ -95,13 +95,22 @@ impl NewtonFinish {
         // angles finds the nearest first.
         let quarter = std::f64::consts::FRAC_PI_4;
         for (i, degrees) in TURN_SEARCH.into_iter().enumerate() {
-            let Some(other) = self.turned_root(&near.z, side, i, degrees) else {
+            let Some(mut other) = self.turned_root(&near.z, side, i, degrees) else {
                 continue;
             };
             // A root the run turns to differs from `near` by the box's anisotropy only (its
             // class may differ where `s` is near the threshold: MD on one line, MC on the
             // other); one further away (a resting state, say) is not where a turn ends.
-            let turn = side * angle_to(&other.z, &near.z);
+            let mut turn = side * angle_to(&other.z, &near.z);
+            if self.reflect_past_line && turn > quarter + 1e-6 && turn < 2.0 * quarter {
+                // Past the next mirror line: its mirror image in that line is a root as
+                // stable, on the run's side of the line.
+                let line = orientation(&near.z) + side * quarter;
+                if let Ok(image) = self.root_near(&reflected(&other.z, line)) {
+                    turn = side * angle_to(&image.z, &near.z);
+                    other = image;
+                }
+            }
             if other.stable()
                 && invariant_distance(&other.z, &near.z) <= MAX_SETTLED
                 && turn > 1e-6
@@ -282,14 +291,13 @@ impl NewtonFinish {
                         > LEAN_GROWTH * (coordinate / coordinate_before).ln().abs()
             });
         // A landing on the resting disk, which has no orientation, needs no lean.
-        let round = |z: &[f64]| z.iter().all(|x| x.abs() < 1e-9);
         let quarter = std::f64::consts::FRAC_PI_4;
         let orientation_before = before
             .filter(|((_, moved), _, _)| *moved == line.1)
             .map(|((multiple, _), lean_before, _)| multiple as f64 * quarter + lean_before);
         let found = if turning_away {
             match self.flow_root(z, false) {
-                Some(found) if round(&found.z) => found,
+                Some(found) if unoriented(&found.z) => found,
                 _ => self.turn_root(z, orientation_before)?,
             }
         } else {
@@ -306,7 +314,9 @@ impl NewtonFinish {
     /// (`turning_to`). On their grids the lattice puts roots between the box's mirror
     /// lines, so the root stable in rotation on the line next to a run need not be where it
     /// turns to: modes 2..3, N = 96, (0.088, 0.1095) from iv ends 5.9 degrees off the
-    /// diagonal, where the slow flow of the diagonal's family lands it; modes 2..3, N = 192,
+    /// diagonal, where the slow flow of the diagonal's family lands it (its lean shrinking
+    /// towards that root, not the line: a shrinking lean is no licence either, and the
+    /// 4-mode map at N = 192 has roots of the lattice 0.2 to 0.5 degrees off the lines); modes 2..3, N = 192,
     /// (0.085, 0.112) from iv, 28 degrees past the y-axis MD (stable in rotation) and
     /// turning away from it, turns on to a root 2.25 degrees short of the diagonal.
     fn landing_holds(&self, near: &Finding, lean: f64, turning_to: bool) -> bool {

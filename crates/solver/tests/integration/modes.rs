@@ -336,3 +336,62 @@ fn a_four_mode_run_leaving_the_disk_lands_where_time_stepping_takes_it() {
     let turn = orientation_deg(&landed) - orientation_deg(&stepped);
     assert!(turn.abs() < 1e-6, "{landed:?} {stepped:?}");
 }
+
+#[test]
+fn a_four_mode_run_turning_towards_a_root_short_of_the_next_line_ends_there_early() {
+    // Modes 2..4 at N = 96, (0.076, 0.14175) and (0.076, 0.14225) from ii: the x-axis MD is
+    // unstable in rotation, and the run turns to the stable root a few degrees short of the
+    // diagonal, where pure time stepping ends at t = 6050 and 6810
+    // (results/k-mode-endings/runs/pure-tails-k4-n96.json). Newton from the turned states
+    // finds only that root's mirror image past the diagonal; the turn search takes the image's
+    // image (numerics modes-10), and the run ends within a few hundred time units.
+    let pure = committed("pure-tails-k4-n96");
+    assert_eq!(pure.len(), 2);
+    let settings = SolverSettings {
+        n: 96,
+        modes: 4,
+        ..SolverSettings::default()
+    };
+    for end in &pure {
+        assert!(end.orientation_deg > 37.0 && end.orientation_deg < 40.0);
+        let p = ModelParams::at(end.eta_t, end.kappa2);
+        let out = simulate(&p, &InitialCondition::parse(&end.ic).unwrap(), &settings).unwrap();
+        assert!(same_end(&out, end), "{}: {out:?}", end.kappa2);
+        assert!(out.t_end < 1000.0, "{}: {out:?}", end.kappa2);
+    }
+}
+
+#[test]
+fn a_four_mode_run_slowing_onto_the_resting_disk_lands_there() {
+    // Modes 2..4 at N = 96, (0.0765, 0.16425) from i, just past the disk's onset of motion:
+    // the run slows down along the speed family to the resting disk, which the box deforms
+    // in its mode 4 (a4 = -5.4e-4, b4 = 0, no orientation of its own). The landing ends the
+    // run there (numerics modes-10; before, the disk's a4 was taken for an orientation and
+    // the run crept on to the Newton finish, at t = 6860 with N = 192).
+    let out = simulate(
+        &ModelParams::at(0.0765, 0.16425),
+        &InitialCondition::parse("i").unwrap(),
+        &SolverSettings {
+            n: 96,
+            modes: 4,
+            ..SolverSettings::default()
+        },
+    )
+    .unwrap();
+    assert_eq!(out.status, RunStatus::Steady, "{out:?}");
+    assert_eq!(out.class, Some(StateClass::IC), "{out:?}");
+    assert_eq!(
+        out.ended_by,
+        Some(droplet_solver::contract::ending::Ending::Landing),
+        "{out:?}"
+    );
+    assert!(out.t_end < 1000.0, "{out:?}");
+    let [a3, a4, b3, b4] = out.higher_modes[..] else {
+        panic!("{out:?}")
+    };
+    assert!(out.v == 0.0 && out.s < 1e-12, "{out:?}");
+    assert!(
+        a4 < -1e-4 && (a3.abs() + b3.abs() + b4.abs()) < 1e-12,
+        "{out:?}"
+    );
+}
