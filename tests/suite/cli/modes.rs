@@ -444,3 +444,52 @@ fn a_k_mode_droplet_whose_boundary_reaches_its_centre_has_diverged() {
     assert_eq!(four["status"], "steady", "{four}");
     assert_eq!(four["class"], "MD", "{four}");
 }
+
+#[test]
+fn a_k_mode_run_takes_the_saddle_stop_and_the_leap_from_the_command_line() {
+    // Modes 2..4, N = 96: beside the diagonal's resting deformed state at (0.08725, 0.115)
+    // (drift growing at 1e-3, not left before t_max) --stop-beside-saddle stops the run
+    // early, status `saddle`; leaving the disk at (0.07625, 0.14) from iii, --leap-departures
+    // leaps over the departure and ends on the MD state the stepped run reaches.
+    let at = |eta_t: &str, kappa2: &str, ic: &str, extra: &[&str]| {
+        let mut args = vec![
+            "simulate",
+            "--eta-t",
+            eta_t,
+            "--kappa2",
+            kappa2,
+            "--ic",
+            ic,
+            "--modes",
+            "4",
+            "--n",
+            "96",
+            "--no-landing",
+            "--json",
+        ];
+        args.extend_from_slice(extra);
+        json(&run(&args))
+    };
+    let stopped = at(
+        "0.08725",
+        "0.115",
+        "iv",
+        &["--no-run-on", "--stop-beside-saddle"],
+    );
+    assert_eq!(stopped["status"], "saddle", "{stopped}");
+    assert_eq!(stopped["unsettled"], "beside_saddle", "{stopped}");
+    assert!(stopped["t_end"].as_f64().unwrap() < 1000.0, "{stopped}");
+    let leapt = at(
+        "0.07625",
+        "0.14",
+        "iii",
+        &["--t-max", "4000", "--leap-departures"],
+    );
+    let stepped = at("0.07625", "0.14", "iii", &["--t-max", "4000"]);
+    assert!(leapt["t_leapt"].as_f64().unwrap() > 500.0, "{leapt}");
+    for out in [&leapt, &stepped] {
+        assert_eq!(out["class"], "MD", "{out}");
+    }
+    let v = |o: &serde_json::Value| o["v"].as_f64().unwrap();
+    assert!((v(&leapt) - v(&stepped)).abs() < 1e-9, "{leapt} {stepped}");
+}

@@ -34,9 +34,9 @@ pub fn adaptive_step_cap(settings: &SolverSettings) -> u64 {
 
 /// What a `K`-mode run (`modes` > 2, [`crate::runs::driver`]) can do: the modes the
 /// grid resolves ([`check_modes`]), its steps as a 2-mode run's
-/// ([`SolverSettings::check_steps`]), a free centre and none of the 2-mode runs' optional
-/// endings; the spectral scheme with the Newton finish or the paper's test, or the paper's
-/// scheme with its test.
+/// ([`SolverSettings::check_steps`]), a free centre; the spectral scheme with the Newton
+/// finish (its saddle stop and leap as a 2-mode run's, no orientation flow) or the paper's
+/// test, or the paper's scheme with its test.
 fn check_k_mode_run(params: &ModelParams, settings: &SolverSettings) -> Result<(), SolverError> {
     check_modes(params, settings.n, settings.modes)?;
     let k = settings.modes as f64;
@@ -48,8 +48,6 @@ fn check_k_mode_run(params: &ModelParams, settings: &SolverSettings) -> Result<(
             settings.scheme == SchemeKind::PaperFd && settings.steady != SteadyMethod::Test,
             "steady",
         ),
-        (settings.stop_beside_saddle, "stop_beside_saddle"),
-        (settings.leap_departures, "leap_departures"),
     ];
     for (given, name) in unsupported {
         require(
@@ -58,8 +56,8 @@ fn check_k_mode_run(params: &ModelParams, settings: &SolverSettings) -> Result<(
             k,
             format!(
                 "2 with the setting '{name}' given: a K-mode run of the {} scheme is ended \
-                 by the Newton finish without the 2-mode runs' saddle stop and leap \
-                 (steady: newton, spectral scheme only), or by the paper's test (steady: test)",
+                 by the Newton finish (steady: newton, spectral scheme only) or by the \
+                 paper's test (steady: test), with a free centre",
                 settings.scheme,
             ),
         )?;

@@ -8,6 +8,7 @@
 use crate::error::SolverError;
 use crate::model::dynamics;
 use crate::model::mirror::MirrorLine;
+use crate::model::modes::Modes;
 use crate::model::param::ModelParam;
 use crate::model::params::ModelParams;
 use crate::model::state::{four, turned};
@@ -18,6 +19,7 @@ use crate::roots::linearisation::TwoModeLinearization;
 use crate::roots::steady_solver::SteadySolver;
 use crate::roots::steady_solver::{on_x_axis, TwoModeSolver};
 use crate::roots::verdict::{assess, Verdict};
+use rustfft::num_complex::Complex64;
 
 /// The steady force balances a finish solves: the 2-mode solver (with the constrained solves
 /// of the landing and the orientation flow), or
@@ -81,6 +83,18 @@ impl Balances {
         match self {
             Balances::Two(solver) => assess(&TwoModeLinearization::at(solver, four(z)), z),
             Balances::General { solver, .. } => Linearization::at(solver, z).verdict(),
+        }
+    }
+
+    /// The co-moving steady field of the droplet `z` (normalised coefficients, `[kx][ky]`, as
+    /// the time steppers hold theirs): what a leap scales a run's field towards.
+    pub fn root_field(&mut self, z: &[f64]) -> Vec<Complex64> {
+        match self {
+            Balances::Two(solver) => solver.field_and_forces(z[0], z[1], z[2], z[3]).0.to_vec(),
+            Balances::General { solver, .. } => {
+                solver.forces(z[0], z[1], &Modes::of_state(z));
+                solver.field_spectrum().to_vec()
+            }
         }
     }
 }

@@ -9,9 +9,8 @@
 //! a 2-mode run the change of `(vx, vy, a2, b2)` over the paper's window of 0.1, a `K`-mode
 //! run the largest rate `|dz/dt|` its scheme measures (the Newton finish is tried once that is
 //! below [`crate::runs::finish::TRIGGER_FACTOR`] steady tolerances; the paper's test fires
-//! below one). The landing walks the families of every `K`; the orientation flow, the saddle
-//! stop and the leap are off for `K > 2` ([`crate::contract::limits::check_run`] and the
-//! finish).
+//! below one). The landing, the saddle stop and the leap act at every `K`; the orientation
+//! flow is off for `K > 2` ([`crate::contract::honoured`] and the finish).
 use crate::contract::ending::{Ending, SteadyMethod};
 use crate::contract::outcome::{RunOutcome, RunStatus, Unsettled};
 use crate::contract::profile::{self, Part};
@@ -172,7 +171,7 @@ impl Run {
                         .and_then(|f| f.root_field(&leap.root).ok())
                         .is_some_and(|field| {
                             let shift = leap.shift(st.vx, st.vy);
-                            self.scheme.leap(leap.root, &field, leap.factor(), shift)
+                            self.scheme.leap(&leap.root, &field, leap.factor(), shift)
                         });
                     if leapt {
                         clock.t += leap.duration;

@@ -1,6 +1,6 @@
 //! Finishing a run by Newton instead of creeping to the paper's steady test (docs/model.md,
 //! "Steady states as roots"; docs/numerics.md): the state a run converges to is a root of the co-moving force balance, which
-//! [`TwoModeSolver`] computes directly, and its stability ([`crate::roots::verdict`])
+//! [`crate::roots::balances::Balances`] computes directly, and its stability ([`crate::roots::verdict`])
 //! says whether time stepping would stay there.
 //!
 //! When it is tried: once the run's change per steady window falls below
@@ -68,10 +68,9 @@ use crate::contract::profile::{self, Part};
 use crate::contract::settings::SolverSettings;
 use crate::error::SolverError;
 use crate::model::params::ModelParams;
-use crate::model::state::{four, max_distance};
+use crate::model::state::max_distance;
 use crate::roots::balances::Balances;
 use crate::roots::kept_jacobians::KeptJacobians;
-use crate::roots::steady_solver::TwoModeSolver;
 use crate::roots::verdict::Verdict;
 use crate::runs::finding::{Diagnosis, Finding, MAX_SETTLED};
 use crate::runs::leap::{leap, Leap, Sighting};
@@ -181,9 +180,9 @@ impl NewtonFinish {
     /// For a run of `settings` (its grid, steady tolerance and window, and `t_max`).
     ///
     /// Runs with shape modes `2..K`, `K > 2`, are finished by Newton on all `2K` balances,
-    /// the turn search, the landing and the diagnosis, as 2-mode runs are; the saddle stop and
-    /// the leap scale a 2-mode run's field and are off for them
-    /// ([`crate::contract::honoured`] says so). So is the orientation's flow: on coarse grids
+    /// the turn search, the landing, the diagnosis, the saddle stop and the leap, as 2-mode
+    /// runs are. The orientation's flow is off for them
+    /// ([`crate::contract::honoured`] says so): on coarse grids
     /// the lattice gives the fast balances at a fixed orientation several solutions, and the
     /// flow followed from a root need not be the run's (modes 2..3, N = 96, (0.088, 0.1095)
     /// from IC i: the flow from the x-axis MD points back to it out to 10 degrees along a
@@ -199,8 +198,8 @@ impl NewtonFinish {
             params: *params,
             n,
             t_max: settings.t_max,
-            stop_beside_saddle: settings.stop_beside_saddle && two,
-            leap_departures: settings.leap_departures && two,
+            stop_beside_saddle: settings.stop_beside_saddle,
+            leap_departures: settings.leap_departures,
             landing: settings.landing,
             sighting: None,
             last_turn: None,
@@ -400,10 +399,10 @@ impl NewtonFinish {
         }
         let now = Sighting {
             t,
-            z: four(z),
-            root: four(&f.z),
+            z: z.to_vec(),
+            root: f.z.clone(),
         };
-        let before = self.sighting.replace(now)?;
+        let before = self.sighting.replace(now.clone())?;
         let l = leap(&before, &now, &f.verdict.eigenvalues, self.t_max)?;
         self.sighting = None;
         Some(l)
@@ -422,27 +421,10 @@ impl NewtonFinish {
         Ok(self.solver.as_mut().expect("made above"))
     }
 
-    /// The run's 2-mode steady solver (for the leap's root field),
-    /// made at its first use; refused for runs with more shape modes.
-    pub(super) fn steady_solver(&mut self) -> Result<&mut TwoModeSolver, SolverError> {
-        match self.balances()? {
-            Balances::Two(solver) => Ok(solver),
-            Balances::General { modes, .. } => Err(SolverError::InvalidParameter {
-                name: "modes",
-                value: *modes as f64,
-                allowed: "2 for the landing, the orientation flow and the leap".into(),
-            }),
-        }
-    }
-
     /// The co-moving field of the steady state `root` (normalised coefficients, `[kx][ky]`):
     /// what a leap scales the run's field towards.
     pub fn root_field(&mut self, root: &[f64]) -> Result<Vec<Complex64>, SolverError> {
-        Ok(self
-            .steady_solver()?
-            .field_and_forces(root[0], root[1], root[2], root[3])
-            .0
-            .to_vec())
+        Ok(self.balances()?.root_field(root))
     }
 
     /// With `stop_beside_saddle`, the diagnosis of a run at `z` (time `t`) beside the saddle

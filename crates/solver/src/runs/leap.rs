@@ -11,7 +11,8 @@
 //! the velocity, `t` advanced by `T`.
 //!
 //! When: two Newton tries of the run, at `t1 < t2`, find the same unstable root `z*`, and the
-//! run's displacements `d1 = z1 - z*`, `d2 = z2 - z*` (max over `vx, vy, a2, b2`) follow one
+//! run's displacements `d1 = z1 - z*`, `d2 = z2 - z*` (max over `vx, vy, a_2..a_K, b_2..b_K`,
+//! any `K`) follow one
 //! real growing eigenvalue `lambda` of `z*`: `|d2 - e^(lambda (t2 - t1)) d1| <= LEAP_TOL
 //! |d2 - d1|`, i.e. the run's change between the tries is the mode's to within [`LEAP_TOL`].
 //! The leap then takes `|d2|` to [`LEAP_TO`] (at most to `t_max`).
@@ -28,7 +29,7 @@
 //! the leapt time; `t_end` also moves with the Newton tries' schedule after the leap.
 use crate::model::state::max_distance;
 
-/// Largest displacement from the saddle (max over `vx, vy, a2, b2`) a leap reaches: in the
+/// Largest displacement from the saddle (max over the state's unknowns) a leap reaches: in the
 /// departures from the resting disk near the onset of motion the growth rate is within 4 %
 /// of the linear one up to here (20 % at 0.1).
 pub const LEAP_TO: f64 = 0.05;
@@ -41,10 +42,10 @@ pub const LEAP_TOL: f64 = 0.05;
 pub const MIN_LEAP: f64 = 10.0;
 
 /// A leap along the growing mode of the saddle `root`.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Leap {
-    /// The saddle `(vx, vy, a2, b2)`.
-    pub root: [f64; 4],
+    /// The saddle `(vx, vy, a_2..a_K, b_2..b_K)`.
+    pub root: Vec<f64>,
     /// Growth rate of the mode.
     pub rate: f64,
     /// Leapt time `T`.
@@ -68,12 +69,13 @@ impl Leap {
     }
 }
 
-/// One try's record: its time, the run's state and the root found.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// One try's record: its time, the run's state and the root found (`(vx, vy, a_2..a_K,
+/// b_2..b_K)`).
+#[derive(Debug, Clone, PartialEq)]
 pub struct Sighting {
     pub t: f64,
-    pub z: [f64; 4],
-    pub root: [f64; 4],
+    pub z: Vec<f64>,
+    pub root: Vec<f64>,
 }
 
 /// The leap from the run at `now` (the saddle `now.root`, whose eigenvalues are `eigenvalues`
@@ -104,13 +106,17 @@ pub fn leap(
         .find(|re| {
             // The run at `now` against its state at `before` grown by the mode.
             let g = (re * dt).exp();
-            let grown: [f64; 4] =
-                std::array::from_fn(|i| now.root[i] + g * (before.z[i] - now.root[i]));
+            let grown: Vec<f64> = now
+                .root
+                .iter()
+                .zip(&before.z)
+                .map(|(r, z)| r + g * (z - r))
+                .collect();
             max_distance(&now.z, &grown) <= LEAP_TOL * change
         })?;
     let duration = ((LEAP_TO / n2).ln() / rate).min(t_max - now.t);
-    (duration >= MIN_LEAP).then_some(Leap {
-        root: now.root,
+    (duration >= MIN_LEAP).then(|| Leap {
+        root: now.root.clone(),
         rate,
         duration,
     })
@@ -122,11 +128,10 @@ mod tests {
 
     fn on_mode(t: f64, rate: f64) -> Sighting {
         let g = (rate * t).exp();
-        let root = [0.0, 0.0, 0.0, 0.0];
         Sighting {
             t,
-            z: [1e-3 * g, 2e-4 * g, 0.0, 0.0],
-            root,
+            z: vec![1e-3 * g, 2e-4 * g, 0.0, 0.0],
+            root: vec![0.0; 4],
         }
     }
 
@@ -157,10 +162,10 @@ mod tests {
         assert!(leap(&on_mode(100.0, 3e-3), &b, &eig, 2000.0).is_none());
         // Already past LEAP_TO.
         let far = |s: Sighting| Sighting {
-            z: s.z.map(|x| x * 100.0),
+            z: s.z.iter().map(|x| x * 100.0).collect(),
             ..s
         };
-        assert!(leap(&far(a), &far(on_mode(125.0, 1.8e-3)), &eig, 2000.0).is_none());
+        assert!(leap(&far(a.clone()), &far(on_mode(125.0, 1.8e-3)), &eig, 2000.0).is_none());
         // Another root.
         let mut c = on_mode(125.0, 1.8e-3);
         c.root[0] = 1e-6;
@@ -172,7 +177,7 @@ mod tests {
     #[test]
     fn the_shift_integrates_the_velocity() {
         let l = Leap {
-            root: [0.1, 0.0, 0.0, 0.0],
+            root: vec![0.1, 0.0, 0.0, 0.0],
             rate: 0.01,
             duration: 50.0,
         };

@@ -107,15 +107,15 @@ pub trait Scheme: Stepper {
     fn mass(&self) -> f64;
     /// The concentration in the lab frame.
     fn field(&mut self) -> Field;
-    /// Moves the run along a linear mode of the fixed point `root = (vx, vy, a2, b2)` whose
-    /// co-moving field is `root_field` (normalised coefficients, `[kx][ky]`, as
-    /// [`crate::roots::steady_solver::TwoModeSolver::field_and_forces`] gives them): the displacement of
-    /// the field and of `(vx, vy, a2, b2)` from the fixed point is multiplied by `factor`
-    /// and the centre moves by `shift` ([`crate::runs::leap`]). Schemes without a
-    /// co-moving spectrum return false and change nothing.
+    /// Moves the run along a linear mode of the fixed point `root = (vx, vy, a_2..a_K,
+    /// b_2..b_K)` whose co-moving field is `root_field` (normalised coefficients, `[kx][ky]`,
+    /// as [`crate::roots::balances::Balances::root_field`] gives them): the displacement of
+    /// the field and of the unknowns from the fixed point is multiplied by `factor` and the
+    /// centre moves by `shift` ([`crate::runs::leap`]). Schemes without a co-moving spectrum
+    /// return false and change nothing.
     fn leap(
         &mut self,
-        _root: [f64; 4],
+        _root: &[f64],
         _root_field: &[rustfft::num_complex::Complex64],
         _factor: f64,
         _shift: [f64; 2],

@@ -395,3 +395,76 @@ fn a_four_mode_run_slowing_onto_the_resting_disk_lands_there() {
         "{out:?}"
     );
 }
+
+#[test]
+fn a_four_mode_run_leaps_along_a_departure_and_ends_where_stepping_does() {
+    // Modes 2..4 at N = 96, (0.07625, 0.14) from iii, the landing off: the run leaves the
+    // resting disk (unstable in its drift, growth 1.9e-3) along the growing mode; with
+    // leap_departures it leaps over more than 500 time units of that departure and ends on
+    // the same MD state as the run stepped all the way (the leap scales the field and every
+    // unknown towards the saddle's own), in fewer steps.
+    let p = ModelParams::at(0.07625, 0.14);
+    let ic = InitialCondition::parse("iii").unwrap();
+    let stepped = SolverSettings {
+        n: 96,
+        modes: 4,
+        t_max: 4000.0,
+        landing: false,
+        ..SolverSettings::default()
+    };
+    let leapt = SolverSettings {
+        leap_departures: true,
+        ..stepped
+    };
+    let (a, b) = (
+        simulate(&p, &ic, &stepped).unwrap(),
+        simulate(&p, &ic, &leapt).unwrap(),
+    );
+    assert_eq!(a.t_leapt, 0.0, "{a:?}");
+    assert!(b.t_leapt > 500.0, "{b:?}");
+    assert!(b.steps < a.steps, "{} against {}", b.steps, a.steps);
+    assert_eq!(b.status, RunStatus::Steady, "{b:?}");
+    assert_eq!(b.class, Some(StateClass::MD), "{b:?}");
+    assert!(
+        (a.v - b.v).abs() < 1e-9 && (a.s - b.s).abs() < 1e-9,
+        "{a:?} {b:?}"
+    );
+    let turn = orientation_deg(&a) - orientation_deg(&b);
+    assert!(turn.abs() < 1e-6, "{turn}");
+}
+
+#[test]
+fn a_four_mode_run_beside_a_saddle_it_cannot_leave_stops_there() {
+    // Modes 2..4 at N = 96, (0.08725, 0.115) from iv, landing and run-on off: the run rests on
+    // the diagonal's deformed state, whose drift grows at 1e-3, and cannot leave it before
+    // t_max = 2000; with stop_beside_saddle it stops within a few hundred time units,
+    // unsettled beside the saddle, as plain stepping ends at t_max.
+    let p = ModelParams::at(0.08725, 0.115);
+    let ic = InitialCondition::parse("iv").unwrap();
+    let waited = SolverSettings {
+        n: 96,
+        modes: 4,
+        landing: false,
+        run_on: false,
+        ..SolverSettings::default()
+    };
+    let stopped = SolverSettings {
+        stop_beside_saddle: true,
+        ..waited
+    };
+    let (a, b) = (
+        simulate(&p, &ic, &waited).unwrap(),
+        simulate(&p, &ic, &stopped).unwrap(),
+    );
+    assert_eq!(a.status, RunStatus::TMax, "{a:?}");
+    assert_eq!(b.status, RunStatus::Saddle, "{b:?}");
+    assert!(b.t_end < 1000.0, "{b:?}");
+    for out in [&a, &b] {
+        assert_eq!(
+            out.unsettled,
+            Some(droplet_solver::contract::outcome::Unsettled::BesideSaddle),
+            "{out:?}"
+        );
+        assert_eq!(out.class, None, "{out:?}");
+    }
+}

@@ -314,6 +314,32 @@ impl Scheme for ComovingEtd {
         len * len * self.field.u[0].re
     }
 
+    fn leap(
+        &mut self,
+        root: &[f64],
+        root_field: &[Complex64],
+        factor: f64,
+        shift: [f64; 2],
+    ) -> bool {
+        if root.len() != self.z.len() || root_field.len() != self.field.u.len() {
+            return false;
+        }
+        for (w, r) in self.field.u.iter_mut().zip(root_field) {
+            *w = r + (*w - r) * factor;
+        }
+        for (x, r) in self.z.iter_mut().zip(root) {
+            *x = r + (*x - r) * factor;
+        }
+        self.x += shift[0];
+        self.y += shift[1];
+        // The shape changed: its droplet and forces are sampled afresh, and the predictor's
+        // extrapolation starts again.
+        self.start = None;
+        self.cur.valid = false;
+        self.prev.valid = false;
+        true
+    }
+
     fn field(&mut self) -> Field {
         // Lab frame: u(x) = w(x - r_c), an exact phase shift e^{-i k . r_c}.
         let grid = self.quad.grid();

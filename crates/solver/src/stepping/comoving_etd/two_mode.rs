@@ -273,12 +273,16 @@ impl Scheme for TwoModeEtd {
 
     fn leap(
         &mut self,
-        root: [f64; 4],
+        root: &[f64],
         root_field: &[Complex64],
         factor: f64,
         shift: [f64; 2],
     ) -> bool {
-        if root_field.len() != self.w_hat.len() || self.pinned || self.params.mass == 0.0 {
+        if root.len() != 4
+            || root_field.len() != self.w_hat.len()
+            || self.pinned
+            || self.params.mass == 0.0
+        {
             return false;
         }
         for (w, r) in self.w_hat.iter_mut().zip(root_field) {
