@@ -50,6 +50,8 @@ use crate::model::mirror::MirrorLine;
 use crate::model::state::turned;
 use crate::numerics::bracket::illinois;
 use crate::roots::balances::Balances;
+use crate::runs::walks::Walk;
+pub use crate::runs::walks::{Coordinate, Walks};
 use std::f64::consts::FRAC_PI_4;
 
 /// Largest distance of a run's shape amplitudes from the family's, `max_k |c_run - c*(v_run)|`,
@@ -67,15 +69,6 @@ pub const MAX_COORDINATE: f64 = 2.0;
 
 /// A resting run (speed at most this) is placed on the shape family.
 pub const RESTING_SPEED: f64 = 1e-4;
-
-/// Which coordinate parametrises the family.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Coordinate {
-    /// The speed `v` along the mirror line (moving runs).
-    Speed,
-    /// The deformation `c` along the mirror line's long axis, at rest.
-    Shape,
-}
 
 /// Where the run lands, and how it was found.
 #[derive(Debug, Clone, PartialEq)]
@@ -281,52 +274,6 @@ pub fn land(solver: &mut Balances, z: &[f64]) -> Option<Landing> {
     landings(solver, z, &mut Walks::default())
         .into_iter()
         .next()
-}
-
-/// The walks a run's landing tries made along a family: from the coordinate `from` the way
-/// `dir` to the zero `to` (where the family's shape is `c_to`), no zero between. A later try
-/// from a coordinate between `from` and `to`, drifting the same way, lands on the same zero:
-/// the certificate of the walk holds for it (a run's tries follow it along the family).
-#[derive(Debug, Clone, Default)]
-pub struct Walks {
-    done: Vec<Walk>,
-}
-
-#[derive(Debug, Clone)]
-struct Walk {
-    axis: MirrorLine,
-    coordinate: Coordinate,
-    dir: f64,
-    from: f64,
-    to: f64,
-    c_to: Vec<f64>,
-}
-
-impl Walks {
-    /// The zero and its shape of a walk on `axis`'s `coordinate` family that passed `x`
-    /// going the way `dir`.
-    fn passed(
-        &self,
-        axis: MirrorLine,
-        coordinate: Coordinate,
-        dir: f64,
-        x: f64,
-    ) -> Option<(f64, Vec<f64>)> {
-        self.done
-            .iter()
-            .find(|w| {
-                w.axis == axis
-                    && w.coordinate == coordinate
-                    && w.dir == dir
-                    && (x - w.from) * dir >= 0.0
-                    && (w.to - x) * dir > 0.0
-            })
-            .map(|w| (w.to, w.c_to.clone()))
-    }
-
-    fn keep(&mut self, walk: Walk) {
-        self.done.push(walk);
-    }
 }
 
 fn land_moving(balances: &mut Balances, z: &[f64], walks: &mut Walks) -> Option<Landing> {

@@ -1,7 +1,8 @@
 //! One run of the full model, from an initial condition to its ending: the driver (`driver`:
 //! the time loop and its stop rules), the Newton finish and the diagnosis of a run that is not
 //! settled (`finish`), the leap along a departure from a saddle (`leap`) and the landing of a
-//! slow run where its one-dimensional quasi-steady flow ends (`landing`; docs/classification.md).
+//! slow run where its one-dimensional quasi-steady flow ends (`landing`, and the walks along its
+//! families, `walks`; docs/classification.md).
 //!
 //! May use: every folder below it (`numerics`, `model`, `stepping`, `contract`, `reduced`,
 //! `roots`). Used by: the sweep crate and the CLI.
@@ -15,3 +16,4 @@ pub mod orientation;
 pub mod root_search;
 pub mod rotation_flow;
 pub mod turning;
+pub mod walks;

@@ -1,0 +1,139 @@
+//! How runs with shape modes 2..K end their slow stretches, each against pure time stepping
+//! or the run stepped all the way: a turn to a root short of the next mirror line, a slow
+//! approach to the resting disk, a departure leapt, a saddle the run cannot leave.
+use crate::modes::{committed, orientation_deg, same_end};
+use droplet_solver::contract::{outcome::RunStatus, settings::SolverSettings};
+use droplet_solver::model::{classify::StateClass, initial::InitialCondition, params::ModelParams};
+use droplet_solver::runs::driver::simulate;
+
+#[test]
+fn a_four_mode_run_turning_towards_a_root_short_of_the_next_line_ends_there_early() {
+    // Modes 2..4 at N = 96, (0.076, 0.14175) and (0.076, 0.14225) from ii: the x-axis MD is
+    // unstable in rotation, and the run turns to the stable root a few degrees short of the
+    // diagonal, where pure time stepping ends at t = 6050 and 6810
+    // (results/k-mode-endings/runs/pure-tails-k4-n96.json). Newton from the turned states
+    // finds only that root's mirror image past the diagonal; the turn search takes the image's
+    // image (numerics modes-10), and the run ends within a few hundred time units.
+    let pure = committed("pure-tails-k4-n96");
+    assert_eq!(pure.len(), 2);
+    let settings = SolverSettings {
+        n: 96,
+        modes: 4,
+        ..SolverSettings::default()
+    };
+    for end in &pure {
+        assert!(end.orientation_deg > 37.0 && end.orientation_deg < 40.0);
+        let p = ModelParams::at(end.eta_t, end.kappa2);
+        let out = simulate(&p, &InitialCondition::parse(&end.ic).unwrap(), &settings).unwrap();
+        assert!(same_end(&out, end), "{}: {out:?}", end.kappa2);
+        assert!(out.t_end < 1000.0, "{}: {out:?}", end.kappa2);
+    }
+}
+
+#[test]
+fn a_four_mode_run_slowing_onto_the_resting_disk_lands_there() {
+    // Modes 2..4 at N = 96, (0.0765, 0.16425) from i, just past the disk's onset of motion:
+    // the run slows down along the speed family to the resting disk, which the box deforms
+    // in its mode 4 (a4 = -5.4e-4, b4 = 0, no orientation of its own). The landing ends the
+    // run there (numerics modes-10; before, the disk's a4 was taken for an orientation and
+    // the run crept on to the Newton finish, at t = 6860 with N = 192).
+    let out = simulate(
+        &ModelParams::at(0.0765, 0.16425),
+        &InitialCondition::parse("i").unwrap(),
+        &SolverSettings {
+            n: 96,
+            modes: 4,
+            ..SolverSettings::default()
+        },
+    )
+    .unwrap();
+    assert_eq!(out.status, RunStatus::Steady, "{out:?}");
+    assert_eq!(out.class, Some(StateClass::IC), "{out:?}");
+    assert_eq!(
+        out.ended_by,
+        Some(droplet_solver::contract::ending::Ending::Landing),
+        "{out:?}"
+    );
+    assert!(out.t_end < 1000.0, "{out:?}");
+    let [a3, a4, b3, b4] = out.higher_modes[..] else {
+        panic!("{out:?}")
+    };
+    assert!(out.v == 0.0 && out.s < 1e-12, "{out:?}");
+    assert!(
+        a4 < -1e-4 && (a3.abs() + b3.abs() + b4.abs()) < 1e-12,
+        "{out:?}"
+    );
+}
+
+#[test]
+fn a_four_mode_run_leaps_along_a_departure_and_ends_where_stepping_does() {
+    // Modes 2..4 at N = 96, (0.07625, 0.14) from iii, the landing off: the run leaves the
+    // resting disk (unstable in its drift, growth 1.9e-3) along the growing mode; with
+    // leap_departures it leaps over more than 500 time units of that departure and ends on
+    // the same MD state as the run stepped all the way (the leap scales the field and every
+    // unknown towards the saddle's own), in fewer steps.
+    let p = ModelParams::at(0.07625, 0.14);
+    let ic = InitialCondition::parse("iii").unwrap();
+    let stepped = SolverSettings {
+        n: 96,
+        modes: 4,
+        t_max: 4000.0,
+        landing: false,
+        ..SolverSettings::default()
+    };
+    let leapt = SolverSettings {
+        leap_departures: true,
+        ..stepped
+    };
+    let (a, b) = (
+        simulate(&p, &ic, &stepped).unwrap(),
+        simulate(&p, &ic, &leapt).unwrap(),
+    );
+    assert_eq!(a.t_leapt, 0.0, "{a:?}");
+    assert!(b.t_leapt > 500.0, "{b:?}");
+    assert!(b.steps < a.steps, "{} against {}", b.steps, a.steps);
+    assert_eq!(b.status, RunStatus::Steady, "{b:?}");
+    assert_eq!(b.class, Some(StateClass::MD), "{b:?}");
+    assert!(
+        (a.v - b.v).abs() < 1e-9 && (a.s - b.s).abs() < 1e-9,
+        "{a:?} {b:?}"
+    );
+    let turn = orientation_deg(&a) - orientation_deg(&b);
+    assert!(turn.abs() < 1e-6, "{turn}");
+}
+
+#[test]
+fn a_four_mode_run_beside_a_saddle_it_cannot_leave_stops_there() {
+    // Modes 2..4 at N = 96, (0.08725, 0.115) from iv, landing and run-on off: the run rests on
+    // the diagonal's deformed state, whose drift grows at 1e-3, and cannot leave it before
+    // t_max = 2000; with stop_beside_saddle it stops within a few hundred time units,
+    // unsettled beside the saddle, as plain stepping ends at t_max.
+    let p = ModelParams::at(0.08725, 0.115);
+    let ic = InitialCondition::parse("iv").unwrap();
+    let waited = SolverSettings {
+        n: 96,
+        modes: 4,
+        landing: false,
+        run_on: false,
+        ..SolverSettings::default()
+    };
+    let stopped = SolverSettings {
+        stop_beside_saddle: true,
+        ..waited
+    };
+    let (a, b) = (
+        simulate(&p, &ic, &waited).unwrap(),
+        simulate(&p, &ic, &stopped).unwrap(),
+    );
+    assert_eq!(a.status, RunStatus::TMax, "{a:?}");
+    assert_eq!(b.status, RunStatus::Saddle, "{b:?}");
+    assert!(b.t_end < 1000.0, "{b:?}");
+    for out in [&a, &b] {
+        assert_eq!(
+            out.unsettled,
+            Some(droplet_solver::contract::outcome::Unsettled::BesideSaddle),
+            "{out:?}"
+        );
+        assert_eq!(out.class, None, "{out:?}");
+    }
+}
