@@ -110,8 +110,7 @@ pub fn check_resolved(params: &ModelParams, n: usize) -> Result<(), SolverError>
     Ok(())
 }
 
-/// Most shape modes of the `K`-mode model.
-pub const MAX_MODES: usize = 16;
+pub use crate::model::modes::MAX_MODES;
 /// Least grid cells along half a wavelength of the highest mode on the boundary, `pi R / K`.
 pub const MIN_MODE_CELLS: f64 = 4.0;
 

@@ -13,6 +13,9 @@ pub struct Modes {
     pub b: Vec<f64>,
 }
 
+/// Most shape modes of the `K`-mode model.
+pub const MAX_MODES: usize = 16;
+
 /// The restoring coefficient of shape mode `k`, `kappa_k = (k^2 / 4) kappa2` (the paper's
 /// `kappa_k = pi k^2 tau R`, scaled by mode 2's).
 pub fn kappa_k(kappa2: f64, k: usize) -> f64 {
@@ -113,6 +116,21 @@ impl Modes {
     /// Radius inside of which `Theta = 1` (0 when the band reaches the centre).
     pub fn inner_radius(&self, shape: &ShapeParams) -> f64 {
         (shape.radius * (1.0 - self.reach()) - BAND_Q * shape.sigma).max(0.0)
+    }
+
+    /// `Theta` at the radius `r` and the harmonics `(cos k theta, sin k theta)`, `k = 2..`,
+    /// interleaved (at least this shape's modes; [`super::forces::polar`] tabulates them):
+    /// [`Self::theta`] with its square root and recurrence taken beforehand, the same value.
+    #[inline(always)]
+    pub fn theta_on(&self, shape: &ShapeParams, r: f64, harmonics: &[f64]) -> f64 {
+        if r == 0.0 {
+            return 1.0;
+        }
+        let mut sum = 0.0;
+        for ((a, b), h) in self.a.iter().zip(&self.b).zip(harmonics.chunks_exact(2)) {
+            sum += a * h[0] + b * h[1];
+        }
+        profile((r - shape.radius * (1.0 + sum)) / shape.sigma)
     }
 
     /// `Theta` at offset `(x, y)` from the droplet centre.

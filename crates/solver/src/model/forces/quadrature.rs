@@ -11,8 +11,9 @@
 //! and the linearisation use it in their own order ([`ForceQuadrature::sample`],
 //! [`ForceQuadrature::theta_spectrum`], [`ForceQuadrature::gradient`],
 //! [`ForceQuadrature::sums`]).
+use crate::model::forces::polar::PolarTable;
 use crate::model::grid::Grid;
-use crate::model::modes::Modes;
+use crate::model::modes::{Modes, MAX_MODES};
 use crate::model::shape::ShapeParams;
 use crate::numerics::fft2::PrunedFft2;
 use rustfft::num_complex::Complex64;
@@ -105,6 +106,8 @@ pub struct ForceQuadrature {
     /// The field's gradient on the droplet's rows.
     ux: Vec<f64>,
     uy: Vec<f64>,
+    /// The window's radii, harmonics and powers.
+    polar: PolarTable,
 }
 
 impl ForceQuadrature {
@@ -121,6 +124,7 @@ impl ForceQuadrature {
             dy_spec: vec![Complex64::default(); len],
             ux: vec![0.0; n * n],
             uy: vec![0.0; n * n],
+            polar: PolarTable::default(),
             grid,
         }
     }
@@ -142,6 +146,7 @@ impl ForceQuadrature {
         let n = self.grid.n;
         let shape = self.shape;
         let (lo, hi) = self.span(m);
+        self.polar.ensure(&self.grid, lo, hi, m.k_max());
         let (r_in, r_out) = (m.inner_radius(&shape), m.outer_radius(&shape));
         // Squared radii: no square root outside the interface band.
         let (r_in2, r_out2) = (r_in * r_in, r_out * r_out);
@@ -158,7 +163,8 @@ impl ForceQuadrature {
                 } else if r2 > r_out2 {
                     0.0
                 } else {
-                    m.theta(&shape, x, y)
+                    let p = self.polar.index(iy, ix);
+                    m.theta_on(&shape, self.polar.radius(p), self.polar.harmonics(p))
                 };
                 count += *t;
             }
@@ -263,40 +269,65 @@ impl ForceQuadrature {
         self.fft.inverse(&mut self.dy_spec, &mut self.uy, lo, hi);
     }
 
-    /// The forces `-Int grad u Theta` and `-Int w_k . grad u Theta` of the last
-    /// [`Self::gradient`] on the last [`Self::sample`]d shape (`k_max` modes, rows `lo..=hi`).
-    pub fn sums(&self, k_max: usize, lo: usize, hi: usize, area: f64) -> ShapeForces {
+    /// `Sum grad u Theta` and, interleaved, `Sum (x + i y)^(k-1) (u_x + i u_y) Theta` for
+    /// `k = 2..=M / 2 + 1` over the last [`Self::sample`]d shape (rows and columns `lo..=hi`).
+    #[inline(always)]
+    fn moments<const M: usize>(&mut self, lo: usize, hi: usize) -> (f64, f64, Vec<f64>) {
         let n = self.grid.n;
-        let mut f = ShapeForces {
-            fx: 0.0,
-            fy: 0.0,
-            ga: vec![0.0; k_max - 1],
-            gb: vec![0.0; k_max - 1],
-            area,
-        };
+        self.polar.ensure(&self.grid, lo, hi, M / 2 + 1);
+        let (mut fx, mut fy) = (0.0, 0.0);
+        let mut g = [0.0; M];
         for iy in lo..=hi {
-            let y = self.grid.coord(iy);
             for ix in lo..=hi {
                 let i = iy * n + ix;
                 let t = self.sampled.theta[i];
                 if t == 0.0 {
                     continue;
                 }
-                let x = self.grid.coord(ix);
                 let (gx, gy) = (self.ux[i] * t, self.uy[i] * t);
-                f.fx += gx;
-                f.fy += gy;
+                fx += gx;
+                fy += gy;
                 // w_k^(a) . g and w_k^(b) . g without their factor R^(2-k)
-                // ([`crate::model::modes::w_fields`]):
-                // (Re, Im) of (x + i y)^(k-1), one product per mode.
-                let (mut re, mut im) = (x, y);
-                for (ga, gb) in f.ga.iter_mut().zip(f.gb.iter_mut()) {
-                    *ga += re * gx - im * gy;
-                    *gb += im * gx + re * gy;
-                    (re, im) = (re * x - im * y, re * y + im * x);
+                // ([`crate::model::modes::w_fields`]), with (Re, Im) of (x + i y)^(k-1).
+                let powers = &self.polar.powers(self.polar.index(iy, ix))[..M];
+                for j in 0..M / 2 {
+                    let (re, im) = (powers[2 * j], powers[2 * j + 1]);
+                    g[2 * j] += re * gx - im * gy;
+                    g[2 * j + 1] += im * gx + re * gy;
                 }
             }
         }
+        (fx, fy, g.to_vec())
+    }
+
+    /// The field's gradient `(u_x, u_y)` of the last [`Self::gradient`] (row-major `N x N`,
+    /// the droplet's rows).
+    pub fn gradient_rows(&self) -> (&[f64], &[f64]) {
+        (&self.ux, &self.uy)
+    }
+
+    /// The forces `-Int grad u Theta` and `-Int w_k . grad u Theta` of the last
+    /// [`Self::gradient`] on the last [`Self::sample`]d shape (`k_max` modes, rows `lo..=hi`).
+    pub fn sums(&mut self, k_max: usize, lo: usize, hi: usize, area: f64) -> ShapeForces {
+        let m = 2 * (k_max - 1);
+        // The moments' accumulators held in registers for the usual K: the same sums, in the
+        // same order, as for any other K.
+        let (fx, fy, g) = match m {
+            2 => self.moments::<2>(lo, hi),
+            4 => self.moments::<4>(lo, hi),
+            6 => self.moments::<6>(lo, hi),
+            8 => self.moments::<8>(lo, hi),
+            10 => self.moments::<10>(lo, hi),
+            _ => self.moments::<{ 2 * (MAX_MODES - 1) }>(lo, hi),
+        };
+        let g = &g[..m];
+        let mut f = ShapeForces {
+            fx,
+            fy,
+            ga: g.iter().step_by(2).copied().collect(),
+            gb: g.iter().skip(1).step_by(2).copied().collect(),
+            area,
+        };
         let da = -self.grid.dx * self.grid.dx;
         f.fx *= da;
         f.fy *= da;
