@@ -68,6 +68,8 @@ pub(crate) fn legend_order<S: AsRef<str> + Ord>(labels: impl IntoIterator<Item =
 pub(crate) enum LegendKey {
     Box(RGBColor),
     Line(ShapeStyle),
+    /// A black cross: the points whose runs left the model.
+    Cross,
 }
 
 /// Draws `entries` top-down in `area` (a panel beside the chart, so the legend never covers
@@ -88,6 +90,9 @@ where
                 .map_err(perr)?,
             LegendKey::Line(style) => area
                 .draw(&PathElement::new(vec![(4, y), (22, y)], *style))
+                .map_err(perr)?,
+            LegendKey::Cross => area
+                .draw(&Cross::new((13, y), 5, BLACK.stroke_width(1)))
                 .map_err(perr)?,
         }
         area.draw(&Text::new(

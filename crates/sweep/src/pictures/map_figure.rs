@@ -16,6 +16,9 @@ pub struct MapPoint {
     pub x: f64,
     pub y: f64,
     pub label: String,
+    /// How many of its runs left the model (`diverged`): the label counts only the others,
+    /// so the picture marks such a point with a cross.
+    pub left_model: usize,
     /// The rectangles `[x0, y0, x1, y1]` the point stands for on a
     /// refined map ([`crate::spec::lattice::Lattice::tiles`]); empty: a square of the grid spacing.
     pub tiles: Vec<[f64; 4]>,
@@ -168,9 +171,34 @@ where
         }
         classes.push((label.to_string(), mine.len(), LegendKey::Box(colour)));
     }
+    let left: Vec<&MapPoint> = pts.iter().filter(|p| p.left_model > 0).collect();
+    if !left.is_empty() {
+        let size = marker_size(area, (x1 - x0, y1 - y0), (dx, dy));
+        // Black on a white halo: seen on every class's colour.
+        for style in [WHITE.stroke_width(3), BLACK.stroke_width(1)] {
+            chart
+                .draw_series(left.iter().map(|p| Cross::new((p.x, p.y), size, style)))
+                .map_err(perr)?;
+        }
+        classes.push((LEFT_MODEL.to_string(), left.len(), LegendKey::Cross));
+    }
     let mut drawn = Vec::new();
     draw_curves(&mut chart, curves, (x0, x1), (y0, y1), &mut drawn)?;
     Ok((classes, drawn))
+}
+
+/// The legend's name for the points marked with a cross (some of their runs `diverged`).
+pub const LEFT_MODEL: &str = "runs left the model";
+
+/// A cross's half size in pixels: a third of the point's spacing on the chart, 2 to 6 pixels.
+fn marker_size<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    (width, height): (f64, f64),
+    (dx, dy): (f64, f64),
+) -> i32 {
+    let (w, h) = area.dim_in_pixel();
+    let px = (f64::from(w) * dx / width).min(f64::from(h) * dy / height);
+    ((px / 3.0) as i32).clamp(2, 6)
 }
 
 /// A parameter plane over `x` and `y` with its axes drawn, named `names` (and a mesh if

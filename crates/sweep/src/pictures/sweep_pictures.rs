@@ -77,8 +77,9 @@ pub fn plot_in(store: &Store) -> Result<Drawn, SweepError> {
 /// What a sweep's pictures show: each point's label and where each settled run ended.
 #[derive(Debug, Clone, Default)]
 pub struct MapDrawing {
-    /// Every point's coordinates ([`crate::spec::axes::Plane`]) and label.
-    pub points: Vec<(Point, String)>,
+    /// Every point's coordinates ([`crate::spec::axes::Plane`]), label, and how many of its
+    /// runs left the model (`diverged`: the label does not count them).
+    pub points: Vec<(Point, String, usize)>,
     /// Every run that ended on a stable state.
     pub ends: Vec<RunEnd>,
 }
@@ -104,7 +105,10 @@ impl MapDrawing {
         let points = map
             .points
             .iter()
-            .map(|p| ([p.x, p.y, p.z], p.shown_label().to_string()))
+            .map(|p| {
+                let label = p.shown_label().to_string();
+                ([p.x, p.y, p.z], label, p.class.n_diverged)
+            })
             .collect();
         let ends = plan
             .tasks()
@@ -132,7 +136,7 @@ impl MapDrawing {
             rows.iter().map(|p| (p.point, (p.x, p.y))).collect();
         let points = rows
             .into_iter()
-            .map(|p| ([p.x, p.y, p.z], p.label))
+            .map(|p| ([p.x, p.y, p.z], p.label, p.n_diverged as usize))
             .collect();
         let ends = read::runs(&dir.join(read::RUNS))?
             .into_iter()
@@ -220,7 +224,7 @@ pub(crate) fn map_points(spec: &SweepSpec, drawing: &MapDrawing) -> Vec<(f64, Ma
     let mut tiles: HashMap<(u64, Node), Vec<[f64; 4]>> = HashMap::new();
     if let Some(lattice) = spec.refine {
         let mut by_slice: BTreeMap<u64, BTreeSet<Node>> = BTreeMap::new();
-        for &([x, y, z], _) in &drawing.points {
+        for &([x, y, z], _, _) in &drawing.points {
             by_slice
                 .entry(z.to_bits())
                 .or_default()
@@ -233,12 +237,13 @@ pub(crate) fn map_points(spec: &SweepSpec, drawing: &MapDrawing) -> Vec<(f64, Ma
     drawing
         .points
         .iter()
-        .map(|&([x, y, z], ref label)| {
+        .map(|&([x, y, z], ref label, left_model)| {
             let node = spec.refine.map(|l| l.node_of((x, y)));
             let point = MapPoint {
                 x,
                 y,
                 label: label.clone(),
+                left_model,
                 tiles: node
                     .and_then(|n| tiles.remove(&(z.to_bits(), n)))
                     .unwrap_or_default(),

@@ -57,6 +57,8 @@ pub struct PointRow {
     pub label: String,
     pub settled: bool,
     pub n_runs: u32,
+    /// Its runs that left the model (`diverged`; 0 in a table without the column).
+    pub n_diverged: u32,
 }
 
 /// Whether `dir` is a map known only by its tables: `points.parquet` but no run store.
@@ -241,6 +243,7 @@ pub fn points(path: &Path) -> Result<Vec<PointRow>, SweepError> {
         u32s(&df, "n_runs")?,
     );
     let (label, settled) = (strings(&df, "class")?, bools_or(&df, "settled", true)?);
+    let n_diverged = u32s_or_zero(&df, "n_diverged")?;
     Ok((0..df.height())
         .map(|i| PointRow {
             point: point[i],
@@ -251,6 +254,7 @@ pub fn points(path: &Path) -> Result<Vec<PointRow>, SweepError> {
             label: label[i].clone().unwrap_or_default(),
             settled: settled[i],
             n_runs: n_runs[i],
+            n_diverged: n_diverged[i],
         })
         .collect())
 }
