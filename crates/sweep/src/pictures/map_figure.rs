@@ -17,7 +17,7 @@ pub struct MapPoint {
     pub y: f64,
     pub label: String,
     /// How many of its runs left the model (`diverged`): the label counts only the others,
-    /// so the picture marks such a point with a cross.
+    /// so the picture marks such a point with a cross (unless all of them did: `diverged`).
     pub left_model: usize,
     /// The rectangles `[x0, y0, x1, y1]` the point stands for on a
     /// refined map ([`crate::spec::lattice::Lattice::tiles`]); empty: a square of the grid spacing.
@@ -171,7 +171,11 @@ where
         }
         classes.push((label.to_string(), mine.len(), LegendKey::Box(colour)));
     }
-    let left: Vec<&MapPoint> = pts.iter().filter(|p| p.left_model > 0).collect();
+    // (A point all of whose runs left the model says so in its label.)
+    let left: Vec<&MapPoint> = pts
+        .iter()
+        .filter(|p| p.left_model > 0 && p.label != crate::map::point_class::DIVERGED)
+        .collect();
     if !left.is_empty() {
         let size = marker_size(area, (x1 - x0, y1 - y0), (dx, dy));
         // Black on a white halo: seen on every class's colour.
