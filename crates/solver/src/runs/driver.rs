@@ -26,6 +26,7 @@ use crate::roots::verdict::{rotation_generator, ROTATION_MIN_NORM};
 use crate::runs::clock::{Clock, Recorder, Step};
 use crate::runs::finding::Diagnosis;
 use crate::runs::finish::{Decision, NewtonFinish};
+use crate::runs::leap::Leap;
 use crate::stepping::comoving_etd::ComovingEtd;
 use crate::stepping::paper_fd::PaperFd;
 use crate::stepping::{comoving_etd::TwoModeEtd, paper_fd::TwoModeFd, Scheme, SchemeKind};
@@ -165,15 +166,7 @@ impl Run {
                 }
                 // Leaps only in adaptive runs (a fixed-step run's time is its step count).
                 Decision::Leap(leap) if cfg.adaptive() => {
-                    let _timed = profile::enter(Part::Leap);
-                    let leapt = finish
-                        .as_mut()
-                        .and_then(|f| f.root_field(&leap.root).ok())
-                        .is_some_and(|field| {
-                            let shift = leap.shift(st.vx, st.vy);
-                            self.scheme.leap(&leap.root, &field, leap.factor(), shift)
-                        });
-                    if leapt {
+                    if self.leap(&leap, finish.as_mut(), &st) {
                         clock.t += leap.duration;
                         end.t_leapt += leap.duration;
                         let st = self.scheme.state();
@@ -185,6 +178,18 @@ impl Run {
             }
         }
         self.outcome(clock, rec, end, finish, started)
+    }
+
+    /// Moves the run at `st` along the leap (its field and unknowns towards the saddle's, its
+    /// centre by the leap's shift); whether it did (the saddle's field known, the scheme able).
+    fn leap(&mut self, leap: &Leap, finish: Option<&mut NewtonFinish>, st: &DropletState) -> bool {
+        let _timed = profile::enter(Part::Leap);
+        finish
+            .and_then(|f| f.root_field(&leap.root).ok())
+            .is_some_and(|field| {
+                let shift = leap.shift(st.vx, st.vy);
+                self.scheme.leap(&leap.root, &field, leap.factor(), shift)
+            })
     }
 
     /// The outcome of a run that stopped: the final state (the root, if the Newton finish

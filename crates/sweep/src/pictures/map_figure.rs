@@ -171,21 +171,8 @@ where
         }
         classes.push((label.to_string(), mine.len(), LegendKey::Box(colour)));
     }
-    // (A point all of whose runs left the model says so in its label.)
-    let left: Vec<&MapPoint> = pts
-        .iter()
-        .filter(|p| p.left_model > 0 && p.label != crate::map::point_class::DIVERGED)
-        .collect();
-    if !left.is_empty() {
-        let size = marker_size(area, (x1 - x0, y1 - y0), (dx, dy));
-        // Black on a white halo: seen on every class's colour.
-        for style in [WHITE.stroke_width(3), BLACK.stroke_width(1)] {
-            chart
-                .draw_series(left.iter().map(|p| Cross::new((p.x, p.y), size, style)))
-                .map_err(perr)?;
-        }
-        classes.push((LEFT_MODEL.to_string(), left.len(), LegendKey::Cross));
-    }
+    let size = marker_size(area, (x1 - x0, y1 - y0), (dx, dy));
+    classes.extend(mark_left_model(&mut chart, pts, size)?);
     let mut drawn = Vec::new();
     draw_curves(&mut chart, curves, (x0, x1), (y0, y1), &mut drawn)?;
     Ok((classes, drawn))
@@ -193,6 +180,36 @@ where
 
 /// The legend's name for the points marked with a cross (some of their runs `diverged`).
 pub const LEFT_MODEL: &str = "runs left the model";
+
+/// Crosses out the points some of whose runs left the model (a point all of whose runs did
+/// says so in its label), `size` pixels wide; their legend entry, if any.
+fn mark_left_model<DB: DrawingBackend>(
+    chart: &mut ChartContext<
+        '_,
+        DB,
+        Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+    >,
+    pts: &[MapPoint],
+    size: i32,
+) -> Result<Option<(String, usize, LegendKey)>, SweepError>
+where
+    DB::ErrorType: 'static,
+{
+    let left: Vec<&MapPoint> = pts
+        .iter()
+        .filter(|p| p.left_model > 0 && p.label != crate::map::point_class::DIVERGED)
+        .collect();
+    if left.is_empty() {
+        return Ok(None);
+    }
+    // Black on a white halo: seen on every class's colour.
+    for style in [WHITE.stroke_width(3), BLACK.stroke_width(1)] {
+        chart
+            .draw_series(left.iter().map(|p| Cross::new((p.x, p.y), size, style)))
+            .map_err(perr)?;
+    }
+    Ok(Some((LEFT_MODEL.to_string(), left.len(), LegendKey::Cross)))
+}
 
 /// A cross's half size in pixels: a third of the point's spacing on the chart, 2 to 6 pixels.
 fn marker_size<DB: DrawingBackend>(
