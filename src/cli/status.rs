@@ -12,6 +12,30 @@ pub struct Args {
     json: bool,
 }
 
+/// The ETA line: at the recent pace, or unknown when no run has been stored for longer
+/// than that pace promised.
+fn print_eta(st: &droplet_sweep::execution::status::SweepStatus) {
+    match (st.eta_s, st.since_last_s) {
+        (Some(eta), Some(since)) if since > eta => outln!(
+            "ETA: unknown: the pace of the last {:.0} min ({} runs stored) gave {:.0} min, \
+             but no run has been stored for {:.0} min: the {} runs left are slower than \
+             the finished ones",
+            st.pace_s / 60.0,
+            st.runs_recent,
+            eta / 60.0,
+            since / 60.0,
+            st.runs_total - st.runs_done
+        ),
+        (Some(eta), _) => outln!(
+            "ETA: about {:.0} min at the pace of the last {:.0} min ({} runs stored)",
+            eta / 60.0,
+            st.pace_s / 60.0,
+            st.runs_recent
+        ),
+        _ => {}
+    }
+}
+
 pub fn run(a: Args) -> Result<(), CliError> {
     let st = droplet_sweep::execution::status::status(&a.out)?;
     if a.json {
@@ -62,25 +86,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
             };
             outln!("remaining: about {eta:.0} CPU s at the mean cost of the finished runs{more}");
         }
-        match (st.eta_s, st.since_last_s) {
-            (Some(eta), Some(since)) if since > eta => outln!(
-                "ETA: unknown: the pace of the last {:.0} min ({} runs stored) gave {:.0} min, \
-                 but no run has been stored for {:.0} min: the {} runs left are slower than \
-                 the finished ones",
-                st.pace_s / 60.0,
-                st.runs_recent,
-                eta / 60.0,
-                since / 60.0,
-                st.runs_total - st.runs_done
-            ),
-            (Some(eta), _) => outln!(
-                "ETA: about {:.0} min at the pace of the last {:.0} min ({} runs stored)",
-                eta / 60.0,
-                st.pace_s / 60.0,
-                st.runs_recent
-            ),
-            _ => {}
-        }
+        print_eta(&st);
         outln!("run statuses: {}", fmt(&st.run_statuses));
         outln!("run classes: {}", fmt(&st.run_classes));
         outln!(

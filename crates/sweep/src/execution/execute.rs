@@ -305,6 +305,24 @@ fn shard_level(spec: &SweepSpec, opts: &SweepOptions) -> Result<Option<(Shard, u
     }
 }
 
+/// The runs of an unrefined sweep (this shard's, with `--shard`), the pending ones computed:
+/// its plan, the indices of this invocation's runs, and what running them did.
+fn run_grid(
+    spec: &SweepSpec,
+    store: &Store,
+    pool: &rayon::ThreadPool,
+    opts: &SweepOptions,
+) -> Result<(Plan, Vec<usize>, Ran), SweepError> {
+    let plan = plan(spec);
+    // This invocation's runs; runs are made on demand (memory per run: 8 bytes).
+    let mine: Vec<usize> = match opts.shard {
+        None => (0..plan.len()).collect(),
+        Some(sh) => indices_of(&plan, &(0..plan.len()).collect::<Vec<_>>(), sh),
+    };
+    let ran = run_pending(store, &plan, &mine, pool, opts.progress, "runs")?;
+    Ok((plan, mine, ran))
+}
+
 /// Runs every pending task of `spec` into `out` and writes the tables.
 pub fn run_sweep(
     spec: &SweepSpec,
@@ -326,16 +344,7 @@ pub fn run_sweep(
     let (pool, jobs) = worker_pool(opts.jobs)?;
     let (plan, mine, ran) = match &spec.refine {
         Some(lattice) => run_refined(spec, lattice, &store, &pool, opts.progress, shard_level)?,
-        None => {
-            let plan = plan(spec);
-            // This invocation's runs; runs are made on demand (memory per run: 8 bytes).
-            let mine: Vec<usize> = match opts.shard {
-                None => (0..plan.len()).collect(),
-                Some(sh) => indices_of(&plan, &(0..plan.len()).collect::<Vec<_>>(), sh),
-            };
-            let ran = run_pending(&store, &plan, &mine, &pool, opts.progress, "runs")?;
-            (plan, mine, ran)
-        }
+        None => run_grid(spec, &store, &pool, opts)?,
     };
     let records = store.load_many(plan.tasks().map(|t| t.key));
     if opts.shard.is_none() && records.len() != plan.len() {

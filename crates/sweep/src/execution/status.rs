@@ -67,18 +67,16 @@ pub struct LevelStatus {
     pub runs_done: usize,
 }
 
-/// Reads the status of the sweep in `dir`: from its run store, or from its tables when it has
-/// none (a committed result directory).
-pub fn status(dir: &Path) -> Result<SweepStatus, SweepError> {
-    if crate::tables::read::is_tables_only(dir) {
-        return status_from_tables(dir);
-    }
-    let store = Store::open_read(dir)?;
-    let spec = crate::spec::load_stored(dir)?;
+/// The plan of the levels the stored runs know so far (all of them for an unrefined sweep) and
+/// each refinement level's progress.
+fn levels_known(
+    spec: &crate::spec::SweepSpec,
+    store: &Store,
+) -> Result<(crate::store::plan::Plan, Vec<LevelStatus>), SweepError> {
     let mut levels = Vec::new();
     let plan = match &spec.refine {
-        None => plan(&spec),
-        Some(lattice) => crate::map::levels::walk(&spec, lattice, &store, |level, plan, runs| {
+        None => plan(spec),
+        Some(lattice) => crate::map::levels::walk(spec, lattice, store, |level, plan, runs| {
             let done = runs
                 .iter()
                 .filter(|&&i| store.has(&plan.task(i).key))
@@ -92,6 +90,18 @@ pub fn status(dir: &Path) -> Result<SweepStatus, SweepError> {
             Ok(done == runs.len())
         })?,
     };
+    Ok((plan, levels))
+}
+
+/// Reads the status of the sweep in `dir`: from its run store, or from its tables when it has
+/// none (a committed result directory).
+pub fn status(dir: &Path) -> Result<SweepStatus, SweepError> {
+    if crate::tables::read::is_tables_only(dir) {
+        return status_from_tables(dir);
+    }
+    let store = Store::open_read(dir)?;
+    let spec = crate::spec::load_stored(dir)?;
+    let (plan, levels) = levels_known(&spec, &store)?;
     let (records, runs_corrupt) = store.load_counting(plan.tasks().map(|t| t.key));
     let run_statuses = tally(
         records
