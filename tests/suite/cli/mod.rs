@@ -1,11 +1,12 @@
 //! End-to-end tests through the `droplet` binary, one file per group of commands: `sweep` (sweep, merge, resume, specs), `axes` (sweeps in any parameter), `simulate`,
 //! `ode`, `commands` (bench, help), `truncation` (the K-mode model), `modes` (K-mode sweeps),
-//! `pictures` (what a map's picture shows beside its labels).
+//! `shape_modes` (K-mode single runs), `pictures` (what a map's picture shows beside its labels).
 mod axes;
 mod commands;
 mod modes;
 mod ode;
 mod pictures;
+mod shape_modes;
 mod simulate;
 mod sweep;
 mod truncation;
