@@ -163,16 +163,16 @@ mod tests {
                 // Direct samples of Theta, packed as the forces expect.
                 let mut t = vec![0.0; n * n];
                 st.sampler().theta(a2, b2, &mut t);
-                let mut pr: Vec<f64> = (0..n * n)
+                let pr: Vec<f64> = (0..n * n)
                     .map(|i| t[i] * (1.0 + grid.coord(i % n)))
                     .collect();
-                let mut yr: Vec<f64> = (0..n * n).map(|i| t[i] * grid.coord(i / n)).collect();
+                let yr: Vec<f64> = (0..n * n).map(|i| t[i] * grid.coord(i / n)).collect();
                 let (mut p0, mut y0) = (
                     vec![Complex64::default(); len],
                     vec![Complex64::default(); len],
                 );
-                plain.forward(&mut pr, &mut p0, 0, n - 1);
-                plain.forward(&mut yr, &mut y0, 0, n - 1);
+                plain.forward(&pr, &mut p0, 0, n - 1);
+                plain.forward(&yr, &mut y0, 0, n - 1);
                 let (mut p1, mut y1) = (
                     vec![Complex64::default(); len],
                     vec![Complex64::default(); len],

@@ -22,7 +22,6 @@ pub struct PrunedFft2 {
     c2r: Arc<dyn ComplexToReal<f64>>,
     col_fwd: Arc<dyn Fft<f64>>,
     col_inv: Arc<dyn Fft<f64>>,
-    row_spec: Vec<Complex64>,
     row_real: Vec<f64>,
     row_scratch: Vec<Complex64>,
     col_scratch: Vec<Complex64>,
@@ -44,7 +43,6 @@ impl PrunedFft2 {
         Self {
             n,
             block: vec![Complex64::default(); BLOCK * (n / 2 + 1)],
-            row_spec: vec![Complex64::default(); n / 2 + 1],
             row_real: vec![0.0; n],
             row_scratch: vec![Complex64::default(); row_scratch_len],
             col_scratch: vec![Complex64::default(); col_scratch_len],
@@ -56,8 +54,9 @@ impl PrunedFft2 {
     }
 
     /// Unnormalised forward transform of `real` (row-major `N x N`), whose rows outside
-    /// `lo..=hi` are zero, into `spec` (`[kx][ky]`). `real`'s rows `lo..=hi` are clobbered.
-    pub fn forward(&mut self, real: &mut [f64], spec: &mut [Complex64], lo: usize, hi: usize) {
+    /// `lo..=hi` are zero, into `spec` (`[kx][ky]`); `real` is left as it was (each row is
+    /// copied into a row buffer the real transform may overwrite).
+    pub fn forward(&mut self, real: &[f64], spec: &mut [Complex64], lo: usize, hi: usize) {
         let n = self.n;
         let nc = n / 2 + 1;
         debug_assert_eq!(real.len(), n * n);
@@ -73,9 +72,10 @@ impl PrunedFft2 {
             let rows = (hi + 1 - b0).min(BLOCK);
             for r in 0..rows {
                 let iy = b0 + r;
+                self.row_real.copy_from_slice(&real[iy * n..(iy + 1) * n]);
                 self.r2c
                     .process_with_scratch(
-                        &mut real[iy * n..(iy + 1) * n],
+                        &mut self.row_real,
                         &mut self.block[r * nc..(r + 1) * nc],
                         &mut self.row_scratch,
                     )
@@ -96,26 +96,43 @@ impl PrunedFft2 {
     /// Unnormalised inverse transform of `spec` (`[kx][ky]`, consumed) into the rows
     /// `lo..=hi` of `real` (row-major `N x N`); other rows of `real` are left untouched.
     pub fn inverse(&mut self, spec: &mut [Complex64], real: &mut [f64], lo: usize, hi: usize) {
-        let n = self.n;
-        let nc = n / 2 + 1;
         self.col_inv
             .process_with_scratch(spec, &mut self.col_scratch);
-        for iy in lo..=hi {
+        self.inverse_rows(spec, real, lo, hi);
+    }
+
+    /// The second half of [`Self::inverse`]: the rows `lo..=hi` of `real` from `spec`, whose
+    /// columns are transformed along y.
+    fn inverse_rows(&mut self, spec: &mut [Complex64], real: &mut [f64], lo: usize, hi: usize) {
+        let n = self.n;
+        let nc = n / 2 + 1;
+        // Rows in blocks, as in the forward transform: every column gives BLOCK consecutive
+        // values to the block's row spectra.
+        let mut b0 = lo;
+        while b0 <= hi {
+            let rows = (hi + 1 - b0).min(BLOCK);
             for jx in 0..nc {
-                self.row_spec[jx] = spec[jx * n + iy];
+                let col = &spec[jx * n + b0..jx * n + b0 + rows];
+                for (r, c) in col.iter().enumerate() {
+                    self.block[r * nc + jx] = *c;
+                }
             }
-            // A real field's kx = 0 and kx = N/2 columns are real after the y transform;
-            // drop the round-off imaginary parts that c2r would reject.
-            self.row_spec[0].im = 0.0;
-            self.row_spec[nc - 1].im = 0.0;
-            self.c2r
-                .process_with_scratch(
-                    &mut self.row_spec,
-                    &mut self.row_real,
-                    &mut self.row_scratch,
-                )
-                .expect("c2r lengths are planned");
-            real[iy * n..(iy + 1) * n].copy_from_slice(&self.row_real);
+            for r in 0..rows {
+                let iy = b0 + r;
+                let row_spec = &mut self.block[r * nc..(r + 1) * nc];
+                // A real field's kx = 0 and kx = N/2 columns are real after the y transform;
+                // drop the round-off imaginary parts that c2r would reject.
+                row_spec[0].im = 0.0;
+                row_spec[nc - 1].im = 0.0;
+                self.c2r
+                    .process_with_scratch(
+                        row_spec,
+                        &mut real[iy * n..(iy + 1) * n],
+                        &mut self.row_scratch,
+                    )
+                    .expect("c2r lengths are planned");
+            }
+            b0 += rows;
         }
     }
 }
@@ -137,7 +154,7 @@ mod tests {
         }
         let orig = real.clone();
         let mut spec = vec![Complex64::default(); (n / 2 + 1) * n];
-        fft.forward(&mut real, &mut spec, lo, hi);
+        fft.forward(&real, &mut spec, lo, hi);
         // DC coefficient = sum of samples.
         let sum: f64 = orig.iter().sum();
         assert!((spec[0].re - sum).abs() < 1e-9);

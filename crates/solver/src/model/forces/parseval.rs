@@ -283,10 +283,10 @@ mod tests {
             vec![Complex64::default(); len],
             vec![Complex64::default(); len],
         );
-        let mut pr: Vec<f64> = (0..n * n).map(|i| t0[i] + tx0[i]).collect();
-        let mut yr = ty0.clone();
-        fft.forward(&mut pr, &mut ph, 0, n - 1);
-        fft.forward(&mut yr, &mut yh, 0, n - 1);
+        let pr: Vec<f64> = (0..n * n).map(|i| t0[i] + tx0[i]).collect();
+        let yr = ty0.clone();
+        fft.forward(&pr, &mut ph, 0, n - 1);
+        fft.forward(&yr, &mut yh, 0, n - 1);
         // u(x, y) = exp(cos(k0 x) + 0.5 sin(k0 (x + y))), periodic, with u_x, u_y analytic.
         let k0 = 2.0 * std::f64::consts::PI / 7.0;
         let mut u = vec![0.0; n * n];
@@ -303,7 +303,7 @@ mod tests {
             }
         }
         let mut w = vec![Complex64::default(); len];
-        fft.forward(&mut u, &mut w, 0, n - 1);
+        fft.forward(&u, &mut w, 0, n - 1);
         for c in w.iter_mut() {
             *c /= (n * n) as f64;
         }

@@ -90,6 +90,25 @@ impl SampledShape {
     }
 }
 
+/// The spectral derivatives `(i kx u, i ky u)` of one mode `u` of a field, with the grid's
+/// derivative wavenumbers `kx_d`, `ky_d` (Nyquist zeroed).
+#[inline(always)]
+pub fn derivatives(u: Complex64, kxd: f64, kyd: f64) -> (Complex64, Complex64) {
+    (
+        Complex64::new(-u.im * kxd, u.re * kxd),
+        Complex64::new(-u.im * kyd, u.re * kyd),
+    )
+}
+
+/// [`ForceQuadrature::pass_buffers`]: the grid and `Theta`'s transform to read, the
+/// derivative spectra to write.
+pub struct PassBuffers<'a> {
+    pub grid: &'a Grid,
+    pub source: &'a [Complex64],
+    pub dx: &'a mut [Complex64],
+    pub dy: &'a mut [Complex64],
+}
+
 /// `Theta` of a droplet of any shape on an `N x N` grid, its transform and the forces of a
 /// field on it.
 pub struct ForceQuadrature {
@@ -98,8 +117,6 @@ pub struct ForceQuadrature {
     fft: PrunedFft2,
     /// `Theta` and its transform.
     sampled: SampledShape,
-    /// A copy of `Theta` the forward transform may overwrite.
-    real: Vec<f64>,
     /// The spectral derivatives of the field.
     dx_spec: Vec<Complex64>,
     dy_spec: Vec<Complex64>,
@@ -119,7 +136,6 @@ impl ForceQuadrature {
             shape,
             fft: PrunedFft2::new(n),
             sampled: SampledShape::new(&grid),
-            real: vec![0.0; n * n],
             dx_spec: vec![Complex64::default(); len],
             dy_spec: vec![Complex64::default(); len],
             ux: vec![0.0; n * n],
@@ -190,11 +206,9 @@ impl ForceQuadrature {
     /// `A N^2`, [`Self::source_scale`]) in [`Self::source_spectrum`]: a time step folds the
     /// scale into its own pass over the spectrum.
     pub fn theta_spectrum(&mut self, m: &Modes) -> (f64, usize, usize) {
-        let n = self.grid.n;
         let (area, lo, hi) = self.sample(m);
-        self.real[lo * n..(hi + 1) * n].copy_from_slice(&self.sampled.theta[lo * n..(hi + 1) * n]);
         self.fft
-            .forward(&mut self.real, &mut self.sampled.spec, lo, hi);
+            .forward(&self.sampled.theta, &mut self.sampled.spec, lo, hi);
         (area, lo, hi)
     }
 
@@ -239,8 +253,8 @@ impl ForceQuadrature {
     }
 
     /// The unnormalised transform (`[kx][ky]`) of a real field whose rows outside `lo..=hi`
-    /// are zero; those rows of `real` are clobbered.
-    pub fn transform(&mut self, real: &mut [f64], lo: usize, hi: usize) -> Vec<Complex64> {
+    /// are zero.
+    pub fn transform(&mut self, real: &[f64], lo: usize, hi: usize) -> Vec<Complex64> {
         let mut spec = vec![Complex64::default(); self.grid.spectral_len()];
         self.fft.forward(real, &mut spec, lo, hi);
         spec
@@ -259,14 +273,31 @@ impl ForceQuadrature {
         for jx in 0..=n / 2 {
             let kxd = self.grid.kx_d[jx];
             for jy in 0..n {
-                let kyd = self.grid.ky_d[jy];
                 let i = jx * n + jy;
-                self.dx_spec[i] = Complex64::new(-u[i].im * kxd, u[i].re * kxd);
-                self.dy_spec[i] = Complex64::new(-u[i].im * kyd, u[i].re * kyd);
+                (self.dx_spec[i], self.dy_spec[i]) = derivatives(u[i], kxd, self.grid.ky_d[jy]);
             }
         }
+        self.gradient_formed(lo, hi);
+    }
+
+    /// The gradient on the rows `lo..=hi` of the field whose spectral derivatives a caller
+    /// formed in [`Self::pass_buffers`] (a time step's pass over the spectrum forms them as it
+    /// writes the field, [`derivatives`]); the buffers are consumed.
+    pub fn gradient_formed(&mut self, lo: usize, hi: usize) {
         self.fft.inverse(&mut self.dx_spec, &mut self.ux, lo, hi);
         self.fft.inverse(&mut self.dy_spec, &mut self.uy, lo, hi);
+    }
+
+    /// What a pass over a field's spectrum reads and writes here: the grid, the last
+    /// transform of `Theta` ([`Self::source_spectrum`]), the buffers of the field's spectral
+    /// derivatives ([`Self::gradient_formed`]).
+    pub fn pass_buffers(&mut self) -> PassBuffers<'_> {
+        PassBuffers {
+            grid: &self.grid,
+            source: &self.sampled.spec,
+            dx: &mut self.dx_spec,
+            dy: &mut self.dy_spec,
+        }
     }
 
     /// `Sum grad u Theta` and, interleaved, `Sum (x + i y)^(k-1) (u_x + i u_y) Theta` for

@@ -20,11 +20,12 @@
 //! the scheme stays second order and its fixed points are unchanged.
 //!
 //! Cost per step: `Theta` sampled and transformed once (at the new state) and the gradient of
-//! the field transformed back twice (at the predictor and at the new state); the 2-mode scheme
-//! saves the inverse transforms by the droplet's point symmetry and the forces' Parseval sums,
-//! which the odd modes break.
+//! the field transformed back twice (at the predictor and at the new state; each pass over
+//! the spectrum forms the spectral derivatives of the field it writes, so no pass of its own
+//! does); the 2-mode scheme saves the inverse transforms by the droplet's point symmetry and
+//! the forces' Parseval sums, which the odd modes break.
 use crate::error::SolverError;
-use crate::model::forces::quadrature::{ForceQuadrature, SampledShape};
+use crate::model::forces::quadrature::{derivatives, ForceQuadrature, PassBuffers, SampledShape};
 use crate::model::grid::Grid;
 use crate::model::modes::Modes;
 use crate::model::params::ModelParams;
@@ -87,6 +88,9 @@ pub struct ComovingEtd {
     /// [`ComovingEtd::predictor_shape`]).
     cur: Snapshot,
     prev: Snapshot,
+    /// Whether the quadrature's derivative spectra are the present field's (formed by the
+    /// last corrector pass, [`ForceQuadrature::gradient_formed`]).
+    derivatives_formed: bool,
     /// Time stepped (the run's clock keeps the run's own).
     pub t: f64,
     /// The centre.
@@ -130,6 +134,7 @@ impl ComovingEtd {
             start: None,
             cur,
             prev,
+            derivatives_formed: false,
             t: 0.0,
             x: 0.0,
             y: 0.0,
@@ -159,16 +164,10 @@ impl ComovingEtd {
         self.linear_parts();
     }
 
-    /// The forces of the field (the predictor's with `u_is_predictor`) on the droplet the
-    /// quadrature holds (rows `lo..=hi`), `(Fx, Fy, G^(a)_2.., G^(b)_2..)`.
-    fn forces_on(&mut self, u_is_predictor: bool, lo: usize, hi: usize, area: f64) -> Vec<f64> {
+    /// The forces of the field whose gradient the quadrature holds on the droplet it holds
+    /// (rows `lo..=hi`), `(Fx, Fy, G^(a)_2.., G^(b)_2..)`.
+    fn forces(&mut self, lo: usize, hi: usize, area: f64) -> Vec<f64> {
         let k_max = self.z.len() / 2;
-        let u = if u_is_predictor {
-            &self.field.a_hat
-        } else {
-            &self.field.u
-        };
-        self.quad.gradient(u, lo, hi);
         self.quad.sums(k_max, lo, hi, area).to_vec()
     }
 
@@ -179,7 +178,12 @@ impl ComovingEtd {
             return;
         }
         let (area, lo, hi) = self.quad.theta_spectrum(&Modes::of_state(&self.z));
-        let forces = self.forces_on(false, lo, hi, area);
+        if std::mem::take(&mut self.derivatives_formed) {
+            self.quad.gradient_formed(lo, hi);
+        } else {
+            self.quad.gradient(&self.field.u, lo, hi);
+        }
+        let forces = self.forces(lo, hi, area);
         std::mem::swap(&mut self.prev, &mut self.cur);
         self.quad.exchange(&mut self.cur.sampled);
         self.cur.shape.clear();
@@ -245,15 +249,18 @@ enum Stage {
 impl Spectra {
     /// One pass of `stage` over the spectrum for a step of `h`, with the droplet of that stage
     /// moving at `(vx, vy)`, its raw `Theta_hat` `source` and the factor `scale` to the
-    /// normalised source ([`ForceQuadrature::source_scale`]).
+    /// normalised source ([`ForceQuadrature::source_scale`]); the spectral derivatives of the
+    /// field it writes (the predictor's or the new one) into the buffers' `dx`, `dy`
+    /// ([`ForceQuadrature::gradient_formed`]).
     fn pass(
         &mut self,
-        grid: &Grid,
+        bufs: PassBuffers,
         stage: Stage,
         h: f64,
         (vx, vy): (f64, f64),
         (source, scale): (Source, f64),
     ) {
+        let PassBuffers { grid, dx, dy, .. } = bufs;
         if let Stage::Predict = stage {
             self.exp.update(h, &grid.kx, &grid.ky);
         }
@@ -270,11 +277,13 @@ impl Spectra {
                 .iter_mut()
                 .zip(&mut self.a_hat[row.clone()]);
             let sources = base[row.clone()].iter().zip(&back[row.clone()]);
-            for (((u, (sb, sq)), ((kyd, ay), ic)), (n0, a)) in self.u[row.clone()]
+            let derivs = dx[row.clone()].iter_mut().zip(&mut dy[row.clone()]);
+            for ((((u, (sb, sq)), ((kyd, ay), ic)), (n0, a)), (dx, dy)) in self.u[row.clone()]
                 .iter_mut()
                 .zip(sources)
                 .zip(modes)
                 .zip(stages)
+                .zip(derivs)
             {
                 let cf = SeparableExp::coef(*ax, *ay, *ic, h, inv_h);
                 let kv = kxd * vx + kyd * vy;
@@ -284,11 +293,13 @@ impl Spectra {
                         // i k.v u + s.
                         *n0 = Complex64::new(-kv * u.im + scale * s.re, kv * u.re + scale * s.im);
                         *a = *u * cf.e + *n0 * cf.p1;
+                        (*dx, *dy) = derivatives(*a, *kxd, *kyd);
                     }
                     Stage::Correct => {
                         let na =
                             Complex64::new(-kv * a.im + scale * s.re, kv * a.re + scale * s.im);
                         *u = *a + (na - *n0) * cf.p2;
+                        (*dx, *dy) = derivatives(*u, *kxd, *kyd);
                     }
                 }
             }
@@ -335,6 +346,7 @@ impl Scheme for ComovingEtd {
         // The shape changed: its droplet and forces are sampled afresh, and the predictor's
         // extrapolation starts again.
         self.start = None;
+        self.derivatives_formed = false;
         self.cur.valid = false;
         self.prev.valid = false;
         true
@@ -360,7 +372,6 @@ impl Stepper for ComovingEtd {
     fn attempt(&mut self, h: f64, max_error: f64) -> Attempt {
         self.ensure_start();
         let area = self.start.as_ref().expect("forces at the start").area;
-        let grid = self.quad.grid();
         let start_source = Source {
             base: &self.cur.sampled.spec,
             back: &self.cur.sampled.spec,
@@ -368,8 +379,9 @@ impl Stepper for ComovingEtd {
         };
         let scale = self.quad.source_scale(area);
         let velocity = (self.z[0], self.z[1]);
+        let bufs = self.quad.pass_buffers();
         self.field
-            .pass(grid, Stage::Predict, h, velocity, (start_source, scale));
+            .pass(bufs, Stage::Predict, h, velocity, (start_source, scale));
         // The mechanics' predictor, its droplet and the forces there.
         let coefs: Vec<EtdCoef> = self.rate_of.iter().map(|r| EtdCoef::new(-r, h)).collect();
         // The start's forces, put back if the step is refused.
@@ -379,7 +391,9 @@ impl Stepper for ComovingEtd {
             .map(|j| coefs[j].predict(self.z[j], f0[j] / self.inertia[j]))
             .collect();
         let (alpha, area_a, lo, hi) = self.predictor_shape(&z_a);
-        let f_a = self.forces_on(true, lo, hi, area_a);
+        // The predictor pass formed the derivative spectra of its field.
+        self.quad.gradient_formed(lo, hi);
+        let f_a = self.forces(lo, hi, area_a);
         let next: Vec<f64> = (0..self.z.len())
             .map(|j| {
                 let m = self.inertia[j];
@@ -404,21 +418,20 @@ impl Stepper for ComovingEtd {
         }
         let (v0, v_a) = ((self.z[0], self.z[1]), (z_a[0], z_a[1]));
         // The field's corrector with the predictor's source.
+        let scale = self.quad.source_scale(area_a);
         let (base, back) = (&self.cur.sampled.spec, &self.prev.sampled.spec);
+        let bufs = self.quad.pass_buffers();
         let source = match alpha {
             Some(alpha) => Source { base, back, alpha },
-            None => {
-                let own = self.quad.source_spectrum();
-                Source {
-                    base: own,
-                    back: own,
-                    alpha: 0.0,
-                }
-            }
+            None => Source {
+                base: bufs.source,
+                back: bufs.source,
+                alpha: 0.0,
+            },
         };
-        let scale = self.quad.source_scale(area_a);
         self.field
-            .pass(self.quad.grid(), Stage::Correct, h, v_a, (source, scale));
+            .pass(bufs, Stage::Correct, h, v_a, (source, scale));
+        self.derivatives_formed = true;
         // The centre by the trapezoidal rule (ETD2RK with rate 0).
         self.x += 0.5 * h * (v0.0 + v_a.0);
         self.y += 0.5 * h * (v0.1 + v_a.1);
