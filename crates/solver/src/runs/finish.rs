@@ -139,21 +139,6 @@ pub struct NewtonFinish {
     /// Whether the orientation's slow flow decides where a leaning run ends (numerics 8 and
     /// 9; the setting `orientation_flow`).
     pub(super) orientation_flow: bool,
-    /// Whether the landing may end a run leaning from its mirror line by more than
-    /// [`crate::runs::rotation_flow::LINEAR_LEAN`] on the line's root when that root is
-    /// stable in rotation: 2-mode runs (with the orientation flow's basin check, or without
-    /// it as numerics 7 did), not runs with more modes, which have no flow: on coarse grids
-    /// the lattice holds them at roots a few degrees off the line (modes 2..3, N = 96,
-    /// (0.088, 0.1095) from iv: 5.9 degrees off the diagonal, where the landing put it on
-    /// the diagonal).
-    pub(super) landing_holds_lean: bool,
-    /// Whether the turn search takes a stable root found past the next mirror line as its
-    /// mirror image in that line (runs with more shape modes, numerics modes-10: at
-    /// (0.076, 0.14175), modes 2..4, from ii the run turns from the x-axis MD to the stable
-    /// root 5 degrees short of the diagonal, and Newton from the turned states finds only
-    /// its image 5 degrees past it). 2-mode runs keep numerics 10's search: their
-    /// orientation flow finds such roots first.
-    pub(super) reflect_past_line: bool,
     /// What is known of the orientation's flow beside roots stable in rotation, per root and
     /// side (lean > 0) ([`crate::runs::rotation_flow::FlowScan`]).
     pub(super) flows: Vec<(Vec<f64>, bool, crate::runs::rotation_flow::FlowScan)>,
@@ -207,8 +192,6 @@ impl NewtonFinish {
             mirror_symmetric: true,
             assessed: Vec::new(),
             orientation_flow: settings.orientation_flow && two,
-            landing_holds_lean: two,
-            reflect_past_line: !two,
             flows: Vec::new(),
             turns: Vec::new(),
             modes: settings.modes,
@@ -221,6 +204,24 @@ impl NewtonFinish {
             turn_searches: Vec::new(),
             walks: Default::default(),
         }
+    }
+
+    /// Whether the run has shape modes beyond the paper's two, and so no orientation flow.
+    /// Two rules of the finish follow from it:
+    /// - the landing may end a 2-mode run leaning from its mirror line by more than
+    ///   [`crate::runs::rotation_flow::LINEAR_LEAN`] on the line's root when that root is
+    ///   stable in rotation (with the flow's basin check, or without it as numerics 7 did),
+    ///   not a run with more modes: on coarse grids the lattice holds them at roots a few
+    ///   degrees off the line (modes 2..3, N = 96, (0.088, 0.1095) from iv: 5.9 degrees off
+    ///   the diagonal, where the landing put it on the diagonal);
+    /// - the turn search of a run with more modes takes a stable root found past the next
+    ///   mirror line as its mirror image in that line (numerics modes-10: at
+    ///   (0.076, 0.14175), modes 2..4, from ii the run turns from the x-axis MD to the stable
+    ///   root 5 degrees short of the diagonal, and Newton from the turned states finds only
+    ///   its image 5 degrees past it); 2-mode runs keep numerics 10's search: their
+    ///   orientation flow finds such roots first.
+    pub(super) fn beyond_two_modes(&self) -> bool {
+        self.modes > 2
     }
 
     /// For a run that starts at `(vx, vy, a2, b2)`: only a run that starts mirror-symmetric

@@ -102,7 +102,7 @@ impl NewtonFinish {
             // class may differ where `s` is near the threshold: MD on one line, MC on the
             // other); one further away (a resting state, say) is not where a turn ends.
             let mut turn = side * angle_to(&other.z, &near.z);
-            if self.reflect_past_line && turn > quarter + 1e-6 && turn < 2.0 * quarter {
+            if self.beyond_two_modes() && turn > quarter + 1e-6 && turn < 2.0 * quarter {
                 // Past the next mirror line: its mirror image in that line is a root as
                 // stable, on the run's side of the line.
                 let line = orientation(&near.z) + side * quarter;
@@ -328,7 +328,7 @@ impl NewtonFinish {
     /// [`LINEAR_LEAN`] (where the root's own rotation eigenvalue decides), or if they are
     /// turning towards the root (`turning_to`).
     pub(super) fn lean_holds(&self, lean: f64, turning_to: bool) -> bool {
-        self.landing_holds_lean || lean.abs() <= LINEAR_LEAN || turning_to
+        !self.beyond_two_modes() || lean.abs() <= LINEAR_LEAN || turning_to
     }
 
     /// The root of a run caught mid-turn, between the box's mirror lines, where Newton from

@@ -124,6 +124,24 @@ pub trait Scheme: Stepper {
     }
 }
 
+/// The leap's move ([`Scheme::leap`]) of values displaced from a fixed point's `root`: each
+/// becomes `root + (value - root) factor` (the field's spectrum and the unknowns alike).
+pub(crate) fn scale_displacement<'a, T>(
+    values: impl IntoIterator<Item = &'a mut T>,
+    root: &[T],
+    factor: f64,
+) where
+    T: 'a
+        + Copy
+        + std::ops::Add<Output = T>
+        + std::ops::Sub<Output = T>
+        + std::ops::Mul<f64, Output = T>,
+{
+    for (x, r) in values.into_iter().zip(root) {
+        *x = *r + (*x - *r) * factor;
+    }
+}
+
 /// The inertia a scheme of the model with shape modes `2..K` needs: it integrates the
 /// velocity (`m dv/dt = -eta_t v + F`), so `m > 0` (the modes and the droplet the grid
 /// resolves are the caller's to check, `contract::limits::check_run`).

@@ -33,7 +33,7 @@ use crate::model::shape::ShapeParams;
 use crate::model::state::DropletState;
 use crate::numerics::fft2::PrunedFft2;
 use crate::stepping::etd::{EtdCoef, SeparableExp};
-use crate::stepping::{Attempt, Field, Scheme, Stepper};
+use crate::stepping::{scale_displacement, Attempt, Field, Scheme, Stepper};
 use rustfft::num_complex::Complex64;
 
 /// The forces at the run's present state (kept while a refused step leaves it unchanged).
@@ -335,12 +335,8 @@ impl Scheme for ComovingEtd {
         if root.len() != self.z.len() || root_field.len() != self.field.u.len() {
             return false;
         }
-        for (w, r) in self.field.u.iter_mut().zip(root_field) {
-            *w = r + (*w - r) * factor;
-        }
-        for (x, r) in self.z.iter_mut().zip(root) {
-            *x = r + (*x - r) * factor;
-        }
+        scale_displacement(&mut self.field.u, root_field, factor);
+        scale_displacement(&mut self.z, root, factor);
         self.x += shift[0];
         self.y += shift[1];
         // The shape changed: its droplet and forces are sampled afresh, and the predictor's

@@ -40,7 +40,7 @@ use crate::model::shape_transform::ShapeTransform;
 use crate::model::state::DropletState;
 use crate::numerics::fft2::PrunedFft2;
 use crate::stepping::etd::SeparableExp;
-use crate::stepping::{Attempt, Field, Scheme, Stepper};
+use crate::stepping::{scale_displacement, Attempt, Field, Scheme, Stepper};
 use rustfft::num_complex::Complex64;
 
 /// Packed transforms of one droplet shape (`p`: `Theta + X Theta`, `y`: `Y Theta`), its
@@ -285,14 +285,13 @@ impl Scheme for TwoModeEtd {
         {
             return false;
         }
-        for (w, r) in self.w_hat.iter_mut().zip(root_field) {
-            *w = r + (*w - r) * factor;
-        }
+        scale_displacement(&mut self.w_hat, root_field, factor);
         let st = &mut self.state;
-        let z = [&mut st.vx, &mut st.vy, &mut st.a2, &mut st.b2];
-        for (x, r) in z.into_iter().zip(root) {
-            *x = r + (*x - r) * factor;
-        }
+        scale_displacement(
+            [&mut st.vx, &mut st.vy, &mut st.a2, &mut st.b2],
+            root,
+            factor,
+        );
         st.x += shift[0];
         st.y += shift[1];
         // The shape changed: its spectra and forces are recomputed, and the predictor's
