@@ -108,7 +108,12 @@ pub const ODE_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numeri
 /// search takes a stable root it finds past the next mirror line as its mirror image in that
 /// line (the run from ii at (0.076, 0.14175) turns from the x-axis MD to the root 5 degrees
 /// short of the diagonal, which it had reached by the paper's test at t = 101 884).
-pub const MODES_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-9+modes-10");
+/// 11: a run is tried for the resting disk alone once its rates are below the 2-mode runs'
+/// trigger (1e-3, its own is 1e-4 for the orientation of the other roots), by Newton and by
+/// the landing's slow flow (`runs::finish`, `try_disk`): runs near the onset of motion that
+/// crept onto the disk, or past the MD fold's ghost, for 1000-1800 time units end on the
+/// same disk by t = 20-110 ((0.0785, 0.12775) from ii: t = 1136 -> 62).
+pub const MODES_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-9+modes-11");
 
 /// The numerics version of a model's runs with shape modes `2..=modes`, part of their cache
 /// key: a change to one model's results invalidates its stored runs only.

@@ -82,6 +82,10 @@ use rustfft::num_complex::Complex64;
 /// Newton is first tried when the change per window is below this many steady tolerances.
 pub const TRIGGER_FACTOR: f64 = 100.0;
 
+/// A run with more than two shape modes is tried for the resting disk alone once its rates
+/// are below this many times the trigger ([`NewtonFinish::try_disk`]): the 2-mode runs' rate.
+pub const DISK_FACTOR: f64 = 10.0;
+
 /// Largest growth of a run's lean between two landing tries, relative to that of its speed
 /// (or deformation at rest), `d ln(lean) <= LEAN_GROWTH |d ln(coordinate)|`, for the landing
 /// to hold the lean fixed (a departure by a factor 1000 turns such a run by at most 40 %
@@ -150,6 +154,9 @@ pub struct NewtonFinish {
     pub(super) trigger: f64,
     pub(super) window: f64,
     pub(super) next_try: f64,
+    /// When a run with more than two shape modes may next be tried for the resting disk
+    /// ([`Self::try_disk`]).
+    pub(super) next_disk_try: f64,
     /// The force balance's Jacobians at the roots found, for the chord method.
     pub(super) jacobians: KeptJacobians,
     /// What Newton found from a root turned by each angle of
@@ -200,6 +207,7 @@ impl NewtonFinish {
             trigger: TRIGGER_FACTOR * steady_tol,
             window: if two { settings.steady_window } else { 1.0 },
             next_try: 0.0,
+            next_disk_try: 0.0,
             jacobians: KeptJacobians::default(),
             turn_searches: Vec::new(),
             walks: Default::default(),
@@ -317,8 +325,11 @@ impl NewtonFinish {
         (all, change): (f64, f64),
         test_fired: bool,
     ) -> Decision {
-        if t < self.next_try || !(test_fired || change < self.trigger) {
+        if t < self.next_try {
             return Decision::Continue;
+        }
+        if !(test_fired || change < self.trigger) {
+            return self.try_disk(t, z, change);
         }
         let turning = !test_fired && all >= self.trigger;
         let found = self.stable_root(z);
@@ -339,8 +350,7 @@ impl NewtonFinish {
         // (turning towards it), or the root be the turned one. A run that is to turn has
         // settled when it has settled on the root it turns from (the two differ by the box's
         // anisotropy, 3 % in v for the fast MD with modes 2..4) or already on the turned one.
-        let rate = f.verdict.max_re.abs().max(1e-12);
-        let bound = (10.0 * (change / self.window) / rate).min(MAX_SETTLED) + 1e-9;
+        let bound = self.settled_within(&f, change);
         let settled = invariant_distance(z, &f.z) <= bound
             || f.turned_from
                 .as_ref()
@@ -445,6 +455,14 @@ impl NewtonFinish {
                 self.t_max
             )
         })
+    }
+
+    /// How far from the root `f` a run whose change per window is `change` may be and be on
+    /// its way there: what the linear decay at the slowest decisive rate still lets it move,
+    /// `10 (change / window) / |lambda|`, at most [`MAX_SETTLED`].
+    pub(super) fn settled_within(&self, f: &Finding, change: f64) -> f64 {
+        let rate = f.verdict.max_re.abs().max(1e-12);
+        (10.0 * (change / self.window) / rate).min(MAX_SETTLED) + 1e-9
     }
 
     fn back_off(&mut self, t: f64) {

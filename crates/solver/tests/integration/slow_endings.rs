@@ -66,6 +66,49 @@ fn a_four_mode_run_slowing_onto_the_resting_disk_lands_there() {
 }
 
 #[test]
+fn a_four_mode_run_past_the_md_fold_lands_on_the_disk_long_before_its_own_trigger() {
+    // Modes 2..4 at N = 96, (0.07875, 0.12775) from ii, just past the MD fold: the run moves
+    // on along the ghost of the fold, slowing down for hundreds of time units, and comes to
+    // rest on the disk. Its rates fall below the 2-mode runs' trigger long before its own;
+    // there Newton finds no root and the landing's slow flow takes it to the disk (numerics
+    // modes-11; before, it crept to the Newton finish at t = 647). Pure time stepping ends
+    // on the same disk.
+    let p = ModelParams::at(0.07875, 0.12775);
+    let ic = InitialCondition::parse("ii").unwrap();
+    let defaults = SolverSettings {
+        n: 96,
+        modes: 4,
+        ..SolverSettings::default()
+    };
+    let out = simulate(&p, &ic, &defaults).unwrap();
+    assert_eq!(out.status, RunStatus::Steady, "{out:?}");
+    assert_eq!(out.class, Some(StateClass::IC), "{out:?}");
+    assert_eq!(
+        out.ended_by,
+        Some(droplet_solver::contract::ending::Ending::Landing),
+        "{out:?}"
+    );
+    assert!(out.t_end < 200.0 && out.v == 0.0, "{out:?}");
+    let pure = simulate(
+        &p,
+        &ic,
+        &SolverSettings {
+            steady: droplet_solver::contract::ending::SteadyMethod::Test,
+            steady_tol: 1e-9,
+            t_max: 20_000.0,
+            ..defaults
+        },
+    )
+    .unwrap();
+    assert_eq!(pure.class, Some(StateClass::IC), "{pure:?}");
+    assert!(pure.t_end > 500.0 && pure.v < 1e-6, "{pure:?}");
+    assert!((pure.s - out.s).abs() < 1e-6, "{pure:?} {out:?}");
+    for (a, b) in pure.higher_modes.iter().zip(&out.higher_modes) {
+        assert!((a - b).abs() < 1e-6, "{pure:?} {out:?}");
+    }
+}
+
+#[test]
 fn a_four_mode_run_leaps_along_a_departure_and_ends_where_stepping_does() {
     // Modes 2..4 at N = 96, (0.07625, 0.14) from iii, the landing off: the run leaves the
     // resting disk (unstable in its drift, growth 1.9e-3) along the growing mode; with
