@@ -243,6 +243,12 @@ impl NewtonFinish {
 
     /// Newton from `z` on all four unknowns, and the root's verdict.
     pub fn root_near(&mut self, z: &[f64]) -> Result<Finding, SolverError> {
+        let root = self.newton_root(z)?;
+        Ok(self.assess(root))
+    }
+
+    /// The root Newton finds from `z`, without its verdict ([`Self::root_near`]).
+    pub(super) fn newton_root(&mut self, z: &[f64]) -> Result<Vec<f64>, SolverError> {
         crate::error::require(
             self.params.mass > 0.0,
             "mass",
@@ -250,27 +256,30 @@ impl NewtonFinish {
             "> 0 for the linearisation (an overdamped droplet is finished by the paper's test)",
         )?;
         self.balances()?;
-        // The field, not `self`: `self.assessed` is read below while the solver is in use.
         let balances = self.solver.as_mut().expect("made above");
-        let root = {
-            let _timed = profile::enter(Part::Newton);
-            balances.root_near(z, &mut self.jacobians)?
-        };
+        let _timed = profile::enter(Part::Newton);
+        balances.root_near(z, &mut self.jacobians)
+    }
+
+    /// A root with its verdict: the one a run's earlier try found for it (its eigenvalues
+    /// are not recomputed), else the eigenvalues'.
+    pub(super) fn assess(&mut self, root: Vec<f64>) -> Finding {
         let known = self.assessed.iter().find(|(z, _)| same_root(z, &root));
         let verdict = match known {
             Some((_, v)) => v.clone(),
             None => {
                 let _timed = profile::enter(Part::Eigen);
+                let balances = self.solver.as_mut().expect("made by newton_root");
                 let v = balances.verdict(&root);
                 self.assessed.push((root.clone(), v.clone()));
                 v
             }
         };
-        Ok(Finding {
+        Finding {
             z: root,
             verdict,
             turned_from: None,
-        })
+        }
     }
 
     /// Why a run stopped at `z` did not finish: what Newton from `z` finds

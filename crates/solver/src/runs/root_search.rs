@@ -281,8 +281,13 @@ impl NewtonFinish {
             return Decision::Continue;
         }
         self.next_disk_try = t + (0.25 * t).max(10.0);
-        match self.root_near(z) {
-            Ok(f) if unoriented(&f.z) && f.stable() => {
+        match self.newton_root(z) {
+            // The disk: its verdict (another root's is not needed here).
+            Ok(root) if unoriented(&root) => {
+                let f = self.assess(root);
+                if !f.stable() {
+                    return Decision::Continue;
+                }
                 if invariant_distance(z, &f.z) <= self.settled_within(&f, change) {
                     return Decision::End(Ending::Newton, f.z);
                 }
