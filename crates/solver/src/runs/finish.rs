@@ -7,7 +7,9 @@
 //! [`TRIGGER_FACTOR`] times the steady tolerance (the run is near a fixed point or creeping
 //! along a slow mode), and whenever the paper's test fires; after a try that did not end the
 //! run, not again for `max(10, t / 4)` time units (a saddle's neighbourhood, where runs slow
-//! down too, is not retried every window).
+//! down too, is not retried every window). A run with more than two shape modes, whose own
+//! trigger is ten times stricter, is tried for the resting disk alone from the 2-mode runs'
+//! trigger on ([`DISK_FACTOR`], [`NewtonFinish::try_disk`]).
 //!
 //! When it ends the run: Newton on all four unknowns `(vx, vy, a2, b2)` from the current state
 //! converges to a root `z*` whose eigenvalues all have negative real parts (the rotation mode
