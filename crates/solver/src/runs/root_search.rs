@@ -268,7 +268,9 @@ impl NewtonFinish {
     /// ([`Self::flow_root`]) takes it there from the disk not yet settled on or from no root
     /// at all (a run passing a saddle-node's ghost). A try that does not end the run changes
     /// none of the finish's other decisions (its tries and their clock, the turns, the
-    /// sightings); it is repeated after `max(10, t / 4)`, unless its landing found the slow
+    /// sightings; the Jacobian it keeps may start a later solve, which then ends on the same
+    /// root to Newton's tolerance: 1.9e-9 in `v` in the map's sample); it is repeated after
+    /// `max(10, t / 4)`, unless its landing found the slow
     /// flow going elsewhere: a landing costs tens of Newton solves, and the run has no more
     /// such tries. Runs near the onset of motion creep onto the disk at rates below 1e-3 for
     /// a long time: (0.077, 0.1405), modes 2..4, from i ended at t = 1767 by its own trigger,
