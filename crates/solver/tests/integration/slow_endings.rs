@@ -2,9 +2,28 @@
 //! or the run stepped all the way: a turn to a root short of the next mirror line, a slow
 //! approach to the resting disk, a departure leapt, a saddle the run cannot leave.
 use crate::modes::{committed, orientation_deg, same_end};
-use droplet_solver::contract::{outcome::RunStatus, settings::SolverSettings};
+use droplet_solver::contract::ending::{Ending, SteadyMethod};
+use droplet_solver::contract::outcome::{RunOutcome, RunStatus};
+use droplet_solver::contract::settings::SolverSettings;
 use droplet_solver::model::{classify::StateClass, initial::InitialCondition, params::ModelParams};
 use droplet_solver::runs::driver::simulate;
+
+/// The defaults with shape modes 2..4 at N = 96, the grid of these tests.
+fn four_modes() -> SolverSettings {
+    SolverSettings {
+        n: 96,
+        modes: 4,
+        ..SolverSettings::default()
+    }
+}
+
+/// Asserts that `out` ended steady on the resting disk by the landing before `t_below`.
+fn assert_landed_on_the_disk(out: &RunOutcome, t_below: f64) {
+    assert_eq!(out.status, RunStatus::Steady, "{out:?}");
+    assert_eq!(out.class, Some(StateClass::IC), "{out:?}");
+    assert_eq!(out.ended_by, Some(Ending::Landing), "{out:?}");
+    assert!(out.t_end < t_below && out.v == 0.0, "{out:?}");
+}
 
 #[test]
 fn a_four_mode_run_turning_towards_a_root_short_of_the_next_line_ends_there_early() {
@@ -16,11 +35,7 @@ fn a_four_mode_run_turning_towards_a_root_short_of_the_next_line_ends_there_earl
     // image (numerics modes-10), and the run ends within a few hundred time units.
     let pure = committed("pure-tails-k4-n96");
     assert_eq!(pure.len(), 2);
-    let settings = SolverSettings {
-        n: 96,
-        modes: 4,
-        ..SolverSettings::default()
-    };
+    let settings = four_modes();
     for end in &pure {
         assert!(end.orientation_deg > 37.0 && end.orientation_deg < 40.0);
         let p = ModelParams::at(end.eta_t, end.kappa2);
@@ -40,21 +55,10 @@ fn a_four_mode_run_slowing_onto_the_resting_disk_lands_there() {
     let out = simulate(
         &ModelParams::at(0.0765, 0.16425),
         &InitialCondition::parse("i").unwrap(),
-        &SolverSettings {
-            n: 96,
-            modes: 4,
-            ..SolverSettings::default()
-        },
+        &four_modes(),
     )
     .unwrap();
-    assert_eq!(out.status, RunStatus::Steady, "{out:?}");
-    assert_eq!(out.class, Some(StateClass::IC), "{out:?}");
-    assert_eq!(
-        out.ended_by,
-        Some(droplet_solver::contract::ending::Ending::Landing),
-        "{out:?}"
-    );
-    assert!(out.t_end < 1000.0, "{out:?}");
+    assert_landed_on_the_disk(&out, 1000.0);
     let [a3, a4, b3, b4] = out.higher_modes[..] else {
         panic!("{out:?}")
     };
@@ -70,30 +74,19 @@ fn a_four_mode_run_past_the_md_fold_lands_on_the_disk_long_before_its_own_trigge
     // Modes 2..4 at N = 96, (0.07875, 0.12775) from ii, just past the MD fold: the run moves
     // on along the ghost of the fold, slowing down for hundreds of time units, and comes to
     // rest on the disk. Its rates fall below the 2-mode runs' trigger long before its own;
-    // there Newton finds no root and the landing's slow flow takes it to the disk (numerics
-    // modes-11; before, it crept to the Newton finish at t = 647). Pure time stepping ends
-    // on the same disk.
+    // there the disk's try hands it to the landing, whose slow flow takes it to the disk
+    // (numerics modes-11; before, it crept to the Newton finish at t = 647). Pure time
+    // stepping ends on the same disk.
     let p = ModelParams::at(0.07875, 0.12775);
     let ic = InitialCondition::parse("ii").unwrap();
-    let defaults = SolverSettings {
-        n: 96,
-        modes: 4,
-        ..SolverSettings::default()
-    };
+    let defaults = four_modes();
     let out = simulate(&p, &ic, &defaults).unwrap();
-    assert_eq!(out.status, RunStatus::Steady, "{out:?}");
-    assert_eq!(out.class, Some(StateClass::IC), "{out:?}");
-    assert_eq!(
-        out.ended_by,
-        Some(droplet_solver::contract::ending::Ending::Landing),
-        "{out:?}"
-    );
-    assert!(out.t_end < 200.0 && out.v == 0.0, "{out:?}");
+    assert_landed_on_the_disk(&out, 200.0);
     let pure = simulate(
         &p,
         &ic,
         &SolverSettings {
-            steady: droplet_solver::contract::ending::SteadyMethod::Test,
+            steady: SteadyMethod::Test,
             steady_tol: 1e-9,
             t_max: 20_000.0,
             ..defaults
@@ -118,11 +111,9 @@ fn a_four_mode_run_leaps_along_a_departure_and_ends_where_stepping_does() {
     let p = ModelParams::at(0.07625, 0.14);
     let ic = InitialCondition::parse("iii").unwrap();
     let stepped = SolverSettings {
-        n: 96,
-        modes: 4,
         t_max: 4000.0,
         landing: false,
-        ..SolverSettings::default()
+        ..four_modes()
     };
     let leapt = SolverSettings {
         leap_departures: true,
@@ -154,11 +145,9 @@ fn a_four_mode_run_beside_a_saddle_it_cannot_leave_stops_there() {
     let p = ModelParams::at(0.08725, 0.115);
     let ic = InitialCondition::parse("iv").unwrap();
     let waited = SolverSettings {
-        n: 96,
-        modes: 4,
         landing: false,
         run_on: false,
-        ..SolverSettings::default()
+        ..four_modes()
     };
     let stopped = SolverSettings {
         stop_beside_saddle: true,
