@@ -161,7 +161,17 @@ impl Tracer<'_> {
                     // The count changed because the rotation mode passed the largest rate the
                     // verdict sets aside as rotation: no eigenvalue crosses zero, the switch is
                     // located where it happens.
-                    let rotation = verdict.rotation.or(va.rotation).or(vb.rotation);
+                    // Located to round-off, the point may lie just past the limit, where the
+                    // verdict no longer sets the mode aside: its rate is then the real
+                    // eigenvalue nearest the limit (not the rate at either end of the step).
+                    let past = |l: f64| (l.abs() - ROTATION_MAX).abs();
+                    let nearest = verdict
+                        .eigenvalues
+                        .iter()
+                        .filter(|[_, im]| *im == 0.0)
+                        .map(|[re, _]| *re)
+                        .min_by(|a, b| past(*a).total_cmp(&past(*b)));
+                    let rotation = verdict.rotation.or(nearest).or(va.rotation).or(vb.rotation);
                     (
                         "R",
                         format!(

@@ -25,7 +25,7 @@ use crate::model::classify::CLASS_THRESHOLD;
 use crate::model::mirror::MirrorLine;
 use crate::numerics::newton::{fd_jacobian, NewtonOptions};
 use crate::roots::balances::Balances;
-use crate::roots::linearisation::{Linearization, TwoModeLinearization};
+use crate::roots::linearisation::Linearization;
 use crate::roots::named_state::{id_state, rest_shape};
 use crate::roots::steady_solver::{SteadySolver, TwoModeSolver};
 use crate::roots::thresholds::{drift_threshold, id_onset};
@@ -180,7 +180,8 @@ fn two_mode_mc_line(
         guess = [v, eta];
         solver.set_control(eta, k);
         let z = [v, 0.0, c, 0.0];
-        if !crate::roots::verdict::assess(&TwoModeLinearization::at(&mut solver, z), &z).stable() {
+        if !crate::roots::verdict::assess(&Linearization::of_two_modes(&mut solver, z), &z).stable()
+        {
             break;
         }
         pts.push((eta, k));

@@ -33,7 +33,7 @@ use crate::model::classify::CLASS_THRESHOLD;
 use crate::model::mirror::MirrorLine;
 use crate::model::params::ModelParams;
 use crate::reduced::boundaries::Boundary;
-use crate::roots::linearisation::TwoModeLinearization;
+use crate::roots::linearisation::Linearization;
 use crate::roots::steady_solver::TwoModeSolver;
 use crate::roots::thresholds::id_onset;
 use crate::roots::verdict::assess;
@@ -122,7 +122,7 @@ fn disk_onsets(w: &PlaneWindow) -> Result<Vec<Boundary>, SolverError> {
             let [r, s, l] = geometry(&p);
             // eta_c, kappa_c (diagonal), kappa_c (axis).
             let th = memo.get([r, s, l, 0.0], || {
-                let j0 = TwoModeLinearization::at(&mut solver, [0.0; 4]).jacobian0();
+                let j0 = Linearization::of_two_modes(&mut solver, [0.0; 4]).jacobian0();
                 [j0[0][0] + p.eta_t, j0[3][3] + p.kappa2, j0[2][2] + p.kappa2]
             });
             match i {
@@ -236,7 +236,7 @@ fn mc_curve(w: &PlaneWindow, (v, x, y): (f64, f64, f64)) -> Result<Vec<(f64, f64
     let mut stable = |u: &[f64]| {
         w.place(&mut check, u[1], u[2]) && {
             let z = [u[0], 0.0, c, 0.0];
-            assess(&TwoModeLinearization::at(&mut check, z), &z).stable()
+            assess(&Linearization::of_two_modes(&mut check, z), &z).stable()
         }
     };
     let inside =

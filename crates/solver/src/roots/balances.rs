@@ -15,7 +15,6 @@ use crate::model::state::{four, turned};
 use crate::numerics::newton::NewtonOptions;
 use crate::roots::kept_jacobians::KeptJacobians;
 use crate::roots::linearisation::Linearization;
-use crate::roots::linearisation::TwoModeLinearization;
 use crate::roots::steady_solver::SteadySolver;
 use crate::roots::steady_solver::{on_x_axis, TwoModeSolver};
 use crate::roots::verdict::{assess, Verdict};
@@ -81,7 +80,7 @@ impl Balances {
     /// The stability of the root `z` ([`crate::roots::verdict::assess`]).
     pub fn verdict(&mut self, z: &[f64]) -> Verdict {
         match self {
-            Balances::Two(solver) => assess(&TwoModeLinearization::at(solver, four(z)), z),
+            Balances::Two(solver) => assess(&Linearization::of_two_modes(solver, four(z)), z),
             Balances::General { solver, .. } => Linearization::at(solver, z).verdict(),
         }
     }

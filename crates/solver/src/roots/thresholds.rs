@@ -12,7 +12,7 @@ use crate::error::SolverError;
 use crate::model::mirror::MirrorLine;
 use crate::model::params::ModelParams;
 use crate::numerics::newton;
-use crate::roots::linearisation::TwoModeLinearization;
+use crate::roots::linearisation::Linearization;
 use crate::roots::steady_solver::SteadySolver;
 use crate::roots::steady_solver::TwoModeSolver;
 use serde::Serialize;
@@ -58,7 +58,7 @@ pub fn ic_thresholds(
 /// `lambda = 0` Jacobian (the fast path of [`ic_thresholds`]).
 pub fn two_mode_thresholds(solver: &mut TwoModeSolver) -> IcThresholds {
     let params = *solver.params();
-    let j0 = TwoModeLinearization::at(solver, [0.0; 4]).jacobian0();
+    let j0 = Linearization::of_two_modes(solver, [0.0; 4]).jacobian0();
     let (a2, b2) = (j0[2][2] + params.kappa2, j0[3][3] + params.kappa2);
     IcThresholds {
         eta_t: j0[0][0] + params.eta_t,
@@ -176,7 +176,7 @@ pub fn id_onset(
         return None;
     }
     let z = mirror.two_mode_state(0.0, st.a2);
-    let j = TwoModeLinearization::at(solver, z).jacobian0();
+    let j = Linearization::of_two_modes(solver, z).jacobian0();
     let k = [[j[0][0] + eta_t, j[0][1]], [j[1][0], j[1][1] + eta_t]];
     Some((top_eigenvalue(k), st.a2))
 }

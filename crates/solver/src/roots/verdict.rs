@@ -66,9 +66,9 @@ impl Verdict {
     }
 }
 
-/// A linearisation a verdict reads: its eigenvalues and the mode of each (the 2-mode
-/// `4 x 4` problem, [`crate::roots::linearisation::TwoModeLinearization`], or the general `2K x 2K`
-/// one with shape modes `2..K`, [`crate::roots::linearisation::Linearization`]).
+/// A linearisation a verdict reads: its eigenvalues and the mode of each (the `2K x 2K`
+/// problem of [`crate::roots::linearisation::Linearization`], made for any `K`; the verdict
+/// reads it through this trait, so that it does not depend on how they are computed).
 pub trait Spectrum {
     /// Eigenvalues with `Re > -1`, decreasing real part.
     fn eigenvalues(&self) -> Vec<Complex64>;
@@ -127,7 +127,7 @@ pub fn assess(lin: &impl Spectrum, z: &[f64]) -> Verdict {
 mod tests {
     use super::*;
     use crate::model::params::ModelParams;
-    use crate::roots::linearisation::TwoModeLinearization;
+    use crate::roots::linearisation::Linearization;
     use crate::roots::steady_solver::TwoModeSolver;
 
     #[test]
@@ -138,7 +138,7 @@ mod tests {
         let mut s = TwoModeSolver::new(p, 192).unwrap();
         let st = s.newton(0.59, -0.27, 1e-12).unwrap();
         let z = [st.v, 0.0, st.a2, 0.0];
-        let v = assess(&TwoModeLinearization::at(&mut s, z), &z);
+        let v = assess(&Linearization::of_two_modes(&mut s, z), &z);
         assert!((v.rotation.unwrap() + 0.008436).abs() < 2e-6, "{v:?}");
         assert!((v.max_re + 0.052054).abs() < 2e-6, "{v:?}");
         assert!(v.stable());
@@ -147,16 +147,16 @@ mod tests {
         let mut s = TwoModeSolver::new(p, 192).unwrap();
         let st = s.newton(0.43, -0.03, 1e-12).unwrap();
         let z = [st.v, 0.0, st.a2, 0.0];
-        let v = assess(&TwoModeLinearization::at(&mut s, z), &z);
+        let v = assess(&Linearization::of_two_modes(&mut s, z), &z);
         assert!((v.rotation.unwrap() - 0.000340).abs() < 2e-6, "{v:?}");
         assert!(v.stable() && v.max_re < 0.0, "{v:?}");
         // The resting disk has no rotation mode: its drift pair decides (unstable below the
         // onset of motion, eta_t = 0.07648).
         let z = [0.0; 4];
-        let v = assess(&TwoModeLinearization::at(&mut s, z), &z);
+        let v = assess(&Linearization::of_two_modes(&mut s, z), &z);
         assert!(v.rotation.is_none() && v.unstable == 2, "{v:?}");
         let mut s = TwoModeSolver::new(ModelParams::at(0.085, 0.13), 192).unwrap();
-        let v = assess(&TwoModeLinearization::at(&mut s, z), &z);
+        let v = assess(&Linearization::of_two_modes(&mut s, z), &z);
         assert!(v.rotation.is_none() && v.stable(), "{v:?}");
     }
 }

@@ -1,116 +1,16 @@
-//! Linear stability of a steady state of the model with shape modes `2..K`, field included:
-//! the construction of [`crate::roots::linearisation`] for the state
-//! `z = (vx, vy, a_2..a_K, b_2..b_K)` (`2K` unknowns). In the co-moving frame
-//!
-//! `du_t = D du + B dz`,  `M dz_t = E dz + C du`,  `M = diag(m, m, eta_k.., eta_k..)`
-//! (`eta_k` of [`SteadySolver::eta`]: `eta2` for every mode unless a friction law is set),
-//!
-//! with `D = -(1 + k^2) + i k.v`, `B`'s columns `i k_x u0`, `i k_y u0` and the shape
-//! derivatives of the source `Theta / A`, `C du` the forces of a field at the frozen shape and
-//! `E` the rest (`-eta_t`, `-kappa_k`, and the shape derivatives of the forces at the frozen
-//! field). Every eigenvalue with `Re lambda > -1` solves `det T(lambda) = 0`,
-//! `T(lambda) = lambda M - E - C (lambda - D)^(-1) B`, a `2K x 2K` matrix of single sums over
-//! the modes. The roots are found by Newton on `det T` divided by the roots already found
-//! (its logarithmic derivative `tr(T^(-1) T')`, exact), started from the eigenvalues of the
-//! `lambda = 0` problem `M^(-1) (E + C (-D)^(-1) B)`.
-//!
-//! The sums run over every stored mode (`N (N/2 + 1)`, 18 624 at N = 192), for each of the
-//! some hundred `lambda` Newton visits. Only the slow modes need it: where `|d_k| >=`
-//! [`FAR`], `1 / (lambda - d_k) = -Sum_p lambda^p / d_k^(p+1)`, so the fast modes' part of
-//! the sums is `-Sum_p lambda^p M_p` with the moments `M_p = Sum_far c_k b_k^T / d_k^(p+1)`,
-//! made once per state ([`FarField`]); for `|lambda| <=` [`SERIES_RADIUS`] the first
-//! [`TERMS`] of them leave `(SERIES_RADIUS / FAR)^TERMS = 4e-15` of each fast mode's term. The
-//! slow modes (a few hundred at every N) are summed as they are.
+//! The construction of a [`Linearization`] ([`crate::roots::linearisation`]) for a droplet of
+//! any shape, `z = (vx, vy, a_2..a_K, b_2..b_K)` (`2K` unknowns), from the general steady
+//! solver: `M = diag(m, m, eta_k.., eta_k..)` (`eta_k` of [`SteadySolver::eta`]: `eta2` for
+//! every mode unless a friction law is set), `B`'s shape columns and `E`'s shape derivatives
+//! by central differences of the sampled droplet, and the forces' functionals `C` by the
+//! adjoint of the quadrature's inverse transform ([`force_functionals`]).
+use super::{Linearization, SHAPE_STEP};
 use crate::model::forces::quadrature::fill_operator;
 use crate::model::modes::Modes;
 use crate::roots::steady_solver::SteadySolver;
-use crate::roots::verdict::{assess, Spectrum, Verdict};
-use nalgebra::DMatrix;
 use rustfft::num_complex::Complex64;
 
 type C64 = Complex64;
-
-/// Step of the central differences in the shape.
-const SHAPE_STEP: f64 = 1e-6;
-
-/// Smallest `|d_k|` of a mode whose part of the response is taken from the moments.
-pub const FAR: f64 = 256.0;
-
-/// Largest `|lambda|` at which the response is summed with the moments (else every mode is
-/// summed as it is).
-pub const SERIES_RADIUS: f64 = 4.0;
-
-/// Moments kept: `(SERIES_RADIUS / FAR)^TERMS = 3.5e-15`.
-pub const TERMS: usize = 8;
-
-/// The fast modes' part of the response, as moments ([`Linearization`]'s module notes).
-struct FarField {
-    /// The stored modes with `|d_k| <` [`FAR`].
-    near: Vec<usize>,
-    /// `M_p[j][i] = Sum_far c_ik b_jk / d_k^(p+1)` for `p < TERMS`.
-    moments: Vec<Vec<Vec<C64>>>,
-}
-
-impl FarField {
-    /// The moments of the modes with `|d_k| >= far`.
-    fn new(d: &[C64], b: &[Vec<C64>], c: &[C64], far: f64) -> Self {
-        let dim = b.len();
-        let zero = C64::default();
-        let mut moments = vec![vec![vec![zero; dim]; dim]; TERMS];
-        let mut near = Vec::new();
-        for (k, d) in d.iter().enumerate() {
-            if d.norm() < far {
-                near.push(k);
-                continue;
-            }
-            let w = d.inv();
-            let ck = &c[k * dim..(k + 1) * dim];
-            for (j, b) in b.iter().enumerate() {
-                let mut t = b[k] * w;
-                for m in moments.iter_mut() {
-                    for (acc, c) in m[j].iter_mut().zip(ck) {
-                        *acc += t * c;
-                    }
-                    t *= w;
-                }
-            }
-        }
-        Self { near, moments }
-    }
-
-    /// `-Sum_p l^p M_p[j]` and, with `slope`, `-Sum_p p l^(p-1) M_p[j]`, added to `s` and `ds`.
-    fn add(&self, j: usize, l: C64, s: &mut [C64], ds: Option<&mut [C64]>) {
-        let mut power = C64::new(1.0, 0.0);
-        for m in &self.moments {
-            for (s, m) in s.iter_mut().zip(&m[j]) {
-                *s -= power * m;
-            }
-            power *= l;
-        }
-        if let Some(ds) = ds {
-            let mut power = C64::new(1.0, 0.0);
-            for (p, m) in self.moments.iter().enumerate().skip(1) {
-                for (s, m) in ds.iter_mut().zip(&m[j]) {
-                    *s -= power * m * p as f64;
-                }
-                power *= l;
-            }
-        }
-    }
-}
-
-/// The linearisation of one `K`-mode state.
-pub struct Linearization {
-    z0: Vec<f64>,
-    d: Vec<C64>,
-    b: Vec<Vec<C64>>,
-    e: Vec<Vec<f64>>,
-    m: Vec<f64>,
-    /// The forces on the frozen shape as functionals of a field's half spectrum
-    /// ([`force_functionals`]), `[k][i]`: `dim` values per stored mode.
-    c: Vec<C64>,
-    far: FarField,
-}
 
 impl Linearization {
     /// Linearises `solver`'s model about `z0 = (vx, vy, a_2..a_K, b_2..b_K)` (a root of the
@@ -173,176 +73,7 @@ impl Linearization {
         let mut m = vec![p.mass, p.mass];
         m.extend((2..=k_max).chain(2..=k_max).map(|k| solver.eta(k)));
         let c = force_functionals(solver, &m0);
-        let far = FarField::new(&d, &b, &c, FAR);
-        Self {
-            z0: z0.to_vec(),
-            d,
-            b,
-            e,
-            m,
-            c,
-            far,
-        }
-    }
-
-    /// `C (lambda - D)^(-1) B`: the forces of the response fields. The field `(lambda - D)^(-1)
-    /// b` of a real perturbation is not real; its real and imaginary parts are the half
-    /// spectra `(g1 + g2) b / 2` and `-i (g1 - g2) b / 2` (`g1 = (lambda - d)^(-1)`,
-    /// `g2 = (conj lambda - d)^(-1)`), and with the forces' functionals `c` this is
-    /// `(S(lambda) + conj S(conj lambda)) / 2`, `S_ij(l) = Sum_k c_ik b_jk / (l - d_k)`: one
-    /// pass over the spectrum per column, no transform.
-    /// With `slope`, its derivative in `lambda` too, `-C (lambda - D)^(-2) B` (the same
-    /// reflection: `(S'(lambda) + conj S'(conj lambda)) / 2`).
-    /// With `lambda` within [`SERIES_RADIUS`], the fast modes' part comes from the moments
-    /// ([`FarField`]).
-    fn response(&self, lambda: C64, slope: bool) -> (Vec<Vec<C64>>, Vec<Vec<C64>>) {
-        let dim = self.z0.len();
-        let zero = C64::default();
-        let series = lambda.norm() <= SERIES_RADIUS;
-        let all: Vec<usize>;
-        let modes = if series {
-            &self.far.near
-        } else {
-            all = (0..self.d.len()).collect();
-            &all
-        };
-        let g: Vec<(C64, C64)> = modes
-            .iter()
-            .map(|&k| {
-                (
-                    (lambda - self.d[k]).inv(),
-                    (lambda.conj() - self.d[k]).inv(),
-                )
-            })
-            .collect();
-        let mut r = vec![vec![zero; dim]; dim];
-        let mut dr = vec![vec![zero; if slope { dim } else { 0 }]; dim];
-        let mut acc = vec![zero; 4 * dim];
-        for (j, b) in self.b.iter().enumerate() {
-            acc.fill(zero);
-            let (pq, dpq) = acc.split_at_mut(2 * dim);
-            let (p, q) = pq.split_at_mut(dim);
-            let (dp, dq) = dpq.split_at_mut(dim);
-            if series {
-                self.far.add(j, lambda, p, slope.then_some(&mut *dp));
-                self.far.add(j, lambda.conj(), q, slope.then_some(&mut *dq));
-            }
-            for ((g1, g2), &k) in g.iter().zip(modes) {
-                let (b, c) = (&b[k], &self.c[k * dim..(k + 1) * dim]);
-                let (t1, t2) = (g1 * b, g2 * b);
-                for ((p, q), c) in p.iter_mut().zip(q.iter_mut()).zip(c) {
-                    *p += t1 * c;
-                    *q += t2 * c;
-                }
-                if slope {
-                    let (u1, u2) = (t1 * g1, t2 * g2);
-                    for ((p, q), c) in dp.iter_mut().zip(dq.iter_mut()).zip(c) {
-                        *p -= u1 * c;
-                        *q -= u2 * c;
-                    }
-                }
-            }
-            for i in 0..dim {
-                r[i][j] = 0.5 * (p[i] + q[i].conj());
-                if slope {
-                    dr[i][j] = 0.5 * (dp[i] + dq[i].conj());
-                }
-            }
-        }
-        (r, dr)
-    }
-
-    /// `T(lambda) = lambda M - E - C (lambda - D)^(-1) B`.
-    pub fn t_matrix(&self, lambda: C64) -> DMatrix<C64> {
-        self.t_and_slope(lambda, false).0
-    }
-
-    /// `T(lambda)` and, with `slope`, `T'(lambda) = M + C (lambda - D)^(-2) B` (else empty).
-    fn t_and_slope(&self, lambda: C64, slope: bool) -> (DMatrix<C64>, DMatrix<C64>) {
-        let (r, dr) = self.response(lambda, slope);
-        let dim = self.z0.len();
-        let diag = |i: usize, j: usize, x: C64| {
-            if i == j {
-                x * self.m[i]
-            } else {
-                C64::default()
-            }
-        };
-        let t = DMatrix::from_fn(dim, dim, |i, j| diag(i, j, lambda) - self.e[i][j] - r[i][j]);
-        let dt = match slope {
-            true => DMatrix::from_fn(dim, dim, |i, j| diag(i, j, C64::new(1.0, 0.0)) - dr[i][j]),
-            false => DMatrix::zeros(0, 0),
-        };
-        (t, dt)
-    }
-
-    /// `-T(0)`: the Jacobian of the steady force balance with the steady field following `z`.
-    pub fn jacobian0(&self) -> Vec<Vec<f64>> {
-        let t = self.t_matrix(C64::default());
-        let dim = self.z0.len();
-        (0..dim)
-            .map(|i| (0..dim).map(|j| -t[(i, j)].re).collect())
-            .collect()
-    }
-
-    /// The eigenvalues with `Re lambda > -1`, sorted by decreasing real part; one `NaN` when
-    /// the state or its response is not finite (counted as growing by [`Self::verdict`]).
-    pub fn eigenvalues(&self) -> Vec<C64> {
-        let dim = self.z0.len();
-        let (r0, _) = self.response(C64::default(), false);
-        let k0 = DMatrix::from_fn(dim, dim, |i, j| (self.e[i][j] + r0[i][j].re) / self.m[i]);
-        let Some(guesses) = crate::numerics::eigen::complex_eigenvalues(&k0) else {
-            return vec![C64::new(f64::NAN, 0.0)];
-        };
-        // `(det T)' / det T = tr(T^(-1) T')`; `None` where `T` is singular (a root).
-        let log_slope = |l: C64| {
-            let (t, dt) = self.t_and_slope(l, true);
-            t.lu().solve(&dt).map(|x| x.trace())
-        };
-        let mut found: Vec<C64> = Vec::new();
-        for guess in guesses.iter().chain(&guesses) {
-            if found.len() == dim {
-                break;
-            }
-            let mut lambda = C64::new(guess.re.max(-0.99), guess.im);
-            let mut converged = false;
-            // Iterations in a row that Newton pushed out to `Re lambda <= -1`, where no root
-            // is sought: after three the guess is given up (its root lies there).
-            let mut pushed_out = 0;
-            for _ in 0..60 {
-                let Some(slope) = log_slope(lambda) else {
-                    converged = true;
-                    break;
-                };
-                let log_d = slope - found.iter().map(|r| (lambda - r).inv()).sum::<C64>();
-                let mut step = log_d.inv();
-                if !step.is_finite() {
-                    break;
-                }
-                if step.norm() > 0.2 {
-                    step *= 0.2 / step.norm();
-                }
-                lambda -= step;
-                if lambda.re < -0.999 {
-                    lambda.re = -0.999;
-                    pushed_out += 1;
-                    if pushed_out == 3 {
-                        break;
-                    }
-                } else {
-                    pushed_out = 0;
-                }
-                if step.norm() < 1e-11 {
-                    converged = true;
-                    break;
-                }
-            }
-            if converged && lambda.re > -0.999 {
-                found.push(super::real_if_round_off(lambda));
-            }
-        }
-        found.sort_by(|a, b| b.re.total_cmp(&a.re));
-        found
+        Self::of_parts(z0.to_vec(), d, b, e, m, c)
     }
 }
 
@@ -400,51 +131,17 @@ fn force_functionals(solver: &mut SteadySolver, m: &Modes) -> Vec<C64> {
     c
 }
 
-impl Linearization {
-    /// The unit null vector of `T(lambda)` (its smallest singular vector).
-    pub fn mode(&self, lambda: C64) -> Vec<C64> {
-        let t = self.t_matrix(lambda);
-        let svd = t.svd(false, true);
-        let v_t = svd.v_t.expect("asked for");
-        let (i, _) = svd
-            .singular_values
-            .iter()
-            .enumerate()
-            .min_by(|a, b| a.1.total_cmp(b.1))
-            .expect("a singular value");
-        v_t.row(i).iter().map(|c| c.conj()).collect()
-    }
-
-    /// The verdict ([`assess`]): the rotation mode told apart by its shape, the others decide.
-    pub fn verdict(&self) -> Verdict {
-        assess(self, &self.z0)
-    }
-}
-
-impl Spectrum for Linearization {
-    fn eigenvalues(&self) -> Vec<C64> {
-        Linearization::eigenvalues(self)
-    }
-
-    fn mode(&self, lambda: C64) -> Vec<C64> {
-        Linearization::mode(self, lambda)
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::model::params::ModelParams;
     use crate::numerics::newton::fd_jacobian;
-    use crate::roots::linearisation::TwoModeLinearization;
     use crate::roots::steady_solver::TwoModeSolver;
 
-    /// At the Fig. 1c point and grid size `n`: the 2-mode solver, the K-mode one and the
-    /// 2-mode MD state `(v, 0, a2, 0)` (which both describe).
     impl Linearization {
         /// The same linearisation with every mode summed as it is (no moments).
         fn summing_every_mode(mut self) -> Self {
-            self.far = FarField::new(&self.d, &self.b, &self.c, f64::INFINITY);
+            self.far_from = f64::INFINITY;
             self
         }
     }
@@ -452,18 +149,16 @@ mod tests {
     #[test]
     fn the_fast_modes_moments_give_the_full_sums() {
         // Modes 2..4, the x-axis MD at (0.085, 0.112), N = 96 (4704 stored modes, 1280 of
-        // them slow): T(lambda) and T'(lambda) with the moments against every mode summed,
-        // inside the series' radius and at its edge; the eigenvalues both ways.
+        // them slow): T(lambda), T'(lambda) and T''(lambda) with the moments against every
+        // mode summed, inside the series' radius and at its edge; the eigenvalues both ways.
         let p = ModelParams::at(0.085, 0.112);
         let mut solver = SteadySolver::new(p, 96).unwrap();
         let st = crate::roots::named_state::md_state(&mut solver, 4).unwrap();
         let z = [st.v, 0.0, st.a[0], st.a[1], st.a[2], 0.0, 0.0, 0.0];
         let fast = Linearization::at(&mut solver, &z);
-        assert!(
-            fast.far.near.len() < fast.d.len() / 3,
-            "{}",
-            fast.far.near.len()
-        );
+        fast.t_matrix(C64::default());
+        let near = fast.far.get().expect("made by the response").near.len();
+        assert!(near < fast.d.len() / 3, "{near}");
         let full = Linearization::at(&mut solver, &z).summing_every_mode();
         for l in [
             C64::new(0.0, 0.0),
@@ -471,11 +166,12 @@ mod tests {
             C64::new(0.01, -0.5),
             C64::new(-2.8, 2.8),
         ] {
-            let (t, dt) = fast.t_and_slope(l, true);
-            let (u, du) = full.t_and_slope(l, true);
-            let scale = u.iter().fold(0.0f64, |m, x| m.max(x.norm()));
-            assert!((t - &u).iter().all(|x| x.norm() < 1e-13 * scale), "{l}");
-            assert!((dt - du).iter().all(|x| x.norm() < 1e-13 * scale), "{l}");
+            let t = fast.t_derivatives(l, 2, false);
+            let u = full.t_derivatives(l, 2, false);
+            let scale = u[0].iter().fold(0.0f64, |m, x| m.max(x.norm()));
+            for (t, u) in t.iter().zip(&u) {
+                assert!((t - u).iter().all(|x| x.norm() < 1e-13 * scale), "{l}");
+            }
         }
         let (a, b) = (fast.eigenvalues(), full.eigenvalues());
         assert_eq!(a.len(), b.len(), "{a:?} {b:?}");
@@ -484,6 +180,8 @@ mod tests {
         }
     }
 
+    /// At the Fig. 1c point and grid size `n`: the 2-mode solver, the K-mode one and the
+    /// 2-mode MD state `(v, 0, a2, 0)` (which both describe).
     fn fig1c_two_mode_md(n: usize) -> (TwoModeSolver, SteadySolver, [f64; 4]) {
         let p = ModelParams::at(0.085, 0.112);
         let mut two = TwoModeSolver::new(p, n).unwrap();
@@ -498,7 +196,7 @@ mod tests {
     #[test]
     fn with_two_modes_the_eigenvalues_are_the_two_mode_ones() {
         let (mut two, mut solver, z) = fig1c_two_mode_md(64);
-        let want = TwoModeLinearization::at(&mut two, z).eigenvalues();
+        let want = Linearization::of_two_modes(&mut two, z).eigenvalues();
         let lin = Linearization::at(&mut solver, &z);
         let got = lin.eigenvalues();
         assert_eq!(got.len(), want.len(), "{got:?} vs {want:?}");
@@ -592,7 +290,7 @@ mod tests {
     #[test]
     fn the_verdict_finds_the_rotation_mode_and_agrees_with_two_modes() {
         let (mut two, mut solver, z) = fig1c_two_mode_md(96);
-        let want = crate::roots::verdict::assess(&TwoModeLinearization::at(&mut two, z), &z);
+        let want = crate::roots::verdict::assess(&Linearization::of_two_modes(&mut two, z), &z);
         let got = Linearization::at(&mut solver, &z).verdict();
         assert_eq!(got.stable(), want.stable(), "{got:?} {want:?}");
         match (got.rotation, want.rotation) {
