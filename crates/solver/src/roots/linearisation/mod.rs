@@ -129,7 +129,9 @@ impl Linearization {
             })
             .collect();
         let mut out = vec![vec![vec![zero; dim]; dim]; order + 1];
-        // `p[o]`: S^(o)(lambda), `q[o]`: S^(o)(conj lambda), for one column.
+        // `p[o]`: S^(o)(lambda), `q[o]`: S^(o)(conj lambda), for one column. At a real
+        // `lambda` the two are one sum, made once.
+        let real = lambda.im == 0.0;
         let mut p = vec![vec![zero; dim]; order + 1];
         let mut q = vec![vec![zero; dim]; order + 1];
         for (j, b) in self.b.iter().enumerate() {
@@ -137,21 +139,32 @@ impl Linearization {
             if let Some(far) = far {
                 let mut ps: Vec<&mut [C64]> = p.iter_mut().map(|s| s.as_mut_slice()).collect();
                 far.add(j, lambda, order, &mut ps);
-                let mut qs: Vec<&mut [C64]> = q.iter_mut().map(|s| s.as_mut_slice()).collect();
-                far.add(j, lambda.conj(), order, &mut qs);
+                if !real {
+                    let mut qs: Vec<&mut [C64]> = q.iter_mut().map(|s| s.as_mut_slice()).collect();
+                    far.add(j, lambda.conj(), order, &mut qs);
+                }
             }
             for ((g1, g2), &k) in g.iter().zip(modes) {
                 let (b, c) = (&b[k], &self.c[k * dim..(k + 1) * dim]);
                 // The o-th derivative of 1 / (l - d) is (-1)^o o! g^(o+1).
                 let (mut t1, mut t2) = (g1 * b, g2 * b);
                 for o in 0..=order {
-                    for ((p, q), c) in p[o].iter_mut().zip(q[o].iter_mut()).zip(c) {
-                        *p += t1 * c;
-                        *q += t2 * c;
+                    if real {
+                        for (p, c) in p[o].iter_mut().zip(c) {
+                            *p += t1 * c;
+                        }
+                    } else {
+                        for ((p, q), c) in p[o].iter_mut().zip(q[o].iter_mut()).zip(c) {
+                            *p += t1 * c;
+                            *q += t2 * c;
+                        }
                     }
                     let f = -((o + 1) as f64);
                     (t1, t2) = (t1 * g1 * f, t2 * g2 * f);
                 }
+            }
+            if real {
+                q.clone_from(&p);
             }
             for o in 0..=order {
                 for i in 0..dim {
