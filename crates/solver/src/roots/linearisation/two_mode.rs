@@ -124,6 +124,29 @@ mod tests {
     use crate::contract::settings::SolverSettings;
     use crate::model::params::ModelParams;
 
+    #[test]
+    fn the_force_functionals_are_the_parseval_forces() {
+        // The Fig. 1c MD's steady field on a shape off both mirror lines, N = 64:
+        // `Sum_k Re(c_ik w_k)` against the Parseval sums of the forces.
+        let mut s = TwoModeSolver::new(ModelParams::at(0.085, 0.112), 64).unwrap();
+        let (w, _) = s.field_and_forces(0.5, 0.1, -0.2, 0.05);
+        let w = w.to_vec();
+        let (ph, yh, area) = s.shape_spectra(-0.15, 0.08);
+        let want = as_array(&spectral_forces(s.grid(), &w, &ph, &yh, area));
+        let c = force_functionals(s.grid(), &ph, &yh);
+        for (i, want) in want.iter().enumerate() {
+            let got: f64 = w
+                .iter()
+                .enumerate()
+                .map(|(k, u)| (c[4 * k + i] * u).re)
+                .sum();
+            assert!(
+                (got - want).abs() < 1e-12 * want.abs().max(1e-3),
+                "{i}: {got} vs {want}"
+            );
+        }
+    }
+
     fn eigs(p: ModelParams, z: [f64; 4]) -> Vec<C64> {
         let mut s = TwoModeSolver::new(p, 192).unwrap();
         Linearization::of_two_modes(&mut s, z).eigenvalues()
