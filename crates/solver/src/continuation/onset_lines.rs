@@ -180,7 +180,9 @@ fn two_mode_mc_line(
         guess = [v, eta];
         solver.set_control(eta, k);
         let z = [v, 0.0, c, 0.0];
-        if !crate::roots::verdict::assess(&Linearization::of_two_modes(&mut solver, z), &z).stable()
+        if !Linearization::of_two_modes(&mut solver, z)
+            .verdict()
+            .stable()
         {
             break;
         }

@@ -36,7 +36,6 @@ use crate::reduced::boundaries::Boundary;
 use crate::roots::linearisation::Linearization;
 use crate::roots::steady_solver::TwoModeSolver;
 use crate::roots::thresholds::id_onset;
-use crate::roots::verdict::assess;
 
 /// A window of two model parameters and the resolution of [`boundaries_in`].
 #[derive(Debug, Clone)]
@@ -236,7 +235,9 @@ fn mc_curve(w: &PlaneWindow, (v, x, y): (f64, f64, f64)) -> Result<Vec<(f64, f64
     let mut stable = |u: &[f64]| {
         w.place(&mut check, u[1], u[2]) && {
             let z = [u[0], 0.0, c, 0.0];
-            assess(&Linearization::of_two_modes(&mut check, z), &z).stable()
+            Linearization::of_two_modes(&mut check, z)
+                .verdict()
+                .stable()
         }
     };
     let inside =

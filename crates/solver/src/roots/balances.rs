@@ -17,7 +17,7 @@ use crate::roots::kept_jacobians::KeptJacobians;
 use crate::roots::linearisation::Linearization;
 use crate::roots::steady_solver::SteadySolver;
 use crate::roots::steady_solver::{on_x_axis, TwoModeSolver};
-use crate::roots::verdict::{assess, Verdict};
+use crate::roots::verdict::Verdict;
 use rustfft::num_complex::Complex64;
 
 /// The steady force balances a finish solves: the 2-mode solver (with the constrained solves
@@ -77,10 +77,10 @@ impl Balances {
         }
     }
 
-    /// The stability of the root `z` ([`crate::roots::verdict::assess`]).
+    /// The stability of the root `z` ([`Linearization::verdict`]).
     pub fn verdict(&mut self, z: &[f64]) -> Verdict {
         match self {
-            Balances::Two(solver) => assess(&Linearization::of_two_modes(solver, four(z)), z),
+            Balances::Two(solver) => Linearization::of_two_modes(solver, four(z)).verdict(),
             Balances::General { solver, .. } => Linearization::at(solver, z).verdict(),
         }
     }

@@ -110,6 +110,12 @@ pub enum Decision {
     Leap(Leap),
 }
 
+/// When a try at `t` that did not end the run may be made again: after `max(10, t / 4)` (a
+/// saddle's neighbourhood, where runs slow down too, is not retried every window).
+pub(super) fn retry_after(t: f64) -> f64 {
+    t + (0.25 * t).max(10.0)
+}
+
 /// Whether two roots Newton found are the same state: equal to 1e-9 in every unknown (Newton's
 /// tolerance is 1e-12), so that what a run's tries learnt of a root is found again.
 pub(super) fn same_root(a: &[f64], b: &[f64]) -> bool {
@@ -477,7 +483,7 @@ impl NewtonFinish {
     }
 
     fn back_off(&mut self, t: f64) {
-        self.next_try = t + (0.25 * t).max(10.0);
+        self.next_try = retry_after(t);
     }
 }
 

@@ -10,7 +10,9 @@ use crate::contract::ending::Ending;
 use crate::contract::profile::{self, Part};
 use crate::model::state::{reflected, turned};
 use crate::runs::finding::{Finding, MAX_SETTLED};
-use crate::runs::finish::{same_root, Decision, NewtonFinish, DISK_FACTOR, LEAN_GROWTH};
+use crate::runs::finish::{
+    retry_after, same_root, Decision, NewtonFinish, DISK_FACTOR, LEAN_GROWTH,
+};
 use crate::runs::landing::landings;
 use crate::runs::orientation::{
     angle_to, class_of, invariant_distance, lean_from_mirror_line, modulo_half_turn, orientation,
@@ -282,7 +284,7 @@ impl NewtonFinish {
         {
             return Decision::Continue;
         }
-        self.next_disk_try = t + (0.25 * t).max(10.0);
+        self.next_disk_try = retry_after(t);
         match self.newton_root(z) {
             // The disk: its verdict (another root's is not needed here).
             Ok(root) if unoriented(&root) => {

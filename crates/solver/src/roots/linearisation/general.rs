@@ -4,8 +4,7 @@
 //! every mode unless a friction law is set), `B`'s shape columns and `E`'s shape derivatives
 //! by central differences of the sampled droplet, and the forces' functionals `C` by the
 //! adjoint of the quadrature's inverse transform ([`force_functionals`]).
-use super::{Linearization, SHAPE_STEP};
-use crate::model::forces::quadrature::fill_operator;
+use super::{field_parts, Linearization, SHAPE_STEP};
 use crate::model::modes::Modes;
 use crate::roots::steady_solver::SteadySolver;
 use rustfft::num_complex::Complex64;
@@ -22,21 +21,7 @@ impl Linearization {
         let k_max = m0.k_max();
         solver.forces(z0[0], z0[1], &m0);
         let u0 = solver.field_spectrum().to_vec();
-        let mut d = vec![C64::default(); u0.len()];
-        fill_operator(solver.grid(), z0[0], z0[1], &mut d);
-        let grid = solver.grid().clone();
-        let n = grid.n;
-        let mut b: Vec<Vec<C64>> = Vec::with_capacity(dim);
-        for use_x in [true, false] {
-            let mut col = Vec::with_capacity(u0.len());
-            for jx in 0..=n / 2 {
-                for jy in 0..n {
-                    let k = if use_x { grid.kx_d[jx] } else { grid.ky_d[jy] };
-                    col.push(C64::new(0.0, k) * u0[jx * n + jy]);
-                }
-            }
-            b.push(col);
-        }
+        let (d, mut b) = field_parts(solver.grid(), z0[0], z0[1], &u0);
         let mut e = vec![vec![0.0; dim]; dim];
         e[0][0] = -p.eta_t;
         e[1][1] = -p.eta_t;

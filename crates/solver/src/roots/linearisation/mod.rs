@@ -25,6 +25,8 @@ pub mod far_field;
 pub mod general;
 pub mod two_mode;
 
+use crate::model::forces::quadrature::fill_operator;
+use crate::model::grid::Grid;
 use crate::roots::verdict::{assess, Spectrum, Verdict};
 use far_field::{FarField, FAR, SERIES_RADIUS};
 use nalgebra::DMatrix;
@@ -67,6 +69,26 @@ pub struct Linearization {
     far: OnceLock<FarField>,
     /// The split between slow and fast modes ([`FAR`]; tests sum every mode).
     far_from: f64,
+}
+
+/// The parts both constructions share: `D = -(1 + k^2) + i k.v` for every stored mode of
+/// `grid`, and `B`'s velocity columns `i k_x u0`, `i k_y u0` for the steady field `u0`
+/// (normalised half spectrum, `[kx][ky]`).
+fn field_parts(grid: &Grid, vx: f64, vy: f64, u0: &[C64]) -> (Vec<C64>, Vec<Vec<C64>>) {
+    let n = grid.n;
+    let mut d = vec![C64::default(); u0.len()];
+    fill_operator(grid, vx, vy, &mut d);
+    let advect = |use_x: bool| -> Vec<C64> {
+        let mut out = Vec::with_capacity(u0.len());
+        for jx in 0..=n / 2 {
+            for jy in 0..n {
+                let k = if use_x { grid.kx_d[jx] } else { grid.ky_d[jy] };
+                out.push(C64::new(0.0, k) * u0[jx * n + jy]);
+            }
+        }
+        out
+    };
+    (d, vec![advect(true), advect(false)])
 }
 
 impl Linearization {

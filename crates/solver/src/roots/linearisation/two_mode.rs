@@ -5,10 +5,9 @@
 //! Parseval, and `B`'s shape columns and `E`'s shape derivatives by central differences of
 //! those transforms; no inverse transform. The same eigenvalues as the general construction
 //! at `K = 2` (tested there).
-use super::{Linearization, SHAPE_STEP};
+use super::{field_parts, Linearization, SHAPE_STEP};
 use crate::model::dynamics;
 use crate::model::forces::parseval::{spectral_forces, Forces};
-use crate::model::forces::quadrature::fill_operator;
 use crate::model::grid::Grid;
 use crate::roots::steady_solver::TwoModeSolver;
 use rustfft::num_complex::Complex64;
@@ -53,18 +52,7 @@ impl Linearization {
         let (w0, _) = solver.field_and_forces(vx, vy, a2, b2);
         let w0 = w0.to_vec();
         let (ph, yh, _) = solver.shape_spectra(a2, b2);
-        let mut d = vec![C64::default(); grid.spectral_len()];
-        fill_operator(&grid, vx, vy, &mut d);
-        let advect = |use_x: bool| -> Vec<C64> {
-            let mut out = Vec::with_capacity(w0.len());
-            for jx in 0..=n / 2 {
-                for jy in 0..n {
-                    let k = if use_x { grid.kx_d[jx] } else { grid.ky_d[jy] };
-                    out.push(C64::new(0.0, k) * w0[jx * n + jy]);
-                }
-            }
-            out
-        };
+        let (d, mut b) = field_parts(&grid, vx, vy, &w0);
         // The source Theta_hat / A (normalised as the steady field) of a shape.
         let norm = 1.0 / (n * n) as f64;
         let mut source = |a: f64, b: f64| -> (Vec<C64>, [f64; 4]) {
@@ -82,12 +70,7 @@ impl Linearization {
         let diff = |p: &[C64], m: &[C64]| -> Vec<C64> {
             p.iter().zip(m).map(|(a, b)| (a - b) / (2.0 * h)).collect()
         };
-        let b = [
-            advect(true),
-            advect(false),
-            diff(&sa_p, &sa_m),
-            diff(&sb_p, &sb_m),
-        ];
+        b.extend([diff(&sa_p, &sa_m), diff(&sb_p, &sb_m)]);
         // E: the force balance's derivatives at the frozen field.
         let zero = Forces::default();
         let mut e = [[0.0; 4]; 4];
@@ -110,7 +93,7 @@ impl Linearization {
         Self::of_parts(
             z0.to_vec(),
             d,
-            b.to_vec(),
+            b,
             e.iter().map(|row| row.to_vec()).collect(),
             vec![p.mass, p.mass, p.eta2, p.eta2],
             c,
