@@ -44,8 +44,10 @@ pub struct Args {
     samples: usize,
     /// Shape modes 2..K (the paper's general model; default 2). With K > 2 the curves of the
     /// states on the x axis (the onsets of motion and of the axis deformation, ID's onset of
-    /// motion, the MD fold), in the paper's plane; about 25 s per curve set at N = 192, 90 s
-    /// for K = 6. Default: the sweep's in --out (its spec's params.modes), else 2.
+    /// motion, the MD fold), in the paper's plane and its crossings with a sweep's line;
+    /// about 25 s per curve set at N = 192, 90 s for K = 6. A sweep in a plane of two other
+    /// model parameters is traced with K = 2 only (refused, exit 2). Default: the sweep's in
+    /// --out (its spec's params.modes), else 2.
     #[arg(long)]
     modes: Option<usize>,
     /// Output directory (a sweep's directory redraws its phase map).

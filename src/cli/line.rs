@@ -3,8 +3,8 @@
 use super::CliError;
 use droplet_solver::continuation::branch::PARAMETER_LIMIT;
 use droplet_solver::error::show_number;
+use droplet_solver::model::param::ModelParam;
 use droplet_solver::model::params::ModelParams;
-use droplet_solver::reduced::bifurcation::Axis;
 
 #[derive(clap::Args)]
 pub struct LineArgs {
@@ -50,41 +50,33 @@ impl Span {
 
 impl LineArgs {
     /// The varied parameter, the fixed one's name and value.
-    pub fn parameter(&self) -> (Axis, &'static str, f64) {
+    pub fn parameter(&self) -> (ModelParam, ModelParam, f64) {
         match (self.eta_t, self.kappa2) {
-            (Some(e), _) => (Axis::Kappa2, "eta_t", e),
-            (_, Some(k)) => (Axis::EtaT, "kappa2", k),
+            (Some(e), _) => (ModelParam::Kappa2, ModelParam::EtaT, e),
+            (_, Some(k)) => (ModelParam::EtaT, ModelParam::Kappa2, k),
             _ => unreachable!("clap requires one"),
         }
     }
 
     /// The varied parameter's name.
     pub fn varied(&self) -> &'static str {
-        match self.parameter().0 {
-            Axis::EtaT => "eta_t",
-            Axis::Kappa2 => "kappa2",
-        }
+        self.parameter().0.name()
     }
 
     /// `base` at the line's start, after checking that the line runs forward and that both
     /// of its ends are valid parameters.
     pub fn start(&self, base: ModelParams) -> Result<ModelParams, CliError> {
         self.span.check()?;
-        let (axis, fixed_name, fixed) = self.parameter();
+        let (axis, fixed_param, fixed) = self.parameter();
+        let fixed_name = fixed_param.name();
         let varied = self.varied();
         within_limit(&format!("--{}", fixed_name.replace('_', "-")), fixed)?;
         within_limit(&format!("--to (the line's {varied})"), self.span.to)?;
-        let at = |x: f64| match axis {
-            Axis::EtaT => ModelParams {
-                eta_t: x,
-                kappa2: fixed,
-                ..base
-            },
-            Axis::Kappa2 => ModelParams {
-                eta_t: fixed,
-                kappa2: x,
-                ..base
-            },
+        let at = |x: f64| {
+            let mut p = base;
+            fixed_param.set(&mut p, fixed);
+            axis.set(&mut p, x);
+            p
         };
         at(self.span.to).validate()?;
         let start = at(self.span.from);

@@ -136,7 +136,8 @@ fn bifurcation(
             "invalid --steps {steps}: from 2 to {MAX_STEPS}"
         )));
     }
-    let (axis, fixed_name, fixed) = line.parameter();
+    let (axis, fixed_param, fixed) = line.parameter();
+    let fixed_name = fixed_param.name();
     let x_label = line.varied();
     let fixed_label = format!("{fixed_name} = {fixed}");
     let (from, to) = (line.span.from, line.span.to);

@@ -127,6 +127,30 @@ fn a_refined_ode_map_in_the_mass_eta_t_plane_is_named_by_its_axes() {
     assert!((0.074..0.079).contains(&onset[0]), "{onset:?}");
     assert_eq!(onset[0], onset[1]);
     assert_eq!(mass, vec![0.05, 0.45]);
+    // With shape modes 2..3 the crossings are those of the 3-mode curves: the MD fold where
+    // the 3-mode branch followed in eta_t at kappa2 = 0.13 folds (N = 64).
+    let b = json(&run(&[
+        "boundaries",
+        "--out",
+        out.to_str().unwrap(),
+        "--n",
+        "64",
+        "--modes",
+        "3",
+        "--json",
+    ]));
+    assert_eq!(b["modes"], 3, "{b}");
+    let fold = b["curves"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|c| c["model"] == "pde" && c["curve"] == "MD saddle-node (x axis)")
+        .unwrap_or_else(|| panic!("no fold: {b}"));
+    let at = fold["eta_t"][0].as_f64().unwrap();
+    assert_eq!(fold["mass"], serde_json::json!([0.05, 0.45]), "{fold}");
+    let sn = md_fold_along_eta_t("kappa2=0.13", &["--modes", "3", "--n", "64"]);
+    // The 2-mode fold lies at 0.0811 here: the third mode moves it by 4e-3.
+    assert!((at - sn).abs() < 1e-9 && at < 0.079, "{at} vs {sn}");
 }
 
 /// The full model's onset of motion in a boundaries table over a sweep in (`other`, eta_t):
@@ -181,6 +205,39 @@ fn boundaries_over(
     ]));
     assert_eq!(b["plane"], serde_json::json!([plane.0, plane.1]), "{b}");
     (out, b)
+}
+
+/// The MD fold of the branch followed in `eta_t` from 0.07 to 0.09 (`droplet continue`, an
+/// independent computation) at the parameters `set`, with the options `extra`.
+fn md_fold_along_eta_t(set: &str, extra: &[&str]) -> f64 {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("md");
+    let mut args = vec![
+        "continue",
+        "--param",
+        "eta_t",
+        "--from",
+        "0.07",
+        "--to",
+        "0.09",
+        "--set",
+        set,
+        "--branch",
+        "md",
+        "--json",
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    args.extend(extra);
+    let c = json(&run(&args));
+    let sn = c["events"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|e| e["kind"] == "SN");
+    sn.unwrap_or_else(|| panic!("no fold: {c}"))["at"]
+        .as_f64()
+        .unwrap()
 }
 
 /// The resting disk's onset of motion at a point, from `droplet stability` (an independent
@@ -309,29 +366,7 @@ fn boundaries_in_a_plane_of_two_non_paper_parameters_are_continued_in_it() {
     );
     // A point of it is where the MD branch followed in eta_t at that (radius, sigma) folds.
     let (r, s) = fold[fold.len() / 2];
-    let c = json(&run(&[
-        "continue",
-        "--param",
-        "eta_t",
-        "--from",
-        "0.07",
-        "--to",
-        "0.09",
-        "--set",
-        &format!("kappa2=0.14,radius={r},sigma={s}"),
-        "--branch",
-        "md",
-        "--n",
-        "96",
-        "--json",
-    ]));
-    let sn = c["events"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .find(|e| e["kind"] == "SN")
-        .unwrap_or_else(|| panic!("no fold: {c}"));
-    let at = sn["at"].as_f64().unwrap();
+    let at = md_fold_along_eta_t(&format!("kappa2=0.14,radius={r},sigma={s}"), &["--n", "96"]);
     assert!(
         (at - 0.077).abs() < 1e-6,
         "fold at eta_t = {at}, R = {r}, sigma = {s}"
@@ -340,6 +375,25 @@ fn boundaries_in_a_plane_of_two_non_paper_parameters_are_continued_in_it() {
     let t = read(&table);
     let model = t.column("model").unwrap().str().unwrap().clone();
     assert!((0..t.height()).all(|i| model.get(i) == Some("pde")));
+    // Traced with two shape modes only: more are refused before anything is computed, and
+    // the table stays the 2-mode one.
+    let before = std::fs::read(&table).unwrap();
+    let o = run(&[
+        "boundaries",
+        "--out",
+        out.to_str().unwrap(),
+        "--modes",
+        "3",
+        "--n",
+        "96",
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("`modes` = 3") && err.contains("radius and sigma") && err.contains("2-mode"),
+        "{err}"
+    );
+    assert_eq!(std::fs::read(&table).unwrap(), before);
 }
 
 #[test]

@@ -17,10 +17,9 @@
 //! general solver gives the 2-mode curves at `K = 2` (tested).
 use crate::continuation::fold_curve::{md_fold_curve, FoldModel};
 use crate::continuation::onset_lines::{id_line, mc_line};
-use crate::continuation::window::{PlaneAxis, Window};
+use crate::continuation::window::Window;
 use crate::error::SolverError;
 use crate::model::mirror::MirrorLine;
-use crate::model::param::ModelParam;
 use crate::reduced::boundaries::Boundary;
 use crate::roots::balances::Balances;
 use crate::roots::steady_solver::SteadySolver;
@@ -38,9 +37,9 @@ fn disk_at_ends(make: Make, w: &Window) -> Result<(IcThresholds, IcThresholds), 
             Ok((th.clone(), th))
         }
         Balances::General { mut solver, modes } => {
-            solver.set_control(w.base.eta_t, w.kappa2.0);
+            solver.set_control(w.base.eta_t, w.y.range.0);
             let low = disk_thresholds(&mut solver, modes);
-            solver.set_control(w.base.eta_t, w.kappa2.1);
+            solver.set_control(w.base.eta_t, w.y.range.1);
             Ok((low, disk_thresholds(&mut solver, modes)))
         }
     }
@@ -48,12 +47,12 @@ fn disk_at_ends(make: Make, w: &Window) -> Result<(IcThresholds, IcThresholds), 
 
 /// The resting disk's lines where they cross the window (see the module).
 fn disk_lines(w: &Window, low: &IcThresholds, high: &IcThresholds) -> Vec<Boundary> {
-    let (e0, e1) = w.eta_t;
-    let (k0, k1) = w.kappa2;
+    let (e0, e1) = w.x.range;
+    let (k0, k1) = w.y.range;
     let inside = |x: f64, (lo, hi): (f64, f64)| (lo..=hi).contains(&x);
     let bottom = low.kappa2_a2.max(low.kappa2_b2).max(k0);
     let mut out = Vec::new();
-    if (inside(low.eta_t, w.eta_t) || inside(high.eta_t, w.eta_t)) && bottom < k1 {
+    if (inside(low.eta_t, w.x.range) || inside(high.eta_t, w.x.range)) && bottom < k1 {
         out.push(Boundary {
             name: "IC onset of motion",
             points: vec![(low.eta_t, bottom), (high.eta_t, k1)],
@@ -63,7 +62,7 @@ fn disk_lines(w: &Window, low: &IcThresholds, high: &IcThresholds) -> Vec<Bounda
         ("IC onset of deformation (b2, diagonal)", low.kappa2_b2),
         ("IC onset of deformation (a2, axis)", low.kappa2_a2),
     ] {
-        if inside(k, w.kappa2) && low.eta_t.max(e0) < e1 {
+        if inside(k, w.y.range) && low.eta_t.max(e0) < e1 {
             out.push(Boundary {
                 name,
                 points: vec![(low.eta_t.max(e0), k), (e1, k)],
@@ -73,17 +72,31 @@ fn disk_lines(w: &Window, low: &IcThresholds, high: &IcThresholds) -> Vec<Bounda
     out
 }
 
-/// Every boundary in the window (see the module doc), named like the reduced model's.
+/// Every boundary in the window, named like the reduced model's: in the paper's plane as the
+/// module says, for every `K`; in any other plane each curve traced in that plane
+/// ([`crate::continuation::plane`], two shape modes). A window [`Window::check`] refuses is
+/// refused here.
 pub fn boundaries(w: &Window) -> Result<Vec<Boundary>, SolverError> {
-    crate::contract::limits::check_modes(&w.base, w.n, w.modes)?;
+    w.check()?;
+    if !w.in_paper_plane() {
+        return crate::continuation::plane::traced(w);
+    }
     boundaries_with(w, &|| Balances::new(w.base, w.n, w.modes, 0.0))
 }
 
 /// [`boundaries`] from the general solver at every `K`, 2 included: one computation for
 /// every `K` (the truncation study compares them), and at `K = 2` an independent check of the
 /// fast path (tested). The fold curve is the one computation of every `K` either way.
+/// In the paper's plane only (another window is refused).
 pub fn general_boundaries(w: &Window) -> Result<Vec<Boundary>, SolverError> {
-    crate::contract::limits::check_modes(&w.base, w.n, w.modes)?;
+    w.check()?;
+    if !w.in_paper_plane() {
+        return Err(SolverError::InvalidChoice {
+            name: "window",
+            value: format!("{} x {}", w.x.param.name(), w.y.param.name()),
+            allowed: "the paper's plane, eta_t x kappa2".into(),
+        });
+    }
     boundaries_with(w, &|| {
         Ok(Balances::General {
             solver: SteadySolver::new(w.base, w.n)?,
@@ -96,7 +109,7 @@ pub fn general_boundaries(w: &Window) -> Result<Vec<Boundary>, SolverError> {
 fn boundaries_with(w: &Window, make: Make) -> Result<Vec<Boundary>, SolverError> {
     let (low, high) = disk_at_ends(make, w)?;
     let mut out = disk_lines(w, &low, &high);
-    let (k0, k1) = w.kappa2;
+    let (k0, k1) = w.y.range;
     let mid = 0.5 * (k0 + k1);
     let starts = [
         0.13f64.clamp(k0, k1),
@@ -111,13 +124,11 @@ fn boundaries_with(w: &Window, make: Make) -> Result<Vec<Boundary>, SolverError>
         let diag = scope.spawn(|| id_line(make()?, w, MirrorLine::Diagonal, low.kappa2_b2));
         let axis = scope.spawn(|| id_line(make()?, w, MirrorLine::X, low.kappa2_a2));
         let fold = scope.spawn(|| {
-            let x = PlaneAxis::new(ModelParam::EtaT, w.eta_t);
-            let y = PlaneAxis::new(ModelParam::Kappa2, w.kappa2);
             let model = FoldModel {
                 n: w.n,
                 modes: w.modes,
             };
-            md_fold_curve(&w.base, model, MirrorLine::X, (x, y), &starts)
+            md_fold_curve(&w.base, model, MirrorLine::X, (w.x, w.y), &starts)
         });
         let mc = mc_line(make()?, w, high.eta_t);
         let join = |h: std::thread::ScopedJoinHandle<'_, Curve>| {
@@ -154,14 +165,13 @@ mod tests {
         // diagonal ID (Newton on all 2K balances from the turned axis ID, so the frame turned
         // back is not used) either side of it: one more growing mode below it.
         let k = 0.105;
-        let w = Window {
-            base: ModelParams::at(0.08, k),
-            n: 96,
-            modes: 4,
-            eta_t: (0.06, 0.1),
-            kappa2: (k, k + 1e-3),
-            id_samples: 2,
-        };
+        let w = Window::paper(
+            ModelParams::at(0.08, k),
+            (96, 4),
+            (0.06, 0.1),
+            (k, k + 1e-3),
+            2,
+        );
         let diagonal = std::f64::consts::FRAC_PI_4;
         let general = || Balances::new(w.base, w.n, 4, 0.0).unwrap();
         let line = id_line(general(), &w, MirrorLine::Diagonal, 0.118).unwrap();
@@ -210,14 +220,13 @@ mod tests {
         // The truncation test's window around kappa2 = 0.13 at N = 96: it holds the onset of
         // motion (0.0765) and lies above the deformation onsets (about 0.119), so the only
         // line of the resting disk is the onset of motion, as with the 2-mode computation.
-        let w = Window {
-            base: ModelParams::at(0.075, 0.125),
-            n: 96,
-            modes: 2,
-            eta_t: (0.075, 0.085),
-            kappa2: (0.125, 0.135),
-            id_samples: 4,
-        };
+        let w = Window::paper(
+            ModelParams::at(0.075, 0.125),
+            (96, 2),
+            (0.075, 0.085),
+            (0.125, 0.135),
+            4,
+        );
         let names = |b: Vec<Boundary>| -> Vec<&'static str> {
             let mut v: Vec<_> = b.iter().map(|c| c.name).collect();
             v.sort_unstable();
@@ -234,14 +243,13 @@ mod tests {
         // Modes 2..3 at N = 64, right of the onset of motion and above kappa2 = 0.14: no
         // moving state at the middle line's start (Newton from the 2-mode state fails there).
         // That is a window without a fold curve, not a failed computation (it was one).
-        let w = Window {
-            base: ModelParams::at(0.08, 0.14),
-            n: 64,
-            modes: 3,
-            eta_t: (0.08, 0.1),
-            kappa2: (0.14, 0.17),
-            id_samples: 4,
-        };
+        let w = Window::paper(
+            ModelParams::at(0.08, 0.14),
+            (64, 3),
+            (0.08, 0.1),
+            (0.14, 0.17),
+            4,
+        );
         let curves = boundaries(&w).unwrap();
         let names: Vec<_> = curves.iter().map(|c| c.name).collect();
         assert!(!names.contains(&"MD saddle-node (x axis)"), "{names:?}");
@@ -253,24 +261,9 @@ mod tests {
         let (e, k) = ((0.07, 0.1), (0.1, 0.17));
         let base = ModelParams::at(0.07, 0.1);
         let n = 96;
-        let w = Window {
-            base,
-            n,
-            modes: 2,
-            eta_t: e,
-            kappa2: k,
-            id_samples: 30,
-        };
+        let w = Window::paper(base, (n, 2), e, k, 30);
         let mine = general_boundaries(&w).unwrap();
-        let two = boundaries(&Window {
-            base,
-            n,
-            modes: 2,
-            eta_t: e,
-            kappa2: k,
-            id_samples: 30,
-        })
-        .unwrap();
+        let two = boundaries(&Window::paper(base, (n, 2), e, k, 30)).unwrap();
         let scaled = |p: (f64, f64)| ((p.0 - e.0) / (e.1 - e.0), (p.1 - k.0) / (k.1 - k.0));
         assert_eq!(mine.len(), 7, "{mine:?}");
         for b in &mine {

@@ -8,7 +8,7 @@
 use crate::continuation::arclength::{fold_point, start, ArclengthOptions, CurvePoint, Stepper};
 use crate::continuation::branch::{follow, Branch, Line};
 use crate::continuation::problem::{Family, Problem};
-use crate::continuation::window::PlaneAxis;
+use crate::continuation::window::Axis;
 use crate::error::SolverError;
 use crate::model::mirror::MirrorLine;
 use crate::model::params::ModelParams;
@@ -36,8 +36,8 @@ fn det(a: &[Vec<f64>]) -> f64 {
 struct FoldSystem {
     balances: Balances,
     mirror: MirrorLine,
-    x: PlaneAxis,
-    y: PlaneAxis,
+    x: Axis,
+    y: Axis,
     /// Scale of `det` (the Jacobian's size squared at the start).
     det_scale: f64,
 }
@@ -88,8 +88,8 @@ pub fn md_branch(
     base: &ModelParams,
     model: FoldModel,
     mirror: MirrorLine,
-    x: PlaneAxis,
-    y: PlaneAxis,
+    x: Axis,
+    y: Axis,
     at: f64,
 ) -> Result<Branch, SolverError> {
     let line = Line {
@@ -125,7 +125,7 @@ pub struct Fold {
 /// line or meets rest (`v` below 1e-3). No verdicts on the way: at `K > 2` a state's `2K x 2K`
 /// eigenproblem costs more than its continuation step. `None` where the line's start has no
 /// moving state or the branch no fold.
-pub fn walk_to_fold(balances: Balances, mirror: MirrorLine, x: PlaneAxis, at: f64) -> Option<Fold> {
+pub fn walk_to_fold(balances: Balances, mirror: MirrorLine, x: Axis, at: f64) -> Option<Fold> {
     let (from, to) = x.range;
     let mut prob = Problem::new(balances, Family::MdMinor, mirror, x.param, from, to);
     let y0 = prob.root_at(from)?;
@@ -188,7 +188,7 @@ fn first_fold(
     base: &ModelParams,
     model: FoldModel,
     mirror: MirrorLine,
-    (x, y): (PlaneAxis, PlaneAxis),
+    (x, y): (Axis, Axis),
     starts: &[f64],
 ) -> Option<Fold> {
     starts.iter().find_map(|&at| {
@@ -209,7 +209,7 @@ pub fn md_fold_curve(
     base: &ModelParams,
     model: FoldModel,
     mirror: MirrorLine,
-    (x, y): (PlaneAxis, PlaneAxis),
+    (x, y): (Axis, Axis),
     starts: &[f64],
 ) -> Result<Vec<(f64, f64)>, SolverError> {
     let Some(first) = first_fold(base, model, mirror, (x, y), starts) else {
@@ -275,7 +275,7 @@ pub fn fold_curve_from(
     base: &ModelParams,
     model: FoldModel,
     mirror: MirrorLine,
-    (x, y): (PlaneAxis, PlaneAxis),
+    (x, y): (Axis, Axis),
     fold: Fold,
 ) -> Result<Vec<(f64, f64)>, SolverError> {
     let mut sys = FoldSystem {
@@ -318,7 +318,7 @@ mod tests {
     /// one continuation ([`follow`]) with modes `2..=k_max`.
     fn both(k_max: usize, n: usize) -> (Fold, Branch) {
         let base = ModelParams::at(0.077, 0.13);
-        let x = PlaneAxis::new(ModelParam::EtaT, (0.077, 0.1));
+        let x = Axis::new(ModelParam::EtaT, (0.077, 0.1));
         let balances = Balances::new(base, n, k_max, 0.0).unwrap();
         let fold = walk_to_fold(balances, MirrorLine::X, x, 0.13).expect("a fold");
         let branch = follow(

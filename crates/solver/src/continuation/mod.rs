@@ -3,10 +3,11 @@
 //! ([`arclength`]) of the co-moving force balance of one family ([`problem`]), the stability
 //! verdict of every state with the near-neutral rotation mode set aside ([`crate::roots::verdict`]), the
 //! bifurcation points along a branch ([`branch`], located by [`events`]), and their continuation in both parameters,
-//! the PDE's own phase boundaries: in a window of the paper's plane ([`window`], [`boundaries`],
-//! at any number of shape modes) and in a plane of any
-//! two model parameters ([`plane`]), traced as zero sets ([`level_set`]) or continued
-//! ([`fold_curve`], every `K`), the onset lines sampled in `kappa2` ([`onset_lines`]). Families
+//! the PDE's own phase boundaries in a [`window`] of two model parameters, one entry point
+//! ([`boundaries`]): in the paper's plane at any number of shape modes, the onset lines
+//! sampled in `kappa2` ([`onset_lines`]); in a plane of any other two ([`plane`], two shape
+//! modes) traced as zero sets ([`level_set`]); the MD fold continued in either ([`fold_curve`],
+//! every `K`). Families
 //! and branches hold the
 //! shape modes `2..K` ([`problem`], [`branch`]): `droplet continue --modes K` follows every
 //! branch, on either mirror line, in any model parameter.

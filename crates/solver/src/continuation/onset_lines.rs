@@ -1,4 +1,5 @@
-//! The two onset lines of a window of the paper's plane that are sampled in `kappa2`, for the
+//! The two onset lines of a window of the paper's plane (`x` is `eta_t`, `y` is `kappa2`)
+//! that are sampled in `kappa2`, for the
 //! model with shape modes `2..K` (each with its fast path for `K = 2`, chosen by the
 //! [`Balances`] it is given):
 //!
@@ -67,13 +68,13 @@ fn two_mode_id_line(
     mirror: MirrorLine,
     hi: f64,
 ) -> Result<Vec<(f64, f64)>, SolverError> {
-    let lo = w.kappa2.0;
+    let lo = w.y.range.0;
     if hi <= lo {
         return Ok(Vec::new());
     }
     let mut seed = 0.3;
     let mut pts = Vec::new();
-    let m = w.id_samples.max(2);
+    let m = w.samples.max(2);
     for i in 0..m {
         // Denser towards the IC end, where ID's amplitude goes like a square root.
         let t = i as f64 / (m - 1) as f64;
@@ -101,12 +102,12 @@ fn general_id_line(
 ) -> Result<Vec<(f64, f64)>, SolverError> {
     let axis = mirror.angle();
     solver.set_axis(axis);
-    let (lo, hi) = (w.kappa2.0, top.min(w.kappa2.1));
+    let (lo, hi) = (w.y.range.0, top.min(w.y.range.1));
     // The window lies above where this ID meets the disk.
     if hi <= lo {
         return Ok(Vec::new());
     }
-    let m = w.id_samples.max(2);
+    let m = w.samples.max(2);
     let mut shape: Option<Vec<f64>> = None;
     let mut pts = Vec::new();
     for i in 0..m {
@@ -158,8 +159,8 @@ fn two_mode_mc_line(
     };
     // a2 ~ -0.18 v^2 on the moving branch near the onset of motion (docs/model.md, "Where a slow run lands").
     let mut guess = [(-c / 0.18f64).sqrt(), onset_eta_t];
-    let (k0, k1) = w.kappa2;
-    let m = w.id_samples.max(2);
+    let (k0, k1) = w.y.range;
+    let m = w.samples.max(2);
     let mut pts = Vec::new();
     for i in 0..m {
         let k = k1 - (k1 - k0) * i as f64 / (m - 1) as f64;
@@ -174,7 +175,7 @@ fn two_mode_mc_line(
             break;
         };
         let (v, eta) = (sol.x[0], sol.x[1]);
-        if v <= 0.0 || !(w.eta_t.0..=w.eta_t.1).contains(&eta) {
+        if v <= 0.0 || !(w.x.range.0..=w.x.range.1).contains(&eta) {
             break;
         }
         guess = [v, eta];
@@ -222,8 +223,8 @@ fn general_mc_line(
     let mut guess = vec![0.0; k_max];
     guess[0] = (CLASS_THRESHOLD / 0.18f64).sqrt();
     guess[k_max - 1] = onset_eta_t;
-    let (k0, k1) = w.kappa2;
-    let m = w.id_samples.max(2);
+    let (k0, k1) = w.y.range;
+    let m = w.samples.max(2);
     let mut line: Vec<(f64, f64, Vec<f64>)> = Vec::new();
     for i in 0..m {
         let k = k1 - (k1 - k0) * i as f64 / (m - 1) as f64;
@@ -238,7 +239,7 @@ fn general_mc_line(
             break;
         };
         let (v, eta) = (sol.x[0], sol.x[k_max - 1]);
-        if v <= 0.0 || !(w.eta_t.0..=w.eta_t.1).contains(&eta) {
+        if v <= 0.0 || !(w.x.range.0..=w.x.range.1).contains(&eta) {
             break;
         }
         guess = sol.x.clone();

@@ -27,7 +27,7 @@ use crate::continuation::arclength::{last_where, start, ArclengthOptions, Steppe
 use crate::continuation::branch::Branch;
 use crate::continuation::fold_curve::{fold_curve_from, fold_of, md_branch, FoldModel};
 use crate::continuation::level_set::{zero_set, LevelSetOptions};
-use crate::continuation::window::PlaneAxis;
+use crate::continuation::window::Window;
 use crate::error::SolverError;
 use crate::model::classify::CLASS_THRESHOLD;
 use crate::model::mirror::MirrorLine;
@@ -37,35 +37,16 @@ use crate::roots::linearisation::Linearization;
 use crate::roots::steady_solver::TwoModeSolver;
 use crate::roots::thresholds::id_onset;
 
-/// A window of two model parameters and the resolution of [`boundaries_in`].
-#[derive(Debug, Clone)]
-pub struct PlaneWindow {
-    /// The other parameters (the axes' values are overwritten).
-    pub base: ModelParams,
-    pub n: usize,
-    pub x: PlaneAxis,
-    pub y: PlaneAxis,
-    /// Samples along each edge and midline where the onset curves are looked for.
-    pub samples: usize,
+/// Moves `solver` to `(qx, qy)` of the window; false where the parameters are invalid there.
+fn place(w: &Window, solver: &mut TwoModeSolver, qx: f64, qy: f64) -> bool {
+    solver.set_param(w.x.param, w.x.value(qx)).is_ok()
+        && solver.set_param(w.y.param, w.y.value(qy)).is_ok()
 }
 
-impl PlaneWindow {
-    /// Moves `solver` to `(qx, qy)`; false where the parameters are invalid there.
-    fn place(&self, solver: &mut TwoModeSolver, qx: f64, qy: f64) -> bool {
-        solver.set_param(self.x.param, self.x.value(qx)).is_ok()
-            && solver.set_param(self.y.param, self.y.value(qy)).is_ok()
-    }
-
-    /// A point of the plane from `q`.
-    fn point(&self, (qx, qy): (f64, f64)) -> (f64, f64) {
-        (self.x.value(qx), self.y.value(qy))
-    }
-
-    fn level_set_options(&self) -> LevelSetOptions {
-        LevelSetOptions {
-            samples: self.samples.max(4),
-            ..LevelSetOptions::default()
-        }
+fn level_set_options(w: &Window) -> LevelSetOptions {
+    LevelSetOptions {
+        samples: w.samples.max(4),
+        ..LevelSetOptions::default()
     }
 }
 
@@ -103,7 +84,7 @@ fn geometry(p: &ModelParams) -> [f64; 3] {
 }
 
 /// The resting disk's three onsets, each a zero set.
-fn disk_onsets(w: &PlaneWindow) -> Result<Vec<Boundary>, SolverError> {
+fn disk_onsets(w: &Window) -> Result<Vec<Boundary>, SolverError> {
     let mut solver = TwoModeSolver::new(w.base, w.n)?;
     let mut memo: Memo<[f64; 3]> = Memo::new();
     let names = [
@@ -114,7 +95,7 @@ fn disk_onsets(w: &PlaneWindow) -> Result<Vec<Boundary>, SolverError> {
     let mut out = Vec::new();
     for (i, name) in names.into_iter().enumerate() {
         let mut g = |qx: f64, qy: f64| {
-            if !w.place(&mut solver, qx, qy) {
+            if !place(w, &mut solver, qx, qy) {
                 return f64::NAN;
             }
             let p = *solver.params();
@@ -129,7 +110,7 @@ fn disk_onsets(w: &PlaneWindow) -> Result<Vec<Boundary>, SolverError> {
                 _ => th[i] - p.kappa2,
             }
         };
-        for curve in zero_set(&mut g, &w.level_set_options()) {
+        for curve in zero_set(&mut g, &level_set_options(w)) {
             out.push(Boundary {
                 name,
                 points: curve.into_iter().map(|q| w.point(q)).collect(),
@@ -140,12 +121,12 @@ fn disk_onsets(w: &PlaneWindow) -> Result<Vec<Boundary>, SolverError> {
 }
 
 /// The ID onset of motion on `mirror`: a zero set.
-fn id_onsets(w: &PlaneWindow, mirror: MirrorLine) -> Result<Vec<Boundary>, SolverError> {
+fn id_onsets(w: &Window, mirror: MirrorLine) -> Result<Vec<Boundary>, SolverError> {
     let mut solver = TwoModeSolver::new(w.base, w.n)?;
     let mut memo: Memo<Option<f64>> = Memo::new();
     let mut seed = 0.3;
     let mut g = |qx: f64, qy: f64| {
-        if !w.place(&mut solver, qx, qy) {
+        if !place(w, &mut solver, qx, qy) {
             return f64::NAN;
         }
         let p = *solver.params();
@@ -168,7 +149,7 @@ fn id_onsets(w: &PlaneWindow, mirror: MirrorLine) -> Result<Vec<Boundary>, Solve
         MirrorLine::Diagonal => "ID onset of motion (diagonal ID)",
         MirrorLine::X => "ID onset of motion (axis ID)",
     };
-    Ok(zero_set(&mut g, &w.level_set_options())
+    Ok(zero_set(&mut g, &level_set_options(w))
         .into_iter()
         .map(|curve| Boundary {
             name,
@@ -197,11 +178,11 @@ fn mc_crossing(branch: &Branch, at: f64) -> Option<(f64, f64, f64)> {
 /// The MC onset on the x axis through `(v, x, y)` (near it): the moving state with
 /// `a2 = -0.01`, corrected at fixed `y`, then continued both ways in `(v, qx, qy)` while it is
 /// stable (the rotation mode aside), inside the window and moving.
-fn mc_curve(w: &PlaneWindow, (v, x, y): (f64, f64, f64)) -> Result<Vec<(f64, f64)>, SolverError> {
+fn mc_curve(w: &Window, (v, x, y): (f64, f64, f64)) -> Result<Vec<(f64, f64)>, SolverError> {
     let mut solver = TwoModeSolver::new(w.base, w.n)?;
     let c = -CLASS_THRESHOLD;
     let mut f = |u: &[f64]| {
-        if !w.place(&mut solver, u[1], u[2]) {
+        if !place(w, &mut solver, u[1], u[2]) {
             return vec![f64::NAN; 2];
         }
         solver.residual_on(MirrorLine::X, u[0], c).to_vec()
@@ -233,7 +214,7 @@ fn mc_curve(w: &PlaneWindow, (v, x, y): (f64, f64, f64)) -> Result<Vec<(f64, f64
     };
     let mut check = TwoModeSolver::new(w.base, w.n)?;
     let mut stable = |u: &[f64]| {
-        w.place(&mut check, u[1], u[2]) && {
+        place(w, &mut check, u[1], u[2]) && {
             let z = [u[0], 0.0, c, 0.0];
             Linearization::of_two_modes(&mut check, z)
                 .verdict()
@@ -285,7 +266,7 @@ fn two(n: usize) -> FoldModel {
     FoldModel { n, modes: 2 }
 }
 
-fn moving_curves(w: &PlaneWindow) -> Result<Vec<Boundary>, SolverError> {
+fn moving_curves(w: &Window) -> Result<Vec<Boundary>, SolverError> {
     let mut fold = None;
     let mut mc = None;
     // The middle first (the fold), then the top (where the MC onset is stable in the paper's
@@ -320,8 +301,9 @@ fn moving_curves(w: &PlaneWindow) -> Result<Vec<Boundary>, SolverError> {
 
 /// Every boundary in the window (see the module doc), named like the paper plane's; a
 /// condition whose zero set has several pieces gives one curve per piece, under one name.
-pub fn boundaries_in(w: &PlaneWindow) -> Result<Vec<Boundary>, SolverError> {
-    w.base.validate()?;
+/// Called by [`crate::continuation::boundaries::boundaries`] for a window off the paper's
+/// plane, after its checks.
+pub(crate) fn traced(w: &Window) -> Result<Vec<Boundary>, SolverError> {
     if !w.x.moves_states() && !w.y.moves_states() {
         return Ok(Vec::new());
     }
@@ -350,10 +332,8 @@ mod tests {
     use super::*;
     use crate::continuation::boundaries::boundaries;
     use crate::continuation::polyline::distance_to_polyline;
-    use crate::continuation::window::Window;
-    use crate::model::param::ModelParam;
 
-    /// In the paper's plane every curve continued in the pair lies on the paper plane's
+    /// In the paper's plane every curve traced lies on the paper plane's
     /// curve of the same name, computed there by other means (the thresholds as numbers, the
     /// ID lines sampled in `kappa2` up to the linear threshold, the MC line by Newton per
     /// sample), and covers it.
@@ -363,23 +343,9 @@ mod tests {
         let base = ModelParams::at(e.0, k.0);
         // N = 96: the two computations of one curve agree at any grid (at N = 192 too, 3x slower).
         let n = 96;
-        let paper = boundaries(&Window {
-            base,
-            n,
-            modes: 2,
-            eta_t: e,
-            kappa2: k,
-            id_samples: 60,
-        })
-        .unwrap();
-        let plane = boundaries_in(&PlaneWindow {
-            base,
-            n,
-            x: PlaneAxis::new(ModelParam::EtaT, e),
-            y: PlaneAxis::new(ModelParam::Kappa2, k),
-            samples: 16,
-        })
-        .unwrap();
+        let paper = boundaries(&Window::paper(base, (n, 2), e, k, 60)).unwrap();
+        // The same window traced, as any other plane is.
+        let plane = traced(&Window::paper(base, (n, 2), e, k, 16)).unwrap();
         let th = crate::roots::thresholds::ic_thresholds(&base, n, 2).unwrap();
         let names: Vec<&str> = plane.iter().map(|b| b.name).collect();
         assert_eq!(names.len(), 7, "{names:?}");

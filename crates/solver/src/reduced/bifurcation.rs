@@ -1,4 +1,4 @@
-//! Steady states of the reduced model along a line in `eta_t` or `kappa2`, with their
+//! Steady states of the reduced model along a line in one model parameter, with their
 //! stability (eigenvalues of the Jacobian of eqs. 58-59) and the bifurcation points
 //! (pitchfork `P`, saddle-node `SN`): the paper's Fig. 3(b).
 //!
@@ -8,6 +8,7 @@
 //! found by bracketing and bisection in `0 < s < 1`. Every state lies on the mirror axis
 //! (`vy = b2 = 0`, motion along x), where the Jacobian splits into the (vx, a2) and (vy, b2)
 //! blocks; the latter holds the neutral rotation mode of ID and MD states, which is excluded.
+use crate::model::param::ModelParam;
 use crate::model::params::ModelParams;
 use crate::reduced::coefficients::Coefficients;
 use crate::reduced::ode::rhs;
@@ -39,8 +40,8 @@ impl Branch {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct SteadyPoint {
     pub branch: Branch,
-    pub eta_t: f64,
-    pub kappa2: f64,
+    /// The parameters of the state.
+    pub params: ModelParams,
     pub v: f64,
     pub s: f64,
     /// Largest real part of the eigenvalues (neutral rotation mode excluded).
@@ -132,8 +133,7 @@ pub fn steady_states(c: &Coefficients, p: &ModelParams) -> Vec<SteadyPoint> {
         let max_re = max_real_eigenvalue(c, p, v, a2, branch != Branch::IC);
         out.push(SteadyPoint {
             branch,
-            eta_t: p.eta_t,
-            kappa2: p.kappa2,
+            params: *p,
             v,
             s,
             max_re,
@@ -153,25 +153,21 @@ pub fn steady_states(c: &Coefficients, p: &ModelParams) -> Vec<SteadyPoint> {
     out
 }
 
-/// Which parameter a line sweeps.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-pub enum Axis {
-    EtaT,
-    Kappa2,
-}
-
-/// Steady states along a line, and the bifurcation points between its samples: a change of
-/// IC or ID stability is a pitchfork (`P`); a change by two in the number of MD states of one
-/// family is a saddle-node (`SN`); by one, a pitchfork where the branch meets IC or ID.
+/// Steady states along a line in `param` (the coefficients `c` stay as given: a line in
+/// `radius` needs coefficients of each radius), and the bifurcation points between its
+/// samples: a change of IC or ID stability is a pitchfork (`P`); a change by two in the
+/// number of MD states of one family is a saddle-node (`SN`); by one, a pitchfork where the
+/// branch meets IC or ID.
 pub fn diagram(
     c: &Coefficients,
     base: &ModelParams,
-    axis: Axis,
+    param: ModelParam,
     values: &[f64],
 ) -> (Vec<SteadyPoint>, Vec<Event>) {
-    let at = |x: f64| match axis {
-        Axis::EtaT => ModelParams { eta_t: x, ..*base },
-        Axis::Kappa2 => ModelParams { kappa2: x, ..*base },
+    let at = |x: f64| {
+        let mut p = *base;
+        param.set(&mut p, x);
+        p
     };
     let per: Vec<Vec<SteadyPoint>> = values.iter().map(|&x| steady_states(c, &at(x))).collect();
     let mut events = Vec::new();
@@ -212,11 +208,11 @@ pub fn diagram(
 mod tests {
     use super::*;
 
-    fn line(axis: Axis, fixed: f64, lo: f64, hi: f64) -> (Vec<SteadyPoint>, Vec<Event>) {
+    fn line(axis: ModelParam, fixed: f64, lo: f64, hi: f64) -> (Vec<SteadyPoint>, Vec<Event>) {
         let c = Coefficients::paper();
         let base = match axis {
-            Axis::EtaT => ModelParams::at(0.08, fixed),
-            Axis::Kappa2 => ModelParams::at(fixed, 0.12),
+            ModelParam::EtaT => ModelParams::at(0.08, fixed),
+            _ => ModelParams::at(fixed, 0.12),
         };
         let values: Vec<f64> = (0..=400)
             .map(|i| lo + (hi - lo) * i as f64 / 400.0)
@@ -224,13 +220,9 @@ mod tests {
         diagram(&c, &base, axis, &values)
     }
 
-    fn stable_md_at(pts: &[SteadyPoint], x: f64, axis: Axis) -> bool {
+    fn stable_md_at(pts: &[SteadyPoint], x: f64, axis: ModelParam) -> bool {
         pts.iter().any(|p| {
-            let px = if axis == Axis::EtaT {
-                p.eta_t
-            } else {
-                p.kappa2
-            };
+            let px = axis.get(&p.params);
             (px - x).abs() < 1e-12 && p.branch == Branch::MdMinor && p.stable
         })
     }
@@ -243,11 +235,11 @@ mod tests {
         assert!(!md_states(&c, c.f1 - 0.001, 0.16, -1.0).is_empty());
         // kappa2 = 0.130: a stable and an unstable MD coexist with stable IC above f1
         // (subcritical, hysteresis), ending in a saddle-node.
-        let (pts, ev) = line(Axis::EtaT, 0.13, 0.070, 0.095);
+        let (pts, ev) = line(ModelParam::EtaT, 0.13, 0.070, 0.095);
         let x = (c.f1 + 0.002 - 0.070) / (0.025 / 400.0);
         let x = 0.070 + x.round() * 0.025 / 400.0;
         assert!(
-            stable_md_at(&pts, x, Axis::EtaT),
+            stable_md_at(&pts, x, ModelParam::EtaT),
             "stable MD at eta_t = {x}"
         );
         assert!(ev
@@ -280,14 +272,14 @@ mod tests {
     #[test]
     fn md_loses_stability_by_saddle_node_only_between_kappa2_0114_and_0156() {
         let has_sn = |k: f64| {
-            let (_, ev) = line(Axis::EtaT, k, 0.075, 0.11);
+            let (_, ev) = line(ModelParam::EtaT, k, 0.075, 0.11);
             ev.iter()
                 .any(|e| e.kind == "SN" && e.branch == Branch::MdMinor)
         };
         assert!(has_sn(0.12) && has_sn(0.15));
         assert!(!has_sn(0.105) && !has_sn(0.16));
         // Only minor-axis motion is stable.
-        let (pts, _) = line(Axis::EtaT, 0.12, 0.07, 0.10);
+        let (pts, _) = line(ModelParam::EtaT, 0.12, 0.07, 0.10);
         assert!(pts
             .iter()
             .filter(|p| p.branch == Branch::MdMajor)

@@ -15,7 +15,7 @@ use crate::reduced::bifurcation::md_states;
 use crate::reduced::coefficients::Coefficients;
 use crate::roots::balances::Balances;
 use crate::roots::steady_solver::TwoModeSolver;
-use crate::roots::steady_solver::{on_x_axis, AxisState, SteadySolver};
+use crate::roots::steady_solver::{on_x_axis, MirrorState, SteadySolver};
 use crate::roots::verdict::Verdict;
 use rustfft::num_complex::Complex64;
 use serde::Serialize;
@@ -208,7 +208,7 @@ const NEW_MODE_SEEDS: [f64; 3] = [0.0, 0.05, -0.05];
 /// The MD state of the `k_max`-mode model at the solver's parameters, moving along +x: the
 /// 2-mode model's ([`find`], from the reduced model's states), then one mode at a time, each
 /// from `a_k = 0`.
-pub fn md_state(solver: &mut SteadySolver, k_max: usize) -> Result<AxisState, SolverError> {
+pub fn md_state(solver: &mut SteadySolver, k_max: usize) -> Result<MirrorState, SolverError> {
     let two = find(
         &mut Balances::new(*solver.params(), solver.n(), 2, 0.0)?,
         StateKind::MD,
@@ -226,7 +226,7 @@ pub fn md_state_from(
     k_max: usize,
     v: f64,
     a2: f64,
-) -> Result<AxisState, SolverError> {
+) -> Result<MirrorState, SolverError> {
     let mut guess = vec![v, a2];
     let mut st = solver.newton_x(&guess, 1e-11)?;
     for _ in 3..=k_max {

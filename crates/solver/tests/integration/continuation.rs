@@ -4,8 +4,7 @@
 use droplet_solver::continuation::arclength::ArclengthOptions;
 use droplet_solver::continuation::fold_curve::{md_fold_curve, FoldModel};
 use droplet_solver::continuation::onset_lines::mc_line;
-use droplet_solver::continuation::window::PlaneAxis;
-use droplet_solver::continuation::window::Window;
+use droplet_solver::continuation::window::{Axis, Window};
 use droplet_solver::continuation::{
     branch::follow, branch::Branch, branch::BranchPoint, branch::Line, problem::Family,
 };
@@ -164,8 +163,8 @@ fn the_fold_curve_passes_through_the_one_parameter_folds() {
     // onsets split by 0.015 at N = 64), and with them the fold curve's ends.
     let n = 128;
     let window = (
-        PlaneAxis::new(ModelParam::EtaT, (0.07, 0.1)),
-        PlaneAxis::new(ModelParam::Kappa2, (0.1, 0.17)),
+        Axis::new(ModelParam::EtaT, (0.07, 0.1)),
+        Axis::new(ModelParam::Kappa2, (0.1, 0.17)),
     );
     let base = ModelParams::at(0.07, 0.1);
     let curve = md_fold_curve(
@@ -195,14 +194,13 @@ fn the_mc_onset_line_is_where_the_moving_branch_has_s_at_the_threshold() {
     // interpolation; the points are ~1e-4 apart there).
     let n = 128;
     let th = ic_thresholds(&ModelParams::at(0.085, 0.16), n, 2).unwrap();
-    let w = Window {
-        base: ModelParams::at(0.07, 0.16),
-        n,
-        modes: 2,
-        eta_t: (0.07, 0.1),
-        kappa2: (0.16, 0.17),
-        id_samples: 3,
-    };
+    let w = Window::paper(
+        ModelParams::at(0.07, 0.16),
+        (n, 2),
+        (0.07, 0.1),
+        (0.16, 0.17),
+        3,
+    );
     let two = |w: &Window| Balances::new(w.base, w.n, 2, 0.0).unwrap();
     let line = mc_line(two(&w), &w, th.eta_t).unwrap();
     assert_eq!(line.len(), 3, "{line:?}");
@@ -211,8 +209,8 @@ fn the_mc_onset_line_is_where_the_moving_branch_has_s_at_the_threshold() {
     // MC lies between the threshold curve and the onset of motion. Below kappa2 ~ 0.154 the
     // onset is subcritical and the s = 0.01 state unstable: the line stops there.
     let low = Window {
-        kappa2: (0.13, 0.17),
-        id_samples: 5,
+        y: Axis::new(ModelParam::Kappa2, (0.13, 0.17)),
+        samples: 5,
         ..w.clone()
     };
     let stable_part = mc_line(two(&low), &low, th.eta_t).unwrap();

@@ -1,6 +1,6 @@
 //! The model with shape modes `2..K`: where its runs end either side of its own MD fold.
 use droplet_solver::continuation::fold_curve::walk_to_fold;
-use droplet_solver::continuation::window::PlaneAxis;
+use droplet_solver::continuation::window::Axis;
 use droplet_solver::model::mirror::MirrorLine;
 use droplet_solver::roots::balances::Balances;
 
@@ -14,7 +14,7 @@ use droplet_solver::stepping::SchemeKind;
 /// The `eta_t` of the MD branch's fold at `kappa2 = 0.13` with modes `2..=k_max` at N = 96.
 fn fold(k_max: usize) -> f64 {
     let balances = Balances::new(ModelParams::at(0.07, 0.13), 96, k_max, 0.0).unwrap();
-    let line = PlaneAxis::new(ModelParam::EtaT, (0.07, 0.1));
+    let line = Axis::new(ModelParam::EtaT, (0.07, 0.1));
     walk_to_fold(balances, MirrorLine::X, line, 0.13)
         .expect("the MD branch folds")
         .x

@@ -83,16 +83,16 @@ pub fn split(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::spec::lattice::{Axis, Refine};
+    use crate::spec::lattice::{Refine, Steps};
 
     fn lattice(levels: u32) -> Lattice {
         Lattice {
-            x: Axis {
+            x: Steps {
                 start: 0.07,
                 step: 0.01,
                 count: 4,
             },
-            y: Axis {
+            y: Steps {
                 start: 0.1,
                 step: 0.02,
                 count: 3,

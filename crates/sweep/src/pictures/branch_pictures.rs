@@ -4,9 +4,8 @@
 use crate::error::SweepError;
 use crate::pictures::branch_lines::{branch_lines, BranchSample};
 use crate::pictures::line_figure::{vs_parameter, Marker};
-use crate::spec::axes::{ETA_T, KAPPA2};
 use droplet_solver::model::param::ModelParam;
-use droplet_solver::reduced::bifurcation::{Axis, Branch, Event, SteadyPoint};
+use droplet_solver::reduced::bifurcation::{Branch, Event, SteadyPoint};
 use std::path::{Path, PathBuf};
 
 /// The reduced model's bifurcation diagram along a line (Fig. 3b style) as `<stem>.png` and
@@ -17,20 +16,11 @@ pub fn ode_bifurcation(
     stem: &str,
     pts: &[SteadyPoint],
     events: &[Event],
-    axis: Axis,
+    axis: ModelParam,
     title: &str,
 ) -> Result<Vec<PathBuf>, SweepError> {
-    let x_label = match axis {
-        Axis::EtaT => ETA_T,
-        Axis::Kappa2 => KAPPA2,
-    };
-    let x_of = |p: &SteadyPoint| {
-        if axis == Axis::EtaT {
-            p.eta_t
-        } else {
-            p.kappa2
-        }
-    };
+    let x_label = axis.name();
+    let x_of = |p: &SteadyPoint| axis.get(&p.params);
     let (lo, hi) = pts
         .iter()
         .map(x_of)

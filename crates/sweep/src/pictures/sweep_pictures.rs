@@ -284,7 +284,7 @@ fn slices(
     dir: &Path,
     title: &str,
     names: (&str, &str),
-    z: &crate::spec::GridAxis,
+    z: &crate::spec::Swept,
     pts: Vec<(f64, MapPoint)>,
 ) -> Result<Vec<PathBuf>, SweepError> {
     let mut panels: Vec<Panel> = z

@@ -24,9 +24,9 @@ pub const MAX_AXIS_POINTS: usize = 100_000;
 /// Most axes a grid may have.
 pub const MAX_AXES: usize = 3;
 
-/// One swept axis.
+/// One swept parameter of the grid (an axis of the map): its values.
 #[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct GridAxis {
+pub struct Swept {
     pub param: Param,
     /// The values, in the spec's order (a range: increasing).
     pub values: Vec<f64>,
@@ -34,7 +34,7 @@ pub struct GridAxis {
     pub step: Option<f64>,
 }
 
-impl GridAxis {
+impl Swept {
     /// Smallest and largest value.
     pub fn span(&self) -> (f64, f64) {
         self.values
@@ -48,9 +48,9 @@ impl GridAxis {
 /// The swept axes: `x`, in a 2- or 3-axis grid `y`, in a 3-axis grid `z` (the slices).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Grid {
-    pub x: GridAxis,
-    pub y: Option<GridAxis>,
-    pub z: Option<GridAxis>,
+    pub x: Swept,
+    pub y: Option<Swept>,
+    pub z: Option<Swept>,
 }
 
 impl Grid {
@@ -64,20 +64,20 @@ impl Grid {
     }
 
     /// The axes, in order.
-    pub fn axes(&self) -> impl Iterator<Item = &GridAxis> {
+    pub fn axes(&self) -> impl Iterator<Item = &Swept> {
         std::iter::once(&self.x)
             .chain(self.y.as_ref())
             .chain(self.z.as_ref())
     }
 
     /// The axis that sweeps `p`, if any.
-    pub fn axis(&self, p: Param) -> Option<&GridAxis> {
+    pub fn axis(&self, p: Param) -> Option<&Swept> {
         self.axes().find(|a| a.param == p)
     }
 
     /// The first point.
     pub fn first(&self) -> Point {
-        let at = |a: &Option<GridAxis>| a.as_ref().map_or(0.0, |a| a.values[0]);
+        let at = |a: &Option<Swept>| a.as_ref().map_or(0.0, |a| a.values[0]);
         [self.x.values[0], at(&self.y), at(&self.z)]
     }
 
@@ -135,7 +135,7 @@ pub(super) fn parse(ctx: &Ctx, top: &Mapping) -> Result<Grid, SpecError> {
         let name = k.as_str().unwrap_or("");
         let param = Param::parse(name).expect("keys were checked against Param::ALL");
         let (values, step) = parse_axis(ctx, v, param)?;
-        axes.push(GridAxis {
+        axes.push(Swept {
             param,
             values,
             step,
@@ -258,7 +258,7 @@ pub(super) fn check_points(
     settings: &SolverSettings,
 ) -> Result<(), SpecError> {
     let plane = grid.plane();
-    let axes: Vec<&GridAxis> = grid.axes().collect();
+    let axes: Vec<&Swept> = grid.axes().collect();
     let ends: Vec<[f64; 2]> = axes
         .iter()
         .map(|a| {

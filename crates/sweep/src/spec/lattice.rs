@@ -19,9 +19,9 @@ pub struct Refine {
     pub split_bistable: bool,
 }
 
-/// The spec's uniform grid along one axis: `start + i step`, `i < count`.
+/// The uniform steps of the spec's grid along one of its axes: `start + i step`, `i < count`.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct Axis {
+pub struct Steps {
     pub start: f64,
     pub step: f64,
     pub count: u64,
@@ -31,9 +31,9 @@ pub struct Axis {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Lattice {
     /// The plane's first axis.
-    pub x: Axis,
+    pub x: Steps,
     /// Its second.
-    pub y: Axis,
+    pub y: Steps,
     pub refine: Refine,
 }
 
@@ -58,7 +58,8 @@ impl Lattice {
     /// grid's value where a uniform grid has the point).
     pub fn coords(&self, (i, j): Node) -> (f64, f64) {
         let s = self.scale() as f64;
-        let at = |a: &Axis, k: u64| crate::spec::axes::round12(a.start + (k as f64) * (a.step / s));
+        let at =
+            |a: &Steps, k: u64| crate::spec::axes::round12(a.start + (k as f64) * (a.step / s));
         (at(&self.x, i), at(&self.y, j))
     }
 
@@ -91,7 +92,7 @@ impl Lattice {
     /// The node of a point `(x, y)` of this lattice (the inverse of [`Self::coords`]).
     pub fn node_of(&self, (x, y): (f64, f64)) -> Node {
         let s = self.scale() as f64;
-        let at = |a: &Axis, x: f64| ((x - a.start) / (a.step / s)).round().max(0.0) as u64;
+        let at = |a: &Steps, x: f64| ((x - a.start) / (a.step / s)).round().max(0.0) as u64;
         (at(&self.x, x), at(&self.y, y))
     }
 

@@ -45,7 +45,7 @@ use serde_yaml::Value;
 use std::path::{Path, PathBuf};
 
 pub use context::locate;
-pub use grid::{Grid, GridAxis, MAX_AXES, MAX_AXIS_POINTS};
+pub use grid::{Grid, Swept, MAX_AXES, MAX_AXIS_POINTS};
 pub use refine::MAX_LEVELS;
 
 /// A validated sweep spec.

@@ -11,9 +11,9 @@
 //! each level halves the steps where the class changes. A third axis (any values) is refined
 //! slice by slice, each slice's cells split by its own points. `min_step` is keyed by the axes' names.
 use super::context::{show, Ctx};
-use super::grid::{Grid, GridAxis};
+use super::grid::{Grid, Swept};
 use crate::error::SpecError;
-use crate::spec::lattice::{Axis, Lattice, Refine};
+use crate::spec::lattice::{Lattice, Refine, Steps};
 use serde_yaml::Mapping;
 
 /// Most refinement levels (a finest cell 1/1024 of the grid's).
@@ -21,7 +21,7 @@ pub const MAX_LEVELS: u32 = 10;
 
 /// A grid axis as the lattice's level-0 axis: a `{start, stop, step}` range of at least two
 /// points (refinement halves its step).
-fn lattice_axis(ctx: &Ctx, axis: Option<&GridAxis>) -> Result<Axis, SpecError> {
+fn lattice_axis(ctx: &Ctx, axis: Option<&Swept>) -> Result<Steps, SpecError> {
     let Some(axis) = axis else {
         return Err(ctx.err(
             &["refine"],
@@ -30,7 +30,7 @@ fn lattice_axis(ctx: &Ctx, axis: Option<&GridAxis>) -> Result<Axis, SpecError> {
         ));
     };
     match axis.step {
-        Some(step) if axis.values.len() >= 2 => Ok(Axis {
+        Some(step) if axis.values.len() >= 2 => Ok(Steps {
             start: axis.values[0],
             step,
             count: axis.values.len() as u64,

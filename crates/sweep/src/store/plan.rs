@@ -88,7 +88,7 @@ pub fn run_count(spec: &SweepSpec) -> u64 {
 
 /// Number of points of the spec's grid, or with `refine:` of its finest lattice.
 fn point_count(spec: &SweepSpec) -> u64 {
-    let count = |a: &Option<crate::spec::GridAxis>| a.as_ref().map_or(1, |a| a.values.len() as u64);
+    let count = |a: &Option<crate::spec::Swept>| a.as_ref().map_or(1, |a| a.values.len() as u64);
     let (ne, nk) = (spec.grid.x.values.len() as u64, count(&spec.grid.y));
     match &spec.refine {
         None => ne.saturating_mul(nk).saturating_mul(count(&spec.grid.z)),

@@ -9,6 +9,8 @@ use crate::spec::axes::{Param, ETA_T, KAPPA2};
 use crate::studies::across::Across;
 use crate::studies::pair::Pair;
 use crate::tables::boundaries::{self as table, NamedCurve};
+use droplet_solver::continuation::boundaries::boundaries;
+use droplet_solver::continuation::window::Window;
 use droplet_solver::contract::settings::{ModelKind, H0_PAPER};
 use droplet_solver::model::params::ModelParams;
 use droplet_solver::reduced::coefficients::Coefficients;
@@ -47,8 +49,9 @@ pub struct BoundaryStudy {
     /// ([`crate::studies::across`]).
     pub across: Option<Across>,
     /// Shape modes `2..=modes` (the paper's general model; 2 is the paper's). With more, the
-    /// full model's curves are those of the states on the x axis
-    /// (`droplet_solver::continuation::boundaries`), in the paper's plane only.
+    /// full model's curves are those of the states on the x axis, computed in the paper's
+    /// plane (also for the crossings of `across`); a `pair` is traced with two
+    /// (`droplet_solver::continuation::window::Window::check` refuses more).
     pub modes: usize,
     /// For a sweep in a plane of two model parameters that crossings do not give: the window
     /// its curves are continued in ([`crate::studies::pair`]; the reduced model's curves are
@@ -155,19 +158,29 @@ impl BoundaryStudy {
         })
     }
 
-    /// The same study with shape modes `2..=modes`: refused outside the paper's plane and
-    /// where the grid does not resolve the modes.
+    /// The same study with shape modes `2..=modes`, refused where its window cannot be
+    /// computed with them ([`Window::check`]).
     pub fn with_modes(self, modes: usize) -> Result<Self, SweepError> {
-        droplet_solver::contract::limits::check_modes(&self.base, self.n, modes)
-            .map_err(|e| SweepError::Invalid(e.to_string()))?;
-        if modes > 2 && !self.in_paper_plane() {
-            return Err(SweepError::Invalid(format!(
-                "{}: with --modes {modes} the boundaries are drawn in the paper's plane \
-                 (eta_t, kappa2) only; the sweep there is in another",
-                self.out.display()
-            )));
-        }
-        Ok(Self { modes, ..self })
+        let study = Self { modes, ..self };
+        let window = match &study.pair {
+            Some(p) => p.window(&study.base, study.n, modes),
+            None => study.paper_window(&study.base, study.n),
+        };
+        window
+            .check()
+            .map_err(|e| SweepError::Invalid(format!("{}: {e}", study.out.display())))?;
+        Ok(study)
+    }
+
+    /// The paper plane's window of the study at the parameters `base` and grid size `n`.
+    fn paper_window(&self, base: &ModelParams, n: usize) -> Window {
+        Window::paper(
+            *base,
+            (n, self.modes),
+            self.eta_t,
+            self.kappa2,
+            self.samples,
+        )
     }
 
     /// The names of the plane the curves are drawn in: the paper's, or the sweep's in `out`.
@@ -212,16 +225,7 @@ impl BoundaryStudy {
     /// The full model's boundaries (`pde`, at grid size `n`) and the reduced model's (`ode`)
     /// in the paper-plane window, at the parameters `base`.
     fn curves_at(&self, base: &ModelParams, n: usize) -> Result<Vec<NamedCurve>, SweepError> {
-        let pde = droplet_solver::continuation::boundaries::boundaries(
-            &droplet_solver::continuation::window::Window {
-                base: *base,
-                n,
-                modes: self.modes,
-                eta_t: self.eta_t,
-                kappa2: self.kappa2,
-                id_samples: self.samples,
-            },
-        )?;
+        let pde = boundaries(&self.paper_window(base, n))?;
         Ok(NamedCurve::from_boundaries(ModelKind::Pde, &pde)
             .into_iter()
             .chain(self.ode_curves_at(base))
@@ -253,7 +257,7 @@ impl BoundaryStudy {
         let started = Instant::now();
         let curves = match (&self.pair, &self.across) {
             (Some(p), across) => {
-                let mut curves = p.curves(&self.base, self.n)?;
+                let mut curves = p.curves(&self.base, self.n, self.modes)?;
                 if let Some(a) = across {
                     curves.extend(
                         a.plane_curves(&self.base, self.n, |b, _| Ok(self.ode_curves_at(b)))?,

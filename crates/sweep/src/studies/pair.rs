@@ -7,8 +7,8 @@ use crate::error::SweepError;
 use crate::spec::axes::Param;
 use crate::spec::SweepSpec;
 use crate::tables::boundaries::NamedCurve;
-use droplet_solver::continuation::plane::{boundaries_in, PlaneWindow};
-use droplet_solver::continuation::window::PlaneAxis;
+use droplet_solver::continuation::boundaries::boundaries;
+use droplet_solver::continuation::window::{Axis, Window};
 use droplet_solver::contract::settings::ModelKind;
 use droplet_solver::model::params::ModelParams;
 use std::path::Path;
@@ -19,8 +19,8 @@ const EDGE_SAMPLES: usize = 16;
 /// A sweep's plane of two model parameters, as the window of its axes.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Pair {
-    pub x: PlaneAxis,
-    pub y: PlaneAxis,
+    pub x: Axis,
+    pub y: Axis,
 }
 
 impl Pair {
@@ -60,8 +60,8 @@ impl Pair {
             }
         };
         Ok(Some(Self {
-            x: PlaneAxis::new(mx, window(plane.x)?),
-            y: PlaneAxis::new(my, window(y)?),
+            x: Axis::new(mx, window(plane.x)?),
+            y: Axis::new(my, window(y)?),
         }))
     }
 
@@ -70,16 +70,27 @@ impl Pair {
         (self.x.param.name(), self.y.param.name())
     }
 
-    /// The full model's boundaries in the window at grid size `n`, the other parameters
-    /// `base`'s.
-    pub fn curves(&self, base: &ModelParams, n: usize) -> Result<Vec<NamedCurve>, SweepError> {
-        let pde = boundaries_in(&PlaneWindow {
+    /// The window of the pair at grid size `n` with shape modes `2..=modes`, the other
+    /// parameters `base`'s.
+    pub fn window(&self, base: &ModelParams, n: usize, modes: usize) -> Window {
+        Window {
             base: *base,
             n,
+            modes,
             x: self.x,
             y: self.y,
             samples: EDGE_SAMPLES,
-        })?;
+        }
+    }
+
+    /// The full model's boundaries in [`Pair::window`].
+    pub fn curves(
+        &self,
+        base: &ModelParams,
+        n: usize,
+        modes: usize,
+    ) -> Result<Vec<NamedCurve>, SweepError> {
+        let pde = boundaries(&self.window(base, n, modes))?;
         Ok(NamedCurve::from_boundaries(ModelKind::Pde, &pde))
     }
 }

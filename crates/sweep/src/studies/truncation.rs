@@ -20,8 +20,7 @@ use crate::tables::boundaries::NamedCurve;
 use crate::tables::truncation::TruncationRow;
 use droplet_solver::continuation::boundaries::general_boundaries;
 use droplet_solver::continuation::fold_curve::walk_to_fold;
-use droplet_solver::continuation::window::PlaneAxis;
-use droplet_solver::continuation::window::Window;
+use droplet_solver::continuation::window::{Axis, Window};
 use droplet_solver::contract::settings::ModelKind;
 use droplet_solver::model::mirror::MirrorLine;
 use droplet_solver::model::modes::Modes;
@@ -85,24 +84,23 @@ fn row(
         solver: SteadySolver::new(line_base, n)?,
         modes: k_max,
     };
-    let line = PlaneAxis::new(ModelParam::EtaT, (from, to));
+    let line = Axis::new(ModelParam::EtaT, (from, to));
     let fold = walk_to_fold(balances, MirrorLine::X, line, kappa2);
     let fold_seconds = started.elapsed().as_secs_f64();
     let started = Instant::now();
     // The general computation at every K, K = 2 included, so that the models are compared
     // by one method.
-    let window = Window {
-        base: ModelParams {
+    let window = Window::paper(
+        ModelParams {
             eta_t: window_eta_t.0,
             kappa2: window_kappa2.0,
             ..*base
         },
-        n,
-        modes: k_max,
-        eta_t: window_eta_t,
-        kappa2: window_kappa2,
-        id_samples: 30,
-    };
+        (n, k_max),
+        window_eta_t,
+        window_kappa2,
+        30,
+    );
     let curves = general_boundaries(&window)?
         .into_iter()
         .map(|b| NamedCurve {

@@ -5,7 +5,8 @@
 use crate::error::SweepError;
 use crate::spec::axes::{ETA_T, KAPPA2};
 use crate::tables::sweep_tables::{metadata, write_parquet};
-use droplet_solver::reduced::bifurcation::{Axis, Event, SteadyPoint};
+use droplet_solver::model::param::ModelParam;
+use droplet_solver::reduced::bifurcation::{Event, SteadyPoint};
 use droplet_solver::reduced::coefficients::Coefficients;
 use polars::prelude::*;
 use std::path::{Path, PathBuf};
@@ -16,14 +17,11 @@ pub fn write(
     stem: &str,
     pts: &[SteadyPoint],
     events: &[Event],
-    axis: Axis,
+    axis: ModelParam,
     c: &Coefficients,
     line: &str,
 ) -> Result<[PathBuf; 2], SweepError> {
-    let x_label = match axis {
-        Axis::EtaT => ETA_T,
-        Axis::Kappa2 => KAPPA2,
-    };
+    let x_label = axis.name();
     let mut df = DataFrame::new(
         pts.len(),
         vec![
@@ -35,11 +33,11 @@ pub fn write(
             ),
             Column::new(
                 ETA_T.into(),
-                pts.iter().map(|p| p.eta_t).collect::<Vec<_>>(),
+                pts.iter().map(|p| p.params.eta_t).collect::<Vec<_>>(),
             ),
             Column::new(
                 KAPPA2.into(),
-                pts.iter().map(|p| p.kappa2).collect::<Vec<_>>(),
+                pts.iter().map(|p| p.params.kappa2).collect::<Vec<_>>(),
             ),
             Column::new("v".into(), pts.iter().map(|p| p.v).collect::<Vec<_>>()),
             Column::new("s".into(), pts.iter().map(|p| p.s).collect::<Vec<_>>()),

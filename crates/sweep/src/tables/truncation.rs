@@ -8,7 +8,7 @@
 use crate::error::SweepError;
 use crate::tables::sweep_tables::{metadata, write_parquet};
 use droplet_solver::continuation::fold_curve::Fold;
-use droplet_solver::roots::steady_solver::AxisState;
+use droplet_solver::roots::steady_solver::MirrorState;
 use droplet_solver::roots::thresholds::IcThresholds;
 use droplet_solver::roots::verdict::Verdict;
 use polars::prelude::*;
@@ -20,7 +20,7 @@ pub struct TruncationRow {
     /// Modes `2..=k_max`.
     pub k_max: usize,
     /// The MD state at Fig. 1c.
-    pub fig1c: AxisState,
+    pub fig1c: MirrorState,
     /// Its stability, the rotation mode set aside.
     pub fig1c_verdict: Verdict,
     /// `sqrt(sum a_k^2)` there.

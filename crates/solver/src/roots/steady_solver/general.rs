@@ -26,9 +26,10 @@ use crate::numerics::newton::{self, NewtonOptions};
 use crate::roots::forces_memo::ForcesMemo;
 use rustfft::num_complex::Complex64;
 
-/// A steady state moving along `x` with a shape symmetric about the x axis (`b_k = 0`).
+/// A steady state on the x mirror line: moving along `x` (or at rest), its shape symmetric
+/// about the x axis (`b_k = 0`).
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
-pub struct AxisState {
+pub struct MirrorState {
     pub v: f64,
     /// `a_k` for `k = 2..=K`.
     pub a: Vec<f64>,
@@ -262,7 +263,7 @@ impl SteadySolver {
     }
 
     /// Newton on [`Self::residual_x`] from `(v, a_2..a_K)`.
-    pub fn newton_x(&mut self, guess: &[f64], tol: f64) -> Result<AxisState, SolverError> {
+    pub fn newton_x(&mut self, guess: &[f64], tol: f64) -> Result<MirrorState, SolverError> {
         let opts = NewtonOptions {
             tol,
             max_iter: 40,
@@ -271,7 +272,7 @@ impl SteadySolver {
             one_sided: false,
         };
         let sol = newton::solve(|y| self.residual_x(y), guess, &opts)?;
-        Ok(AxisState {
+        Ok(MirrorState {
             v: sol.x[0],
             a: sol.x[1..].to_vec(),
             residual: sol.residual,

@@ -14,7 +14,7 @@
 pub mod general;
 pub mod two_mode;
 
-pub use general::{on_x_axis, AxisState, SteadySolver};
+pub use general::{on_x_axis, MirrorState, SteadySolver};
 pub use two_mode::{SteadyState, TwoModeSolver};
 
 use crate::error::SolverError;
