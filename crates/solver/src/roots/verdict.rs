@@ -73,7 +73,7 @@ pub trait Spectrum {
     /// Eigenvalues with `Re > -1`, decreasing real part.
     fn eigenvalues(&self) -> Vec<Complex64>;
     /// The eigenmode of `lambda` over the unknowns `(vx, vy, a_2..a_K, b_2..b_K)`.
-    fn mode(&self, lambda: Complex64) -> Vec<Complex64>;
+    fn eigenmode(&self, lambda: Complex64) -> Vec<Complex64>;
 }
 
 /// The rotation generator at `z = (vx, vy, a_2..a_K, b_2..b_K)`: the velocity turns once,
@@ -99,7 +99,7 @@ pub fn assess(lin: &impl Spectrum, z: &[f64]) -> Verdict {
             .iter()
             .filter(|l| l.im == 0.0 && l.re.abs() <= ROTATION_MAX)
         {
-            let mode = lin.mode(*l);
+            let mode = lin.eigenmode(*l);
             let overlap: Complex64 = mode.iter().zip(&g).map(|(m, gi)| m * gi).sum();
             let norm: f64 = mode.iter().map(|m| m.norm_sqr()).sum::<f64>().sqrt();
             let cos = overlap.norm() / (norm * g_norm);

@@ -234,7 +234,7 @@ impl Linearization {
     }
 
     /// The unit null vector of `T(lambda)` (its smallest singular vector).
-    pub fn mode(&self, lambda: C64) -> Vec<C64> {
+    pub fn eigenmode(&self, lambda: C64) -> Vec<C64> {
         let t = self.t_matrix(lambda);
         let svd = t.svd(false, true);
         let v_t = svd.v_t.expect("asked for");
@@ -258,8 +258,8 @@ impl Spectrum for Linearization {
         Linearization::eigenvalues(self)
     }
 
-    fn mode(&self, lambda: C64) -> Vec<C64> {
-        Linearization::mode(self, lambda)
+    fn eigenmode(&self, lambda: C64) -> Vec<C64> {
+        Linearization::eigenmode(self, lambda)
     }
 }
 
