@@ -131,7 +131,8 @@ pub struct Args {
     /// run gives up (as a sweep with params.modes: K
     /// runs it). Its --series gains a3..aK, b3..bK; --picture draws every mode. With
     /// --scheme paper-fd: the paper's forward Euler with every mode to t_max, ended by the
-    /// steady test (every rate below --steady-tol). No pinning or orientation flow (the
+    /// steady test (every rate below --steady-tol). No pinning; the orientation's flow only
+    /// confirms that a run settled beside a root stable in rotation turns back to it (the
     /// saddle stop and the leap act at every K).
     #[arg(long, default_value_t = 2)]
     pub(super) modes: usize,

@@ -113,7 +113,14 @@ pub const ODE_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numeri
 /// the landing's slow flow (`runs::finish`, `try_disk`): runs near the onset of motion that
 /// crept onto the disk, or past the MD fold's ghost, for 1000-1800 time units end on the
 /// same disk by t = 20-110 ((0.0785, 0.12775) from ii: t = 1136 -> 62).
-pub const MODES_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-9+modes-11");
+/// 12: a run leaning from a root stable in rotation ends there once its speed and shape are
+/// within the settling bound of the state of the root's family at the run's own orientation
+/// (the box's anisotropy moves them by `O(lean^2)` from the root's) and the orientation's
+/// flow, sampled from the root out to the run, points back all the way
+/// (`runs::turning`, `settled_beside`): (0.07625, 0.14425) from iv, turning back to the
+/// x-axis MD at a rate of 5.7e-5, ended by the paper's test at t = 20 869 and now by Newton
+/// at t = 2801, on the same root.
+pub const MODES_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-9+modes-12");
 
 /// The numerics version of a model's runs with shape modes `2..=modes`, part of their cache
 /// key: a change to one model's results invalidates its stored runs only.

@@ -223,7 +223,8 @@ impl NewtonFinish {
     }
 
     /// Whether the run has shape modes beyond the paper's two, and so no orientation flow.
-    /// Two rules of the finish follow from it:
+    /// Three rules of the finish follow from it (the third:
+    /// [`NewtonFinish::settled_beside`], numerics `modes-12`):
     /// - the landing may end a 2-mode run leaning from its mirror line by more than
     ///   [`crate::runs::rotation_flow::LINEAR_LEAN`] on the line's root when that root is
     ///   stable in rotation (with the flow's basin check, or without it as numerics 7 did),
@@ -368,11 +369,12 @@ impl NewtonFinish {
         // settled when it has settled on the root it turns from (the two differ by the box's
         // anisotropy, 3 % in v for the fast MD with modes 2..4) or already on the turned one.
         let bound = self.settled_within(&f, change);
+        let lean = angle_to(z, &f.z);
         let settled = invariant_distance(z, &f.z) <= bound
             || f.turned_from
                 .as_ref()
-                .is_some_and(|near| invariant_distance(z, near) <= bound);
-        let lean = angle_to(z, &f.z);
+                .is_some_and(|near| invariant_distance(z, near) <= bound)
+            || self.settled_beside(z, &f, lean, bound);
         let turn = lean.abs();
         let turning_to = self.last_turn.as_ref().is_some_and(|(root, before)| {
             root.iter().zip(&f.z).all(|(a, b)| (a - b).abs() < 1e-6) && turn < *before

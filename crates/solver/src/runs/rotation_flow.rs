@@ -173,6 +173,17 @@ pub fn flow_zero(
     Err(line - phi0)
 }
 
+/// The state on the slow manifold of `root`'s family at the lean `lean` (radians) from it:
+/// the fast balances solved at that orientation from the root's own fast variables (a state
+/// that turns slowly has its speed and shape there, not the root's: the box's anisotropy
+/// moves them by `O(lean^2)`). `None` where Newton does not converge.
+pub fn state_leaning(balances: &mut Balances, root: &[f64], lean: f64) -> Option<Vec<f64>> {
+    let (moving, phi0, guess) = fast_guess(root);
+    let phi = phi0 + lean;
+    let (_, y) = flow_at(balances, moving, phi, &guess, &mut None)?;
+    Some(state_at(moving, phi, &y))
+}
+
 /// What is known of the orientation's flow on one side of a root stable in rotation: it
 /// points back to the root at every sample out to `back_to` (radians from the root), and
 /// outward at `outward_at`, if a sample showed that.
@@ -335,6 +346,34 @@ mod tests {
         );
         let z = flow_zero(&mut b, &root, 40f64.to_radians(), false).unwrap();
         assert!((orientation(&z).to_degrees() - 45.0).abs() < 1e-9, "{z:?}");
+    }
+
+    #[test]
+    fn the_state_leaning_from_a_root_solves_its_fast_balances_at_that_orientation() {
+        // (0.072, 0.132): the x-axis MD. At no lean it is the root; at 3 degrees its motion
+        // and long axis are turned by 3 degrees, every balance but the one across the motion
+        // holds, and its speed and shape differ from the root's by the box's anisotropy only.
+        let mut b = two(0.072, 0.132);
+        let md = solver(&mut b).newton(1.17, -0.21, 1e-12).unwrap();
+        let root = [md.v, 0.0, md.a2, 0.0];
+        let at_root = state_leaning(&mut b, &root, 0.0).unwrap();
+        for (x, r) in at_root.iter().zip(&root) {
+            assert!((x - r).abs() < 1e-9, "{at_root:?}");
+        }
+        let lean = 3f64.to_radians();
+        let z = state_leaning(&mut b, &root, lean).unwrap();
+        assert!((orientation(&z) - lean).abs() < 1e-12, "{z:?}");
+        let frame = turned(&b.residual(&z), -lean);
+        assert!(
+            frame[0].abs() < 1e-9 && frame[2..].iter().all(|r| r.abs() < 1e-9),
+            "{frame:?}"
+        );
+        assert!(
+            frame[1].abs() > 1e-7,
+            "the flow across the motion: {frame:?}"
+        );
+        let d = crate::runs::orientation::invariant_distance(&z, &root);
+        assert!(d > 1e-9 && d < 1e-2, "{d}");
     }
 
     #[test]

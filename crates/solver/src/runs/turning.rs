@@ -1,12 +1,13 @@
 //! The Newton finish's questions to the orientation's slow flow
 //! ([`crate::runs::rotation_flow`], setting `orientation_flow`): whether a run leaning from a
-//! stable root turns back to it, and to which stable root a run leaning from a root unstable
-//! in rotation turns.
+//! stable root turns back to it, to which stable root a run leaning from a root unstable in
+//! rotation turns, and whether a run with more shape modes (whose finish has no such flow)
+//! has settled beside a stable root it turns back to.
 use crate::contract::profile::{self, Part};
 use crate::runs::finding::{Finding, MAX_SETTLED};
 use crate::runs::finish::{same_root, NewtonFinish};
 use crate::runs::orientation::{angle_to, invariant_distance, LEAN_FLOOR};
-use crate::runs::rotation_flow::{flow_zero, FlowScan};
+use crate::runs::rotation_flow::{flow_zero, state_leaning, FlowScan, LINEAR_LEAN};
 
 /// The finish's questions to the flow: whether a leaning run turns back to a stable root
 /// ([`NewtonFinish::within_rotation_basin`]) and where it turns to from an unstable one
@@ -25,6 +26,13 @@ impl NewtonFinish {
         if !self.orientation_flow || near.verdict.rotation.is_none() || lean.abs() < LEAN_FLOOR {
             return true;
         }
+        self.scan_turns_back(near, lean)
+    }
+
+    /// Whether the orientation's flow beside `near` points back to it at every sample out
+    /// to `lean` ([`FlowScan`]; each root's scan is kept and extended as the run's lean
+    /// grows).
+    fn scan_turns_back(&mut self, near: &Finding, lean: f64) -> bool {
         // What earlier tries learnt of this root's flow on this side (a run's later tries find
         // the same root at a similar lean; the flow is sampled once).
         let side = lean > 0.0;
@@ -47,6 +55,40 @@ impl NewtonFinish {
             None => self.flows.push((near.z.clone(), side, scan)),
         }
         scan.verdict(lean).unwrap_or(true)
+    }
+
+    /// Whether a run with more than two shape modes, leaning by `lean` from the stable root
+    /// `near` on a mirror line, has settled beside it: its speed and shape within `bound` of
+    /// the state of `near`'s family at its own orientation ([`state_leaning`]), where a
+    /// slowly turning run has them (the root's differ by the box's anisotropy, `O(lean^2)`:
+    /// 1.2e-4 at 4.8 degrees from the x-axis MD at (0.07625, 0.14425), modes 2..4, whose
+    /// run turns back at a rate of 5.7e-5 and would settle on the root only after 18 000
+    /// time units more). Its turn back is then the orientation's slow flow, sampled out to
+    /// the run ([`FlowScan`]): every sample must point back. 2-mode runs keep their own rule
+    /// (numerics 10).
+    pub(super) fn settled_beside(
+        &mut self,
+        z: &[f64],
+        near: &Finding,
+        lean: f64,
+        bound: f64,
+    ) -> bool {
+        if !self.beyond_two_modes()
+            || !near.stable()
+            || near.verdict.rotation.is_none()
+            || lean.abs() <= LINEAR_LEAN
+        {
+            return false;
+        }
+        let Ok(balances) = self.balances() else {
+            return false;
+        };
+        let beside = {
+            let _timed = profile::enter(Part::Flow);
+            state_leaning(balances, &near.z, lean)
+        };
+        beside.is_some_and(|b| invariant_distance(z, &b) <= bound)
+            && self.scan_turns_back(near, lean)
     }
 
     /// With `orientation_flow`: the stable root that the orientation's flow takes a run
