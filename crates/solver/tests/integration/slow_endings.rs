@@ -46,6 +46,29 @@ fn a_four_mode_run_turning_towards_a_root_short_of_the_next_line_ends_there_earl
 }
 
 #[test]
+fn a_four_mode_run_turning_slowly_back_to_a_stable_root_ends_once_settled_beside_it() {
+    // Modes 2..4 at N = 192 (at N = 96 the run ends on the diagonal), (0.07625, 0.14425) from
+    // iv: the run settles 4.8 degrees off the x axis by t = 2600 and turns back to the x-axis
+    // MD, stable in rotation, at a rate of 5.7e-5, where pure time stepping ends
+    // (results/k-mode-endings/runs/pure-rotation-k4-n192.json). Its speed and shape are those
+    // of the MD's family at its own orientation (the root's differ by 1.2e-4 there): numerics
+    // modes-12 ends it on the root by Newton at t = 2801, where the paper's test had ended it
+    // at t = 20 869.
+    let pure = committed("pure-rotation-k4-n192");
+    let end = pure.iter().find(|e| e.ic == "iv").expect("the run from iv");
+    let settings = SolverSettings {
+        n: 192,
+        ..four_modes()
+    };
+    let p = ModelParams::at(end.eta_t, end.kappa2);
+    let out = simulate(&p, &InitialCondition::parse("iv").unwrap(), &settings).unwrap();
+    assert!(same_end(&out, end), "{out:?}");
+    assert_eq!(out.ended_by, Some(Ending::Newton), "{out:?}");
+    assert!(out.t_end > 2000.0 && out.t_end < 3000.0, "{out:?}");
+    assert!(orientation_deg(&out).abs() < 1e-6, "{out:?}");
+}
+
+#[test]
 fn a_four_mode_run_slowing_onto_the_resting_disk_lands_there() {
     // Modes 2..4 at N = 96, (0.0765, 0.16425) from i, just past the disk's onset of motion:
     // the run slows down along the speed family to the resting disk, which the box deforms
