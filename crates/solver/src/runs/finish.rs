@@ -370,16 +370,20 @@ impl NewtonFinish {
         // anisotropy, 3 % in v for the fast MD with modes 2..4) or already on the turned one.
         let bound = self.settled_within(&f, change);
         let lean = angle_to(z, &f.z);
-        let settled = invariant_distance(z, &f.z) <= bound
-            || f.turned_from
-                .as_ref()
-                .is_some_and(|near| invariant_distance(z, near) <= bound)
-            || self.settled_beside(z, &f, lean, bound);
         let turn = lean.abs();
         let turning_to = self.last_turn.as_ref().is_some_and(|(root, before)| {
             root.iter().zip(&f.z).all(|(a, b)| (a - b).abs() < 1e-6) && turn < *before
         });
         self.last_turn = Some((f.z.clone(), turn));
+        // A run with more shape modes turning back to a stable root may have settled beside
+        // it instead (its speed and shape those of the root's family at its own orientation):
+        // asked only of a run that may end there and is turning towards it, since the
+        // question samples the orientation's flow.
+        let settled = invariant_distance(z, &f.z) <= bound
+            || f.turned_from
+                .as_ref()
+                .is_some_and(|near| invariant_distance(z, near) <= bound)
+            || (may_end && !turning && turning_to && self.settled_beside(z, &f, lean, bound));
         // A turned root ends a run that leaves the root it turns from (within LINEAR_LEAN
         // of it, where that root's rotation eigenvalue decides), or one turning towards it;
         // 2-mode runs always (their orientation's flow found it). Runs with more shape
