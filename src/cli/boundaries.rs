@@ -101,7 +101,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
         )));
     }
     let study = BoundaryStudy::new(&a.out, eta_t, kappa2, ns[0], a.samples)?;
-    let modes = a.modes.unwrap_or(study.modes);
+    let modes = a.modes.unwrap_or(study.base.modes);
     let study = study.with_modes(modes)?;
     super::line::within_limit("eta_t window HI (from the sweep in --out)", study.eta_t.1)?;
     super::line::within_limit("kappa2 window HI (from the sweep in --out)", study.kappa2.1)?;
@@ -167,7 +167,7 @@ fn report(
             .collect();
         print_json(&serde_json::json!({
             "eta_t": [study.eta_t.0, study.eta_t.1], "kappa2": [study.kappa2.0, study.kappa2.1],
-            "plane": [xn, yn], "n": study.n, "modes": study.modes, "seconds": done.seconds,
+            "plane": [xn, yn], "n": study.n, "modes": study.base.modes, "seconds": done.seconds,
             "curves": curves,
             "files": done.files,
         }));

@@ -79,7 +79,6 @@ pub struct Args {
 
 pub fn run(a: Args) -> Result<(), CliError> {
     check_common(&a)?;
-    droplet_solver::model::friction::check_exponent(a.eta_k_exponent, a.modes)?;
     let study = study_of(&a)?;
     let axis = a.axis.clone();
     let done = study.run(&mut |p| match p {
@@ -130,6 +129,12 @@ fn study_of(a: &Args) -> Result<ContinuationStudy, CliError> {
             .map_err(|e: String| CliError::usage(format!("invalid --branch: {e}, or all")))?]
     };
     let (parameter, base) = a.line.line(a.mass)?;
+    let base = droplet_solver::model::params::ModelParams {
+        modes: a.modes,
+        eta_k_exponent: a.eta_k_exponent,
+        ..base
+    };
+    base.validate()?;
     droplet_solver::contract::limits::check_modes(&base, a.n, a.modes)?;
     Ok(ContinuationStudy {
         out: a.out.clone(),
@@ -139,8 +144,6 @@ fn study_of(a: &Args) -> Result<ContinuationStudy, CliError> {
             parameter,
             from: a.line.span.from,
             to: a.line.span.to,
-            modes: a.modes,
-            eta_k_exponent: a.eta_k_exponent,
             max_points: a.max_points,
             opts: ArclengthOptions {
                 ds_max: a.ds_max,
@@ -172,7 +175,7 @@ fn print_text(study: &ContinuationStudy, done: &ContinuationWritten) {
                 e.point.v,
                 e.point.s,
                 e.what,
-                if study.line.modes == 2 {
+                if study.line.base.modes == 2 {
                     String::new()
                 } else {
                     format!("  a_k {:?}", e.point.a_k())
@@ -216,7 +219,7 @@ fn json_summary(done: &ContinuationWritten, line: &Line, varied: &str) -> serde_
         })
         .collect();
     serde_json::json!({
-        "modes": line.modes, "eta_k_exponent": line.eta_k_exponent,
+        "modes": line.base.modes, "eta_k_exponent": line.base.eta_k_exponent,
         "line": done.description, "n": line.n,
         "seconds": done.seconds, "branches": summary, "events": events, "files": done.files,
     })

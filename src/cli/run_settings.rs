@@ -202,8 +202,6 @@ pub(super) fn model_of(a: &Args) -> Result<(ModelParams, SolverSettings), CliErr
         landing: !a.no_landing,
         orientation_flow: !a.no_orientation_flow,
         run_on: !a.no_run_on,
-        modes: a.modes,
-        eta_k_exponent: a.eta_k_exponent,
         ..base
     };
     check_read(a, &settings)?;
@@ -222,6 +220,8 @@ pub(super) fn model_of(a: &Args) -> Result<(ModelParams, SolverSettings), CliErr
         sigma: a.sigma,
         box_len: a.box_len,
         mass: a.mass,
+        modes: a.modes,
+        eta_k_exponent: a.eta_k_exponent,
     };
     Ok((params, settings))
 }
@@ -253,7 +253,7 @@ fn check_read(a: &Args, settings: &SolverSettings) -> Result<(), CliError> {
         (a.pinned, "pinned", "--pinned"),
     ];
     let fields: Vec<&str> = given.iter().filter(|g| g.0).map(|g| g.1).collect();
-    match settings.first_unread(&fields) {
+    match settings.first_unread(a.modes, &fields) {
         None => Ok(()),
         Some((field, why)) => {
             let flag = given.iter().find(|g| g.1 == field).map_or(field, |g| g.2);

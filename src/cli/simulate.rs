@@ -93,14 +93,14 @@ pub fn run(a: Args) -> Result<(), CliError> {
         )?;
     }
     let pictures = match (&a.picture, pictures) {
-        (Some(path), Some(field)) => picture(path, &params, &settings, &ic, &out, &field)?,
+        (Some(path), Some(field)) => picture(path, &params, &ic, &out, &field)?,
         _ => Vec::new(),
     };
     let final_state = final_state_of(&params, &settings, &out);
     let z = out.unknowns();
     let (a_k, b_k) = z[2..].split_at(z.len() / 2 - 1);
     let report = Report {
-        modes: settings.modes,
+        modes: params.modes,
         status: out.status.as_str().into(),
         class: out.class.map(|c| c.as_str().into()),
         v: out.v,
@@ -146,12 +146,11 @@ pub fn run(a: Args) -> Result<(), CliError> {
 fn picture(
     path: &std::path::Path,
     params: &ModelParams,
-    settings: &SolverSettings,
     ic: &InitialCondition,
     out: &RunOutcome,
     field: &Field,
 ) -> Result<Vec<PathBuf>, CliError> {
-    let modes = match settings.modes {
+    let modes = match params.modes {
         2 => String::new(),
         k => format!(", modes 2..{k}"),
     };

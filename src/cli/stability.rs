@@ -69,7 +69,7 @@ pub struct Args {
     #[arg(long, value_name = "NAME=VALUE,...")]
     set: Option<String>,
     /// Print one JSON object (keys: state, axis, eta_t, kappa2, n, modes, eta_k_exponent, params {eta_t,
-    /// kappa2, eta2, mass, radius, sigma, box_len}, vx, vy, a2, b2, a_k [a2..aK], b_k
+    /// kappa2, eta2, mass, radius, sigma, box_len, modes, eta_k_exponent}, vx, vy, a2, b2, a_k [a2..aK], b_k
     /// [b2..bK], v, s (the paper's, mode 2), residual, eigenvalues [{re, im}], rotation (the
     /// rotation mode's eigenvalue or null), unstable (rotation excluded), stable,
     /// ic_thresholds {eta_t, kappa2_a2, kappa2_b2, kappa2_a [k = 2..K], kappa2_b [k = 2..K]}
@@ -132,11 +132,15 @@ pub fn run(a: Args) -> Result<(), CliError> {
         }
         p.set(&mut params, x);
     }
+    let params = ModelParams {
+        modes: a.modes,
+        eta_k_exponent: a.eta_k_exponent,
+        ..params
+    };
     params.validate()?;
     super::check_grid(a.n)?;
-    droplet_solver::model::friction::check_exponent(a.eta_k_exponent, a.modes)?;
     let k = a.modes;
-    let mut balances = Balances::new(params, a.n, k, a.eta_k_exponent)?;
+    let mut balances = Balances::new(params, a.n)?;
     let st = find(&mut balances, a.state, axis, seed).map_err(|e| match e {
         droplet_solver::error::SolverError::NewtonFailed { .. }
         | droplet_solver::error::SolverError::RestingRoot { .. } => CliError {

@@ -15,7 +15,7 @@
 //!
 //! Every curve takes its [`Balances`] from one place: for `K = 2` the 2-mode fast path. The
 //! general solver gives the 2-mode curves at `K = 2` (tested).
-use crate::continuation::fold_curve::{md_fold_curve, FoldModel};
+use crate::continuation::fold_curve::md_fold_curve;
 use crate::continuation::onset_lines::{id_line, mc_line};
 use crate::continuation::window::Window;
 use crate::error::SolverError;
@@ -81,7 +81,7 @@ pub fn boundaries(w: &Window) -> Result<Vec<Boundary>, SolverError> {
     if !w.in_paper_plane() {
         return crate::continuation::plane::traced(w);
     }
-    boundaries_with(w, &|| Balances::new(w.base, w.n, w.modes, 0.0))
+    boundaries_with(w, &|| Balances::new(w.base, w.n))
 }
 
 /// [`boundaries`] from the general solver at every `K`, 2 included: one computation for
@@ -100,7 +100,7 @@ pub fn general_boundaries(w: &Window) -> Result<Vec<Boundary>, SolverError> {
     boundaries_with(w, &|| {
         Ok(Balances::General {
             solver: SteadySolver::new(w.base, w.n)?,
-            modes: w.modes,
+            modes: w.base.modes,
         })
     })
 }
@@ -123,13 +123,7 @@ fn boundaries_with(w: &Window, make: Make) -> Result<Vec<Boundary>, SolverError>
     let (diag, axis, fold, mc): (Curve, Curve, Curve, Curve) = std::thread::scope(|scope| {
         let diag = scope.spawn(|| id_line(make()?, w, MirrorLine::Diagonal, low.kappa2_b2));
         let axis = scope.spawn(|| id_line(make()?, w, MirrorLine::X, low.kappa2_a2));
-        let fold = scope.spawn(|| {
-            let model = FoldModel {
-                n: w.n,
-                modes: w.modes,
-            };
-            md_fold_curve(&w.base, model, MirrorLine::X, (w.x, w.y), &starts)
-        });
+        let fold = scope.spawn(|| md_fold_curve(&w.base, w.n, MirrorLine::X, (w.x, w.y), &starts));
         let mc = mc_line(make()?, w, high.eta_t);
         let join = |h: std::thread::ScopedJoinHandle<'_, Curve>| {
             h.join().expect("a boundary curve's thread panicked")
@@ -166,14 +160,14 @@ mod tests {
         // back is not used) either side of it: one more growing mode below it.
         let k = 0.105;
         let w = Window::paper(
-            ModelParams::at(0.08, k),
-            (96, 4),
+            ModelParams::at(0.08, k).with_modes(4),
+            96,
             (0.06, 0.1),
             (k, k + 1e-3),
             2,
         );
         let diagonal = std::f64::consts::FRAC_PI_4;
-        let general = || Balances::new(w.base, w.n, 4, 0.0).unwrap();
+        let general = || Balances::new(w.base, w.n).unwrap();
         let line = id_line(general(), &w, MirrorLine::Diagonal, 0.118).unwrap();
         let axis = id_line(general(), &w, MirrorLine::X, 0.118).unwrap();
         assert_eq!((line[0].1, axis[0].1), (k, k));
@@ -222,7 +216,7 @@ mod tests {
         // line of the resting disk is the onset of motion, as with the 2-mode computation.
         let w = Window::paper(
             ModelParams::at(0.075, 0.125),
-            (96, 2),
+            96,
             (0.075, 0.085),
             (0.125, 0.135),
             4,
@@ -244,8 +238,8 @@ mod tests {
         // moving state at the middle line's start (Newton from the 2-mode state fails there).
         // That is a window without a fold curve, not a failed computation (it was one).
         let w = Window::paper(
-            ModelParams::at(0.08, 0.14),
-            (64, 3),
+            ModelParams::at(0.08, 0.14).with_modes(3),
+            64,
             (0.08, 0.1),
             (0.14, 0.17),
             4,
@@ -261,9 +255,9 @@ mod tests {
         let (e, k) = ((0.07, 0.1), (0.1, 0.17));
         let base = ModelParams::at(0.07, 0.1);
         let n = 96;
-        let w = Window::paper(base, (n, 2), e, k, 30);
+        let w = Window::paper(base, n, e, k, 30);
         let mine = general_boundaries(&w).unwrap();
-        let two = boundaries(&Window::paper(base, (n, 2), e, k, 30)).unwrap();
+        let two = boundaries(&Window::paper(base, n, e, k, 30)).unwrap();
         let scaled = |p: (f64, f64)| ((p.0 - e.0) / (e.1 - e.0), (p.1 - k.0) / (k.1 - k.0));
         assert_eq!(mine.len(), 7, "{mine:?}");
         for b in &mine {

@@ -25,7 +25,9 @@ use serde::Serialize;
 /// A line of parameter values and how to follow a branch along it.
 #[derive(Debug, Clone)]
 pub struct Line {
-    /// Parameters (the varied one is overwritten).
+    /// Parameters (the varied one is overwritten), the model's shape modes `2..=base.modes`
+    /// and the friction law of the modes `k >= 3` (eigenvalues only,
+    /// [`crate::model::friction`]) among them.
     pub base: ModelParams,
     pub n: usize,
     /// The varied parameter (any model parameter: `eta2` and `mass` move the eigenvalues
@@ -33,10 +35,6 @@ pub struct Line {
     pub parameter: ModelParam,
     pub from: f64,
     pub to: f64,
-    /// The model's shape modes `2..=modes`, and the friction law's exponent of the modes
-    /// `k >= 3` (eigenvalues only, [`crate::model::friction`]).
-    pub modes: usize,
-    pub eta_k_exponent: f64,
     /// Most points per direction.
     pub max_points: usize,
     pub opts: ArclengthOptions,
@@ -213,7 +211,7 @@ impl Tracer<'_> {
 /// Follows `family` on `mirror` along `line`. Errors: bad parameters, or no state of the
 /// family found anywhere on the line.
 pub fn follow(line: &Line, family: Family, mirror: MirrorLine) -> Result<Branch, SolverError> {
-    let balances = Balances::new(line.base, line.n, line.modes, line.eta_k_exponent)?;
+    let balances = Balances::new(line.base, line.n)?;
     let mut prob = Problem::new(balances, family, mirror, line.parameter, line.from, line.to);
     // Where to look for a first state: the ends, then ever finer points in between.
     let qs = [0.0, 1.0, 0.5, 0.25, 0.75, 0.125, 0.375, 0.625, 0.875];

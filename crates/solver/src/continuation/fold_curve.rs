@@ -16,14 +16,6 @@ use crate::model::state::turned;
 use crate::numerics::newton::fd_jacobian;
 use crate::roots::balances::Balances;
 
-/// The model of a fold curve: its grid and its shape modes `2..=modes` (the friction law
-/// moves no fold).
-#[derive(Debug, Clone, Copy)]
-pub struct FoldModel {
-    pub n: usize,
-    pub modes: usize,
-}
-
 /// The determinant of a square matrix: by its formula for `2 x 2`, else nalgebra's LU.
 fn det(a: &[Vec<f64>]) -> f64 {
     match a.len() {
@@ -86,7 +78,7 @@ impl FoldSystem {
 /// The MD branch on `mirror` along `x` at `y = at` (the other parameters `base`'s).
 pub fn md_branch(
     base: &ModelParams,
-    model: FoldModel,
+    n: usize,
     mirror: MirrorLine,
     x: Axis,
     y: Axis,
@@ -94,12 +86,10 @@ pub fn md_branch(
 ) -> Result<Branch, SolverError> {
     let line = Line {
         base: y.param.with(base, at),
-        n: model.n,
+        n,
         parameter: x.param,
         from: x.range.0,
         to: x.range.1,
-        modes: model.modes,
-        eta_k_exponent: 0.0,
         max_points: 400,
         opts: ArclengthOptions::default(),
     };
@@ -186,18 +176,18 @@ pub fn fold_of(branch: &Branch, mirror: MirrorLine, at: f64) -> Option<Fold> {
 /// one: `(v, shape amplitude, x, y)` there.
 fn first_fold(
     base: &ModelParams,
-    model: FoldModel,
+    n: usize,
     mirror: MirrorLine,
     (x, y): (Axis, Axis),
     starts: &[f64],
 ) -> Option<Fold> {
     starts.iter().find_map(|&at| {
         // K = 2: the branch's SN event (its verdicts cost little).
-        if model.modes > 2 {
-            let balances = Balances::new(y.param.with(base, at), model.n, model.modes, 0.0).ok()?;
+        if base.modes > 2 {
+            let balances = Balances::new(y.param.with(base, at), n).ok()?;
             return walk_to_fold(balances, mirror, x, at);
         }
-        let branch = md_branch(base, model, mirror, x, y, at).ok()?;
+        let branch = md_branch(base, n, mirror, x, y, at).ok()?;
         fold_of(&branch, mirror, at)
     })
 }
@@ -207,15 +197,15 @@ fn first_fold(
 /// points in order along it.
 pub fn md_fold_curve(
     base: &ModelParams,
-    model: FoldModel,
+    n: usize,
     mirror: MirrorLine,
     (x, y): (Axis, Axis),
     starts: &[f64],
 ) -> Result<Vec<(f64, f64)>, SolverError> {
-    let Some(first) = first_fold(base, model, mirror, (x, y), starts) else {
+    let Some(first) = first_fold(base, n, mirror, (x, y), starts) else {
         return Ok(Vec::new());
     };
-    fold_curve_from(base, model, mirror, (x, y), first)
+    fold_curve_from(base, n, mirror, (x, y), first)
 }
 
 /// The corrector and step settings of a fold curve's continuation.
@@ -273,13 +263,13 @@ pub fn fold_walk(
 /// The MD saddle-node curve through the fold `(v, a, x, y)`, continued both ways.
 pub fn fold_curve_from(
     base: &ModelParams,
-    model: FoldModel,
+    n: usize,
     mirror: MirrorLine,
     (x, y): (Axis, Axis),
     fold: Fold,
 ) -> Result<Vec<(f64, f64)>, SolverError> {
     let mut sys = FoldSystem {
-        balances: Balances::new(*base, model.n, model.modes, 0.0)?,
+        balances: Balances::new(*base, n)?,
         mirror,
         x,
         y,
@@ -317,9 +307,9 @@ mod tests {
     /// The MD branch along eta_t at kappa2 = 0.13 from 0.077, by [`walk_to_fold`] and by the
     /// one continuation ([`follow`]) with modes `2..=k_max`.
     fn both(k_max: usize, n: usize) -> (Fold, Branch) {
-        let base = ModelParams::at(0.077, 0.13);
+        let base = ModelParams::at(0.077, 0.13).with_modes(k_max);
         let x = Axis::new(ModelParam::EtaT, (0.077, 0.1));
-        let balances = Balances::new(base, n, k_max, 0.0).unwrap();
+        let balances = Balances::new(base, n).unwrap();
         let fold = walk_to_fold(balances, MirrorLine::X, x, 0.13).expect("a fold");
         let branch = follow(
             &Line {
@@ -328,8 +318,6 @@ mod tests {
                 parameter: ModelParam::EtaT,
                 from: 0.077,
                 to: 0.1,
-                modes: k_max,
-                eta_k_exponent: 0.0,
                 max_points: 400,
                 opts: ArclengthOptions::default(),
             },

@@ -25,7 +25,7 @@
 //! state and no real eigenvalue through zero.
 use crate::continuation::arclength::{last_where, start, ArclengthOptions, Stepper};
 use crate::continuation::branch::Branch;
-use crate::continuation::fold_curve::{fold_curve_from, fold_of, md_branch, FoldModel};
+use crate::continuation::fold_curve::{fold_curve_from, fold_of, md_branch};
 use crate::continuation::level_set::{zero_set, LevelSetOptions};
 use crate::continuation::window::Window;
 use crate::error::SolverError;
@@ -261,9 +261,9 @@ fn mc_curve(w: &Window, (v, x, y): (f64, f64, f64)) -> Result<Vec<(f64, f64)>, S
 }
 
 /// The MD fold and the MC onset, both started on MD branches followed in `x`.
-/// The 2-mode model on an `n x n` grid (a plane's curves are the paper's model's).
-fn two(n: usize) -> FoldModel {
-    FoldModel { n, modes: 2 }
+/// The 2-mode model of `base` (a plane's curves are the paper's model's).
+fn two(base: &ModelParams) -> ModelParams {
+    base.with_modes(2)
 }
 
 fn moving_curves(w: &Window) -> Result<Vec<Boundary>, SolverError> {
@@ -273,7 +273,7 @@ fn moving_curves(w: &Window) -> Result<Vec<Boundary>, SolverError> {
     // window), then the rest.
     for f in [0.5, 1.0, 0.25, 0.75, 0.0] {
         let at = w.y.value(f);
-        let Ok(branch) = md_branch(&w.base, two(w.n), MirrorLine::X, w.x, w.y, at) else {
+        let Ok(branch) = md_branch(&two(&w.base), w.n, MirrorLine::X, w.x, w.y, at) else {
             continue;
         };
         fold = fold.or_else(|| fold_of(&branch, MirrorLine::X, at));
@@ -286,7 +286,7 @@ fn moving_curves(w: &Window) -> Result<Vec<Boundary>, SolverError> {
     if let Some(first) = fold {
         out.push(Boundary {
             name: "MD saddle-node (x axis)",
-            points: fold_curve_from(&w.base, two(w.n), MirrorLine::X, (w.x, w.y), first)?,
+            points: fold_curve_from(&two(&w.base), w.n, MirrorLine::X, (w.x, w.y), first)?,
         });
     }
     if let Some(seed) = mc {
@@ -343,9 +343,9 @@ mod tests {
         let base = ModelParams::at(e.0, k.0);
         // N = 96: the two computations of one curve agree at any grid (at N = 192 too, 3x slower).
         let n = 96;
-        let paper = boundaries(&Window::paper(base, (n, 2), e, k, 60)).unwrap();
+        let paper = boundaries(&Window::paper(base, n, e, k, 60)).unwrap();
         // The same window traced, as any other plane is.
-        let plane = traced(&Window::paper(base, (n, 2), e, k, 16)).unwrap();
+        let plane = traced(&Window::paper(base, n, e, k, 16)).unwrap();
         let th = crate::roots::thresholds::ic_thresholds(&base, n, 2).unwrap();
         let names: Vec<&str> = plane.iter().map(|b| b.name).collect();
         assert_eq!(names.len(), 7, "{names:?}");

@@ -38,11 +38,10 @@ impl Axis {
 /// ([`crate::continuation::boundaries::boundaries`]).
 #[derive(Debug, Clone)]
 pub struct Window {
-    /// The other parameters (the axes' values are overwritten).
+    /// The other parameters (the axes' values are overwritten), the shape modes
+    /// `2..=base.modes` among them (2: the paper's model).
     pub base: ModelParams,
     pub n: usize,
-    /// Shape modes `2..=modes` (2: the paper's model).
-    pub modes: usize,
     pub x: Axis,
     pub y: Axis,
     /// The resolution: in the paper's plane the samples in `kappa2` of its sampled lines (the
@@ -55,7 +54,7 @@ impl Window {
     /// The window `eta_t` x `kappa2` of the paper's plane.
     pub fn paper(
         base: ModelParams,
-        (n, modes): (usize, usize),
+        n: usize,
         eta_t: (f64, f64),
         kappa2: (f64, f64),
         samples: usize,
@@ -63,7 +62,6 @@ impl Window {
         Self {
             base,
             n,
-            modes,
             x: Axis::new(ModelParam::EtaT, eta_t),
             y: Axis::new(ModelParam::Kappa2, kappa2),
             samples,
@@ -103,11 +101,11 @@ impl Window {
                 allowed: "two different parameters".into(),
             });
         }
-        check_modes(&self.base, self.n, self.modes)?;
-        if self.modes > 2 && !self.in_paper_plane() {
+        check_modes(&self.base, self.n, self.base.modes)?;
+        if self.base.modes > 2 && !self.in_paper_plane() {
             return Err(SolverError::InvalidChoice {
                 name: "modes",
-                value: self.modes.to_string(),
+                value: self.base.modes.to_string(),
                 allowed: format!(
                     "2 in a window of {} and {}: outside the paper's plane (eta_t, kappa2) the \
                      boundaries are traced with the 2-mode solver only",
@@ -127,7 +125,7 @@ mod tests {
     #[test]
     fn a_window_is_refused_where_its_boundaries_cannot_be_computed() {
         let base = ModelParams::at(0.077, 0.14);
-        let paper = Window::paper(base, (96, 4), (0.07, 0.1), (0.1, 0.17), 10);
+        let paper = Window::paper(base.with_modes(4), 96, (0.07, 0.1), (0.1, 0.17), 10);
         assert!(paper.in_paper_plane() && paper.check().is_ok());
         let pair = Window {
             x: Axis::new(ModelParam::Radius, (0.95, 1.05)),
@@ -141,7 +139,7 @@ mod tests {
         };
         assert_eq!(name(&pair), "modes");
         assert!(Window {
-            modes: 2,
+            base,
             ..pair.clone()
         }
         .check()
@@ -157,7 +155,7 @@ mod tests {
         for bad in [
             Window {
                 y: paper.x,
-                modes: 2,
+                base,
                 ..paper.clone()
             },
             Window {
@@ -175,7 +173,7 @@ mod tests {
         assert_eq!(
             name(&Window {
                 n: 64,
-                modes: 8,
+                base: base.with_modes(8),
                 ..paper
             }),
             "modes"

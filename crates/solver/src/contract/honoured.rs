@@ -21,9 +21,10 @@ impl SolverSettings {
     /// Why a run with these settings does not read the setting `field` (its key in a spec's
     /// `solver` section, and its column in `runs.parquet`), or `None` when it reads it. This
     /// is the one account of what a run honours: the spec, every command and the tables use it.
-    pub fn unread_reason(&self, field: &str) -> Option<&'static str> {
+    /// `modes` is the model's `K` ([`crate::model::params::ModelParams::modes`]).
+    pub fn unread_reason(&self, modes: usize, field: &str) -> Option<&'static str> {
         let ode = self.model == ModelKind::Ode;
-        let k_modes = !ode && self.modes > 2;
+        let k_modes = !ode && modes > 2;
         let newton = self.steady == SteadyMethod::Newton;
         let spectral = !ode && self.scheme == SchemeKind::Spectral;
         match field {
@@ -41,18 +42,18 @@ impl SolverSettings {
     }
 
     /// True when a run with these settings reads `field` ([`Self::unread_reason`]).
-    pub fn reads(&self, field: &str) -> bool {
-        self.unread_reason(field).is_none()
+    pub fn reads(&self, modes: usize, field: &str) -> bool {
+        self.unread_reason(modes, field).is_none()
     }
 
     /// These settings with every setting the run does not read at the value of its kind's
     /// base settings ([`Self::unread_reason`]): what a run is keyed by and recorded with. Two
     /// settings that differ only where the run does not read them give one run. (A PDE run's
     /// `h0`, once set to `n` by a spec-parsing bug, is such a setting.)
-    pub fn honoured(&self) -> Self {
+    pub fn honoured(&self, modes: usize) -> Self {
         let base = self.base();
         let mut out = *self;
-        let keep = |field: &str| self.reads(field);
+        let keep = |field: &str| self.reads(modes, field);
         if !keep("h0") {
             out.h0 = base.h0;
         }
@@ -96,10 +97,14 @@ impl SolverSettings {
     /// command-line options) that these settings do not read and that differs from the value
     /// the run goes by (`tol: 0` for the paper's scheme is what it does, not ignored), with
     /// the reason: it would be accepted and ignored, so the spec and every command refuse it.
-    pub fn first_unread<'a>(&self, given: &[&'a str]) -> Option<(&'a str, &'static str)> {
-        let honoured = self.honoured();
+    pub fn first_unread<'a>(
+        &self,
+        modes: usize,
+        given: &[&'a str],
+    ) -> Option<(&'a str, &'static str)> {
+        let honoured = self.honoured(modes);
         given.iter().find_map(|&field| {
-            let why = self.unread_reason(field)?;
+            let why = self.unread_reason(modes, field)?;
             self.differs(&honoured, field).then_some((field, why))
         })
     }
@@ -147,25 +152,23 @@ mod tests {
         "run_on",
     ];
 
-    fn k_modes(k: usize) -> SolverSettings {
-        SolverSettings {
-            modes: k,
-            ..SolverSettings::default()
-        }
+    /// The settings of the 3-mode runs below (the model's K is the `modes` they are asked with).
+    fn k_modes() -> SolverSettings {
+        SolverSettings::default()
     }
 
     #[test]
     fn a_two_mode_newton_run_reads_everything_but_h0() {
         let s = SolverSettings::default();
-        let unread: Vec<&str> = FIELDS.into_iter().filter(|f| !s.reads(f)).collect();
+        let unread: Vec<&str> = FIELDS.into_iter().filter(|f| !s.reads(2, f)).collect();
         assert_eq!(unread, ["h0"]);
-        assert!(SolverSettings::ode().reads("h0"));
-        assert!(!SolverSettings::ode().reads("n") && !SolverSettings::ode().reads("landing"));
+        assert!(SolverSettings::ode().reads(2, "h0"));
+        assert!(!SolverSettings::ode().reads(2, "n") && !SolverSettings::ode().reads(2, "landing"));
     }
 
     #[test]
     fn settings_a_run_does_not_read_give_the_same_honoured_settings() {
-        let base = k_modes(3);
+        let base = k_modes();
         let changed = SolverSettings {
             orientation_flow: false,
             steady_window: 0.5,
@@ -173,7 +176,7 @@ mod tests {
             ..base
         };
         assert_ne!(changed, base);
-        assert_eq!(changed.honoured(), base.honoured());
+        assert_eq!(changed.honoured(3), base.honoured(3));
         // What the run reads stays.
         for other in [
             SolverSettings { dt: 0.01, ..base },
@@ -183,23 +186,23 @@ mod tests {
                 ..base
             },
         ] {
-            assert_ne!(other.honoured(), base.honoured());
+            assert_ne!(other.honoured(3), base.honoured(3));
         }
         // A PDE run's h0 (the spec bug set it to n) is not part of it; an ODE run's is.
         let pde = SolverSettings {
             h0: 192.0,
             ..SolverSettings::default()
         };
-        assert_eq!(pde.honoured(), SolverSettings::default());
+        assert_eq!(pde.honoured(2), SolverSettings::default());
         let ode = SolverSettings {
             h0: 0.2,
             ..SolverSettings::ode()
         };
-        assert_eq!(ode.honoured().h0, 0.2);
+        assert_eq!(ode.honoured(2).h0, 0.2);
         // Honouring is idempotent and keeps a valid setting valid.
         for s in [changed, pde, ode, SolverSettings::paper_fd()] {
-            assert_eq!(s.honoured().honoured(), s.honoured());
-            assert!(s.honoured().validate().is_ok(), "{s:?}");
+            assert_eq!(s.honoured(2).honoured(2), s.honoured(2));
+            assert!(s.honoured(2).validate().is_ok(), "{s:?}");
         }
     }
 
@@ -207,9 +210,11 @@ mod tests {
     fn a_given_setting_that_is_not_read_is_named_with_the_reason() {
         let k3 = SolverSettings {
             orientation_flow: false,
-            ..k_modes(3)
+            ..k_modes()
         };
-        let (field, why) = k3.first_unread(&["dt", "tol", "orientation_flow"]).unwrap();
+        let (field, why) = k3
+            .first_unread(3, &["dt", "tol", "orientation_flow"])
+            .unwrap();
         assert!(
             field == "orientation_flow" && why.contains("Newton finish, its turn search"),
             "{why}"
@@ -217,42 +222,44 @@ mod tests {
         // K-mode runs step as 2-mode runs do, fixed or adaptive, and land as they do.
         let no_landing = SolverSettings {
             landing: false,
-            ..k_modes(3)
+            ..k_modes()
         };
         assert!(no_landing
-            .first_unread(&["dt", "tol", "dt_max", "t_max", "run_on", "landing"])
+            .first_unread(3, &["dt", "tol", "dt_max", "t_max", "run_on", "landing"])
             .is_none());
         let test = SolverSettings {
             steady: SteadyMethod::Test,
             ..SolverSettings::default()
         };
         // The value the run goes by is no setting ignored; another one is.
-        assert!(test.first_unread(&["landing"]).is_none());
+        assert!(test.first_unread(2, &["landing"]).is_none());
         let off = SolverSettings {
             landing: false,
             ..test
         };
-        let (_, why) = off.first_unread(&["landing"]).unwrap();
+        let (_, why) = off.first_unread(2, &["landing"]).unwrap();
         assert!(why.contains("Newton finish"), "{why}");
         let h0 = SolverSettings {
             h0: 0.2,
             ..SolverSettings::default()
         };
-        let (_, why) = h0.first_unread(&["h0"]).unwrap();
+        let (_, why) = h0.first_unread(2, &["h0"]).unwrap();
         assert!(why.contains("ODE"), "{why}");
         let fixed = SolverSettings {
             tol: 0.0,
             ..SolverSettings::default()
         };
-        assert!(fixed.first_unread(&["tol"]).is_none());
+        assert!(fixed.first_unread(2, &["tol"]).is_none());
         let capped = SolverSettings {
             dt_max: 0.5,
             ..fixed
         };
-        assert!(capped.first_unread(&["dt_max"]).is_some());
-        assert!(SolverSettings::paper_fd().first_unread(&["tol"]).is_none());
+        assert!(capped.first_unread(2, &["dt_max"]).is_some());
+        assert!(SolverSettings::paper_fd()
+            .first_unread(2, &["tol"])
+            .is_none());
         assert_eq!(
-            SolverSettings::paper_fd().honoured().scheme,
+            SolverSettings::paper_fd().honoured(2).scheme,
             SchemeKind::PaperFd
         );
     }

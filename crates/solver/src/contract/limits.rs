@@ -38,8 +38,8 @@ pub fn adaptive_step_cap(settings: &SolverSettings) -> u64 {
 /// finish (its saddle stop and leap as a 2-mode run's, no orientation flow) or the paper's
 /// test, or the paper's scheme with its test.
 fn check_k_mode_run(params: &ModelParams, settings: &SolverSettings) -> Result<(), SolverError> {
-    check_modes(params, settings.n, settings.modes)?;
-    let k = settings.modes as f64;
+    check_modes(params, settings.n, params.modes)?;
+    let k = params.modes as f64;
     // The paper's scheme is ended by its test alone (its end is not a root of the spectral
     // steady solver).
     let unsupported = [
@@ -143,9 +143,9 @@ pub fn check_run(params: &ModelParams, settings: &SolverSettings) -> Result<(), 
     settings.check_steps()?;
     if settings.model != ModelKind::Pde {
         return require(
-            settings.modes == 2,
+            params.modes == 2,
             "modes",
-            settings.modes as f64,
+            params.modes as f64,
             "2 for the reduced ODE model (mode 2 only)",
         );
     }
@@ -162,7 +162,7 @@ pub fn check_run(params: &ModelParams, settings: &SolverSettings) -> Result<(), 
          alone, whose labels are not checked",
     )?;
     check_resolved(params, settings.n)?;
-    if settings.modes != 2 {
+    if params.modes != 2 {
         check_k_mode_run(params, settings)?;
     }
     let dx = params.box_len / settings.n as f64;

@@ -147,7 +147,7 @@ pub struct RunOutcome {
     #[serde(default)]
     pub heading: Option<StateClass>,
     /// A `K`-mode run's higher shape amplitudes at its end, `a_3..a_K` then `b_3..b_K`
-    /// (setting `modes`; empty for the paper's 2-mode runs).
+    /// (the model parameter `modes`; empty for the paper's 2-mode runs).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub higher_modes: Vec<f64>,
     /// Recorded time series (empty unless asked for).

@@ -96,29 +96,6 @@ pub struct SolverSettings {
     /// On by default (numerics 4); off gives up at `t_max`, as the paper.
     #[serde(default = "on")]
     pub run_on: bool,
-    /// Shape modes `2..=modes` of the paper's general model (default 2, the paper's
-    /// truncation). With more, a run is the `K`-mode model's (the one driver,
-    /// [`crate::runs::driver`], with the general schemes and the rate as its watch). A 2-mode
-    /// run keeps the run key it had before.
-    #[serde(default = "two_modes", skip_serializing_if = "is_two_modes")]
-    pub modes: usize,
-    /// The friction law of the shape modes `k >= 3`, `eta_k = eta2 (k / 2)^eta_k_exponent`
-    /// ([`crate::model::friction`]; default 0: `eta_k = eta2`; -1: the dissipation of the
-    /// mode's flow). Only with `modes` > 2. A run with the default keeps its run key.
-    #[serde(default, skip_serializing_if = "is_zero")]
-    pub eta_k_exponent: f64,
-}
-
-fn is_zero(x: &f64) -> bool {
-    *x == 0.0
-}
-
-fn two_modes() -> usize {
-    2
-}
-
-fn is_two_modes(k: &usize) -> bool {
-    *k == 2
 }
 
 /// How far past `t_max` a run not yet on a stable state runs on with its own steps (setting
@@ -164,8 +141,6 @@ impl Default for SolverSettings {
             landing: true,
             orientation_flow: true,
             run_on: true,
-            modes: 2,
-            eta_k_exponent: 0.0,
         }
     }
 }
@@ -238,7 +213,6 @@ impl SolverSettings {
 
     pub fn validate(&self) -> Result<(), SolverError> {
         require(self.dt > 0.0, "dt", self.dt, "a finite number > 0")?;
-        crate::model::friction::check_exponent(self.eta_k_exponent, self.modes)?;
         require(
             self.t_max >= self.dt,
             "t_max",

@@ -1,4 +1,5 @@
-//! Model parameters of the 2-mode droplet (paper Sect. 3, eqs. 31-39) and their validation.
+//! Model parameters of the droplet (paper Sect. 3, eqs. 31-39, with its shape modes `2..=K`)
+//! and their validation.
 use crate::error::{require, SolverError};
 use serde::{Deserialize, Serialize};
 
@@ -9,7 +10,12 @@ use serde::{Deserialize, Serialize};
 /// indicator `Theta_sigma` (eq. 31), `box_len` the side `L` of the periodic square, and `mass`
 /// the inertia `m` (`m dv/dt = -eta_t v + F`; `m = 0` means overdamped `eta_t dr_c/dt = F`,
 /// docs/model.md, "Inertia": the paper's IC/MD bistability needs `m` of at least about 0.03,
-/// since with `m -> 0` the initial velocity is forgotten; default 0.1).
+/// since with `m -> 0` the initial velocity is forgotten; default 0.1). `modes` is `K`, the
+/// shape modes `2..=K` of the paper's general model (default 2, the paper's truncation), and
+/// `eta_k_exponent` the friction law of the modes `k >= 3`, `eta_k = eta2 (k / 2)^p`
+/// ([`crate::model::friction`], default 0). Both are always written (the same keys for every
+/// `K`) and read with their defaults where absent (records and tables written before they
+/// were model parameters).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ModelParams {
@@ -20,6 +26,14 @@ pub struct ModelParams {
     pub sigma: f64,
     pub box_len: f64,
     pub mass: f64,
+    #[serde(default = "two_modes")]
+    pub modes: usize,
+    #[serde(default)]
+    pub eta_k_exponent: f64,
+}
+
+fn two_modes() -> usize {
+    2
 }
 
 impl Default for ModelParams {
@@ -34,6 +48,8 @@ impl Default for ModelParams {
             sigma: 0.03,
             box_len: 7.0,
             mass: 0.1,
+            modes: 2,
+            eta_k_exponent: 0.0,
         }
     }
 }
@@ -45,6 +61,16 @@ impl ModelParams {
             eta_t,
             kappa2,
             ..Self::default()
+        }
+    }
+
+    /// The same model with shape modes `2..=k` (with `k = 2` the friction law of the modes
+    /// `k >= 3` has nothing to act on: its exponent is 0, as [`Self::validate`] asks).
+    pub fn with_modes(self, k: usize) -> Self {
+        Self {
+            modes: k,
+            eta_k_exponent: if k == 2 { 0.0 } else { self.eta_k_exponent },
+            ..self
         }
     }
 
@@ -85,7 +111,16 @@ impl ModelParams {
             self.box_len,
             "a finite number > 2 (R + 16 sigma), so that the droplet and its interface fit in the box",
         )?;
-        Ok(())
+        require(
+            (2..=crate::model::modes::MAX_MODES).contains(&self.modes),
+            "modes",
+            self.modes as f64,
+            format!(
+                "an integer from 2 (the paper's a2, b2) to {}",
+                crate::model::modes::MAX_MODES
+            ),
+        )?;
+        crate::model::friction::check_exponent(self.eta_k_exponent, self.modes)
     }
 }
 

@@ -99,21 +99,16 @@ impl Balances {
 }
 
 impl Balances {
-    /// The balances of `params` on an `n x n` grid with shape modes `2..=modes` (the general
-    /// ones with the friction law's exponent `eta_k_exponent`, which enters eigenvalues only;
-    /// `modes` within [`crate::contract::limits::check_modes`]).
-    pub fn new(
-        params: ModelParams,
-        n: usize,
-        modes: usize,
-        eta_k_exponent: f64,
-    ) -> Result<Self, SolverError> {
+    /// The balances of `params` on an `n x n` grid, with its shape modes `2..=params.modes`
+    /// (the general ones with the friction law of `params`, which enters eigenvalues only;
+    /// the modes within [`crate::contract::limits::check_modes`]).
+    pub fn new(params: ModelParams, n: usize) -> Result<Self, SolverError> {
+        let modes = params.modes;
         Ok(if modes == 2 {
             Balances::Two(TwoModeSolver::new(params, n)?)
         } else {
             crate::contract::limits::check_modes(&params, n, modes)?;
-            let mut solver = SteadySolver::new(params, n)?;
-            solver.set_eta_k_exponent(eta_k_exponent);
+            let solver = SteadySolver::new(params, n)?;
             Balances::General { solver, modes }
         })
     }

@@ -210,7 +210,7 @@ const NEW_MODE_SEEDS: [f64; 3] = [0.0, 0.05, -0.05];
 /// from `a_k = 0`.
 pub fn md_state(solver: &mut SteadySolver, k_max: usize) -> Result<MirrorState, SolverError> {
     let two = find(
-        &mut Balances::new(*solver.params(), solver.n(), 2, 0.0)?,
+        &mut Balances::new(solver.params().with_modes(2), solver.n())?,
         StateKind::MD,
         MirrorLine::X,
         None,
@@ -303,7 +303,7 @@ mod tests {
     use super::*;
 
     fn two(eta_t: f64, kappa2: f64, n: usize) -> Balances {
-        Balances::new(ModelParams::at(eta_t, kappa2), n, 2, 0.0).unwrap()
+        Balances::new(ModelParams::at(eta_t, kappa2), n).unwrap()
     }
 
     #[test]
@@ -333,7 +333,7 @@ mod tests {
             (StateKind::MD, MirrorLine::Diagonal),
             (StateKind::IC, MirrorLine::X),
         ] {
-            let fast = find(&mut Balances::new(p, 96, 2, 0.0).unwrap(), kind, axis, None).unwrap();
+            let fast = find(&mut Balances::new(p, 96).unwrap(), kind, axis, None).unwrap();
             let mut general = Balances::General {
                 solver: SteadySolver::new(p, 96).unwrap(),
                 modes: 2,
@@ -359,7 +359,7 @@ mod tests {
 
     #[test]
     fn with_three_modes_the_md_states_lie_on_their_mirror_lines_and_a_seed_is_refused() {
-        let mut b = Balances::new(ModelParams::at(0.085, 0.112), 96, 3, 0.0).unwrap();
+        let mut b = Balances::new(ModelParams::at(0.085, 0.112).with_modes(3), 96).unwrap();
         let x = find(&mut b, StateKind::MD, MirrorLine::X, None).unwrap();
         assert_eq!(x.z.len(), 6);
         assert!(x.z[1] == 0.0 && x.z[4] == 0.0 && x.z[5] == 0.0, "{x:?}");

@@ -203,7 +203,7 @@ mod tests {
         // At the threshold the drift pair's eigenvalue is zero, the shape's at its own.
         let at = |eta_t, kappa2| {
             find(
-                &mut Balances::new(ModelParams::at(eta_t, kappa2), 192, 2, 0.0).unwrap(),
+                &mut Balances::new(ModelParams::at(eta_t, kappa2), 192).unwrap(),
                 StateKind::IC,
                 MirrorLine::X,
                 None,

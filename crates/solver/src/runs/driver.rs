@@ -57,23 +57,15 @@ impl Run {
                 allowed: "pde for a field run (ODE runs go through `simulate`)".into(),
             });
         }
-        ic.check_modes(settings.modes)?;
+        ic.check_modes(params.modes)?;
         let (st, n) = (ic.state(), settings.n);
-        let scheme: Box<dyn Scheme> = match (settings.scheme, settings.modes) {
+        let scheme: Box<dyn Scheme> = match (settings.scheme, params.modes) {
             (SchemeKind::Spectral, 2) => {
                 Box::new(TwoModeEtd::new(*params, n, st, settings.pinned)?)
             }
             (SchemeKind::PaperFd, 2) => Box::new(TwoModeFd::new(*params, n, st, settings.pinned)?),
-            (SchemeKind::Spectral, k) => {
-                let mut run = ComovingEtd::new(params, n, &ic.unknowns(k))?;
-                run.set_eta_k_exponent(settings.eta_k_exponent);
-                Box::new(run)
-            }
-            (SchemeKind::PaperFd, k) => {
-                let mut run = PaperFd::new(params, n, &ic.unknowns(k))?;
-                run.set_eta_k_exponent(settings.eta_k_exponent);
-                Box::new(run)
-            }
+            (SchemeKind::Spectral, k) => Box::new(ComovingEtd::new(params, n, &ic.unknowns(k))?),
+            (SchemeKind::PaperFd, k) => Box::new(PaperFd::new(params, n, &ic.unknowns(k))?),
         };
         Ok(Self {
             params: *params,
@@ -302,9 +294,9 @@ struct Change {
 }
 
 impl Watch {
-    /// The watch of a run of `cfg.modes` shape modes, from the state `z` at `t`.
+    /// The watch of a run from the state `z` at `t` (its shape modes those of `z`).
     fn new_at(cfg: &SolverSettings, t: f64, z: &[f64]) -> Self {
-        if cfg.modes == 2 {
+        if z.len() == 4 {
             Watch::Window(SteadyTest::new(cfg, t, four(z)))
         } else {
             Watch::Rate
@@ -380,7 +372,7 @@ pub fn simulate(
     ic: &InitialCondition,
     settings: &SolverSettings,
 ) -> Result<RunOutcome, SolverError> {
-    ic.check_modes(settings.modes)?;
+    ic.check_modes(params.modes)?;
     match settings.model {
         ModelKind::Pde => Ok(Run::new(params, ic, settings)?.execute()),
         ModelKind::Ode => crate::reduced::ode::simulate(params, ic, settings),

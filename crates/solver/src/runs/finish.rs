@@ -132,10 +132,6 @@ pub struct NewtonFinish {
     pub(super) landing: bool,
     /// The last try that found the run beside a saddle (for `leap_departures`).
     pub(super) sighting: Option<Sighting>,
-    /// The shape modes `2..K` of the run's states, and its friction law's exponent
-    /// (`eta_k`, which enters the eigenvalues, not the roots).
-    pub(super) modes: usize,
-    pub(super) eta_k_exponent: f64,
     pub(super) solver: Option<Balances>,
     /// Whether the run started on a mirror line of the box (its own mirror image there), so
     /// that a lean below [`crate::runs::orientation::LEAN_FLOOR`] is none; else such a lean is round-off that grows.
@@ -192,7 +188,7 @@ impl NewtonFinish {
     /// times later than a 2-mode run's (results/k-mode-endings: with the 2-mode runs' trigger
     /// such runs end on roots that pure time stepping does not reach).
     pub fn new(params: &ModelParams, settings: &SolverSettings) -> Self {
-        let two = settings.modes == 2;
+        let two = params.modes == 2;
         let (n, steady_tol) = (settings.n, settings.steady_tol);
         Self {
             params: *params,
@@ -209,8 +205,6 @@ impl NewtonFinish {
             orientation_flow: settings.orientation_flow && two,
             flows: Vec::new(),
             turns: Vec::new(),
-            modes: settings.modes,
-            eta_k_exponent: settings.eta_k_exponent,
             solver: None,
             trigger: TRIGGER_FACTOR * steady_tol,
             window: if two { settings.steady_window } else { 1.0 },
@@ -238,7 +232,7 @@ impl NewtonFinish {
     ///   its image 5 degrees past it); 2-mode runs keep numerics 10's search: their
     ///   orientation flow finds such roots first.
     pub(super) fn beyond_two_modes(&self) -> bool {
-        self.modes > 2
+        self.params.modes > 2
     }
 
     /// For a run that starts at `(vx, vy, a2, b2)`: only a run that starts mirror-symmetric
@@ -445,12 +439,7 @@ impl NewtonFinish {
     /// The run's steady balances, made at their first use.
     pub(super) fn balances(&mut self) -> Result<&mut Balances, SolverError> {
         if self.solver.is_none() {
-            self.solver = Some(Balances::new(
-                self.params,
-                self.n,
-                self.modes,
-                self.eta_k_exponent,
-            )?);
+            self.solver = Some(Balances::new(self.params, self.n)?);
         }
         Ok(self.solver.as_mut().expect("made above"))
     }

@@ -485,7 +485,7 @@ mod tests {
     use crate::model::params::ModelParams;
 
     fn solver(eta_t: f64, kappa2: f64) -> Balances {
-        Balances::new(ModelParams::at(eta_t, kappa2), 192, 2, 0.0).unwrap()
+        Balances::new(ModelParams::at(eta_t, kappa2), 192).unwrap()
     }
 
     #[test]

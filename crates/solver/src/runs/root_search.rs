@@ -421,10 +421,9 @@ mod tests {
         // Modes 2..3, N = 192, (0.085, 0.112): pure time stepping from iv at t = 1500, 121
         // degrees, between the y-axis MD (stable in rotation) and the diagonal's (unstable in
         // rotation), turning on to a root 2.25 degrees short of the diagonal (t = 18 210).
-        let p = ModelParams::at(0.085, 0.112);
+        let p = ModelParams::at(0.085, 0.112).with_modes(3);
         let settings = SolverSettings {
             n: 192,
-            modes: 3,
             ..SolverSettings::default()
         };
         let mut f = NewtonFinish::new(&p, &settings);

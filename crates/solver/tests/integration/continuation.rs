@@ -2,7 +2,7 @@
 //! and its response to small perturbations, the one-parameter fold against the
 //! two-parameter fold curve, and the branches' meeting points against the exact thresholds.
 use droplet_solver::continuation::arclength::ArclengthOptions;
-use droplet_solver::continuation::fold_curve::{md_fold_curve, FoldModel};
+use droplet_solver::continuation::fold_curve::md_fold_curve;
 use droplet_solver::continuation::onset_lines::mc_line;
 use droplet_solver::continuation::window::{Axis, Window};
 use droplet_solver::continuation::{
@@ -27,8 +27,6 @@ fn branch(family: Family, kappa2: f64, from: f64, to: f64, n: usize) -> Branch {
         parameter: ModelParam::EtaT,
         from,
         to,
-        modes: 2,
-        eta_k_exponent: 0.0,
         max_points: 400,
         opts: ArclengthOptions::default(),
     };
@@ -167,14 +165,7 @@ fn the_fold_curve_passes_through_the_one_parameter_folds() {
         Axis::new(ModelParam::Kappa2, (0.1, 0.17)),
     );
     let base = ModelParams::at(0.07, 0.1);
-    let curve = md_fold_curve(
-        &base,
-        FoldModel { n, modes: 2 },
-        MirrorLine::X,
-        window,
-        &[0.13],
-    )
-    .unwrap();
+    let curve = md_fold_curve(&base, n, MirrorLine::X, window, &[0.13]).unwrap();
     assert!(curve.len() > 10, "{curve:?}");
     for &(eta_t, kappa2) in [curve[curve.len() / 4], curve[curve.len() / 2]].iter() {
         let b = branch(Family::MdMinor, kappa2, 0.07, 0.1, n);
@@ -194,14 +185,8 @@ fn the_mc_onset_line_is_where_the_moving_branch_has_s_at_the_threshold() {
     // interpolation; the points are ~1e-4 apart there).
     let n = 128;
     let th = ic_thresholds(&ModelParams::at(0.085, 0.16), n, 2).unwrap();
-    let w = Window::paper(
-        ModelParams::at(0.07, 0.16),
-        (n, 2),
-        (0.07, 0.1),
-        (0.16, 0.17),
-        3,
-    );
-    let two = |w: &Window| Balances::new(w.base, w.n, 2, 0.0).unwrap();
+    let w = Window::paper(ModelParams::at(0.07, 0.16), n, (0.07, 0.1), (0.16, 0.17), 3);
+    let two = |w: &Window| Balances::new(w.base, w.n).unwrap();
     let line = mc_line(two(&w), &w, th.eta_t).unwrap();
     assert_eq!(line.len(), 3, "{line:?}");
     let (eta_mc, k) = line[2];
@@ -304,8 +289,6 @@ fn a_count_changed_by_the_rotation_mode_is_its_own_event_and_every_crossing_is_a
         parameter: ModelParam::Kappa2,
         from: 0.1,
         to: 0.17,
-        modes: 2,
-        eta_k_exponent: 0.0,
         max_points: 400,
         opts: ArclengthOptions::default(),
     };

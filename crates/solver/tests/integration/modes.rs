@@ -13,7 +13,7 @@ use droplet_solver::stepping::SchemeKind;
 
 /// The `eta_t` of the MD branch's fold at `kappa2 = 0.13` with modes `2..=k_max` at N = 96.
 fn fold(k_max: usize) -> f64 {
-    let balances = Balances::new(ModelParams::at(0.07, 0.13), 96, k_max, 0.0).unwrap();
+    let balances = Balances::new(ModelParams::at(0.07, 0.13).with_modes(k_max), 96).unwrap();
     let line = Axis::new(ModelParam::EtaT, (0.07, 0.1));
     walk_to_fold(balances, MirrorLine::X, line, 0.13)
         .expect("the MD branch folds")
@@ -38,11 +38,10 @@ fn with_four_modes_the_ic_md_band_ends_at_the_four_mode_fold() {
     for (eta_t, classes) in [(0.0786, [IC, IC, IC, IC]), (0.0775, [MD, MD, IC, IC])] {
         for (ic, class) in ["i", "ii", "iii", "iv"].into_iter().zip(classes) {
             let out = simulate(
-                &ModelParams::at(eta_t, 0.13),
+                &ModelParams::at(eta_t, 0.13).with_modes(4),
                 &InitialCondition::parse(ic).unwrap(),
                 &SolverSettings {
                     n: 96,
-                    modes: 4,
                     ..SolverSettings::default()
                 },
             )
@@ -117,11 +116,10 @@ fn three_mode_runs_end_where_pure_time_stepping_ends() {
     assert_eq!(pure.len(), 12);
     let settings = SolverSettings {
         n: 96,
-        modes: 3,
         ..SolverSettings::default()
     };
     for end in &pure {
-        let p = ModelParams::at(end.eta_t, end.kappa2);
+        let p = ModelParams::at(end.eta_t, end.kappa2).with_modes(3);
         let ic = InitialCondition::parse(&end.ic).unwrap();
         let out = simulate(&p, &ic, &settings).unwrap();
         assert_eq!(out.status, RunStatus::Steady, "{}: {out:?}", end.ic);
@@ -147,7 +145,7 @@ fn three_mode_runs_end_where_pure_time_stepping_ends() {
             .iter()
             .find(|e| e.eta_t == eta_t && e.kappa2 == kappa2 && e.ic == ic)
             .unwrap();
-        let p = ModelParams::at(eta_t, kappa2);
+        let p = ModelParams::at(eta_t, kappa2).with_modes(3);
         let out = simulate(&p, &InitialCondition::parse(ic).unwrap(), &stepping).unwrap();
         assert!(same_end(&out, end), "{ic}: {out:?}");
     }
@@ -173,10 +171,9 @@ fn a_three_mode_run_turning_to_a_root_of_the_lattice_ends_there() {
     );
     let settings = SolverSettings {
         n: 192,
-        modes: 3,
         ..SolverSettings::default()
     };
-    let p = ModelParams::at(0.085, 0.112);
+    let p = ModelParams::at(0.085, 0.112).with_modes(3);
     let out = simulate(&p, &InitialCondition::parse("iv").unwrap(), &settings).unwrap();
     assert!(same_end(&out, end), "{out:?}");
 }
@@ -185,11 +182,10 @@ fn a_three_mode_run_turning_to_a_root_of_the_lattice_ends_there() {
 fn a_three_mode_run_ends_steady_on_the_three_mode_md_state() {
     // Fig. 1c with modes 2..3 at N = 96 from IC i: the Newton finish ends the run on the
     // MD state of the steady solver, a3 included, long before the rates fall to the test.
-    let p = ModelParams::at(0.085, 0.112);
+    let p = ModelParams::at(0.085, 0.112).with_modes(3);
     let settings = SolverSettings {
         n: 96,
         dt: 0.05,
-        modes: 3,
         ..SolverSettings::default()
     };
     let ic = InitialCondition::parse("i").unwrap();
@@ -210,12 +206,12 @@ fn a_three_mode_run_ends_steady_on_the_three_mode_md_state() {
     // With the friction law eta_k = (2/k) eta2 (mode 3 relaxes 1.5 times faster), the run
     // takes another path to the same state: eta_k enters no steady state.
     let faster = simulate(
-        &p,
-        &ic,
-        &SolverSettings {
+        &ModelParams {
             eta_k_exponent: -1.0,
-            ..settings
+            ..p
         },
+        &ic,
+        &settings,
     )
     .unwrap();
     assert_eq!(faster.status, RunStatus::Steady, "{faster:?}");
@@ -232,7 +228,7 @@ fn the_friction_law_sets_how_fast_a_mode_relaxes() {
     // (exponent -1) than with eta_3 = eta2, and less with eta_3 = (3/2) eta2 (exponent 1);
     // its mean rate goes about as 1 / eta_3 (ratio 1.5; measured 1.583 with the spectral
     // scheme, 1.585 with the paper's: the field building up from 0 moves it a little).
-    let p = ModelParams::at(0.1, 0.16);
+    let p = ModelParams::at(0.1, 0.16).with_modes(3);
     let ic = InitialCondition::parse("custom:0,0,0,0,0.05,0").unwrap();
     for scheme in [SchemeKind::Spectral, SchemeKind::PaperFd] {
         let a3 = |exponent: f64| {
@@ -242,14 +238,16 @@ fn the_friction_law_sets_how_fast_a_mode_relaxes() {
                 tol: 0.0,
                 t_max: 0.5,
                 run_on: false,
-                modes: 3,
-                eta_k_exponent: exponent,
                 scheme,
                 steady: match scheme {
                     SchemeKind::Spectral => droplet_solver::contract::ending::SteadyMethod::Newton,
                     SchemeKind::PaperFd => droplet_solver::contract::ending::SteadyMethod::Test,
                 },
                 ..SolverSettings::default()
+            };
+            let p = ModelParams {
+                eta_k_exponent: exponent,
+                ..p
             };
             simulate(&p, &ic, &settings).unwrap().higher_modes[0]
         };
@@ -274,12 +272,9 @@ fn a_four_mode_run_leaning_off_a_line_unstable_in_rotation_ends_where_it_turns_t
     // search finds that root, 3 % faster than the one the run has settled on (the box's
     // anisotropy), and ends the run there as soon as it has settled on the axis root.
     let out = simulate(
-        &ModelParams::at(0.072, 0.104),
+        &ModelParams::at(0.072, 0.104).with_modes(4),
         &InitialCondition::parse("ii").unwrap(),
-        &SolverSettings {
-            modes: 4,
-            ..SolverSettings::default()
-        },
+        &SolverSettings::default(),
     )
     .unwrap();
     assert_eq!(out.status, RunStatus::Steady, "{out:?}");
@@ -297,12 +292,11 @@ fn a_four_mode_run_leaving_the_disk_lands_where_time_stepping_takes_it() {
     // speed family (the shape modes 2..4 solved at each speed) to that root at t = 22.
     let settings = SolverSettings {
         n: 96,
-        modes: 4,
         ..SolverSettings::default()
     };
     let run = |landing: bool| {
         simulate(
-            &ModelParams::at(0.076, 0.144),
+            &ModelParams::at(0.076, 0.144).with_modes(4),
             &InitialCondition::parse("iii").unwrap(),
             &SolverSettings {
                 landing,

@@ -8,13 +8,18 @@ use droplet_solver::contract::settings::SolverSettings;
 use droplet_solver::model::{classify::StateClass, initial::InitialCondition, params::ModelParams};
 use droplet_solver::runs::driver::simulate;
 
-/// The defaults with shape modes 2..4 at N = 96, the grid of these tests.
-fn four_modes() -> SolverSettings {
+/// The default settings at N = 96, the grid of these tests (their model has shape modes
+/// 2..4, [`four`]).
+fn n96() -> SolverSettings {
     SolverSettings {
         n: 96,
-        modes: 4,
         ..SolverSettings::default()
     }
+}
+
+/// The model at `(eta_t, kappa2)` with shape modes 2..4.
+fn four(eta_t: f64, kappa2: f64) -> ModelParams {
+    ModelParams::at(eta_t, kappa2).with_modes(4)
 }
 
 /// Asserts that `out` ended steady on the resting disk by the landing before `t_below`.
@@ -35,10 +40,10 @@ fn a_four_mode_run_turning_towards_a_root_short_of_the_next_line_ends_there_earl
     // image (numerics modes-10), and the run ends within a few hundred time units.
     let pure = committed("pure-tails-k4-n96");
     assert_eq!(pure.len(), 2);
-    let settings = four_modes();
+    let settings = n96();
     for end in &pure {
         assert!(end.orientation_deg > 37.0 && end.orientation_deg < 40.0);
-        let p = ModelParams::at(end.eta_t, end.kappa2);
+        let p = four(end.eta_t, end.kappa2);
         let out = simulate(&p, &InitialCondition::parse(&end.ic).unwrap(), &settings).unwrap();
         assert!(same_end(&out, end), "{}: {out:?}", end.kappa2);
         assert!(out.t_end < 1000.0, "{}: {out:?}", end.kappa2);
@@ -56,11 +61,8 @@ fn a_four_mode_run_turning_slowly_back_to_a_stable_root_ends_once_settled_beside
     // at t = 20 869.
     let pure = committed("pure-rotation-k4-n192");
     let end = pure.iter().find(|e| e.ic == "iv").expect("the run from iv");
-    let settings = SolverSettings {
-        n: 192,
-        ..four_modes()
-    };
-    let p = ModelParams::at(end.eta_t, end.kappa2);
+    let settings = SolverSettings { n: 192, ..n96() };
+    let p = four(end.eta_t, end.kappa2);
     let out = simulate(&p, &InitialCondition::parse("iv").unwrap(), &settings).unwrap();
     assert!(same_end(&out, end), "{out:?}");
     assert_eq!(out.ended_by, Some(Ending::Newton), "{out:?}");
@@ -76,9 +78,9 @@ fn a_four_mode_run_slowing_onto_the_resting_disk_lands_there() {
     // run there (numerics modes-10; before, the disk's a4 was taken for an orientation and
     // the run crept on to the Newton finish, at t = 6860 with N = 192).
     let out = simulate(
-        &ModelParams::at(0.0765, 0.16425),
+        &four(0.0765, 0.16425),
         &InitialCondition::parse("i").unwrap(),
-        &four_modes(),
+        &n96(),
     )
     .unwrap();
     assert_landed_on_the_disk(&out, 1000.0);
@@ -100,9 +102,9 @@ fn a_four_mode_run_past_the_md_fold_lands_on_the_disk_long_before_its_own_trigge
     // there the disk's try hands it to the landing, whose slow flow takes it to the disk
     // (numerics modes-11; before, it crept to the Newton finish at t = 647). Pure time
     // stepping ends on the same disk.
-    let p = ModelParams::at(0.07875, 0.12775);
+    let p = four(0.07875, 0.12775);
     let ic = InitialCondition::parse("ii").unwrap();
-    let defaults = four_modes();
+    let defaults = n96();
     let out = simulate(&p, &ic, &defaults).unwrap();
     assert_landed_on_the_disk(&out, 200.0);
     let pure = simulate(
@@ -131,12 +133,12 @@ fn a_four_mode_run_leaps_along_a_departure_and_ends_where_stepping_does() {
     // leap_departures it leaps over more than 500 time units of that departure and ends on
     // the same MD state as the run stepped all the way (the leap scales the field and every
     // unknown towards the saddle's own), in fewer steps.
-    let p = ModelParams::at(0.07625, 0.14);
+    let p = four(0.07625, 0.14);
     let ic = InitialCondition::parse("iii").unwrap();
     let stepped = SolverSettings {
         t_max: 4000.0,
         landing: false,
-        ..four_modes()
+        ..n96()
     };
     let leapt = SolverSettings {
         leap_departures: true,
@@ -165,12 +167,12 @@ fn a_four_mode_run_beside_a_saddle_it_cannot_leave_stops_there() {
     // the diagonal's deformed state, whose drift grows at 1e-3, and cannot leave it before
     // t_max = 2000; with stop_beside_saddle it stops within a few hundred time units,
     // unsettled beside the saddle, as plain stepping ends at t_max.
-    let p = ModelParams::at(0.08725, 0.115);
+    let p = four(0.08725, 0.115);
     let ic = InitialCondition::parse("iv").unwrap();
     let waited = SolverSettings {
         landing: false,
         run_on: false,
-        ..four_modes()
+        ..n96()
     };
     let stopped = SolverSettings {
         stop_beside_saddle: true,

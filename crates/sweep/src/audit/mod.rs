@@ -265,37 +265,39 @@ fn by_point(rows: Vec<Row>) -> Result<BTreeMap<u32, Vec<Row>>, SweepError> {
 
 pub use crate::map::sample::Sample;
 
-/// The one model of a map's runs, `(K, friction exponent)`; an error naming the map when its
-/// runs hold more than one.
-fn one_model(dir: &Path, runs: &BTreeMap<u32, Vec<Row>>) -> Result<(usize, f64), SweepError> {
-    let modes = runs.values().flatten().map(|r| r.modes).max().unwrap_or(2);
+/// Refuses a map whose runs hold more than one model's shape modes `(K, friction exponent)`,
+/// naming the map.
+fn one_model(dir: &Path, runs: &BTreeMap<u32, Vec<Row>>) -> Result<(), SweepError> {
+    let modes = runs
+        .values()
+        .flatten()
+        .map(|r| r.params.modes)
+        .max()
+        .unwrap_or(2);
     let law = runs
         .values()
         .flatten()
         .next()
-        .map_or(0.0, |r| r.eta_k_exponent);
+        .map_or(0.0, |r| r.params.eta_k_exponent);
     if let Some(r) = runs
         .values()
         .flatten()
-        .find(|r| r.modes != modes || r.eta_k_exponent != law)
+        .find(|r| r.params.modes != modes || r.params.eta_k_exponent != law)
     {
         return Err(SweepError::Invalid(format!(
             "{}: runs with {} and {modes} shape modes (friction exponents {} and {law}) in one \
              map; audit checks one model",
             dir.display(),
-            r.modes,
-            r.eta_k_exponent
+            r.params.modes,
+            r.params.eta_k_exponent
         )));
     }
-    Ok((modes, law))
+    Ok(())
 }
 
 /// Every point's states checked against its label, the points spread over the workers: the
 /// contradictions and the number of states checked per point.
-fn check_points(
-    groups: &[(&String, Vec<&Row>)],
-    modes: (usize, f64),
-) -> Vec<(Vec<Contradiction>, usize)> {
+fn check_points(groups: &[(&String, Vec<&Row>)]) -> Vec<(Vec<Contradiction>, usize)> {
     groups
         .par_iter()
         .map_init(
@@ -316,7 +318,7 @@ fn check_points(
                         } == p
                 });
                 if !reusable {
-                    *slot = point_model::for_map(modes, p, n).ok();
+                    *slot = point_model::for_map(p, n).ok();
                 }
                 let Some(model) = slot.as_mut() else {
                     return (Vec::new(), 0);
@@ -354,7 +356,7 @@ pub fn audit(dir: &Path, sample: Option<Sample>) -> Result<Audit, SweepError> {
         .collect();
     let complete = completeness::completeness(&points, &runs, &ics);
     let labelled: BTreeMap<u32, String> = points.into_iter().map(|p| (p.point, p.label)).collect();
-    let modes = one_model(dir, &runs)?;
+    one_model(dir, &runs)?;
     let mismatched: Vec<Contradiction> = runs
         .iter()
         .filter_map(|(p, rows)| {
@@ -370,9 +372,9 @@ pub fn audit(dir: &Path, sample: Option<Sample>) -> Result<Audit, SweepError> {
         .collect();
     if let Some(first) = groups.first().and_then(|(_, r)| r.first()) {
         // Fails here, not in a worker, if the solver cannot be made.
-        point_model::for_map(modes, first.params, first.n)?;
+        point_model::for_map(first.params, first.n)?;
     }
-    let results = check_points(&groups, modes);
+    let results = check_points(&groups);
     let states_checked = results.iter().map(|(_, s)| s).sum();
     let states_points = groups.len();
     let contradictions: Vec<Contradiction> = complete

@@ -49,14 +49,10 @@ pub struct Root {
     pub growth: Growth,
 }
 
-/// The balances of a map with `modes` shape modes (their friction law's exponent
-/// `eta_k_exponent`, which moves the eigenvalues) at `params` on an `n` grid.
-pub fn for_map(
-    (modes, eta_k_exponent): (usize, f64),
-    params: ModelParams,
-    n: usize,
-) -> Result<Balances, SweepError> {
-    Ok(Balances::new(params, n, modes, eta_k_exponent)?)
+/// The balances of a map's model at `params` (its shape modes and their friction law, which
+/// moves the eigenvalues, among them) on an `n` grid.
+pub fn for_map(params: ModelParams, n: usize) -> Result<Balances, SweepError> {
+    Ok(Balances::new(params, n)?)
 }
 
 /// The resting disk's growth here (each shape mode decouples at the circle and has its own

@@ -80,7 +80,7 @@ pub fn run_task(task: &Task) -> Result<RunRecord, SweepError> {
         params: task.params,
         ic: task.ic.clone(),
         settings: task.settings,
-        solver_version: droplet_solver::solver_version(task.settings.model, task.settings.modes)
+        solver_version: droplet_solver::solver_version(task.settings.model, task.params.modes)
             .to_string(),
         outcome,
     })

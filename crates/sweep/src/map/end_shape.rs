@@ -15,7 +15,7 @@ pub struct EndShape {
 impl EndShape {
     pub fn of(r: &RunRecord) -> Self {
         Self {
-            modes: r.settings.modes,
+            modes: r.params.modes,
             s: r.outcome.s,
             higher: r.outcome.higher_modes.clone(),
         }

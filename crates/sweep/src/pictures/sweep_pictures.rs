@@ -255,7 +255,7 @@ pub(crate) fn map_points(spec: &SweepSpec, drawing: &MapDrawing) -> Vec<(f64, Ma
 
 /// The model a sweep maps, as its pictures name it: `PDE`, `PDE (shape modes 2..K)`, `ODE`.
 pub(crate) fn model_title(spec: &SweepSpec) -> String {
-    match spec.solver.modes {
+    match spec.params.modes {
         2 => spec.solver.model.as_str().to_uppercase(),
         // The K-mode model's map; the reduced model's curves drawn over it are the 2-mode ODE's.
         k => format!(
@@ -396,8 +396,6 @@ fn pde_branches(
         parameter,
         from,
         to,
-        modes: settings.modes,
-        eta_k_exponent: settings.eta_k_exponent,
         max_points: 400,
         opts: Default::default(),
     };

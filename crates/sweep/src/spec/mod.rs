@@ -217,15 +217,11 @@ pub fn parse(text: &str, file: &str, stem: &str) -> Result<SweepSpec, SpecError>
 
     let grid = grid::parse(&ctx, top)?;
     grid::check_not_fixed(&ctx, top, &grid)?;
-    let (params, shape) = params::parse(&ctx, top)?;
+    let params = params::parse(&ctx, top)?;
     let initial_conditions = initial::parse(&ctx, top)?;
-    initial::check_modes(&ctx, &initial_conditions, shape.modes)?;
-    let solver = SolverSettings {
-        modes: shape.modes,
-        eta_k_exponent: shape.eta_k_exponent,
-        ..solver::parse(&ctx, top, model)?
-    };
-    check_read(&ctx, top, &grid, &solver)?;
+    initial::check_modes(&ctx, &initial_conditions, params.modes)?;
+    let solver = solver::parse(&ctx, top, model)?;
+    check_read(&ctx, top, &grid, params.modes, &solver)?;
     grid::check_points(&ctx, &grid, &params, &solver)?;
     let refine = refine::parse(&ctx, top, &grid)?;
     classify::parse(&ctx, top)?;
@@ -247,6 +243,7 @@ fn check_read(
     ctx: &Ctx,
     top: &serde_yaml::Mapping,
     grid: &Grid,
+    modes: usize,
     solver: &SolverSettings,
 ) -> Result<(), SpecError> {
     let refuse = |path: &[&str], value: String, why: &str| {
@@ -261,7 +258,7 @@ fn check_read(
             .into_iter()
             .filter(|k| m.contains_key(*k))
             .collect();
-        if let Some((key, why)) = solver.first_unread(&given) {
+        if let Some((key, why)) = solver.first_unread(modes, &given) {
             return Err(refuse(
                 &["solver", key],
                 m.get(key).map(show).unwrap_or_default(),
@@ -272,7 +269,7 @@ fn check_read(
     // An axis of a setting the runs do not read gives the same run at each of its values.
     let swept = grid.plane().params().into_iter().filter(|p| !p.is_model());
     for key in swept.map(|p| p.name()) {
-        if let Some(why) = solver.unread_reason(key) {
+        if let Some(why) = solver.unread_reason(modes, key) {
             return Err(refuse(&["grid", key], "an axis".into(), why));
         }
     }

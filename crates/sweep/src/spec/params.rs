@@ -10,12 +10,6 @@ use crate::error::SpecError;
 use droplet_solver::model::params::ModelParams;
 use serde_yaml::Mapping;
 
-/// The shape modes of the `params` section: `K` and the friction law's exponent.
-pub(super) struct ShapeModes {
-    pub modes: usize,
-    pub eta_k_exponent: f64,
-}
-
 /// The model parameters of the section, each the key of its field's name.
 const NUMBERS: [NumberField<ModelParams>; 7] = [
     ("eta_t", |p| &mut p.eta_t),
@@ -27,15 +21,11 @@ const NUMBERS: [NumberField<ModelParams>; 7] = [
     ("mass", |p| &mut p.mass),
 ];
 
-/// The `params` section: the model parameters and the shape modes.
-pub(super) fn parse(ctx: &Ctx, top: &Mapping) -> Result<(ModelParams, ShapeModes), SpecError> {
+/// The `params` section: the model parameters, the shape modes among them.
+pub(super) fn parse(ctx: &Ctx, top: &Mapping) -> Result<ModelParams, SpecError> {
     let mut params = ModelParams::default();
-    let mut shape = ShapeModes {
-        modes: 2,
-        eta_k_exponent: 0.0,
-    };
     let Some(v) = top.get("params") else {
-        return Ok((params, shape));
+        return Ok(params);
     };
     let all: Vec<&str> = NUMBERS
         .iter()
@@ -44,7 +34,7 @@ pub(super) fn parse(ctx: &Ctx, top: &Mapping) -> Result<(ModelParams, ShapeModes
         .collect();
     let m = ctx.mapping(v, &["params"], &all)?;
     if let Some(x) = m.get("modes") {
-        shape.modes = ctx.number(
+        params.modes = ctx.number(
             x,
             &["params", "modes"],
             |k| {
@@ -55,8 +45,8 @@ pub(super) fn parse(ctx: &Ctx, top: &Mapping) -> Result<(ModelParams, ShapeModes
         )? as usize;
     }
     if let Some(x) = m.get("eta_k_exponent") {
-        // The range is the solver's to check (SolverSettings::validate).
-        shape.eta_k_exponent = ctx.number(
+        // The range is the solver's to check (ModelParams::validate).
+        params.eta_k_exponent = ctx.number(
             x,
             &["params", "eta_k_exponent"],
             f64::is_finite,
@@ -64,5 +54,5 @@ pub(super) fn parse(ctx: &Ctx, top: &Mapping) -> Result<(ModelParams, ShapeModes
         )?;
     }
     ctx.numbers(m, "params", &NUMBERS, &mut params)?;
-    Ok((params, shape))
+    Ok(params)
 }

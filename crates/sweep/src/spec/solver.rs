@@ -205,10 +205,9 @@ mod tests {
                 file: "t.yaml",
                 text: &text,
             };
-            let (got, shape) =
-                super::super::params::parse(&ctx, top.as_mapping().unwrap()).unwrap();
+            let got = super::super::params::parse(&ctx, top.as_mapping().unwrap()).unwrap();
             assert_eq!(changed(&ModelParams::default(), &got), [key]);
-            assert_eq!((shape.modes, shape.eta_k_exponent), (2, 0.0));
+            assert_eq!((got.modes, got.eta_k_exponent), (2, 0.0));
         }
     }
 }

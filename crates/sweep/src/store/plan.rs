@@ -61,7 +61,7 @@ impl Plan {
         self.plane
             .apply(self.points[point], &mut params, &mut settings);
         // What the run reads, and only that, is what it is keyed and recorded with.
-        let settings = settings.honoured();
+        let settings = settings.honoured(params.modes);
         let ic = &self.ics[ic_index];
         Task {
             point,
@@ -120,14 +120,82 @@ pub fn check_size(spec: &SweepSpec, max_runs: u64) -> Result<(), crate::error::S
 
 #[derive(Serialize)]
 struct KeyMaterial<'a> {
-    params: &'a ModelParams,
+    params: KeyedParams,
     ic: [f64; 4],
     /// The condition's amplitudes of modes 3.. (absent for 2-mode conditions, whose keys
     /// are as before).
     #[serde(skip_serializing_if = "no_higher_modes")]
     ic_higher: &'a [[f64; 2]],
-    settings: &'a SolverSettings,
+    settings: KeyedSettings<'a>,
     solver_version: &'a str,
+}
+
+/// The model parameters as a key hashes them: all but the shape modes and their friction
+/// law, which it hashes with the settings, where run records held them before they were
+/// model parameters, so that every stored run keeps its key.
+#[derive(Serialize)]
+struct KeyedParams {
+    eta_t: f64,
+    kappa2: f64,
+    eta2: f64,
+    radius: f64,
+    sigma: f64,
+    box_len: f64,
+    mass: f64,
+}
+
+/// The settings as a key hashes them: with the model's shape modes and friction law after
+/// them, each only when it is not its default (a 2-mode run's key holds neither).
+#[derive(Serialize)]
+struct KeyedSettings<'a> {
+    #[serde(flatten)]
+    settings: &'a SolverSettings,
+    #[serde(skip_serializing_if = "is_two")]
+    modes: usize,
+    #[serde(skip_serializing_if = "is_zero")]
+    eta_k_exponent: f64,
+}
+
+fn is_two(k: &usize) -> bool {
+    *k == 2
+}
+
+fn is_zero(x: &f64) -> bool {
+    *x == 0.0
+}
+
+/// The key's parts of `params` and `settings`. Every field of [`ModelParams`] is named here,
+/// so that a new parameter cannot be left out of keys unnoticed.
+fn keyed<'a>(
+    params: &ModelParams,
+    settings: &'a SolverSettings,
+) -> (KeyedParams, KeyedSettings<'a>) {
+    let ModelParams {
+        eta_t,
+        kappa2,
+        eta2,
+        radius,
+        sigma,
+        box_len,
+        mass,
+        modes,
+        eta_k_exponent,
+    } = *params;
+    let params = KeyedParams {
+        eta_t,
+        kappa2,
+        eta2,
+        radius,
+        sigma,
+        box_len,
+        mass,
+    };
+    let settings = KeyedSettings {
+        settings,
+        modes,
+        eta_k_exponent,
+    };
+    (params, settings)
 }
 
 fn no_higher_modes(higher: &&[[f64; 2]]) -> bool {
@@ -139,7 +207,7 @@ fn no_higher_modes(higher: &&[[f64; 2]]) -> bool {
 /// PDE run's key holds no `h0`, a K-mode run's no `tol`) and the solver's numerics version.
 /// Equal runs in two sweeps share it.
 pub fn run_key(params: &ModelParams, ic: &InitialCondition, settings: &SolverSettings) -> String {
-    written_key(params, ic, &settings.honoured())
+    written_key(params, ic, &settings.honoured(params.modes))
 }
 
 /// The key of a run with `settings` hashed as they are written, unread settings included:
@@ -165,12 +233,13 @@ pub(crate) fn short_hash(bytes: &[u8]) -> String {
 
 /// The text [`run_key`] hashes.
 fn key_material(params: &ModelParams, ic: &InitialCondition, settings: &SolverSettings) -> String {
+    let (keyed_params, keyed_settings) = keyed(params, settings);
     let material = KeyMaterial {
-        params,
+        params: keyed_params,
         ic: [ic.vx, ic.vy, ic.a2, ic.b2],
         ic_higher: &ic.higher,
-        settings,
-        solver_version: droplet_solver::solver_version(settings.model, settings.modes),
+        settings: keyed_settings,
+        solver_version: droplet_solver::solver_version(settings.model, params.modes),
     };
     serde_json::to_string(&material).expect("plain data serialises")
 }
@@ -265,10 +334,10 @@ mod tests {
         assert_eq!(k.len(), 32);
         // Conditions that differ in a higher mode only are different runs; a 2-mode
         // condition's key material is as it was before modes 3.. existed.
-        let k4 = SolverSettings { modes: 4, ..s };
+        let (p4, k4) = (p.with_modes(4), s);
         let with = |a3: f64| {
             let ic = InitialCondition::parse(&format!("custom:0.5,0,-0.1,0,{a3},0")).unwrap();
-            run_key(&p, &ic, &k4)
+            run_key(&p4, &ic, &k4)
         };
         assert_ne!(with(0.1), with(-0.1));
         assert!(!key_material(&p, &ic, &s).contains("ic_higher"));
@@ -280,9 +349,9 @@ mod tests {
         assert_eq!(k, written_key(&p, &ic, &s));
         assert_ne!(k, written_key(&p, &ic, &SolverSettings { h0: 192.0, ..s }));
         assert_eq!(
-            run_key(&p, &ic, &k4),
+            run_key(&p4, &ic, &k4),
             run_key(
-                &p,
+                &p4,
                 &ic,
                 &SolverSettings {
                     orientation_flow: false,
@@ -291,9 +360,9 @@ mod tests {
             )
         );
         assert_ne!(
-            run_key(&p, &ic, &k4),
+            run_key(&p4, &ic, &k4),
             run_key(
-                &p,
+                &p4,
                 &ic,
                 &SolverSettings {
                     landing: false,
@@ -302,14 +371,43 @@ mod tests {
             )
         );
         assert_ne!(
-            run_key(&p, &ic, &k4),
-            run_key(&p, &ic, &SolverSettings { tol: 1e-6, ..k4 })
+            run_key(&p4, &ic, &k4),
+            run_key(&p4, &ic, &SolverSettings { tol: 1e-6, ..k4 })
         );
         let ode = SolverSettings::ode();
         assert_ne!(
             run_key(&p, &ic, &ode),
             run_key(&p, &ic, &SolverSettings { h0: 0.2, ..ode })
         );
+    }
+
+    #[test]
+    fn a_k_mode_key_hashes_the_shape_modes_with_the_settings_as_records_held_them() {
+        // Keys of runs stored before the shape modes were model parameters: the modes and
+        // the friction law after the settings, each only when not its default.
+        let ic = InitialCondition::parse("i").unwrap();
+        let s = SolverSettings::default();
+        let p = ModelParams {
+            eta_k_exponent: -1.0,
+            ..ModelParams::default().with_modes(3)
+        };
+        let text = key_material(&p, &ic, &s);
+        let settings = serde_json::to_string(&s).unwrap();
+        // The parameters as every stored record's key held them.
+        let params = r#"{"eta_t":0.085,"kappa2":0.112,"eta2":0.1,"radius":1.0,"sigma":0.03,"box_len":7.0,"mass":0.1}"#;
+        assert!(
+            text.starts_with(&format!("{{\"params\":{params},")),
+            "{text}"
+        );
+        assert!(
+            text.contains(&format!(
+                "\"settings\":{},\"modes\":3,\"eta_k_exponent\":-1.0}}",
+                settings.trim_end_matches('}')
+            )),
+            "{text}"
+        );
+        let two = key_material(&ModelParams::default(), &ic, &s);
+        assert!(two.contains(&format!("\"settings\":{settings},")), "{two}");
     }
 
     #[test]

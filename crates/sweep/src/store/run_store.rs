@@ -7,7 +7,7 @@ use crate::spec::axes::{ETA_T, KAPPA2};
 use crate::store::atomic::{create_output_dir, write_atomic};
 use crate::store::plan::Plan;
 pub use crate::store::record_file::RunRecord;
-use crate::store::record_file::{digest_of, seal, unseal};
+use crate::store::record_file::{digest_of, seal, unseal, Unsealed};
 use fs2::FileExt;
 use serde::Serialize;
 use std::collections::HashMap;
@@ -199,7 +199,7 @@ impl Store {
             Err(e) => return Stored::Corrupt(format!("cannot be read: {e}")),
         };
         let (rec, digest) = match unseal(&bytes) {
-            Ok(r) => r,
+            Ok(u) => (u.record, u.digest),
             Err(e) => {
                 return Stored::Corrupt(format!("not a run record ({} bytes): {e}", bytes.len()))
             }
@@ -221,7 +221,7 @@ impl Store {
         let content_key = crate::store::plan::run_key(&rec.params, &rec.ic, &rec.settings);
         if rec.key != key
             || rec.solver_version
-                != droplet_solver::solver_version(rec.settings.model, rec.settings.modes)
+                != droplet_solver::solver_version(rec.settings.model, rec.params.modes)
             || content_key != key
         {
             return Stored::Corrupt(format!(
@@ -240,7 +240,10 @@ impl Store {
     ///   ([`crate::store::plan::run_key`]: settings it does not read left out, such as the
     ///   `h0` that a spec-parsing bug once set to `n` in every PDE run). Its result is
     ///   the one its new key asks for, so it is re-keyed, never recomputed; its record keeps
-    ///   the settings it read.
+    ///   the settings it read;
+    /// - a record that holds the model's shape modes among its settings (written before they
+    ///   were model parameters) is rewritten with them among its parameters (its key, which
+    ///   hashes them where they were, and its outcome unchanged).
     ///
     /// Called when a store is opened to be written, before any run is checked.
     fn upgrade(&self) -> Result<usize, SweepError> {
@@ -256,10 +259,15 @@ impl Store {
             let Ok(bytes) = fs::read(e.path()) else {
                 continue;
             };
-            let Ok((mut rec, digest)) = unseal(&bytes) else {
+            let Ok(Unsealed {
+                record: mut rec,
+                digest,
+                modes_in_settings,
+            }) = unseal(&bytes)
+            else {
                 continue;
             };
-            let current = droplet_solver::solver_version(rec.settings.model, rec.settings.modes);
+            let current = droplet_solver::solver_version(rec.settings.model, rec.params.modes);
             let key = crate::store::plan::run_key(&rec.params, &rec.ic, &rec.settings);
             let written = crate::store::plan::written_key(&rec.params, &rec.ic, &rec.settings);
             if rec.key != stem || rec.solver_version != current || written != stem {
@@ -267,8 +275,10 @@ impl Store {
                 continue;
             }
             if key == stem {
-                if digest.is_none() {
-                    // Written before records were sealed: sealed as it is.
+                let sealed_intact = digest.as_ref() == Some(&digest_of(&rec.outcome));
+                if digest.is_none() || (modes_in_settings && sealed_intact) {
+                    // Written before records were sealed, or before the shape modes were
+                    // model parameters: written as it is now.
                     self.save(&rec)?;
                     renamed += 1;
                 }
@@ -278,7 +288,7 @@ impl Store {
                 continue;
             }
             rec.key = key;
-            rec.settings = rec.settings.honoured();
+            rec.settings = rec.settings.honoured(rec.params.modes);
             if !self.path_of(&rec.key).exists() {
                 self.save(&rec)?;
             }
@@ -624,5 +634,52 @@ mod tests {
         }
         drop(Store::open_locked(dir.path()).unwrap());
         assert!(stale.iter().all(|p| !p.exists()));
+    }
+
+    #[test]
+    fn a_record_with_the_shape_modes_among_its_settings_is_read_and_rewritten_under_its_key() {
+        // As records were written before the shape modes were model parameters: `modes` and
+        // `eta_k_exponent` after the settings, the key hashing them there.
+        let dir = tempfile::tempdir().unwrap();
+        let mut rec = record();
+        rec.params = ModelParams {
+            eta_k_exponent: -1.0,
+            ..rec.params.with_modes(3)
+        };
+        rec.key = crate::store::plan::run_key(&rec.params, &rec.ic, &rec.settings);
+        rec.solver_version =
+            droplet_solver::solver_version(rec.settings.model, rec.params.modes).into();
+        assert_ne!(rec.key, record().key);
+        let legacy = |rec: &RunRecord| {
+            let mut v: serde_json::Value = serde_json::from_slice(&seal(rec)).unwrap();
+            let params = v["params"].as_object_mut().unwrap();
+            let (k, p) = (params.remove("modes"), params.remove("eta_k_exponent"));
+            let settings = v["settings"].as_object_mut().unwrap();
+            settings.insert("modes".into(), k.unwrap());
+            settings.insert("eta_k_exponent".into(), p.unwrap());
+            serde_json::to_vec(&v).unwrap()
+        };
+        let store = Store::open_locked(dir.path()).unwrap();
+        let file = store.path_of(&rec.key);
+        std::fs::write(&file, legacy(&rec)).unwrap();
+        assert_eq!(store.check(&rec.key), Stored::Valid(Box::new(rec.clone())));
+        // One with an edited outcome stays corrupt, and is not rewritten.
+        let mut edited = rec.clone();
+        edited.params.kappa2 = 0.113;
+        edited.key = crate::store::plan::run_key(&edited.params, &edited.ic, &edited.settings);
+        let mut bytes: serde_json::Value = serde_json::from_slice(&legacy(&edited)).unwrap();
+        bytes["outcome"]["v"] = 0.6.into();
+        let edited_file = store.path_of(&edited.key);
+        std::fs::write(&edited_file, serde_json::to_vec(&bytes).unwrap()).unwrap();
+        assert!(matches!(store.check(&edited.key), Stored::Corrupt(_)));
+        drop(store);
+        let store = Store::open_locked(dir.path()).unwrap();
+        assert_eq!(store.upgraded(), 1);
+        let written: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(&file).unwrap()).unwrap();
+        assert_eq!(written["params"]["modes"], 3);
+        assert!(written["settings"].get("modes").is_none());
+        assert_eq!(store.check(&rec.key), Stored::Valid(Box::new(rec)));
+        assert!(matches!(store.check(&edited.key), Stored::Corrupt(_)));
     }
 }

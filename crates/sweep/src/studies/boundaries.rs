@@ -37,6 +37,10 @@ pub struct BoundaryStudy {
     pub eta_t: (f64, f64),
     pub kappa2: (f64, f64),
     /// The other parameters (the sweep's in `out`, else the defaults), at the window's corner.
+    /// With shape modes `2..=base.modes`, `K > 2` (the paper's general model; 2 is the
+    /// paper's), the full model's curves are those of the states on the x axis, computed in
+    /// the paper's plane (also for the crossings of `across`); a `pair` is traced with two
+    /// (`droplet_solver::continuation::window::Window::check` refuses more).
     pub base: ModelParams,
     pub h0: f64,
     /// Grid points per side.
@@ -48,11 +52,6 @@ pub struct BoundaryStudy {
     /// For a sweep outside the paper's plane: how its plane meets the paper's
     /// ([`crate::studies::across`]).
     pub across: Option<Across>,
-    /// Shape modes `2..=modes` (the paper's general model; 2 is the paper's). With more, the
-    /// full model's curves are those of the states on the x axis, computed in the paper's
-    /// plane (also for the crossings of `across`); a `pair` is traced with two
-    /// (`droplet_solver::continuation::window::Window::check` refuses more).
-    pub modes: usize,
     /// For a sweep in a plane of two model parameters that crossings do not give: the window
     /// its curves are continued in ([`crate::studies::pair`]; the reduced model's curves are
     /// then `across`'s crossings, where there is one).
@@ -127,7 +126,6 @@ impl BoundaryStudy {
         let spec_params = sweep
             .as_ref()
             .map_or_else(ModelParams::default, |s| s.params);
-        let modes = sweep.as_ref().map_or(2, |s| s.solver.modes);
         let base = match pair {
             // The pair's window sets its own axes; the others are the spec's.
             Some(_) => spec_params,
@@ -154,16 +152,18 @@ impl BoundaryStudy {
             },
             across,
             pair,
-            modes,
         })
     }
 
     /// The same study with shape modes `2..=modes`, refused where its window cannot be
     /// computed with them ([`Window::check`]).
     pub fn with_modes(self, modes: usize) -> Result<Self, SweepError> {
-        let study = Self { modes, ..self };
+        let study = Self {
+            base: self.base.with_modes(modes),
+            ..self
+        };
         let window = match &study.pair {
-            Some(p) => p.window(&study.base, study.n, modes),
+            Some(p) => p.window(&study.base, study.n),
             None => study.paper_window(&study.base, study.n),
         };
         window
@@ -174,13 +174,7 @@ impl BoundaryStudy {
 
     /// The paper plane's window of the study at the parameters `base` and grid size `n`.
     fn paper_window(&self, base: &ModelParams, n: usize) -> Window {
-        Window::paper(
-            *base,
-            (n, self.modes),
-            self.eta_t,
-            self.kappa2,
-            self.samples,
-        )
+        Window::paper(*base, n, self.eta_t, self.kappa2, self.samples)
     }
 
     /// The names of the plane the curves are drawn in: the paper's, or the sweep's in `out`.
@@ -257,7 +251,7 @@ impl BoundaryStudy {
         let started = Instant::now();
         let curves = match (&self.pair, &self.across) {
             (Some(p), across) => {
-                let mut curves = p.curves(&self.base, self.n, self.modes)?;
+                let mut curves = p.curves(&self.base, self.n)?;
                 if let Some(a) = across {
                     curves.extend(
                         a.plane_curves(&self.base, self.n, |b, _| Ok(self.ode_curves_at(b)))?,
@@ -279,7 +273,7 @@ impl BoundaryStudy {
             vec![
                 ("n".into(), self.n.to_string()),
                 ("window".into(), self.window()),
-                ("modes".into(), self.modes.to_string()),
+                ("modes".into(), self.base.modes.to_string()),
             ],
         )?;
         let drawn: Vec<Curve> = curves.iter().map(Curve::of).collect();
@@ -290,7 +284,7 @@ impl BoundaryStudy {
             boundary_picture(
                 &self.out,
                 "boundaries",
-                &match self.modes {
+                &match self.base.modes {
                     2 => format!("Phase boundaries: PDE (N = {}) solid, ODE dashed", self.n),
                     k => format!(
                         "Phase boundaries: PDE with modes 2..{k} (N = {}, x-axis states) solid, ODE dashed",

@@ -92,8 +92,8 @@ impl ContinuationStudy {
     pub fn stem(&self) -> String {
         let short = |v: f64| format!("{v:.9e}").parse::<f64>().unwrap_or(v);
         let mut parts = vec!["continuation".to_string()];
-        if self.line.modes != 2 {
-            parts.push(format!("modes{}", self.line.modes));
+        if self.line.base.modes != 2 {
+            parts.push(format!("modes{}", self.line.base.modes));
         }
         if !matches!(self.line.parameter, ModelParam::EtaT | ModelParam::Kappa2) {
             parts.push(self.varied().to_string());
@@ -101,10 +101,10 @@ impl ContinuationStudy {
         for (name, value) in self.fixed() {
             parts.push(format!("{name}_{}", short(value)));
         }
-        if self.line.eta_k_exponent != 0.0 {
+        if self.line.base.eta_k_exponent != 0.0 {
             parts.push(format!(
                 "eta_k_exponent_{}",
-                short(self.line.eta_k_exponent)
+                short(self.line.base.eta_k_exponent)
             ));
         }
         if self.mirror == MirrorLine::Diagonal {
@@ -164,10 +164,10 @@ impl ContinuationStudy {
             &format!(
                 "PDE (N = {}{}), {fixed}: solid = stable, dashed = unstable",
                 self.line.n,
-                if self.line.modes == 2 {
+                if self.line.base.modes == 2 {
                     String::new()
                 } else {
-                    format!(", modes 2..{}", self.line.modes)
+                    format!(", modes 2..{}", self.line.base.modes)
                 }
             ),
         )?;

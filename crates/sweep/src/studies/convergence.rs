@@ -56,7 +56,7 @@ pub fn run(base: &BoundaryStudy, ns: &[usize]) -> Result<ConvergenceWritten, Swe
             sweep_spec: None,
             across: None,
             pair: None,
-            modes: 2,
+            base: base.base.with_modes(2),
             ..base.clone()
         };
         let done = study.run()?;

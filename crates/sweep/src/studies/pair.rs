@@ -70,13 +70,12 @@ impl Pair {
         (self.x.param.name(), self.y.param.name())
     }
 
-    /// The window of the pair at grid size `n` with shape modes `2..=modes`, the other
-    /// parameters `base`'s.
-    pub fn window(&self, base: &ModelParams, n: usize, modes: usize) -> Window {
+    /// The window of the pair at grid size `n`, the other parameters (the shape modes among
+    /// them) `base`'s.
+    pub fn window(&self, base: &ModelParams, n: usize) -> Window {
         Window {
             base: *base,
             n,
-            modes,
             x: self.x,
             y: self.y,
             samples: EDGE_SAMPLES,
@@ -84,13 +83,8 @@ impl Pair {
     }
 
     /// The full model's boundaries in [`Pair::window`].
-    pub fn curves(
-        &self,
-        base: &ModelParams,
-        n: usize,
-        modes: usize,
-    ) -> Result<Vec<NamedCurve>, SweepError> {
-        let pde = boundaries(&self.window(base, n, modes))?;
+    pub fn curves(&self, base: &ModelParams, n: usize) -> Result<Vec<NamedCurve>, SweepError> {
+        let pde = boundaries(&self.window(base, n))?;
         Ok(NamedCurve::from_boundaries(ModelKind::Pde, &pde))
     }
 }

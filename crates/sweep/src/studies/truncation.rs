@@ -94,9 +94,9 @@ fn row(
         ModelParams {
             eta_t: window_eta_t.0,
             kappa2: window_kappa2.0,
-            ..*base
+            ..base.with_modes(k_max)
         },
-        (n, k_max),
+        n,
         window_eta_t,
         window_kappa2,
         30,

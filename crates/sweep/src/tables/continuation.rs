@@ -140,8 +140,11 @@ pub fn write(
     let mut meta = metadata(None);
     meta.push(("line".into(), description.to_string()));
     meta.push(("n".into(), line.n.to_string()));
-    meta.push(("modes".into(), line.modes.to_string()));
-    meta.push(("eta_k_exponent".into(), line.eta_k_exponent.to_string()));
+    meta.push(("modes".into(), line.base.modes.to_string()));
+    meta.push((
+        "eta_k_exponent".into(),
+        line.base.eta_k_exponent.to_string(),
+    ));
     // Every model parameter of the line at its start, the varied one included.
     meta.push((
         "params".into(),

@@ -27,11 +27,9 @@ pub struct RunRow {
     pub class: Option<StateClass>,
     /// `(vx, vy, a2, b2)` at the end.
     pub z: [f64; 4],
-    /// Its shape modes `K` (2 in a table without a `modes` column), and the whole state at
-    /// the end, `(vx, vy, a2..aK, b2..bK)` (the K-mode model's unknowns; `z` when `K = 2`).
-    pub modes: usize,
-    /// The friction law's exponent of modes `k >= 3` (0 in a table without the column).
-    pub eta_k_exponent: f64,
+    /// The whole state at the end, `(vx, vy, a2..aK, b2..bK)` (the K-mode model's unknowns;
+    /// `z` when `K = 2`), with `K` the shape modes of `params` (2 in a table without a
+    /// `modes` column, their friction law's exponent 0 without an `eta_k_exponent` one).
     pub state: Vec<f64>,
     pub v: f64,
     pub s: f64,
@@ -203,6 +201,8 @@ pub fn runs(path: &Path) -> Result<Vec<RunRow>, SweepError> {
                 sigma: f("sigma", i),
                 box_len: f("box_len", i),
                 mass: f("mass", i),
+                modes: modes[i] as usize,
+                eta_k_exponent: eta_k_exponent[i],
             },
             n: n[i] as usize,
             model: t("model", i),
@@ -211,8 +211,6 @@ pub fn runs(path: &Path) -> Result<Vec<RunRow>, SweepError> {
             status: t("status", i),
             class: StateClass::parse(&t("class", i)),
             z: [f("vx", i), f("vy", i), f("a2", i), f("b2", i)],
-            modes: modes[i] as usize,
-            eta_k_exponent: eta_k_exponent[i],
             state: state(i),
             v: f("v", i),
             s: f("s", i),

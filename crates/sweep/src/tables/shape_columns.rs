@@ -34,7 +34,7 @@ fn amplitude_columns(shapes: &[Option<EndShape>], k_top: usize, suffix: &str) ->
 
 /// The runs table's columns, empty when every run is a 2-mode run.
 pub fn run_columns(records: &[&RunRecord]) -> Vec<Column> {
-    let k_top = records.iter().map(|r| r.settings.modes).max().unwrap_or(2);
+    let k_top = records.iter().map(|r| r.params.modes).max().unwrap_or(2);
     if k_top <= 2 {
         return Vec::new();
     }
@@ -43,14 +43,14 @@ pub fn run_columns(records: &[&RunRecord]) -> Vec<Column> {
         "modes".into(),
         records
             .iter()
-            .map(|r| r.settings.modes as u32)
+            .map(|r| r.params.modes as u32)
             .collect::<Vec<u32>>(),
     )];
     cols.push(Column::new(
         "eta_k_exponent".into(),
         records
             .iter()
-            .map(|r| r.settings.eta_k_exponent)
+            .map(|r| r.params.eta_k_exponent)
             .collect::<Vec<f64>>(),
     ));
     cols.extend(amplitude_columns(&shapes, k_top, ""));

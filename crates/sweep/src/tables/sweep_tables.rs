@@ -85,7 +85,11 @@ fn read<T>(
     value: impl Fn(&SolverSettings) -> T,
 ) -> Vec<Option<T>> {
     rows.iter()
-        .map(|(_, r)| r.settings.reads(field).then(|| value(&r.settings)))
+        .map(|(_, r)| {
+            r.settings
+                .reads(r.params.modes, field)
+                .then(|| value(&r.settings))
+        })
         .collect()
 }
 

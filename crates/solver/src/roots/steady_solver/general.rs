@@ -56,8 +56,6 @@ pub struct SteadySolver {
     d: Vec<Complex64>,
     /// The angle of the axis [`Self::residual_x`] works on (0: the x axis).
     axis: f64,
-    /// The friction law's exponent ([`crate::model::friction`]).
-    eta_k_exponent: f64,
     /// The forces of the last droplets the residuals asked for.
     memo: ForcesMemo<(f64, f64, Modes), ShapeForces>,
     /// The shape whose source `quad` holds, with its area and rows: a droplet of the same
@@ -82,7 +80,6 @@ impl SteadySolver {
             u_spec: vec![Complex64::default(); len],
             d: vec![Complex64::default(); len],
             axis: 0.0,
-            eta_k_exponent: 0.0,
             memo: ForcesMemo::default(),
             sourced: None,
         })
@@ -220,15 +217,11 @@ impl SteadySolver {
         sum
     }
 
-    /// Sets the friction law of the modes `k >= 3` ([`crate::model::friction`]): the
-    /// time stepping and the eigenvalues use [`Self::eta`]; no steady state depends on it.
-    pub fn set_eta_k_exponent(&mut self, exponent: f64) {
-        self.eta_k_exponent = exponent;
-    }
-
-    /// The friction `eta_k` of mode `k` (`eta2` for every mode by default).
+    /// The friction `eta_k` of mode `k` (the model's friction law,
+    /// [`crate::model::friction`]: `eta2` for every mode by default); the time stepping and
+    /// the eigenvalues use it, no steady state depends on it.
     pub fn eta(&self, k: usize) -> f64 {
-        crate::model::friction::eta_k(self.params.eta2, k, self.eta_k_exponent)
+        crate::model::friction::eta_k(self.params.eta2, k, self.params.eta_k_exponent)
     }
 
     /// `kappa_k = (k^2 / 4) kappa2`.

@@ -73,9 +73,8 @@ struct Spectra {
 /// The `K`-mode model's state in time, stepped by ETD2RK ([`Stepper::attempt`]). Plans and
 /// buffers are made once; a step allocates only the forces' vectors.
 pub struct ComovingEtd {
+    /// The model (its friction law sets the modes' rates; the state's length, `K`).
     params: ModelParams,
-    /// The friction law's exponent ([`crate::model::friction`]).
-    eta_k_exponent: f64,
     quad: ForceQuadrature,
     /// `(vx, vy, a_2..a_K, b_2..b_K)`.
     pub z: Vec<f64>,
@@ -119,7 +118,6 @@ impl ComovingEtd {
         let (cur, prev) = (snapshot(), snapshot());
         let mut run = Self {
             params: *params,
-            eta_k_exponent: 0.0,
             quad: ForceQuadrature::new(grid, shape),
             z: z0.to_vec(),
             field: Spectra {
@@ -150,18 +148,11 @@ impl ComovingEtd {
         self.rate_of = vec![p.eta_t / p.mass; 2];
         self.inertia = vec![p.mass; 2];
         for k in (2..=k_max).chain(2..=k_max) {
-            let eta = crate::model::friction::eta_k(p.eta2, k, self.eta_k_exponent);
+            let eta = crate::model::friction::eta_k(p.eta2, k, p.eta_k_exponent);
             self.rate_of
                 .push(crate::model::modes::kappa_k(p.kappa2, k) / eta);
             self.inertia.push(eta);
         }
-    }
-
-    /// Sets the friction law of the modes `k >= 3` ([`crate::model::friction`]; the
-    /// default is `eta_k = eta2`).
-    pub fn set_eta_k_exponent(&mut self, exponent: f64) {
-        self.eta_k_exponent = exponent;
-        self.linear_parts();
     }
 
     /// The forces of the field whose gradient the quadrature holds on the droplet it holds
@@ -532,11 +523,10 @@ mod tests {
         // state of the steady solver, a3 included, to 1e-6. (N = 96: there the box's rotation
         // mode of the x-axis state decays, at rate 0.037; at N = 64 the run turns away from
         // the axis.)
-        let p = ModelParams::at(0.085, 0.112);
+        let p = ModelParams::at(0.085, 0.112).with_modes(3);
         let n = 96;
         let settings = crate::contract::settings::SolverSettings {
             n,
-            modes: 3,
             dt: 0.05,
             tol: 0.0,
             t_max: 3000.0,

@@ -7,7 +7,7 @@
 //! `u <- u + h (Lap u - u + Theta / A)`, `r_c <- r_c + h v`,
 //! `v <- v + (h / m) (-eta_t v + F)`, `a_k <- a_k + (h / eta2) (G_k^(a) - kappa_k a_k)` and the
 //! same for `b_k` (`kappa_k = (k^2 / 4) kappa2`, `eta_k = eta2` unless a friction law is
-//! set, [`PaperFd::set_eta_k_exponent`]), with the forces
+//! set in the model's parameters, [`crate::model::friction`]), with the forces
 //! `F = -Int grad u Theta dA` (eq. 35) and `G_k = -Int w_k . grad u Theta dA` (the smoothed
 //! eqs. dakdt_dl, dbkdt_dl; `w_k` of [`crate::model::modes::w_fields`]). With `K = 2` this is
 //! [`crate::stepping::paper_fd::TwoModeFd`] (tested to round-off).
@@ -63,7 +63,7 @@ impl PaperFd {
         let mut inertia = vec![params.mass; 2];
         let mut stiffness = vec![params.eta_t; 2];
         for k in (2..=k_max).chain(2..=k_max) {
-            inertia.push(params.eta2);
+            inertia.push(eta_k(params.eta2, k, params.eta_k_exponent));
             stiffness.push((k * k) as f64 / 4.0 * params.kappa2);
         }
         Ok(Self {
@@ -87,15 +87,6 @@ impl PaperFd {
             area: 0.0,
             fresh: false,
         })
-    }
-
-    /// Sets the friction law of the modes `k >= 3` ([`crate::model::friction`]; the
-    /// default is `eta_k = eta2`).
-    pub fn set_eta_k_exponent(&mut self, exponent: f64) {
-        let k_max = self.z.len() / 2;
-        for (i, k) in (2..=k_max).chain(2..=k_max).enumerate() {
-            self.inertia[2 + i] = eta_k(self.params.eta2, k, exponent);
-        }
     }
 
     /// Replaces the field by `values` (lab grid, `values[iy * n + ix]` at
