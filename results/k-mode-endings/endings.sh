@@ -4,6 +4,7 @@
 # every initial condition.
 #   endings.sh BINARY TAG K N [pure]
 #   RUNS="0.076,0.14175,ii 0.0765,0.16425,i" endings.sh ...   # these runs instead
+#   T_MAX=100000 endings.sh ... pure                           # pure stepping further
 # writes runs/TAG-kK-nN.json: one object per run (point, ic, status, class, ended_by, v, s,
 # orientation in degrees, t_end, steps, wall_s). With `pure` the runs are pure time stepping.
 set -euo pipefail
@@ -17,7 +18,7 @@ fi
 here=$(cd "$(dirname "$0")" && pwd)
 mkdir -p "$here/runs"
 extra=()
-[ "$mode" = pure ] && extra=(--steady test --steady-tol 1e-9 --t-max 20000)
+[ "$mode" = pure ] && extra=(--steady test --steady-tol 1e-9 --t-max "${T_MAX:-20000}")
 out="$here/runs/$tag-k$k-n$n.json"
 echo "[" > "$out.tmp"
 first=1

@@ -120,7 +120,15 @@ pub const ODE_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numeri
 /// (`runs::turning`, `settled_beside`): (0.07625, 0.14425) from iv, turning back to the
 /// x-axis MD at a rate of 5.7e-5, ended by the paper's test at t = 20 869 and now by Newton
 /// at t = 2801, on the same root.
-pub const MODES_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-9+modes-12");
+/// 13: the landing ends a run leaving a saddle on a mirror line on the stable root its slow
+/// flow takes it to although the run leans beyond the linear lean, when the orientation's
+/// flow on that root's family points back at every sample from the root out to the run's
+/// lean (`runs::turning`, `arrives_turning_back`); every scan of a K-mode flow samples at
+/// most 0.05 degree apart (roots of the lattice lie 0.2 to 0.5 degree off the lines), a
+/// sample where the fast balances fail counting as pointing outward: four runs of the
+/// 4-mode map leaving the diagonal ID at (0.08725, 0.115) and (0.08975, 0.11275) end on the
+/// diagonal's slow MD at t = 725-850 instead of 25 800-47 100, on the same state.
+pub const MODES_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-9+modes-13");
 
 /// The numerics version of a model's runs with shape modes `2..=modes`, part of their cache
 /// key: a change to one model's results invalidates its stored runs only.

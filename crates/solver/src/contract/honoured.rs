@@ -34,7 +34,7 @@ impl SolverSettings {
             "tol" | "dt_max" if !spectral => Some("the paper's scheme takes fixed steps dt"),
             "dt_max" if !self.adaptive() => Some("tol = 0 gives fixed steps dt; dt_max caps adaptive steps only"),
             "landing" | "orientation_flow" | "stop_beside_saddle" | "leap_departures" | "run_on" if !newton => Some("it acts in the Newton finish; steady = test ends a run by the paper's test alone"),
-            "orientation_flow" if k_modes => Some("runs with modes > 2 end by the Newton finish, its turn search and the landing, without the orientation flow's choice of where a run turns (2-mode runs only; they sample the flow only to confirm that a run settled beside a root turns back to it, whatever this setting)"),
+            "orientation_flow" if k_modes => Some("runs with modes > 2 end by the Newton finish, its turn search and the landing, without the orientation flow's choice of where a run turns (2-mode runs only; they sample the flow only to confirm that a run settled beside a root, or landing on one, turns back to it, whatever this setting)"),
             "steady_window" if k_modes => Some("runs with modes > 2 are steady when every rate is below steady_tol; steady_window is the 2-mode test's window"),
             "pinned" if ode || k_modes => Some("only a 2-mode PDE run can hold its centre fixed"),
             _ => None,

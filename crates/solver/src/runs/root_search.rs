@@ -200,7 +200,10 @@ impl NewtonFinish {
                 continue;
             }
             let lean = angle_to(&landing.z, &landing.on_line);
-            if near.stable() && !self.landing_holds(&near, lean, false) {
+            if near.stable()
+                && !self.landing_holds(&near, lean, false)
+                && !self.arrives_turning_back(&near, lean)
+            {
                 // Without the orientation's flow the run steps on.
                 continue;
             }

@@ -30,6 +30,16 @@ pub const SAMPLE_SPACING: f64 = 0.5 * std::f64::consts::PI / 180.0;
 /// Most samples of one [`FlowScan::extend`].
 const MAX_SAMPLES: usize = 48;
 
+/// Most samples of one [`FlowScan::extend`] of a model with more than two shape modes, whose
+/// samples are at most [`LINEAR_LEAN`] apart (numerics `modes-13`): on its grids the lattice
+/// holds roots 0.2 to 0.5 degrees off the mirror lines, between two samples of
+/// [`SAMPLE_SPACING`].
+const MAX_FINE_SAMPLES: usize = 100;
+
+/// The largest lean a scan of a model with more than two shape modes resolves at
+/// [`LINEAR_LEAN`] from the root's own linear lean out (5 degrees).
+pub const FINE_REACH: f64 = (MAX_FINE_SAMPLES + 1) as f64 * LINEAR_LEAN;
+
 /// Leans (radians, 0.05 degrees) within which the root's own rotation eigenvalue decides: the
 /// flow there is its linearisation (the nearest bump measured is 0.57 degrees off its root),
 /// and at smaller angles the flow, `O(lambda lean)`, approaches the accuracy of the solve.
@@ -217,20 +227,33 @@ impl FlowScan {
     /// `|lean|`, at most [`SAMPLE_SPACING`] apart (at most [`MAX_SAMPLES`]), stopping at the
     /// first sample that points outward. Where the fast balances cannot be solved the scan
     /// stops and counts the stretch out to `|lean|` as turning back: the root's eigenvalues
-    /// decide there, as without the setting.
+    /// decide there, as without the setting. With more than two shape modes the samples are
+    /// at most [`LINEAR_LEAN`] apart (at most [`MAX_FINE_SAMPLES`]), and a sample where the
+    /// fast balances cannot be solved counts as pointing outward: their flow is asked only
+    /// to license an end that time stepping has not reached yet.
     pub fn extend(&mut self, balances: &mut Balances, root: &[f64], lean: f64) {
         let (from, to, side) = (self.back_to, lean.abs(), lean.signum());
         if to <= from || self.outward_at.is_some() {
             return;
         }
+        let fine = balances.modes() > 2;
+        let (spacing, most) = if fine {
+            (LINEAR_LEAN, MAX_FINE_SAMPLES)
+        } else {
+            (SAMPLE_SPACING, MAX_SAMPLES)
+        };
         let (moving, phi0, mut guess) = fast_guess(root);
         let mut jac = None;
-        let samples = (((to - from) / SAMPLE_SPACING).ceil() as usize).clamp(1, MAX_SAMPLES);
+        let samples = (((to - from) / spacing).ceil() as usize).clamp(1, most);
         for j in 1..=samples {
             let theta = from + (to - from) * j as f64 / samples as f64;
             let phi = phi0 + side * theta;
             let Some((drift, y)) = flow_at(balances, moving, phi, &guess, &mut jac) else {
-                self.back_to = to;
+                if fine {
+                    self.outward_at = Some(theta);
+                } else {
+                    self.back_to = to;
+                }
                 return;
             };
             guess = y;

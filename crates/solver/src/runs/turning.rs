@@ -7,7 +7,7 @@ use crate::contract::profile::{self, Part};
 use crate::runs::finding::{Finding, MAX_SETTLED};
 use crate::runs::finish::{same_root, NewtonFinish};
 use crate::runs::orientation::{angle_to, invariant_distance, LEAN_FLOOR};
-use crate::runs::rotation_flow::{flow_zero, state_leaning, FlowScan, LINEAR_LEAN};
+use crate::runs::rotation_flow::{flow_zero, state_leaning, FlowScan, FINE_REACH, LINEAR_LEAN};
 
 /// The finish's questions to the flow: whether a leaning run turns back to a stable root
 /// ([`NewtonFinish::within_rotation_basin`]) and where it turns to from an unstable one
@@ -88,6 +88,24 @@ impl NewtonFinish {
             state_leaning(balances, &near.z, lean)
         };
         beside.is_some_and(|b| invariant_distance(z, &b) <= bound)
+            && self.scan_turns_back(near, lean)
+    }
+
+    /// Whether a run with more than two shape modes that the landing's slow flow takes to
+    /// `near`, a root stable in rotation on a mirror line, leaning by `lean` beyond
+    /// [`LINEAR_LEAN`] (its lean not growing: [`NewtonFinish::land_now`]), turns back to the
+    /// line once it arrives (numerics `modes-13`): the orientation's flow on `near`'s family
+    /// points back at every sample, at most [`LINEAR_LEAN`] apart, from the root out to the
+    /// run ([`FlowScan`]), so that no root of the lattice lies between the line and the
+    /// run's lean. (0.08725, 0.115), modes 2..4, N = 192, from iii: the run leaves the
+    /// diagonal ID (its drift growing at 2.1e-4) leaning 0.56 degrees, its lean shrinking
+    /// at 4e-5, and pure time stepping reaches the diagonal's slow MD (v = 0.0213) at
+    /// t = 28 500.
+    pub(super) fn arrives_turning_back(&mut self, near: &Finding, lean: f64) -> bool {
+        self.beyond_two_modes()
+            && near.stable()
+            && near.verdict.rotation.is_some()
+            && lean.abs() <= FINE_REACH
             && self.scan_turns_back(near, lean)
     }
 
