@@ -60,7 +60,10 @@ fn a_four_mode_run_turning_slowly_back_to_a_stable_root_ends_once_settled_beside
     // modes-12 ends it on the root by Newton at t = 2845, where the paper's test had ended it
     // at t = 26 504. (From iv, modes-13's landing ends it at t = 2240, before it has settled.)
     let pure = committed("pure-rotation-k4-n192");
-    let end = pure.iter().find(|e| e.ic == "iii").expect("the run from iii");
+    let end = pure
+        .iter()
+        .find(|e| e.ic == "iii")
+        .expect("the run from iii");
     let settings = SolverSettings { n: 192, ..n96() };
     let p = four(end.eta_t, end.kappa2);
     let out = simulate(&p, &InitialCondition::parse("iii").unwrap(), &settings).unwrap();

@@ -7,7 +7,7 @@ use crate::spec::axes::{ETA_T, KAPPA2};
 use crate::store::atomic::{create_output_dir, write_atomic};
 use crate::store::plan::Plan;
 pub use crate::store::record_file::RunRecord;
-use crate::store::record_file::{digest_of, seal, unseal, Unsealed};
+use crate::store::record_file::{digest_of, seal, unseal};
 use fs2::FileExt;
 use serde::Serialize;
 use std::collections::HashMap;
@@ -259,14 +259,10 @@ impl Store {
             let Ok(bytes) = fs::read(e.path()) else {
                 continue;
             };
-            let Ok(Unsealed {
-                record: mut rec,
-                digest,
-                modes_in_settings,
-            }) = unseal(&bytes)
-            else {
+            let Ok(u) = unseal(&bytes) else {
                 continue;
             };
+            let (mut rec, digest, modes_in_settings) = (u.record, u.digest, u.modes_in_settings);
             let current = droplet_solver::solver_version(rec.settings.model, rec.params.modes);
             let key = crate::store::plan::run_key(&rec.params, &rec.ic, &rec.settings);
             let written = crate::store::plan::written_key(&rec.params, &rec.ic, &rec.settings);
