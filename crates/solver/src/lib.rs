@@ -124,8 +124,9 @@ pub const ODE_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numeri
 /// flow takes it to although the run leans beyond the linear lean, when the orientation's
 /// flow on that root's family points back at every sample from the root out to the run's
 /// lean (`runs::turning`, `arrives_turning_back`); every scan of a K-mode flow samples at
-/// most 0.05 degree apart (roots of the lattice lie 0.2 to 0.5 degree off the lines), a
-/// sample where the fast balances fail counting as pointing outward: four runs of the
+/// most 0.05 degree apart (roots of the lattice lie 0.2 to 0.5 degree off the lines) out to
+/// 5 degrees (a lean beyond licenses nothing), a sample where the fast balances fail
+/// counting as pointing outward: four runs of the
 /// 4-mode map leaving the diagonal ID at (0.08725, 0.115) and (0.08975, 0.11275) end on the
 /// diagonal's slow MD at t = 725-850 instead of 25 800-47 100, on the same state.
 pub const MODES_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-9+modes-13");

@@ -228,15 +228,19 @@ impl FlowScan {
     /// first sample that points outward. Where the fast balances cannot be solved the scan
     /// stops and counts the stretch out to `|lean|` as turning back: the root's eigenvalues
     /// decide there, as without the setting. With more than two shape modes the samples are
-    /// at most [`LINEAR_LEAN`] apart (at most [`MAX_FINE_SAMPLES`]), and a sample where the
-    /// fast balances cannot be solved counts as pointing outward: their flow is asked only
-    /// to license an end that time stepping has not reached yet.
+    /// at most [`LINEAR_LEAN`] apart, none beyond [`FINE_REACH`] (a lean beyond it stays
+    /// unsampled), and a sample where the fast balances cannot be solved counts as pointing
+    /// outward: their flow is asked only to license an end that time stepping has not
+    /// reached yet.
     pub fn extend(&mut self, balances: &mut Balances, root: &[f64], lean: f64) {
         let (from, to, side) = (self.back_to, lean.abs(), lean.signum());
         if to <= from || self.outward_at.is_some() {
             return;
         }
         let fine = balances.modes() > 2;
+        if fine && to > FINE_REACH {
+            return;
+        }
         let (spacing, most) = if fine {
             (LINEAR_LEAN, MAX_FINE_SAMPLES)
         } else {

@@ -31,7 +31,8 @@ impl NewtonFinish {
 
     /// Whether the orientation's flow beside `near` points back to it at every sample out
     /// to `lean` ([`FlowScan`]; each root's scan is kept and extended as the run's lean
-    /// grows).
+    /// grows). A lean the scan of a model with more shape modes does not reach
+    /// ([`crate::runs::rotation_flow::FINE_REACH`]) does not turn back.
     fn scan_turns_back(&mut self, near: &Finding, lean: f64) -> bool {
         // What earlier tries learnt of this root's flow on this side (a run's later tries find
         // the same root at a similar lean; the flow is sampled once).
@@ -54,7 +55,7 @@ impl NewtonFinish {
             Some(i) => self.flows[i].2 = scan,
             None => self.flows.push((near.z.clone(), side, scan)),
         }
-        scan.verdict(lean).unwrap_or(true)
+        scan.verdict(lean).unwrap_or(!self.beyond_two_modes())
     }
 
     /// Whether a run with more than two shape modes, leaning by `lean` from the stable root

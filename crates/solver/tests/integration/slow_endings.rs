@@ -57,8 +57,9 @@ fn a_four_mode_run_turning_slowly_back_to_a_stable_root_ends_once_settled_beside
     // MD, stable in rotation, at a rate of 5.7e-5, where pure time stepping ends
     // (results/k-mode-endings/runs/pure-rotation-k4-n192.json). Its speed and shape are those
     // of the MD's family at its own orientation (the root's differ by 1.2e-4 there): numerics
-    // modes-12 ends it on the root by Newton at t = 2845, where the paper's test had ended it
-    // at t = 26 504. (From iv, modes-13's landing ends it at t = 2240, before it has settled.)
+    // modes-12 ended it on the root by Newton at t = 2845, where the paper's test had ended
+    // it at t = 26 504; modes-13 at t = 3557, the orientation's flow sampled only out to 5
+    // degrees (0.05 degree apart). (From iv, modes-13's landing ends it at t = 2240.)
     let pure = committed("pure-rotation-k4-n192");
     let end = pure
         .iter()
@@ -69,7 +70,7 @@ fn a_four_mode_run_turning_slowly_back_to_a_stable_root_ends_once_settled_beside
     let out = simulate(&p, &InitialCondition::parse("iii").unwrap(), &settings).unwrap();
     assert!(same_end(&out, end), "{out:?}");
     assert_eq!(out.ended_by, Some(Ending::Newton), "{out:?}");
-    assert!(out.t_end > 2000.0 && out.t_end < 3000.0, "{out:?}");
+    assert!(out.t_end > 2000.0 && out.t_end < 4000.0, "{out:?}");
     assert!(orientation_deg(&out).abs() < 1e-5, "{out:?}");
 }
 
