@@ -37,7 +37,8 @@ const MAX_SAMPLES: usize = 48;
 const MAX_FINE_SAMPLES: usize = 100;
 
 /// The largest lean a scan of a model with more than two shape modes resolves at
-/// [`LINEAR_LEAN`] from the root's own linear lean out (5 degrees).
+/// [`LINEAR_LEAN`] from the root's own linear lean out (5 degrees); a lean beyond it is not
+/// sampled, and licenses nothing ([`FlowScan::extend`]).
 pub const FINE_REACH: f64 = (MAX_FINE_SAMPLES + 1) as f64 * LINEAR_LEAN;
 
 /// Leans (radians, 0.05 degrees) within which the root's own rotation eigenvalue decides: the
