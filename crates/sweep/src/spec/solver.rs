@@ -95,6 +95,18 @@ pub(super) fn parse(
         ModelKind::Ode => SolverSettings::ode(),
     };
     if let Some(v) = top.get("solver") {
+        // The model's shape modes are model parameters, not settings.
+        if let Some((key, x)) = v.as_mapping().and_then(|m| {
+            ["modes", "eta_k_exponent"]
+                .into_iter()
+                .find_map(|k| m.get(k).map(|x| (k, x)))
+        }) {
+            return Err(ctx.err(
+                &["solver", key],
+                show(x),
+                format!("a model parameter: give it as params.{key}"),
+            ));
+        }
         let m = ctx.mapping(v, &["solver"], &keys())?;
         if let Some(x) = m.get("scheme") {
             solver.scheme = x
@@ -157,6 +169,25 @@ mod tests {
             "stop_beside_saddle" | "leap_departures" => "true",
             "landing" | "orientation_flow" | "run_on" => "false",
             _ => "0.0123",
+        }
+    }
+
+    #[test]
+    fn the_shape_modes_in_the_solver_section_are_sent_to_params() {
+        for key in ["modes", "eta_k_exponent"] {
+            let text = format!("solver:\n  n: 96\n  {key}: 3\n");
+            let top: serde_yaml::Value = serde_yaml::from_str(&text).unwrap();
+            let ctx = Ctx {
+                file: "t.yaml",
+                text: &text,
+            };
+            let e = parse(&ctx, top.as_mapping().unwrap(), ModelKind::Pde).unwrap_err();
+            let message = e.to_string();
+            assert!(
+                message.contains(&format!("solver.{key}"))
+                    && message.contains(&format!("params.{key}")),
+                "{message}"
+            );
         }
     }
 
