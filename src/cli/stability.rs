@@ -38,7 +38,8 @@ pub struct Args {
     /// The mirror axis the state lies on: x, or diagonal (motion along (1, 1), long axis on it).
     #[arg(long, default_value = "x")]
     axis: String,
-    /// Newton's starting point: speed along the axis and shape amplitude, e.g. 0.6,-0.27.
+    /// Newton's starting point: speed along the axis and shape amplitude, e.g. 0.6,-0.27
+    /// (with --modes K the mode-2 amplitude; the modes 3..K then start from 0).
     #[arg(long, value_name = "V,SHAPE", allow_hyphen_values = true)]
     seed: Option<String>,
     /// Grid points per side.
@@ -148,17 +149,12 @@ pub fn run(a: Args) -> Result<(), CliError> {
                 format!("{e}; try another --seed or --axis")
             } else {
                 format!(
-                    "{e}: no {:?} state with {k} shape modes found here",
+                    "{e}: no {:?} state with {k} shape modes found here; try a --seed",
                     a.state
                 )
             },
             code: 1,
         },
-        droplet_solver::error::SolverError::InvalidParameter {
-            name: "seed",
-            allowed,
-            ..
-        } => CliError::usage(format!("invalid --seed with --modes {k}: {allowed}")),
         other => CliError::from(other),
     })?;
     let z = &st.z;

@@ -72,7 +72,8 @@ pub fn md_seeds(c: &Coefficients, params: &ModelParams, sign: f64) -> Vec<(f64, 
 
 /// Finds `kind` on `axis` with the balances' shape modes and grid (Newton to 1e-12; with two
 /// modes from `seed` or from the reduced model's state, with more from the 2-mode state, see
-/// the module), then linearises it. Needs inertia `m > 0`; a seed is taken with two modes only.
+/// the module; from `seed`, `(v, a2)` along the axis, at any `K`: the higher modes then start
+/// from 0), then linearises it. Needs inertia `m > 0`.
 pub fn find(
     balances: &mut Balances,
     kind: StateKind,
@@ -92,17 +93,7 @@ pub fn find(
             (z.to_vec(), residual)
         }
         Balances::General { solver, modes } => {
-            if let Some((v, _)) = seed {
-                crate::error::require(
-                    false,
-                    "seed",
-                    v,
-                    format!(
-                        "no seed with {modes} shape modes (the state starts from the 2-mode one)"
-                    ),
-                )?;
-            }
-            let z = general_root(solver, *modes, kind, axis)?;
+            let z = general_root(solver, *modes, kind, axis, seed)?;
             let residual = solver
                 .residual(&z)
                 .iter()
@@ -174,17 +165,35 @@ fn general_root(
     k_max: usize,
     kind: StateKind,
     axis: MirrorLine,
+    seed: Option<(f64, f64)>,
 ) -> Result<Vec<f64>, SolverError> {
     let lost = || SolverError::NewtonFailed {
         residual: f64::NAN,
         iterations: 0,
     };
-    let (v, shape) = match kind {
-        StateKind::IC => (0.0, ic_state(solver, k_max).ok_or_else(lost)?),
-        StateKind::ID => (0.0, id_state(solver, k_max, 0.3).ok_or_else(lost)?),
-        StateKind::MD => {
+    let (v, shape) = match (kind, seed) {
+        (StateKind::IC, _) => (0.0, ic_state(solver, k_max).ok_or_else(lost)?),
+        (StateKind::ID, seed) => {
+            let a2 = seed.map_or(0.3, |(_, a2)| a2);
+            (0.0, id_state(solver, k_max, a2).ok_or_else(lost)?)
+        }
+        (StateKind::MD, None) => {
             let st = md_state(solver, k_max)?;
             (st.v, st.a)
+        }
+        // From the seed with the modes 3..K at 0: on the x axis Newton there; off it the seed
+        // is turned onto the axis and solved there on all 2K balances (the box's anisotropy
+        // makes the states of the two lines differ).
+        (StateKind::MD, Some((v, a2))) => {
+            let mut a = vec![0.0; k_max - 1];
+            a[0] = a2;
+            if axis != MirrorLine::X {
+                (v, a)
+            } else {
+                let guess: Vec<f64> = std::iter::once(v).chain(a).collect();
+                let st = solver.newton_x(&guess, 1e-11)?;
+                (st.v, st.a)
+            }
         }
     };
     let z = on_x_axis(v, &shape);
@@ -358,7 +367,7 @@ mod tests {
     }
 
     #[test]
-    fn with_three_modes_the_md_states_lie_on_their_mirror_lines_and_a_seed_is_refused() {
+    fn with_three_modes_the_md_states_lie_on_their_mirror_lines_also_from_a_seed() {
         let mut b = Balances::new(ModelParams::at(0.085, 0.112).with_modes(3), 96).unwrap();
         let x = find(&mut b, StateKind::MD, MirrorLine::X, None).unwrap();
         assert_eq!(x.z.len(), 6);
@@ -373,13 +382,9 @@ mod tests {
             "{d:?}"
         );
         assert!(d.z[0] > 0.1, "{d:?}");
-        let seeded = find(&mut b, StateKind::MD, MirrorLine::X, Some((0.3, -0.1)));
-        assert!(
-            matches!(
-                seeded,
-                Err(SolverError::InvalidParameter { name: "seed", .. })
-            ),
-            "{seeded:?}"
-        );
+        // From a seed near it, mode 3 from 0: the same state.
+        let seeded = find(&mut b, StateKind::MD, MirrorLine::X, Some((0.35, -0.2))).unwrap();
+        assert!((seeded.z[0] - x.z[0]).abs() < 1e-8, "{seeded:?} {x:?}");
+        assert!((seeded.z[3] - x.z[3]).abs() < 1e-8, "{seeded:?} {x:?}");
     }
 }
