@@ -36,7 +36,8 @@ fn disk_at_ends(make: Make, w: &Window) -> Result<(IcThresholds, IcThresholds), 
             let th = two_mode_thresholds(&mut solver);
             Ok((th.clone(), th))
         }
-        Balances::General { mut solver, modes } => {
+        Balances::General(mut solver) => {
+            let modes = solver.params().modes;
             solver.set_control(w.base.eta_t, w.y.range.0);
             let low = disk_thresholds(&mut solver, modes);
             solver.set_control(w.base.eta_t, w.y.range.1);
@@ -98,10 +99,7 @@ pub fn general_boundaries(w: &Window) -> Result<Vec<Boundary>, SolverError> {
         });
     }
     boundaries_with(w, &|| {
-        Ok(Balances::General {
-            solver: SteadySolver::new(w.base, w.n)?,
-            modes: w.base.modes,
-        })
+        Ok(Balances::General(SteadySolver::new(w.base, w.n)?))
     })
 }
 

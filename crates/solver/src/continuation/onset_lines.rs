@@ -42,7 +42,10 @@ pub fn id_line(
 ) -> Result<Vec<(f64, f64)>, SolverError> {
     match balances {
         Balances::Two(solver) => two_mode_id_line(solver, w, mirror, top),
-        Balances::General { solver, modes } => general_id_line(solver, modes, w, mirror, top),
+        Balances::General(solver) => {
+            let modes = solver.params().modes;
+            general_id_line(solver, modes, w, mirror, top)
+        }
     }
 }
 
@@ -55,7 +58,10 @@ pub fn mc_line(
 ) -> Result<Vec<(f64, f64)>, SolverError> {
     match balances {
         Balances::Two(solver) => two_mode_mc_line(solver, w, onset_eta_t),
-        Balances::General { solver, modes } => general_mc_line(solver, modes, w, onset_eta_t),
+        Balances::General(solver) => {
+            let modes = solver.params().modes;
+            general_mc_line(solver, modes, w, onset_eta_t)
+        }
     }
 }
 

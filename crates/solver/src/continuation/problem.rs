@@ -217,7 +217,7 @@ impl Problem {
         // Parseval reach 1e-13.
         let tol = match self.balances {
             Balances::Two(_) => 1e-13,
-            Balances::General { .. } => 1e-10,
+            Balances::General(_) => 1e-10,
         };
         let opts = NewtonOptions {
             tol,
@@ -270,8 +270,8 @@ impl Problem {
                 let (v, c) = two_mode_root(solver, family, mirror)?;
                 return Some(self.y_of(v, &[c], value));
             }
-            Balances::General { solver, modes } => {
-                let k_max = *modes;
+            Balances::General(solver) => {
+                let k_max = solver.params().modes;
                 let mut two = TwoModeSolver::new(*solver.params(), solver.n()).ok()?;
                 solver.set_axis(mirror.angle());
                 match family {

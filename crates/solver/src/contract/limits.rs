@@ -118,12 +118,7 @@ pub const MIN_MODE_CELLS: f64 = 4.0;
 /// the grid: half a wavelength of mode `K` along the boundary, `pi R / K`, at least
 /// [`MIN_MODE_CELLS`] cells (`K <= pi R N / (4 L)`: 7 at the paper's R = 1, L = 7 and N = 64, 21 at N = 192).
 pub fn check_modes(params: &ModelParams, n: usize, k_max: usize) -> Result<(), SolverError> {
-    require(
-        (2..=MAX_MODES).contains(&k_max),
-        "modes",
-        k_max as f64,
-        format!("an integer from 2 (the paper's a2, b2) to {MAX_MODES}"),
-    )?;
+    crate::model::modes::check_count(k_max)?;
     let dx = params.box_len / n as f64;
     let most = (std::f64::consts::PI * params.radius / (MIN_MODE_CELLS * dx)).floor();
     require(

@@ -16,6 +16,17 @@ pub struct Modes {
 /// Most shape modes of the `K`-mode model.
 pub const MAX_MODES: usize = 16;
 
+/// Checks a number of shape modes `K` alone (modes `2..=K`): from 2 to [`MAX_MODES`] (what the
+/// grid resolves: [`crate::contract::limits::check_modes`]).
+pub fn check_count(k_max: usize) -> Result<(), crate::error::SolverError> {
+    crate::error::require(
+        (2..=MAX_MODES).contains(&k_max),
+        "modes",
+        k_max as f64,
+        format!("an integer from 2 (the paper's a2, b2) to {MAX_MODES}"),
+    )
+}
+
 /// The restoring coefficient of shape mode `k`, `kappa_k = (k^2 / 4) kappa2` (the paper's
 /// `kappa_k = pi k^2 tau R`, scaled by mode 2's).
 pub fn kappa_k(kappa2: f64, k: usize) -> f64 {

@@ -64,6 +64,11 @@ impl ModelParams {
         }
     }
 
+    /// The names of the fields that give the model's shape modes: `K` and the friction law of
+    /// the modes `k >= 3` (solver settings in records written before they were model
+    /// parameters).
+    pub const SHAPE_MODE_FIELDS: [&'static str; 2] = ["modes", "eta_k_exponent"];
+
     /// The same model with shape modes `2..=k` (with `k = 2` the friction law of the modes
     /// `k >= 3` has nothing to act on: its exponent is 0, as [`Self::validate`] asks).
     pub fn with_modes(self, k: usize) -> Self {
@@ -111,15 +116,7 @@ impl ModelParams {
             self.box_len,
             "a finite number > 2 (R + 16 sigma), so that the droplet and its interface fit in the box",
         )?;
-        require(
-            (2..=crate::model::modes::MAX_MODES).contains(&self.modes),
-            "modes",
-            self.modes as f64,
-            format!(
-                "an integer from 2 (the paper's a2, b2) to {}",
-                crate::model::modes::MAX_MODES
-            ),
-        )?;
+        crate::model::modes::check_count(self.modes)?;
         crate::model::friction::check_exponent(self.eta_k_exponent, self.modes)
     }
 }

@@ -25,11 +25,9 @@ use rustfft::num_complex::Complex64;
 /// the general one with shape modes `2..K`.
 pub enum Balances {
     Two(TwoModeSolver),
-    /// The general solver and the model's `K` (its states `(vx, vy, a_2..a_K, b_2..b_K)`).
-    General {
-        solver: SteadySolver,
-        modes: usize,
-    },
+    /// The general solver; the model's `K` is its parameters' (its states
+    /// `(vx, vy, a_2..a_K, b_2..b_K)`).
+    General(SteadySolver),
 }
 
 impl Balances {
@@ -53,7 +51,7 @@ impl Balances {
                 };
                 Ok(solver.root_near(four(z), &opts, jacobians)?.to_vec())
             }
-            Balances::General { solver, .. } => {
+            Balances::General(solver) => {
                 // The settings K-mode runs have been finished with: to 1e-11, every
                 // unknown's step limited; the Jacobian by forward differences (2K field solves
                 // where central ones take 4K, the same roots: numerics modes-8).
@@ -81,7 +79,7 @@ impl Balances {
     pub fn verdict(&mut self, z: &[f64]) -> Verdict {
         match self {
             Balances::Two(solver) => Linearization::of_two_modes(solver, four(z)).verdict(),
-            Balances::General { solver, .. } => Linearization::at(solver, z).verdict(),
+            Balances::General(solver) => Linearization::at(solver, z).verdict(),
         }
     }
 
@@ -90,7 +88,7 @@ impl Balances {
     pub fn root_field(&mut self, z: &[f64]) -> Vec<Complex64> {
         match self {
             Balances::Two(solver) => solver.field_and_forces(z[0], z[1], z[2], z[3]).0.to_vec(),
-            Balances::General { solver, .. } => {
+            Balances::General(solver) => {
                 solver.forces(z[0], z[1], &Modes::of_state(z));
                 solver.field_spectrum().to_vec()
             }
@@ -108,8 +106,7 @@ impl Balances {
             Balances::Two(TwoModeSolver::new(params, n)?)
         } else {
             crate::contract::limits::check_modes(&params, n, modes)?;
-            let solver = SteadySolver::new(params, n)?;
-            Balances::General { solver, modes }
+            Balances::General(SteadySolver::new(params, n)?)
         })
     }
 
@@ -117,7 +114,7 @@ impl Balances {
     pub fn params(&self) -> &ModelParams {
         match self {
             Balances::Two(solver) => solver.params(),
-            Balances::General { solver, .. } => solver.params(),
+            Balances::General(solver) => solver.params(),
         }
     }
 
@@ -125,7 +122,7 @@ impl Balances {
     pub fn n(&self) -> usize {
         match self {
             Balances::Two(solver) => solver.grid().n,
-            Balances::General { solver, .. } => solver.n(),
+            Balances::General(solver) => solver.n(),
         }
     }
 
@@ -133,7 +130,7 @@ impl Balances {
     pub fn modes(&self) -> usize {
         match self {
             Balances::Two(_) => 2,
-            Balances::General { modes, .. } => *modes,
+            Balances::General(solver) => solver.params().modes,
         }
     }
 
@@ -141,7 +138,7 @@ impl Balances {
     pub fn set_control(&mut self, eta_t: f64, kappa2: f64) {
         match self {
             Balances::Two(solver) => solver.set_control(eta_t, kappa2),
-            Balances::General { solver, .. } => solver.set_control(eta_t, kappa2),
+            Balances::General(solver) => solver.set_control(eta_t, kappa2),
         }
     }
 
@@ -150,7 +147,7 @@ impl Balances {
     pub fn set_param(&mut self, param: ModelParam, x: f64) -> Result<(), SolverError> {
         match self {
             Balances::Two(solver) => solver.set_param(param, x),
-            Balances::General { solver, .. } => solver.set_param(param, x),
+            Balances::General(solver) => solver.set_param(param, x),
         }
     }
 
@@ -161,8 +158,8 @@ impl Balances {
     pub fn on_mirror(&self, mirror: MirrorLine, v: f64, a: &[f64]) -> Vec<f64> {
         match (self, mirror) {
             (Balances::Two(_), _) => mirror.two_mode_state(v, a[0]).to_vec(),
-            (Balances::General { .. }, MirrorLine::X) => on_x_axis(v, a),
-            (Balances::General { .. }, MirrorLine::Diagonal) => {
+            (Balances::General(_), MirrorLine::X) => on_x_axis(v, a),
+            (Balances::General(_), MirrorLine::Diagonal) => {
                 turned(&on_x_axis(v, a), mirror.angle())
             }
         }
@@ -175,7 +172,9 @@ impl Balances {
         match (self, mirror) {
             (Balances::Two(_), MirrorLine::X) => vec![z[2]],
             (Balances::Two(_), MirrorLine::Diagonal) => vec![z[3]],
-            (Balances::General { modes, .. }, _) => turned(z, -mirror.angle())[2..=*modes].to_vec(),
+            (Balances::General(solver), _) => {
+                turned(z, -mirror.angle())[2..=solver.params().modes].to_vec()
+            }
         }
     }
 
@@ -185,7 +184,7 @@ impl Balances {
     pub fn residual_on(&mut self, mirror: MirrorLine, v: f64, a: &[f64]) -> Vec<f64> {
         match self {
             Balances::Two(solver) => solver.residual_on(mirror, v, a[0]).to_vec(),
-            Balances::General { solver, .. } => {
+            Balances::General(solver) => {
                 solver.set_axis(mirror.angle());
                 let y: Vec<f64> = std::iter::once(v).chain(a.iter().copied()).collect();
                 solver.residual_x(&y)
@@ -198,7 +197,7 @@ impl Balances {
     pub fn root_from(&mut self, z: &[f64], opts: &NewtonOptions) -> Result<Vec<f64>, SolverError> {
         match self {
             Balances::Two(solver) => Ok(solver.root_from(four(z), opts)?.to_vec()),
-            Balances::General { solver, .. } => {
+            Balances::General(solver) => {
                 Ok(crate::numerics::newton::solve(|y| solver.residual(y), z, opts)?.x)
             }
         }
@@ -213,7 +212,7 @@ impl Balances {
                 let f = solver.forces(z[0], z[1], z[2], z[3]);
                 dynamics::force_balance(&p, four(z), &f).to_vec()
             }
-            Balances::General { solver, .. } => solver.residual(z),
+            Balances::General(solver) => solver.residual(z),
         }
     }
 }

@@ -92,8 +92,8 @@ pub fn find(
             let (z, residual) = two_mode_root(solver, kind, axis, seed)?;
             (z.to_vec(), residual)
         }
-        Balances::General { solver, modes } => {
-            let z = general_root(solver, *modes, kind, axis, seed)?;
+        Balances::General(solver) => {
+            let z = general_root(solver, solver.params().modes, kind, axis, seed)?;
             let residual = solver
                 .residual(&z)
                 .iter()
@@ -343,10 +343,7 @@ mod tests {
             (StateKind::IC, MirrorLine::X),
         ] {
             let fast = find(&mut Balances::new(p, 96).unwrap(), kind, axis, None).unwrap();
-            let mut general = Balances::General {
-                solver: SteadySolver::new(p, 96).unwrap(),
-                modes: 2,
-            };
+            let mut general = Balances::General(SteadySolver::new(p, 96).unwrap());
             let st = find(&mut general, kind, axis, None).unwrap();
             let dz =
                 st.z.iter()

@@ -301,7 +301,7 @@ mod tests {
     fn solver(b: &mut Balances) -> &mut TwoModeSolver {
         match b {
             Balances::Two(s) => s,
-            Balances::General { .. } => unreachable!("made with two modes"),
+            Balances::General(_) => unreachable!("made with two modes"),
         }
     }
 

@@ -207,7 +207,9 @@ pub(super) type NumberField<T> = (&'static str, fn(&mut T) -> &mut f64);
 fn key_of(name: &str) -> [&str; 2] {
     match Param::parse(name) {
         Some(p) if p.is_model() => ["params", name],
-        _ if name == "modes" || name == "eta_k_exponent" => ["params", name],
+        _ if droplet_solver::model::params::ModelParams::SHAPE_MODE_FIELDS.contains(&name) => {
+            ["params", name]
+        }
         _ => ["solver", name],
     }
 }

@@ -30,7 +30,7 @@ pub(super) fn parse(ctx: &Ctx, top: &Mapping) -> Result<ModelParams, SpecError> 
     let all: Vec<&str> = NUMBERS
         .iter()
         .map(|(k, _)| *k)
-        .chain(["modes", "eta_k_exponent"])
+        .chain(ModelParams::SHAPE_MODE_FIELDS)
         .collect();
     let m = ctx.mapping(v, &["params"], &all)?;
     if let Some(x) = m.get("modes") {

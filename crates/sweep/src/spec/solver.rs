@@ -97,7 +97,7 @@ pub(super) fn parse(
     if let Some(v) = top.get("solver") {
         // The model's shape modes are model parameters, not settings.
         if let Some((key, x)) = v.as_mapping().and_then(|m| {
-            ["modes", "eta_k_exponent"]
+            droplet_solver::model::params::ModelParams::SHAPE_MODE_FIELDS
                 .into_iter()
                 .find_map(|k| m.get(k).map(|x| (k, x)))
         }) {
@@ -174,7 +174,7 @@ mod tests {
 
     #[test]
     fn the_shape_modes_in_the_solver_section_are_sent_to_params() {
-        for key in ["modes", "eta_k_exponent"] {
+        for key in ModelParams::SHAPE_MODE_FIELDS {
             let text = format!("solver:\n  n: 96\n  {key}: 3\n");
             let top: serde_yaml::Value = serde_yaml::from_str(&text).unwrap();
             let ctx = Ctx {

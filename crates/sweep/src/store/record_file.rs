@@ -61,17 +61,13 @@ pub(super) struct Unsealed {
     pub modes_in_settings: bool,
 }
 
-/// The fields that records written before the shape modes were model parameters held among
-/// their settings.
-const MOVED_TO_PARAMS: [&str; 2] = ["modes", "eta_k_exponent"];
-
 /// A record file's record and its digest, with the shape modes of an earlier record moved
 /// from its settings to its parameters (every other field is read as strictly as before).
 pub(super) fn unseal(bytes: &[u8]) -> Result<Unsealed, serde_json::Error> {
     let mut value: serde_json::Value = serde_json::from_slice(bytes)?;
     let mut modes_in_settings = false;
     if let Some(settings) = value.get_mut("settings").and_then(|s| s.as_object_mut()) {
-        let moved: Vec<(&str, serde_json::Value)> = MOVED_TO_PARAMS
+        let moved: Vec<(&str, serde_json::Value)> = ModelParams::SHAPE_MODE_FIELDS
             .iter()
             .filter_map(|&k| settings.remove(k).map(|v| (k, v)))
             .collect();

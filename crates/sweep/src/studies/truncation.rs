@@ -80,10 +80,7 @@ fn row(
     let mut disk_solver = SteadySolver::new(line_base, n)?;
     let disk = disk_thresholds(&mut disk_solver, k_max);
     // The general balances at every K, K = 2 included (one method for every model).
-    let balances = Balances::General {
-        solver: SteadySolver::new(line_base, n)?,
-        modes: k_max,
-    };
+    let balances = Balances::General(SteadySolver::new(line_base.with_modes(k_max), n)?);
     let line = Axis::new(ModelParam::EtaT, (from, to));
     let fold = walk_to_fold(balances, MirrorLine::X, line, kappa2);
     let fold_seconds = started.elapsed().as_secs_f64();
