@@ -151,7 +151,7 @@ impl ForceQuadrature {
     }
 
     /// The rows (and columns) `lo..=hi` that can hold `Theta > 0` (droplet at the centre).
-    fn span(&self, m: &Modes) -> (usize, usize) {
+    pub fn span(&self, m: &Modes) -> (usize, usize) {
         let c = self.grid.n / 2;
         let w = ((m.outer_radius(&self.shape) / self.grid.dx).ceil() as usize).min(c - 1);
         (c - w, c + w)

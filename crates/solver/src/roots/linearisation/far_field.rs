@@ -5,7 +5,14 @@
 //! `|lambda| <=` [`SERIES_RADIUS`] the first [`TERMS`] of them leave
 //! `(SERIES_RADIUS / FAR)^TERMS = 3.5e-15` of each fast mode's term. The slow modes (about
 //! 1300 of the 18 624 stored at N = 192) are summed as they are.
+//!
+//! The response of a real perturbation is `(S(lambda) + conj S(conj lambda)) / 2`, whose fast
+//! part is `-Sum_p lambda^p Re M_p`: only the real parts of the moments are formed and kept
+//! (half the products), and they enter `S(lambda)` and `S(conj lambda)` alike (their
+//! imaginary parts would cancel in the average). At a real `lambda` this is the real part of
+//! the complex sum to the last bit.
 use rustfft::num_complex::Complex64;
+use std::ops::{Mul, MulAssign, SubAssign};
 
 type C64 = Complex64;
 
@@ -23,8 +30,8 @@ pub const TERMS: usize = 8;
 pub(super) struct FarField {
     /// The stored modes with `|d_k| <` the split (summed as they are).
     pub(super) near: Vec<usize>,
-    /// `M_p[j][i] = Sum_far c_ik b_jk / d_k^(p+1)` for `p < TERMS`.
-    moments: Vec<Vec<Vec<C64>>>,
+    /// `Re M_p[j][i] = Re Sum_far c_ik b_jk / d_k^(p+1)` for `p < TERMS`.
+    moments: Vec<Vec<Vec<f64>>>,
 }
 
 impl FarField {
@@ -32,21 +39,25 @@ impl FarField {
     /// then summed as it is), for the columns `b[j]` and the functionals `c[k * dim + i]`.
     pub(super) fn new(d: &[C64], b: &[Vec<C64>], c: &[C64], far: f64) -> Self {
         let dim = b.len();
-        let zero = C64::default();
-        let mut moments = vec![vec![vec![zero; dim]; dim]; TERMS];
+        let mut moments = vec![vec![vec![0.0; dim]; dim]; TERMS];
         let mut near = Vec::new();
+        let (mut c_re, mut c_im) = (vec![0.0; dim], vec![0.0; dim]);
         for (k, d) in d.iter().enumerate() {
             if d.norm() < far {
                 near.push(k);
                 continue;
             }
             let w = d.inv();
-            let ck = &c[k * dim..(k + 1) * dim];
+            // The functionals' real and imaginary parts apart (the products below vectorise).
+            for (i, c) in c[k * dim..(k + 1) * dim].iter().enumerate() {
+                (c_re[i], c_im[i]) = (c.re, c.im);
+            }
             for (j, b) in b.iter().enumerate() {
                 let mut t = b[k] * w;
                 for m in moments.iter_mut() {
-                    for (acc, c) in m[j].iter_mut().zip(ck) {
-                        *acc += t * c;
+                    // Re (t c), as the complex product forms it.
+                    for ((acc, cr), ci) in m[j].iter_mut().zip(&c_re).zip(&c_im) {
+                        *acc += t.re * cr - t.im * ci;
                     }
                     t *= w;
                 }
@@ -55,16 +66,20 @@ impl FarField {
         Self { near, moments }
     }
 
-    /// The fast modes' part of column `j` of `S(l)` and of its first `order` derivatives
-    /// (`-Sum_p l^p M_p`, `-Sum_p p l^(p-1) M_p`, `-Sum_p p (p-1) l^(p-2) M_p`), added to
+    /// The fast modes' part of column `j` of the response at `l` and of its first `order`
+    /// derivatives (`-Sum_p l^p Re M_p`, `-Sum_p p l^(p-1) Re M_p`, ...), added to
     /// `s[0..=order]`.
-    pub(super) fn add(&self, j: usize, l: C64, order: usize, s: &mut [&mut [C64]]) {
+    /// `l` and the sums are complex, or real at a real `l` (the same real parts).
+    pub(super) fn add<T>(&self, j: usize, l: T, order: usize, s: &mut [&mut [T]])
+    where
+        T: Copy + From<f64> + SubAssign + MulAssign + Mul<f64, Output = T>,
+    {
         for (o, s) in s.iter_mut().enumerate().take(order + 1) {
             // d^o/dl^o l^p = p (p-1) .. (p-o+1) l^(p-o).
-            let mut power = C64::new(1.0, 0.0);
+            let mut power = T::from(1.0);
             for (p, m) in self.moments.iter().enumerate().skip(o) {
                 let falling: f64 = (0..o).map(|q| (p - q) as f64).product();
-                for (s, m) in s.iter_mut().zip(&m[j]) {
+                for (s, &m) in s.iter_mut().zip(&m[j]) {
                     *s -= power * m * falling;
                 }
                 power *= l;

@@ -26,31 +26,35 @@ impl Linearization {
         e[0][0] = -p.eta_t;
         e[1][1] = -p.eta_t;
         let h = SHAPE_STEP;
+        let shifted = |j: usize, sign: f64| {
+            let mut z = z0.to_vec();
+            z[j] += sign * h;
+            Modes::of_state(&z)
+        };
+        // The frozen field's gradient, once, on the rows of every shifted shape.
+        let (lo, hi) = (2..dim)
+            .flat_map(|j| [shifted(j, 1.0), shifted(j, -1.0)])
+            .map(|m| solver.quadrature_mut().span(&m))
+            .fold((usize::MAX, 0), |(lo, hi), (l, u)| (lo.min(l), hi.max(u)));
+        solver.quadrature_mut().gradient(&u0, lo, hi);
         for j in 2..dim {
-            let shifted = |sign: f64| {
-                let mut z = z0.to_vec();
-                z[j] += sign * h;
-                Modes::of_state(&z)
+            // Each shifted shape sampled once: its source's transform, and the frozen
+            // field's forces on it.
+            let mut side = |sign: f64| {
+                let quad = solver.quadrature_mut();
+                let (area, lo, hi) = quad.source(&shifted(j, sign));
+                let forces = quad.sums(k_max, lo, hi, area).to_vec();
+                (quad.source_spectrum().to_vec(), forces)
             };
-            solver.quadrature_mut().source(&shifted(1.0));
-            let sp = solver.quadrature_mut().source_spectrum().to_vec();
-            solver.quadrature_mut().source(&shifted(-1.0));
-            let sm = solver.quadrature_mut().source_spectrum();
+            let ((sp, fp), (sm, fm)) = (side(1.0), side(-1.0));
             b.push(
                 sp.iter()
-                    .zip(sm)
+                    .zip(&sm)
                     .map(|(a, c)| (a - c) / (2.0 * h))
                     .collect(),
             );
-            // The frozen field's forces on the shifted shape.
-            let mut forces = |sign: f64| {
-                let (area, lo, hi) = solver.quadrature_mut().sample(&shifted(sign));
-                solver.quadrature_mut().gradient(&u0, lo, hi);
-                solver.quadrature_mut().sums(k_max, lo, hi, area).to_vec()
-            };
-            let (fp, fm) = (forces(1.0), forces(-1.0));
-            for i in 0..dim {
-                e[i][j] = (fp[i] - fm[i]) / (2.0 * h);
+            for (row, (fp, fm)) in e.iter_mut().zip(fp.iter().zip(&fm)) {
+                row[j] = (fp - fm) / (2.0 * h);
             }
             let k = 2 + (j - 2) % (k_max - 1);
             e[j][j] -= (k * k) as f64 / 4.0 * p.kappa2;
@@ -75,7 +79,11 @@ fn force_functionals(solver: &mut SteadySolver, m: &Modes) -> Vec<C64> {
     let (n, k_max) = (grid.n, m.k_max());
     let dim = 2 * k_max;
     let (da, r0) = (-grid.dx * grid.dx, solver.params().radius);
-    let (mut wx, mut wy) = (vec![vec![0.0; n * n]; dim], vec![vec![0.0; n * n]; dim]);
+    // The weights' distinct fields: `t = -dx^2 Theta`, then `(Re, Im)` of
+    // `t R^(2-k) (x + i y)^(k-1)` for each mode; `w_k^(b)` is `w_k^(a)` turned by 90 degrees,
+    // so its transforms are the same two (the transform of `-w` is minus that of `w`, to the
+    // last bit).
+    let mut fields = vec![vec![0.0; n * n]; 2 * k_max - 1];
     let theta = solver.quadrature_mut().theta();
     for iy in lo..=hi {
         let y = grid.coord(iy);
@@ -86,29 +94,39 @@ fn force_functionals(solver: &mut SteadySolver, m: &Modes) -> Vec<C64> {
                 continue;
             }
             let x = grid.coord(ix);
-            wx[0][i] = t;
-            wy[1][i] = t;
+            fields[0][i] = t;
             // `(Re, Im)` of `(x + i y)^(k-1)`, as in the sums.
             let (mut re, mut im) = (x, y);
             for j in 0..k_max - 1 {
                 let s = t * r0.powi(-(j as i32));
-                (wx[2 + j][i], wy[2 + j][i]) = (s * re, -s * im);
-                (wx[k_max + 1 + j][i], wy[k_max + 1 + j][i]) = (s * im, s * re);
+                (fields[1 + 2 * j][i], fields[2 + 2 * j][i]) = (s * re, s * im);
                 (re, im) = (re * x - im * y, re * y + im * x);
             }
         }
     }
+    let spectra: Vec<Vec<C64>> = fields
+        .iter()
+        .map(|f| solver.quadrature_mut().transform(f, lo, hi))
+        .collect();
+    // Per force, the transforms of its weights on `u_x` and `u_y` (`None`: the weight 0).
+    type Pair<'a> = (Option<(&'a [C64], f64)>, Option<(&'a [C64], f64)>);
+    let mut pairs: Vec<Pair> = vec![
+        (Some((&spectra[0], 1.0)), None),
+        (None, Some((&spectra[0], 1.0))),
+    ];
+    let re = |j: usize| &spectra[1 + 2 * j][..];
+    let im = |j: usize| &spectra[2 + 2 * j][..];
+    pairs.extend((0..k_max - 1).map(|j| (Some((re(j), 1.0)), Some((im(j), -1.0)))));
+    pairs.extend((0..k_max - 1).map(|j| (Some((im(j), 1.0)), Some((re(j), 1.0)))));
+    let zero = C64::default();
+    let at = |w: Option<(&[C64], f64)>, k: usize| w.map_or(zero, |(s, sign)| sign * s[k]);
     let mut c = vec![C64::default(); grid.spectral_len() * dim];
-    for (i, (wx, wy)) in wx.iter_mut().zip(&mut wy).enumerate() {
-        let (tx, ty) = (
-            solver.quadrature_mut().transform(wx, lo, hi),
-            solver.quadrature_mut().transform(wy, lo, hi),
-        );
+    for (i, (wx, wy)) in pairs.into_iter().enumerate() {
         for jx in 0..=n / 2 {
             let weight = if jx == 0 || 2 * jx == n { 1.0 } else { 2.0 };
             for jy in 0..n {
                 let k = jx * n + jy;
-                let g = grid.kx_d[jx] * tx[k].conj() + grid.ky_d[jy] * ty[k].conj();
+                let g = grid.kx_d[jx] * at(wx, k).conj() + grid.ky_d[jy] * at(wy, k).conj();
                 c[k * dim + i] = C64::new(0.0, weight) * g;
             }
         }
