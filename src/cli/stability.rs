@@ -13,7 +13,8 @@ use serde::Serialize;
 /// Compute a steady state of the full model directly (Newton on the co-moving force balance,
 /// started from the reduced model's state or from --seed) and its linear stability, field
 /// included: every eigenvalue with Re > -1 (the field's own modes decay at rate >= 1), from
-/// the 4 x 4 nonlinear eigenproblem det(lambda M - E - C (lambda - D)^-1 B) = 0. A state with
+/// the 2K x 2K nonlinear eigenproblem det(lambda M - E - C (lambda - D)^-1 B) = 0 (4 x 4 with
+/// the paper's two modes, K = --modes). A state with
 /// an eigenvalue of positive real part is unstable. Moving and deformed states have one
 /// near-neutral eigenvalue (the rotation of the direction of motion or of the long axis,
 /// weakly broken by the periodic box); it is listed with the others, identified by its mode

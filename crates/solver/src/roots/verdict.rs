@@ -3,7 +3,7 @@
 //! eigenvalues that decides stability.
 //!
 //! Neutral modes. Translation is removed exactly by the co-moving frame (the centre is not an
-//! unknown of the 4 x 4 problem, so its zero eigenvalue never appears). Rotation is not a
+//! unknown of the `2K x 2K` problem, so its zero eigenvalue never appears). Rotation is not a
 //! symmetry of the periodic square box, only nearly one: a moving or deformed state has one
 //! eigenvalue near zero whose mode turns the direction of motion and the long axis together,
 //! `g = d/dtheta (R v, R2 s) = (-vy, vx, -2 b2, 2 a2)`. Its sign says which orientation the box

@@ -16,7 +16,7 @@
 //! ([`crate::model::forces::quadrature`]; equal to round-off for `K = 2`, tested). No
 //! symmetry of the shape is assumed (odd modes break the point symmetry the fast path uses).
 use crate::error::SolverError;
-use crate::model::forces::quadrature::{fill_operator, ForceQuadrature, ShapeForces};
+use crate::model::forces::quadrature::{derivatives, ForceQuadrature, PassBuffers, ShapeForces};
 use crate::model::grid::Grid;
 use crate::model::modes::Modes;
 use crate::model::params::ModelParams;
@@ -50,10 +50,8 @@ pub struct SteadySolver {
     params: ModelParams,
     /// `Theta`, its transform and the forces of a field on it.
     quad: ForceQuadrature,
-    /// The last field's coefficients (normalised, `[kx][ky]`), and the operator `D` it was
-    /// solved with.
+    /// The last field's coefficients (normalised, `[kx][ky]`).
     u_spec: Vec<Complex64>,
-    d: Vec<Complex64>,
     /// The angle of the axis [`Self::residual_x`] works on (0: the x axis).
     axis: f64,
     /// The forces of the last droplets the residuals asked for.
@@ -78,7 +76,6 @@ impl SteadySolver {
             params,
             quad: ForceQuadrature::new(grid, shape),
             u_spec: vec![Complex64::default(); len],
-            d: vec![Complex64::default(); len],
             axis: 0.0,
             memo: ForcesMemo::default(),
             sourced: None,
@@ -153,13 +150,29 @@ impl SteadySolver {
                 window
             }
         };
-        // u_hat = source / (1 + k^2 - i k.v) = -source / D.
-        fill_operator(self.quad.grid(), vx, vy, &mut self.d);
-        let source = self.quad.source_spectrum();
-        for ((u, s), d) in self.u_spec.iter_mut().zip(source).zip(&self.d) {
-            *u = -s / d;
+        // u_hat = source / (1 + k^2 - i k.v) = -source / D (D as `fill_operator` forms it),
+        // and the field's spectral derivatives, in one pass.
+        let PassBuffers {
+            grid,
+            source,
+            dx,
+            dy,
+        } = self.quad.pass_buffers();
+        let n = grid.n;
+        for (jx, (kx, kxd)) in grid.kx.iter().zip(&grid.kx_d).enumerate().take(n / 2 + 1) {
+            let row = jx * n..(jx + 1) * n;
+            let modes = grid.ky.iter().zip(&grid.ky_d);
+            let fields = self.u_spec[row.clone()]
+                .iter_mut()
+                .zip(&source[row.clone()]);
+            let derivs = dx[row.clone()].iter_mut().zip(&mut dy[row]);
+            for (((ky, kyd), (u, s)), (dx, dy)) in modes.zip(fields).zip(derivs) {
+                let d = Complex64::new(-(1.0 + kx * kx + ky * ky), kxd * vx + kyd * vy);
+                *u = -s / d;
+                (*dx, *dy) = derivatives(*u, *kxd, *kyd);
+            }
         }
-        self.quad.gradient(&self.u_spec, lo, hi);
+        self.quad.gradient_formed(lo, hi);
         self.quad.sums(m.k_max(), lo, hi, area)
     }
 
