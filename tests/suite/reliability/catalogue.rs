@@ -633,6 +633,7 @@ fn catalogue() -> Vec<Case> {
         ),
         spec_case("spec n with model ode", ("name: m\n", "name: m\nmodel: ode\n"), &["solver.n", "no grid"]),
         spec_case("spec params.modes 1", ("name: m\n", "name: m\nparams: {modes: 1}\n"), &["params.modes", "from 2"]),
+        spec_case("spec modes as a grid axis", ("  kappa2: [0.11]\n", "  modes: [2, 3]\n"), &["grid.modes", "not an axis", "params.modes"]),
         fast(case(
             "slurm partition with a newline",
             &["slurm", "SPEC:name: m\ngrid: {eta_t: [0.08], kappa2: [0.11]}\n", "--shards", "2", "--partition", "p\necho INJECTED", "--out", "DIR/out"],

@@ -131,6 +131,10 @@ pub(super) fn show(v: &Value) -> String {
         Value::String(s) => format!("{s:?}"),
         Value::Null => "null (empty)".into(),
         Value::Sequence(seq) if seq.len() > 20 => format!("a list of {} values", seq.len()),
+        // A short list of plain values as it would be written in flow style.
+        Value::Sequence(seq) if seq.iter().all(|x| !x.is_sequence() && !x.is_mapping()) => {
+            format!("[{}]", seq.iter().map(show).collect::<Vec<_>>().join(", "))
+        }
         other => serde_yaml::to_string(other)
             .map(|s| s.trim().replace('\n', " "))
             .unwrap_or_else(|_| "?".into()),

@@ -118,6 +118,21 @@ pub(super) fn parse(ctx: &Ctx, top: &Mapping) -> Result<Grid, SpecError> {
             ),
         )
     })?;
+    if let Some((key, v)) = grid_v.as_mapping().and_then(|m| {
+        ModelParams::SHAPE_MODE_FIELDS
+            .iter()
+            .find_map(|key| m.get(*key).map(|v| (*key, v)))
+    }) {
+        // The shape modes set the state's length: one value per sweep.
+        return Err(ctx.err(
+            &["grid", key],
+            show(v),
+            format!(
+                "not an axis: one value per sweep, params.{key} (one sweep per value; \
+                 `droplet truncation` compares K = 2..K at a point)"
+            ),
+        ));
+    }
     let names: Vec<&str> = Param::ALL.iter().map(|p| p.name()).collect();
     let grid = ctx.mapping(grid_v, &["grid"], &names)?;
     if grid.is_empty() || grid.len() > MAX_AXES {
