@@ -41,23 +41,19 @@ impl FarField {
         let dim = b.len();
         let mut moments = vec![vec![vec![0.0; dim]; dim]; TERMS];
         let mut near = Vec::new();
-        let (mut c_re, mut c_im) = (vec![0.0; dim], vec![0.0; dim]);
         for (k, d) in d.iter().enumerate() {
             if d.norm() < far {
                 near.push(k);
                 continue;
             }
             let w = d.inv();
-            // The functionals' real and imaginary parts apart (the products below vectorise).
-            for (i, c) in c[k * dim..(k + 1) * dim].iter().enumerate() {
-                (c_re[i], c_im[i]) = (c.re, c.im);
-            }
+            let ck = &c[k * dim..(k + 1) * dim];
             for (j, b) in b.iter().enumerate() {
                 let mut t = b[k] * w;
                 for m in moments.iter_mut() {
                     // Re (t c), as the complex product forms it.
-                    for ((acc, cr), ci) in m[j].iter_mut().zip(&c_re).zip(&c_im) {
-                        *acc += t.re * cr - t.im * ci;
+                    for (acc, c) in m[j].iter_mut().zip(ck) {
+                        *acc += t.re * c.re - t.im * c.im;
                     }
                     t *= w;
                 }
@@ -68,8 +64,7 @@ impl FarField {
 
     /// The fast modes' part of column `j` of the response at `l` and of its first `order`
     /// derivatives (`-Sum_p l^p Re M_p`, `-Sum_p p l^(p-1) Re M_p`, ...), added to
-    /// `s[0..=order]`.
-    /// `l` and the sums are complex, or real at a real `l` (the same real parts).
+    /// `s[0..=order]`: complex at a complex `l`, real at a real `l` (the same real parts).
     pub(super) fn add<T>(&self, j: usize, l: T, order: usize, s: &mut [&mut [T]])
     where
         T: Copy + From<f64> + SubAssign + MulAssign + Mul<f64, Output = T>,
