@@ -45,11 +45,12 @@ impl Linearization {
         let t0 = self.t_derivatives(C64::default(), 1, false);
         let slope = DMatrix::from_fn(dim, dim, |i, j| t0[1][(i, j)].re);
         let minus_t0 = DMatrix::from_fn(dim, dim, |i, j| -t0[0][(i, j)].re);
-        let Some(guesses) = slope
+        // Where T'(0) is singular, the lambda = 0 problem's `M^(-1) (-T(0))`.
+        let k0 = slope
             .lu()
             .solve(&minus_t0)
-            .and_then(|k0| crate::numerics::eigen::complex_eigenvalues(&k0))
-        else {
+            .unwrap_or_else(|| DMatrix::from_fn(dim, dim, |i, j| minus_t0[(i, j)] / self.m[i]));
+        let Some(guesses) = crate::numerics::eigen::complex_eigenvalues(&k0) else {
             return vec![C64::new(f64::NAN, 0.0)];
         };
         let mut found: Vec<C64> = Vec::new();
