@@ -42,10 +42,7 @@ pub fn id_line(
 ) -> Result<Vec<(f64, f64)>, SolverError> {
     match balances {
         Balances::Two(solver) => two_mode_id_line(solver, w, mirror, top),
-        Balances::General(solver) => {
-            let modes = solver.params().modes;
-            general_id_line(solver, modes, w, mirror, top)
-        }
+        Balances::General(solver) => general_id_line(solver, w, mirror, top),
     }
 }
 
@@ -58,10 +55,7 @@ pub fn mc_line(
 ) -> Result<Vec<(f64, f64)>, SolverError> {
     match balances {
         Balances::Two(solver) => two_mode_mc_line(solver, w, onset_eta_t),
-        Balances::General(solver) => {
-            let modes = solver.params().modes;
-            general_mc_line(solver, modes, w, onset_eta_t)
-        }
+        Balances::General(solver) => general_mc_line(solver, w, onset_eta_t),
     }
 }
 
@@ -101,11 +95,11 @@ fn two_mode_id_line(
 /// ([`crate::roots::thresholds::drift_threshold`]).
 fn general_id_line(
     mut solver: SteadySolver,
-    k_max: usize,
     w: &Window,
     mirror: MirrorLine,
     top: f64,
 ) -> Result<Vec<(f64, f64)>, SolverError> {
+    let k_max = solver.params().modes;
     let axis = mirror.angle();
     solver.set_axis(axis);
     let (lo, hi) = (w.y.range.0, top.min(w.y.range.1));
@@ -214,10 +208,10 @@ fn mc_state(x: &[f64]) -> Vec<f64> {
 /// N = 192).
 fn general_mc_line(
     mut solver: SteadySolver,
-    k_max: usize,
     w: &Window,
     onset_eta_t: f64,
 ) -> Result<Vec<(f64, f64)>, SolverError> {
+    let k_max = solver.params().modes;
     let opts = NewtonOptions {
         tol: 1e-12,
         max_iter: 30,

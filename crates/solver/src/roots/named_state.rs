@@ -93,7 +93,7 @@ pub fn find(
             (z.to_vec(), residual)
         }
         Balances::General(solver) => {
-            let z = general_root(solver, solver.params().modes, kind, axis, seed)?;
+            let z = general_root(solver, kind, axis, seed)?;
             let residual = solver
                 .residual(&z)
                 .iter()
@@ -159,14 +159,14 @@ fn two_mode_root(
     }))
 }
 
-/// The state `kind` of the model with shape modes `2..=k_max` on `axis` (see the module).
+/// The state `kind` of the solver's model (shape modes `2..=K`) on `axis` (see the module).
 fn general_root(
     solver: &mut SteadySolver,
-    k_max: usize,
     kind: StateKind,
     axis: MirrorLine,
     seed: Option<(f64, f64)>,
 ) -> Result<Vec<f64>, SolverError> {
+    let k_max = solver.params().modes;
     let lost = || SolverError::NewtonFailed {
         residual: f64::NAN,
         iterations: 0,

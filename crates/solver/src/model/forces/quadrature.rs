@@ -41,15 +41,21 @@ impl ShapeForces {
     }
 }
 
-/// `D = -(1 + k^2) + i k.v`, the co-moving field operator, for every stored mode of `grid`
-/// (`[kx][ky]`), into `out`.
+/// `D = -(1 + k^2) + i k.v`, the co-moving field operator, at one mode: wavenumbers
+/// `(kx, ky)`, derivative wavenumbers `(kxd, kyd)` (Nyquist zeroed), velocity `(vx, vy)`.
+#[inline(always)]
+pub fn operator((kx, ky): (f64, f64), (kxd, kyd): (f64, f64), (vx, vy): (f64, f64)) -> Complex64 {
+    Complex64::new(-(1.0 + kx * kx + ky * ky), kxd * vx + kyd * vy)
+}
+
+/// [`operator`] for every stored mode of `grid` (`[kx][ky]`), into `out`.
 pub fn fill_operator(grid: &Grid, vx: f64, vy: f64, out: &mut [Complex64]) {
     let n = grid.n;
     for jx in 0..=n / 2 {
         let (kx, kxd) = (grid.kx[jx], grid.kx_d[jx]);
         for jy in 0..n {
             let (ky, kyd) = (grid.ky[jy], grid.ky_d[jy]);
-            out[jx * n + jy] = Complex64::new(-(1.0 + kx * kx + ky * ky), kxd * vx + kyd * vy);
+            out[jx * n + jy] = operator((kx, ky), (kxd, kyd), (vx, vy));
         }
     }
 }

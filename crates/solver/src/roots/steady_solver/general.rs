@@ -16,7 +16,9 @@
 //! ([`crate::model::forces::quadrature`]; equal to round-off for `K = 2`, tested). No
 //! symmetry of the shape is assumed (odd modes break the point symmetry the fast path uses).
 use crate::error::SolverError;
-use crate::model::forces::quadrature::{derivatives, ForceQuadrature, PassBuffers, ShapeForces};
+use crate::model::forces::quadrature::{
+    derivatives, operator, ForceQuadrature, PassBuffers, ShapeForces,
+};
 use crate::model::grid::Grid;
 use crate::model::modes::Modes;
 use crate::model::params::ModelParams;
@@ -150,8 +152,8 @@ impl SteadySolver {
                 window
             }
         };
-        // u_hat = source / (1 + k^2 - i k.v) = -source / D (D as `fill_operator` forms it),
-        // and the field's spectral derivatives, in one pass.
+        // u_hat = source / (1 + k^2 - i k.v) = -source / D, and the field's spectral
+        // derivatives, in one pass.
         let PassBuffers {
             grid,
             source,
@@ -167,8 +169,7 @@ impl SteadySolver {
                 .zip(&source[row.clone()]);
             let derivs = dx[row.clone()].iter_mut().zip(&mut dy[row]);
             for (((ky, kyd), (u, s)), (dx, dy)) in modes.zip(fields).zip(derivs) {
-                let d = Complex64::new(-(1.0 + kx * kx + ky * ky), kxd * vx + kyd * vy);
-                *u = -s / d;
+                *u = -s / operator((*kx, *ky), (*kxd, *kyd), (vx, vy));
                 (*dx, *dy) = derivatives(*u, *kxd, *kyd);
             }
         }
