@@ -84,29 +84,27 @@ impl PolarTable {
 
     /// The index of the point at row `iy`, column `ix` (inside the square).
     #[inline(always)]
-    pub fn index(&self, iy: usize, ix: usize) -> usize {
+    fn index(&self, iy: usize, ix: usize) -> usize {
         let corner = self.n / 2 - self.half;
         (iy - corner) * (2 * self.half + 1) + (ix - corner)
     }
 
-    /// `r` at the point `i`.
+    /// The columns `lo..=hi` of row `iy` (inside the square): `r` per point, and the
+    /// harmonics and powers of those points (each point's values [`Self::stride`] apart).
     #[inline(always)]
-    pub fn radius(&self, i: usize) -> f64 {
-        self.r[i]
+    pub fn row(&self, iy: usize, lo: usize, hi: usize) -> (&[f64], &[f64], &[f64]) {
+        let (p, len, m) = (self.index(iy, lo), hi + 1 - lo, self.stride());
+        (
+            &self.r[p..p + len],
+            &self.harmonics[p * m..(p + len) * m],
+            &self.powers[p * m..(p + len) * m],
+        )
     }
 
-    /// `(cos k theta, sin k theta)` for `k = 2..=K` at the point `i`, interleaved.
+    /// How many values a point has in the harmonics and in the powers: `2 (K - 1)`.
     #[inline(always)]
-    pub fn harmonics(&self, i: usize) -> &[f64] {
-        let m = 2 * (self.k_max - 1);
-        &self.harmonics[i * m..(i + 1) * m]
-    }
-
-    /// `(Re, Im)` of `(x + i y)^(k - 1)` for `k = 2..=K` at the point `i`, interleaved.
-    #[inline(always)]
-    pub fn powers(&self, i: usize) -> &[f64] {
-        let m = 2 * (self.k_max - 1);
-        &self.powers[i * m..(i + 1) * m]
+    pub fn stride(&self) -> usize {
+        2 * (self.k_max - 1)
     }
 }
 

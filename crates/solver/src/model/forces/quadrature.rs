@@ -173,11 +173,18 @@ impl ForceQuadrature {
         // Squared radii: no square root outside the interface band.
         let (r_in2, r_out2) = (r_in * r_in, r_out * r_out);
         let mut count = 0.0;
+        let stride = self.polar.stride();
         for iy in lo..=hi {
             let y = self.grid.coord(iy);
             let row = &mut self.sampled.theta[iy * n..(iy + 1) * n];
-            row.fill(0.0);
-            for (ix, t) in row.iter_mut().enumerate().take(hi + 1).skip(lo) {
+            row[..lo].fill(0.0);
+            row[hi + 1..].fill(0.0);
+            let (radii, harmonics, _) = self.polar.row(iy, lo, hi);
+            let points = row[lo..=hi]
+                .iter_mut()
+                .zip(radii)
+                .zip(harmonics.chunks_exact(stride));
+            for (ix, ((t, r), h)) in (lo..=hi).zip(points) {
                 let x = self.grid.coord(ix);
                 let r2 = x * x + y * y;
                 *t = if r2 < r_in2 {
@@ -185,8 +192,7 @@ impl ForceQuadrature {
                 } else if r2 > r_out2 {
                     0.0
                 } else {
-                    let p = self.polar.index(iy, ix);
-                    m.theta_on(&shape, self.polar.radius(p), self.polar.harmonics(p))
+                    m.theta_on(&shape, *r, h)
                 };
                 count += *t;
             }
@@ -246,11 +252,22 @@ impl ForceQuadrature {
     ) -> (f64, usize, usize) {
         let n = self.grid.n;
         let (lo, hi) = (base.lo.min(back.lo), base.hi.max(back.hi));
-        for iy in lo..=hi {
-            for ix in lo..=hi {
-                let i = iy * n + ix;
-                let b = base.at(iy, ix, i);
-                self.sampled.theta[i] = b + alpha * (b - back.at(iy, ix, i));
+        if (base.lo, base.hi) == (back.lo, back.hi) {
+            // One window (the usual case): no point outside either.
+            for iy in lo..=hi {
+                let row = iy * n + lo..=iy * n + hi;
+                let out = self.sampled.theta[row.clone()].iter_mut();
+                for ((t, b), q) in out.zip(&base.theta[row.clone()]).zip(&back.theta[row]) {
+                    *t = b + alpha * (b - q);
+                }
+            }
+        } else {
+            for iy in lo..=hi {
+                for ix in lo..=hi {
+                    let i = iy * n + ix;
+                    let b = base.at(iy, ix, i);
+                    self.sampled.theta[i] = b + alpha * (b - back.at(iy, ix, i));
+                }
             }
         }
         let area = base.area + alpha * (base.area - back.area);
@@ -314,19 +331,25 @@ impl ForceQuadrature {
         self.polar.ensure(&self.grid, lo, hi, M / 2 + 1);
         let (mut fx, mut fy) = (0.0, 0.0);
         let mut g = [0.0; M];
+        let stride = self.polar.stride();
         for iy in lo..=hi {
-            for ix in lo..=hi {
-                let i = iy * n + ix;
-                let t = self.sampled.theta[i];
+            let row = iy * n + lo..=iy * n + hi;
+            let (_, _, powers) = self.polar.row(iy, lo, hi);
+            let points = self.sampled.theta[row.clone()]
+                .iter()
+                .zip(&self.ux[row.clone()])
+                .zip(&self.uy[row])
+                .zip(powers.chunks_exact(stride));
+            for (((&t, ux), uy), powers) in points {
                 if t == 0.0 {
                     continue;
                 }
-                let (gx, gy) = (self.ux[i] * t, self.uy[i] * t);
+                let (gx, gy) = (ux * t, uy * t);
                 fx += gx;
                 fy += gy;
                 // w_k^(a) . g and w_k^(b) . g without their factor R^(2-k)
                 // ([`crate::model::modes::w_fields`]), with (Re, Im) of (x + i y)^(k-1).
-                let powers = &self.polar.powers(self.polar.index(iy, ix))[..M];
+                let powers = &powers[..M];
                 for j in 0..M / 2 {
                     let (re, im) = (powers[2 * j], powers[2 * j + 1]);
                     g[2 * j] += re * gx - im * gy;
