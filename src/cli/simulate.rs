@@ -74,9 +74,6 @@ pub fn run(a: Args) -> Result<(), CliError> {
     let ic = InitialCondition::parse(&a.ic)?;
     ic.check_modes(a.modes)
         .map_err(|e| CliError::usage(format!("invalid --ic with --modes {}: {e}", a.modes)))?;
-    if a.modes > 2 {
-        droplet_solver::contract::limits::check_modes(&params, settings.n, a.modes)?;
-    }
     let every = check_outputs(&a, &settings)?.then_some(a.every);
     let mut run = Run::new(&params, &ic, &settings)?.record_every(every);
     let out = run.execute();
