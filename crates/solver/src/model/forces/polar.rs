@@ -101,7 +101,8 @@ impl PolarTable {
         )
     }
 
-    /// How many values a point has in the harmonics and in the powers: `2 (K - 1)`.
+    /// How many values a point has in the harmonics and in the powers: `2 (K - 1)`, `K` the
+    /// table's (at least the shape's).
     #[inline(always)]
     pub fn stride(&self) -> usize {
         2 * (self.k_max - 1)
