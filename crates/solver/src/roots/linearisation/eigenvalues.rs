@@ -29,10 +29,30 @@ const MAX_STEP: f64 = 0.2;
 /// Steps below which the iteration is close enough to a root for Schroeder's step.
 const POLISH: f64 = 1e-3;
 
+/// Puts the member with `Im > 0` first in each conjugate pair of `sorted` (sorted by
+/// decreasing real part): the two are found separately, so their real parts differ in the
+/// last digits and the sort alone would order them by round-off.
+fn pairs_upper_first(sorted: &mut [C64]) {
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-8 * (1.0 + a.abs());
+    let mut i = 0;
+    while i + 1 < sorted.len() {
+        let (a, b) = (sorted[i], sorted[i + 1]);
+        if a.im != 0.0 && close(a.re, b.re) && close(a.im, -b.im) {
+            if a.im < 0.0 {
+                sorted.swap(i, i + 1);
+            }
+            i += 2;
+        } else {
+            i += 1;
+        }
+    }
+}
+
 impl Linearization {
     /// The eigenvalues with `Re lambda > -1` (the only ones the field's decay leaves), with
-    /// multiplicity, sorted by decreasing real part; one `NaN` when the state or its
-    /// response is not finite (counted as growing by [`Self::verdict`]).
+    /// multiplicity, sorted by decreasing real part (a conjugate pair with `Im > 0` first);
+    /// one `NaN` when the state or its response is not finite (counted as growing by
+    /// [`Self::verdict`]).
     ///
     /// With `f = det T / prod (lambda - r)` over the roots `r` found, `L = f' / f =
     /// tr(T^(-1) T') - Sum 1 / (lambda - r)` and `L' = tr(T^(-1) T'') - tr((T^(-1) T')^2) +
@@ -77,6 +97,7 @@ impl Linearization {
             }
         }
         found.sort_by(|a, b| b.re.total_cmp(&a.re));
+        pairs_upper_first(&mut found);
         found
     }
 
@@ -128,5 +149,36 @@ impl Linearization {
         }
         let det = |l: C64| self.t_matrix(l).lu().determinant().norm();
         (lambda.re > -0.999 && det(lambda) <= 1e-9 * det(lambda + 0.1)).then_some(lambda)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn conjugate_pairs_are_ordered_upper_member_first() {
+        // A pair whose lower member's real part came out larger by round-off, a real root, a
+        // pair already in order, and two complex roots that are not a pair.
+        let mut roots = vec![
+            C64::new(-0.01 + 1e-15, -0.3),
+            C64::new(-0.01, 0.3),
+            C64::new(-0.05, 0.0),
+            C64::new(-0.2, 0.1),
+            C64::new(-0.2, -0.1),
+            C64::new(-0.4, -0.5),
+            C64::new(-0.4 - 1e-3, 0.5),
+        ];
+        let expected = [
+            C64::new(-0.01, 0.3),
+            C64::new(-0.01 + 1e-15, -0.3),
+            C64::new(-0.05, 0.0),
+            C64::new(-0.2, 0.1),
+            C64::new(-0.2, -0.1),
+            C64::new(-0.4, -0.5),
+            C64::new(-0.4 - 1e-3, 0.5),
+        ];
+        pairs_upper_first(&mut roots);
+        assert_eq!(roots, expected);
     }
 }
