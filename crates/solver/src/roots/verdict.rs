@@ -118,7 +118,13 @@ pub fn assess(lin: &impl Spectrum, z: &[f64]) -> Verdict {
     let decisive = verdict.decisive();
     Verdict {
         unstable: decisive.iter().filter(|l| l.re > 0.0).count(),
-        max_re: decisive.first().map_or(-1.0, |l| l.re),
+        // The largest real part in the sort's total order (what the sorted list put first
+        // before conjugate pairs were ordered upper member first).
+        max_re: decisive
+            .iter()
+            .map(|l| l.re)
+            .max_by(f64::total_cmp)
+            .unwrap_or(-1.0),
         ..verdict
     }
 }
