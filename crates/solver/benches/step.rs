@@ -1,12 +1,16 @@
 //! Cost of one time step (single-threaded), co-moving spectral scheme at N = 128, 192, 256 and
 //! the paper's finite-difference scheme at its own resolution (N = 280, dt = 1e-4); and the
 //! `K`-mode model's ETD2RK step (`stepping::comoving_etd`) at N = 192 for K = 2, 3, 4, 6, to say what
-//! each shape mode adds (K = 2 through the general stepper, beside the 2-mode fast path).
+//! each shape mode adds (K = 2 through the general stepper, beside the 2-mode fast path); and one
+//! row-pruned transform of the K-mode step (`numerics::fft2`, N = 192, the 103 rows of the
+//! K = 4 droplet's window at the MD point), five of which a K-mode step takes.
 //! Run: `cargo bench --bench step` (add `-- --quick` for a fast pass).
 use criterion::{criterion_group, criterion_main, Criterion};
+use droplet_solver::numerics::fft2::PrunedFft2;
 use droplet_solver::stepping::comoving_etd::ComovingEtd;
 use droplet_solver::stepping::{comoving_etd::TwoModeEtd, paper_fd::TwoModeFd, Stepper};
 use droplet_solver::{model::initial::InitialCondition, model::params::ModelParams};
+use rustfft::num_complex::Complex64;
 
 fn warm<S: Stepper>(mut s: S, h: f64, steps: usize) -> S {
     // Past the start-up, at a moving and deformed state (MD point of Fig. 1).
@@ -35,6 +39,31 @@ fn bench(c: &mut Criterion) {
         }
         g.bench_function(format!("modes{k}_n192"), |b| b.iter(|| m.step(0.02)));
     }
+    let n = 192;
+    let (lo, hi) = (n / 2 - 51, n / 2 + 51);
+    let mut fft = PrunedFft2::new(n);
+    let real: Vec<f64> = (0..n * n)
+        .map(|i| {
+            if (lo..=hi).contains(&(i / n)) {
+                (i % 7) as f64
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    let mut spec = vec![Complex64::default(); (n / 2 + 1) * n];
+    g.bench_function("transform_forward_n192", |b| {
+        b.iter(|| fft.forward(&real, &mut spec, lo, hi))
+    });
+    let full = spec.clone();
+    let mut out = vec![0.0; n * n];
+    // The inverse consumes its spectrum: each iteration copies it back (a copy of 300 kB).
+    g.bench_function("transform_inverse_n192", |b| {
+        b.iter(|| {
+            spec.copy_from_slice(&full);
+            fft.inverse(&mut spec, &mut out, lo, hi)
+        })
+    });
     g.finish();
 }
 
