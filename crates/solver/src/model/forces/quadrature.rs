@@ -400,3 +400,52 @@ impl ForceQuadrature {
         f
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_predictors_droplet_is_the_pointwise_extrapolation_whatever_the_windows() {
+        let grid = Grid::new(64, 7.0).unwrap();
+        let shape = ShapeParams {
+            radius: 1.0,
+            sigma: 0.03,
+        };
+        let mut quad = ForceQuadrature::new(grid.clone(), shape);
+        let sampled = |quad: &mut ForceQuadrature, a2: f64| {
+            quad.sample(&Modes {
+                a: vec![a2, 0.02],
+                b: vec![-0.02, 0.01],
+            });
+            let mut s = SampledShape::new(&grid);
+            quad.exchange(&mut s);
+            s
+        };
+        let n = grid.n;
+        // One window (the row-by-row path), then a droplet behind with a wider one.
+        for (back_a2, same_window) in [(0.1001, true), (0.3, false)] {
+            let base = sampled(&mut quad, 0.1);
+            let back = sampled(&mut quad, back_a2);
+            assert_eq!((base.lo, base.hi) == (back.lo, back.hi), same_window);
+            let alpha = 0.7;
+            let (area, lo, hi) = quad.extrapolate(&base, &back, alpha);
+            assert_eq!((lo, hi), (base.lo.min(back.lo), base.hi.max(back.hi)));
+            assert_eq!(area, base.area + alpha * (base.area - back.area));
+            let value = |s: &SampledShape, iy: usize, ix: usize| {
+                let inside = (s.lo..=s.hi).contains(&iy) && (s.lo..=s.hi).contains(&ix);
+                if inside {
+                    s.theta[iy * n + ix]
+                } else {
+                    0.0
+                }
+            };
+            for iy in lo..=hi {
+                for ix in lo..=hi {
+                    let (b, q) = (value(&base, iy, ix), value(&back, iy, ix));
+                    assert_eq!(quad.theta()[iy * n + ix], b + alpha * (b - q));
+                }
+            }
+        }
+    }
+}
