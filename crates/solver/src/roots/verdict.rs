@@ -118,8 +118,8 @@ pub fn assess(lin: &impl Spectrum, z: &[f64]) -> Verdict {
     let decisive = verdict.decisive();
     Verdict {
         unstable: decisive.iter().filter(|l| l.re > 0.0).count(),
-        // The largest real part in the sort's total order (what the sorted list put first
-        // before conjugate pairs were ordered upper member first).
+        // The largest real part in total order: the list's first but within a conjugate
+        // pair, whose upper member comes first whichever real part is larger by round-off.
         max_re: decisive
             .iter()
             .map(|l| l.re)
