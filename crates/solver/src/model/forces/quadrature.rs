@@ -432,18 +432,11 @@ mod tests {
             let (area, lo, hi) = quad.extrapolate(&base, &back, alpha);
             assert_eq!((lo, hi), (base.lo.min(back.lo), base.hi.max(back.hi)));
             assert_eq!(area, base.area + alpha * (base.area - back.area));
-            let value = |s: &SampledShape, iy: usize, ix: usize| {
-                let inside = (s.lo..=s.hi).contains(&iy) && (s.lo..=s.hi).contains(&ix);
-                if inside {
-                    s.theta[iy * n + ix]
-                } else {
-                    0.0
-                }
-            };
             for iy in lo..=hi {
                 for ix in lo..=hi {
-                    let (b, q) = (value(&base, iy, ix), value(&back, iy, ix));
-                    assert_eq!(quad.theta()[iy * n + ix], b + alpha * (b - q));
+                    let i = iy * n + ix;
+                    let (b, q) = (base.at(iy, ix, i), back.at(iy, ix, i));
+                    assert_eq!(quad.theta()[i], b + alpha * (b - q));
                 }
             }
         }
