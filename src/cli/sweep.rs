@@ -13,7 +13,7 @@ use std::path::PathBuf;
 /// OUT/runs.parquet, OUT/points.parquet and OUT/phase_map.png (+ .svg).
 #[derive(clap::Args)]
 #[command(
-    after_help = "Examples:\n  droplet sweep sweeps/smoke.yaml                 # CI smoke sweep, ~8 s on 2 cores\n  droplet sweep sweeps/fig2a.yaml                 # the paper's Fig. 2(a) grid, 377 points (check the rate: droplet status)\n  droplet sweep sweeps/fig2a-map.yaml             # refined where the class changes (docs/sweeps.md)\n  droplet sweep sweeps/smoke.yaml --out /tmp/s    # same spec, another directory\n  droplet sweep sweeps/mass-eta_t.yaml            # the inertia against eta_t (any parameter on an axis)\n\nSpec keys: name, output, model (pde | ode), params {eta_t, kappa2, eta2, radius, sigma, box_len,\nmass (those not swept), modes (K: shape modes 2..K, default 2), eta_k_exponent}, grid {1-3 axes: any of those or n, tol, dt_max, t_max; each\n{start, stop, step} or a list; a third axis gives one map per value}, initial_conditions, solver {scheme,\nn, dt, tol, dt_max, t_max, steady_tol, steady_window, steady, landing, run_on, h0, ...},\nrefine {levels, min_step, split_bistable}. See sweeps/*.yaml and docs/sweeps.md.\n\nSharded: each shard runs `--shard I/N` into the same OUT, then `droplet merge OUT`; a spec with\nrefine: is sharded level by level (`--shard I/N --level L`, L = 0, 1, ... in order).\n\nA stored run that cannot be used (truncated, not a record, or not matching its key) is moved to\nOUT/corrupt/ with a warning and recomputed. Exit codes: 0 done, 1 failure while working, 2 bad\ninput (spec, arguments, output directory, a sweep already running there)."
+    after_help = "Examples:\n  droplet sweep sweeps/smoke.yaml                 # CI smoke sweep, ~8 s on 2 cores\n  droplet sweep sweeps/fig2a.yaml                 # the paper's Fig. 2(a) grid, 377 points (check the rate: droplet status)\n  droplet sweep sweeps/fig2a-map.yaml             # refined where the class changes (docs/sweeps.md)\n  droplet sweep sweeps/smoke.yaml --out /tmp/s    # same spec, another directory\n  droplet sweep sweeps/mass-eta_t.yaml            # the inertia against eta_t (any parameter on an axis)\n\nSpec keys: name, output, model (pde | ode), params {eta_t, kappa2, eta2, radius, sigma, box_len,\nmass (those not swept), modes (K: shape modes 2..K, default 2), eta_k_exponent}, grid {1-3 axes: any of those or n, tol, dt_max, t_max; each\n{start, stop, step} or a list; a third axis gives one map per value}, initial_conditions, solver {scheme,\nn, dt, tol, dt_max, t_max, steady_tol, steady_window, steady, landing, run_on, h0, ...},\nrefine {levels, min_step, split_bistable, certify_midpoints}. See sweeps/*.yaml and docs/sweeps.md.\n\nSharded: each shard runs `--shard I/N` into the same OUT, then `droplet merge OUT`; a spec with\nrefine: is sharded level by level (`--shard I/N --level L`, L = 0, 1, ... in order).\n\nA stored run that cannot be used (truncated, not a record, or not matching its key) is moved to\nOUT/corrupt/ with a warning and recomputed. Exit codes: 0 done, 1 failure while working, 2 bad\ninput (spec, arguments, output directory, a sweep already running there)."
 )]
 pub struct Args {
     /// The YAML spec.
@@ -42,7 +42,8 @@ pub struct Args {
     #[arg(long, value_name = "RUNS", default_value_t = droplet_sweep::store::plan::DEFAULT_MAX_RUNS)]
     max_runs: u64,
     /// Print a JSON summary instead of text (keys: name, output, points, runs, shard, level,
-    /// computed, reused, corrupt, upgraded, wall_s, jobs, point_classes, run_statuses,
+    /// computed, reused, certified (runs certified without stepping, refine.certify_midpoints;
+    /// among computed), certify_refused (points left to their runs, by reason), corrupt, upgraded, wall_s, jobs, point_classes, run_statuses,
     /// dt_warnings, run_time_s and profile (the computed runs' time and its parts:
     /// stepping_s, newton_s, eigen_s, landing_s, flow_s, leap_s, diagnosis_s, newton_solves,
     /// eigen_problems, field_solves, fields), tables).
@@ -107,6 +108,18 @@ pub fn run(a: Args) -> Result<(), CliError> {
             .map(|(k, v)| format!("{k}: {v}"))
             .collect();
         outln!("point classes: {}", classes.join(", "));
+        if summary.certified > 0 || !summary.certify_refused.is_empty() {
+            let refused: Vec<String> = summary
+                .certify_refused
+                .iter()
+                .map(|(k, v)| format!("{k} {v}"))
+                .collect();
+            outln!(
+                "{} of the computed runs certified without stepping (refine.certify_midpoints; ended_by certified_midway in runs.parquet); points left to their runs: {}",
+                summary.certified,
+                if refused.is_empty() { "none".to_string() } else { refused.join(", ") }
+            );
+        }
         if summary.computed > 0 {
             outln!("{}", run_time_line(&summary));
         }

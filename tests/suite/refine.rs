@@ -274,3 +274,110 @@ fn a_refined_sweep_sharded_level_by_level_merges_to_the_unsharded_tables() {
         .collect();
     assert_eq!(per_level, runs_by_level);
 }
+
+/// A PDE map at N = 96 (4 x 4 points over the Fig. 2a window, one level), with
+/// `refine.certify_midpoints` on or off.
+fn pde_map(certify: bool) -> String {
+    format!(
+        "grid:
+  eta_t: {{start: 0.070, stop: 0.100, step: 0.01}}
+  kappa2: {{start: 0.100, stop: 0.160, step: 0.02}}
+initial_conditions: [i, ii, iii, iv]
+solver: {{n: 96}}
+refine: {{levels: 1, certify_midpoints: {certify}}}
+"
+    )
+}
+
+/// `(class, v, s, ended_by)` of every run of a map, by key.
+fn run_ends(dir: &Path) -> HashMap<String, (String, f64, f64, String)> {
+    let df = read(&dir.join("runs.parquet"));
+    let s = |c: &str| df.column(c).unwrap().str().unwrap().clone();
+    let f = |c: &str| df.column(c).unwrap().f64().unwrap().clone();
+    let (key, class, ended) = (s("key"), s("class"), s("ended_by"));
+    let (v, sh) = (f("v"), f("s"));
+    (0..df.height())
+        .map(|i| {
+            let text = |c: &StringChunked| c.get(i).unwrap_or("").to_string();
+            let ends = (
+                text(&class),
+                v.get(i).unwrap(),
+                sh.get(i).unwrap(),
+                text(&ended),
+            );
+            (text(&key), ends)
+        })
+        .collect()
+}
+
+#[test]
+fn certified_midpoints_end_where_their_runs_do_and_are_stepped_once_the_option_is_off() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("map");
+    let spec = write_spec(dir.path(), "on.yaml", &pde_map(true));
+    let on = json(&sweep(&spec, &out, &[]));
+    let certified = on["certified"].as_u64().unwrap();
+    assert!(certified > 0 && certified.is_multiple_of(4), "{on}");
+    let ends = run_ends(&out);
+    let certified_keys: Vec<&String> = ends
+        .iter()
+        .filter(|(_, e)| e.3 == "certified_midway")
+        .map(|(k, _)| k)
+        .collect();
+    assert_eq!(certified_keys.len() as u64, certified);
+    // Every label a stable state, the certified runs' included.
+    let o = run(&["audit", out.to_str().unwrap(), "--json"]);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stdout)
+    );
+    let labels = |d: &Path| -> Vec<(f64, f64, String)> {
+        let mut p: Vec<(f64, f64, String)> = points(d)
+            .into_iter()
+            .map(|p| (p.eta_t, p.kappa2, p.class))
+            .collect();
+        p.sort_by(|a, b| a.partial_cmp(b).unwrap());
+        p
+    };
+    let certified_labels = labels(&out);
+    // The option off in the same directory: the certified runs (only they) are stepped, and
+    // each ends on the certificate's class and root.
+    let spec = write_spec(dir.path(), "off.yaml", &pde_map(false));
+    let off = json(&sweep(&spec, &out, &[]));
+    assert_eq!(off["computed"].as_u64().unwrap(), certified, "{off}");
+    assert_eq!(off["certified"], 0);
+    let stepped = run_ends(&out);
+    for k in certified_keys {
+        let (c, v, s, how) = &ends[k];
+        let (c2, v2, s2, how2) = &stepped[k];
+        assert_ne!(how2, "certified_midway");
+        assert_eq!((c, how.as_str()), (c2, "certified_midway"), "{k}: {how2}");
+        assert!(
+            (v - v2).abs() < 1e-6 && (s - s2).abs() < 1e-6,
+            "{k}: {v} {s} vs {v2} {s2}"
+        );
+    }
+    assert_eq!(labels(&out), certified_labels);
+    // Bad values exit 2 naming the field; the reduced model has no certificate.
+    for (name, text) in [
+        (
+            "word",
+            pde_map(true).replace("certify_midpoints: true", "certify_midpoints: 1"),
+        ),
+        (
+            "ode",
+            format!(
+                "model: ode\n{}",
+                pde_map(true).replace("solver: {n: 96}\n", "")
+            ),
+        ),
+    ] {
+        let spec = write_spec(dir.path(), &format!("{name}.yaml"), &text);
+        let o = sweep(&spec, &dir.path().join(name), &[]);
+        assert_eq!(o.status.code(), Some(2), "{name}");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains("refine.certify_midpoints"), "{name}: {err}");
+    }
+}

@@ -55,11 +55,17 @@ pub enum Ending {
     /// The run's one-dimensional quasi-steady flow lands on a stable root
     /// ([`crate::runs::landing`]), which Newton and the root's eigenvalues confirmed.
     Landing,
+    /// Not stepped: a point of a refined map midway between two coarser points whose runs all
+    /// ended on one state, certified by that state's root and stability at the point (a
+    /// sweep's `refine.certify_midpoints`): the end is the root continued from the
+    /// neighbours' runs from the same initial condition.
+    Certified,
 }
 
 impl Ending {
     pub fn as_str(&self) -> &'static str {
         match self {
+            Self::Certified => "certified_midway",
             Self::Test => "steady_by_test",
             Self::Newton => "steady_by_newton",
             Self::Landing => "steady_by_landing",

@@ -10,6 +10,7 @@ use crate::store::plan::{plan, Plan, Task};
 use crate::store::run_store::{CorruptRun, RunRecord, Store, Stored};
 use crate::store::shard::{indices_of, Shard};
 use crate::tables::sweep_tables;
+use droplet_solver::contract::ending::Ending;
 use droplet_solver::contract::profile::RunProfile;
 use droplet_solver::runs::driver::simulate;
 use rayon::prelude::*;
@@ -53,6 +54,12 @@ pub struct SweepSummary {
     pub computed: usize,
     /// Runs found in the store (resumed or shared with another sweep).
     pub reused: usize,
+    /// Runs of this invocation certified without stepping (`refine.certify_midpoints`,
+    /// [`crate::map::certify`]; their `ended_by` is `certified_midway`), among `computed`.
+    pub certified: usize,
+    /// The points between two coarser ones of one state that were left to their runs, by
+    /// reason ([`crate::map::certify::Refusal`]; empty unless `refine.certify_midpoints`).
+    pub certify_refused: BTreeMap<String, usize>,
     /// Stored runs that could not be used (unreadable, or content not matching the key):
     /// moved to `DIR/corrupt/` and recomputed.
     pub corrupt: Vec<CorruptRun>,
@@ -91,6 +98,9 @@ pub fn run_task(task: &Task) -> Result<RunRecord, SweepError> {
 struct Ran {
     computed: usize,
     reused: usize,
+    certified: usize,
+    /// Points left to their runs by `refine.certify_midpoints`, by reason.
+    refused: BTreeMap<String, usize>,
     corrupt: Vec<CorruptRun>,
     /// The computed runs' time and its parts.
     run_time_s: f64,
@@ -101,6 +111,10 @@ impl Ran {
     fn add(&mut self, o: Ran) {
         self.computed += o.computed;
         self.reused += o.reused;
+        self.certified += o.certified;
+        for (why, n) in o.refused {
+            *self.refused.entry(why).or_default() += n;
+        }
         self.corrupt.extend(o.corrupt);
         self.run_time_s += o.run_time_s;
         self.profile.add(&o.profile);
@@ -145,7 +159,8 @@ fn clock(s: f64) -> String {
 }
 
 /// Runs the runs `mine` of `plan` that are not validly stored (a corrupt one is moved aside
-/// and recomputed), each saved as it finishes, with a progress bar labelled `what`.
+/// and recomputed; a certified one, unless `certified_count`, is replaced by its run), each
+/// saved as it finishes, with a progress bar labelled `what`.
 fn run_pending(
     store: &Store,
     plan: &Plan,
@@ -153,12 +168,18 @@ fn run_pending(
     pool: &rayon::ThreadPool,
     progress: bool,
     what: &str,
+    certified_count: bool,
 ) -> Result<Ran, SweepError> {
     let mut pending: Vec<usize> = Vec::new();
     let mut corrupt = Vec::new();
     for &i in mine {
         let key = plan.task(i).key;
         match store.check(&key) {
+            Stored::Valid(r)
+                if !certified_count && r.outcome.ended_by == Some(Ending::Certified) =>
+            {
+                pending.push(i)
+            }
             Stored::Valid(_) => {}
             Stored::Missing => pending.push(i),
             Stored::Corrupt(reason) => {
@@ -203,10 +224,74 @@ fn run_pending(
     Ok(Ran {
         computed: pending.len(),
         reused,
+        certified: 0,
+        refused: BTreeMap::new(),
         corrupt,
         run_time_s: pace.run_time_s,
         profile: pace.profile,
     })
+}
+
+/// Certifies without runs ([`crate::map::certify`]) the points of `runs` that lie midway
+/// between two lower-level points (`between`) and have none of `runs` stored yet; saves the
+/// runs of `runs` among each certified point's: what it did and the runs it saved.
+fn certify_pending(
+    store: &Store,
+    plan: &Plan,
+    runs: &[usize],
+    between: &crate::map::levels::Between,
+    pool: &rayon::ThreadPool,
+) -> Result<(Ran, std::collections::BTreeSet<usize>), SweepError> {
+    let per_point = plan.ic_names.len().max(1);
+    let mine: std::collections::BTreeSet<usize> = runs.iter().copied().collect();
+    let points: Vec<(usize, [usize; 2])> = between
+        .iter()
+        .filter(|(&p, _)| {
+            let of_p = (p * per_point..(p + 1) * per_point).filter(|i| mine.contains(i));
+            of_p.clone().count() > 0 && of_p.clone().all(|i| !store.has(&plan.task(i).key))
+        })
+        .map(|(&p, &pair)| (p, pair))
+        .collect();
+    let neighbours = store.load_many(points.iter().flat_map(|(_, pair)| {
+        pair.iter()
+            .flat_map(|&q| (q * per_point..(q + 1) * per_point).map(|i| plan.task(i).key))
+            .collect::<Vec<_>>()
+    }));
+    let done = pool.install(|| {
+        points
+            .par_iter()
+            .map(|&(p, pair)| -> Result<(Ran, Vec<usize>), SweepError> {
+                let mut ran = Ran::default();
+                let mut saved = Vec::new();
+                let records = match crate::map::certify::certify(plan, p, pair, &neighbours) {
+                    Ok(records) => records,
+                    Err(why) => {
+                        if why != crate::map::certify::Refusal::NotCandidate {
+                            ran.refused.insert(why.as_str().to_string(), 1);
+                        }
+                        return Ok((ran, saved));
+                    }
+                };
+                for (i, record) in (p * per_point..).zip(records) {
+                    if mine.contains(&i) {
+                        store.save(&record)?;
+                        ran.computed += 1;
+                        ran.certified += 1;
+                        ran.run_time_s += record.outcome.wall_s;
+                        saved.push(i);
+                    }
+                }
+                Ok((ran, saved))
+            })
+            .collect::<Result<Vec<_>, SweepError>>()
+    })?;
+    let mut total = Ran::default();
+    let mut certified = std::collections::BTreeSet::new();
+    for (r, saved) in done {
+        total.add(r);
+        certified.extend(saved);
+    }
+    Ok((total, certified))
 }
 
 /// Runs a refined sweep level by level ([`crate::map::levels`]). Unsharded: every level.
@@ -224,7 +309,7 @@ fn run_refined(
 ) -> Result<(Plan, Vec<usize>, Ran), SweepError> {
     let mut total = Ran::default();
     let mut mine = Vec::new();
-    let plan = crate::map::levels::walk(spec, lattice, store, |level, plan, runs| {
+    let plan = crate::map::levels::walk(spec, lattice, store, |level, plan, runs, between| {
         let runs = match shard {
             None => runs.to_vec(),
             Some((_, target)) if level < target => {
@@ -244,13 +329,21 @@ fn run_refined(
             }
             Some((sh, _)) => indices_of(plan, runs, sh),
         };
+        let certify = lattice.refine.certify_midpoints;
+        let mut to_run = runs.clone();
+        if certify {
+            let (ran, certified) = certify_pending(store, plan, &runs, between, pool)?;
+            total.add(ran);
+            to_run.retain(|i| !certified.contains(i));
+        }
         let ran = run_pending(
             store,
             plan,
-            &runs,
+            &to_run,
             pool,
             progress,
             &format!("level {level} runs"),
+            certify,
         )?;
         total.add(ran);
         mine.extend(runs);
@@ -319,7 +412,7 @@ fn run_grid(
         None => (0..plan.len()).collect(),
         Some(sh) => indices_of(&plan, &(0..plan.len()).collect::<Vec<_>>(), sh),
     };
-    let ran = run_pending(store, &plan, &mine, pool, opts.progress, "runs")?;
+    let ran = run_pending(store, &plan, &mine, pool, opts.progress, "runs", false)?;
     Ok((plan, mine, ran))
 }
 
@@ -384,6 +477,8 @@ pub fn run_sweep(
         level: shard_level.map(|(_, l)| l),
         computed: ran.computed,
         reused: ran.reused,
+        certified: ran.certified,
+        certify_refused: ran.refused,
         corrupt: ran.corrupt,
         upgraded: store.upgraded(),
         wall_s: started.elapsed().as_secs_f64(),

@@ -76,7 +76,7 @@ fn levels_known(
     let mut levels = Vec::new();
     let plan = match &spec.refine {
         None => plan(spec),
-        Some(lattice) => crate::map::levels::walk(spec, lattice, store, |level, plan, runs| {
+        Some(lattice) => crate::map::levels::walk(spec, lattice, store, |level, plan, runs, _| {
             let done = runs
                 .iter()
                 .filter(|&&i| store.has(&plan.task(i).key))

@@ -5,7 +5,7 @@
 use crate::error::SweepError;
 use crate::map::phase_map::PhaseMap;
 use crate::map::point_class::{PointClass, DIVERGED, MISSING, NOT_CLASSIFIED, UNSETTLED};
-use crate::map::refine::{split, Verdict};
+use crate::map::refine::{midway, split, Verdict};
 use crate::spec::lattice::{Lattice, Node};
 use crate::spec::SweepSpec;
 use crate::store::plan::{plan_nodes, Plan};
@@ -29,16 +29,47 @@ struct Slice {
     cells: Vec<Node>,
 }
 
+/// The points of `level` that lie midway between two points of lower levels of their slice
+/// ([`crate::map::refine::midway`]), as plan point indices (the plan lists the slices' points
+/// in order): point -> the two.
+fn midpoints(lattice: &Lattice, slices: &[Slice], level: u32) -> Between {
+    let mut between = Between::new();
+    let mut first = 0;
+    for s in slices {
+        let index: HashMap<Node, (usize, u32)> = s
+            .nodes
+            .iter()
+            .enumerate()
+            .map(|(i, &(n, l))| (n, (first + i, l)))
+            .collect();
+        for (i, &(n, l)) in s.nodes.iter().enumerate() {
+            if l != level {
+                continue;
+            }
+            if let Some(pair) = midway(lattice, n, l, |m| index.get(&m).map(|&(_, l)| l)) {
+                between.insert(first + i, pair.map(|m| index[&m].0));
+            }
+        }
+        first += s.nodes.len();
+    }
+    between
+}
+
+/// Plan point index -> the plan point indices of the two lower-level points it lies midway
+/// between ([`midpoints`]).
+pub type Between = BTreeMap<usize, [usize; 2]>;
+
 /// Walks the levels of `spec`'s refinement on `lattice`, each slice of a third axis on its own
-/// (its cells split by its own points' classes). At each level `visit(level, plan, runs)` gets
-/// the plan of every point so far (slice by slice) and the run indices of this level's points;
-/// it returns whether the walk goes on (those runs are now stored) or stops there. Returns the
-/// plan of the last level visited.
+/// (its cells split by its own points' classes). At each level `visit(level, plan, runs,
+/// between)` gets the plan of every point so far (slice by slice), the run indices of this
+/// level's points and which of them lie midway between two points of lower levels
+/// ([`Between`]); it returns whether the walk goes on (those runs are now stored) or stops
+/// there. Returns the plan of the last level visited.
 pub fn walk(
     spec: &SweepSpec,
     lattice: &Lattice,
     store: &Store,
-    mut visit: impl FnMut(u32, &Plan, &[usize]) -> Result<bool, SweepError>,
+    mut visit: impl FnMut(u32, &Plan, &[usize], &Between) -> Result<bool, SweepError>,
 ) -> Result<Plan, SweepError> {
     let zs = spec.grid.z_values();
     let mut slices: Vec<Slice> = zs
@@ -66,8 +97,9 @@ pub fn walk(
         let runs: Vec<usize> = (0..plan.len())
             .filter(|&i| plan.levels[i / per_point] == level)
             .collect();
+        let between = midpoints(lattice, &slices, level);
         let no_cells = slices.iter().all(|s| s.cells.is_empty());
-        if !visit(level, &plan, &runs)? || !lattice.splittable(level) || no_cells {
+        if !visit(level, &plan, &runs, &between)? || !lattice.splittable(level) || no_cells {
             return Ok(plan);
         }
         records.extend(store.load_many(runs.iter().map(|&i| plan.task(i).key)));
@@ -107,7 +139,7 @@ pub fn walk(
 pub fn stored_plan(spec: &SweepSpec, store: &Store) -> Result<Plan, SweepError> {
     match &spec.refine {
         None => Ok(crate::store::plan::plan(spec)),
-        Some(lattice) => walk(spec, lattice, store, |_, plan, runs| {
+        Some(lattice) => walk(spec, lattice, store, |_, plan, runs, _| {
             Ok(runs.iter().all(|&i| store.has(&plan.task(i).key)))
         }),
     }

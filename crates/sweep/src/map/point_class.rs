@@ -14,6 +14,7 @@
 //!   no class at all: `unsettled` when a run is unsettled, `diverged` when every run
 //!   diverged, `missing` when there are no runs.
 use crate::store::run_store::RunRecord;
+use droplet_solver::contract::ending::Ending;
 use droplet_solver::{contract::outcome::RunStatus, model::classify::StateClass};
 use std::collections::BTreeSet;
 
@@ -38,6 +39,9 @@ pub struct PointClass {
     /// Runs that did not end on a stable state (diverged ones aside): all of `n_t_max`.
     pub n_unsettled: usize,
     pub n_diverged: usize,
+    /// Steady runs certified without stepping (`refine.certify_midpoints`,
+    /// [`crate::map::certify`]).
+    pub n_certified: usize,
 }
 
 impl PointClass {
@@ -51,8 +55,10 @@ impl PointClass {
 pub fn classify_point<'a>(runs: impl IntoIterator<Item = &'a RunRecord>) -> PointClass {
     let mut classes = BTreeSet::new();
     let (mut n_runs, mut n_steady, mut n_t_max, mut n_diverged) = (0, 0, 0, 0);
+    let mut n_certified = 0;
     for r in runs {
         n_runs += 1;
+        n_certified += usize::from(r.outcome.ended_by == Some(Ending::Certified));
         match r.outcome.status {
             RunStatus::Steady => {
                 n_steady += 1;
@@ -72,6 +78,7 @@ pub fn classify_point<'a>(runs: impl IntoIterator<Item = &'a RunRecord>) -> Poin
         n_t_max,
         n_unsettled: n_t_max,
         n_diverged,
+        n_certified,
     }
 }
 

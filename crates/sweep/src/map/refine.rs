@@ -80,6 +80,29 @@ pub fn split(
     (points.into_iter().collect(), children)
 }
 
+/// The two points of lower levels that a point of `level` (>= 1) lies midway between on a
+/// line of the lattice, if it does (the midpoint of a split cell's edge: along `x` first,
+/// then `y`); a cell's centre, whose neighbours at that distance are of its own level, does
+/// not. `level_of` gives the level of every known point.
+pub fn midway(
+    lattice: &Lattice,
+    (i, j): Node,
+    level: u32,
+    level_of: impl Fn(Node) -> Option<u32>,
+) -> Option<[Node; 2]> {
+    if level == 0 {
+        return None;
+    }
+    let d = lattice.side(level);
+    let lower = |n: Node| level_of(n).is_some_and(|l| l < level);
+    let along_x = (i >= d).then(|| [(i - d, j), (i + d, j)]);
+    let along_y = (j >= d).then(|| [(i, j - d), (i, j + d)]);
+    [along_x, along_y]
+        .into_iter()
+        .flatten()
+        .find(|pair| pair.iter().all(|&n| lower(n)))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -101,6 +124,7 @@ mod tests {
                 levels,
                 min_step: (0.0, 0.0),
                 split_bistable: false,
+                certify_midpoints: false,
             },
         }
     }
@@ -188,9 +212,27 @@ mod tests {
                 levels: 2,
                 min_step: (0.004, 0.0),
                 split_bistable: false,
+                certify_midpoints: false,
             },
             ..l
         };
         assert!(coarse.splittable(0) && !coarse.splittable(1));
+    }
+
+    #[test]
+    fn edge_midpoints_lie_midway_between_coarser_points_and_centres_do_not() {
+        let l = lattice(2);
+        let mut levels: BTreeMap<Node, u32> = l.level0().into_iter().map(|n| (n, 0)).collect();
+        let added = [(8, 6), (10, 4), (10, 6), (10, 8), (12, 6)];
+        levels.extend(added.map(|n| (n, 1)));
+        let of = |n: Node| levels.get(&n).copied();
+        assert_eq!(midway(&l, (10, 4), 1, of), Some([(8, 4), (12, 4)]));
+        assert_eq!(midway(&l, (8, 6), 1, of), Some([(8, 4), (8, 8)]));
+        assert_eq!(midway(&l, (10, 6), 1, of), None, "a centre");
+        assert_eq!(midway(&l, (0, 0), 0, of), None, "level 0");
+        // A point of level 2 between a level-1 point and a level-0 one.
+        levels.insert((9, 4), 2);
+        let of = |n: Node| levels.get(&n).copied();
+        assert_eq!(midway(&l, (9, 4), 2, of), Some([(8, 4), (10, 4)]));
     }
 }

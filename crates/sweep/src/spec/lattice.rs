@@ -17,6 +17,10 @@ pub struct Refine {
     /// Also split cells whose corners all share one bistable class (fills bistable bands
     /// to the finest step; by default only their edges are refined).
     pub split_bistable: bool,
+    /// Certify a refined point without runs where it lies midway between two coarser points
+    /// of one single state and its own stability shows that state alone is stable there
+    /// ([`crate::map::certify`]). Off by default: such a point's runs are not stepped.
+    pub certify_midpoints: bool,
 }
 
 /// The uniform steps of the spec's grid along one of its axes: `start + i step`, `i < count`.

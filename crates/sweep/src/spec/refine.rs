@@ -5,6 +5,7 @@
 //!   levels: 4                               # levels beyond the grid (1..=MAX_LEVELS)
 //!   min_step: {eta_t: 1.5e-4, kappa2: 3e-4}  # optional: no cell side below these
 //!   split_bistable: false                   # optional: also fill bistable bands
+//!   certify_midpoints: false                # optional: certify some points without runs
 //! ```
 //!
 //! The grid's first two axes must be `{start, stop, step}` ranges: level 0 is that grid, and
@@ -14,6 +15,7 @@ use super::context::{show, Ctx};
 use super::grid::{Grid, Swept};
 use crate::error::SpecError;
 use crate::spec::lattice::{Lattice, Refine, Steps};
+use droplet_solver::contract::settings::ModelKind;
 use serde_yaml::Mapping;
 
 /// Most refinement levels (a finest cell 1/1024 of the grid's).
@@ -48,11 +50,20 @@ fn lattice_axis(ctx: &Ctx, axis: Option<&Swept>) -> Result<Steps, SpecError> {
 }
 
 /// The `refine` section, if present, on the grid already parsed.
-pub(super) fn parse(ctx: &Ctx, top: &Mapping, grid: &Grid) -> Result<Option<Lattice>, SpecError> {
+pub(super) fn parse(
+    ctx: &Ctx,
+    top: &Mapping,
+    grid: &Grid,
+    model: ModelKind,
+) -> Result<Option<Lattice>, SpecError> {
     let Some(v) = top.get("refine") else {
         return Ok(None);
     };
-    let m = ctx.mapping(v, &["refine"], &["levels", "min_step", "split_bistable"])?;
+    let m = ctx.mapping(
+        v,
+        &["refine"],
+        &["levels", "min_step", "split_bistable", "certify_midpoints"],
+    )?;
     let levels = match m.get("levels") {
         None => return Err(ctx.err(&["refine", "levels"], "missing", "an integer 1..=10")),
         Some(x) => x
@@ -83,12 +94,21 @@ pub(super) fn parse(ctx: &Ctx, top: &Mapping, grid: &Grid) -> Result<Option<Latt
             }
         }
     }
-    let split_bistable = match m.get("split_bistable") {
-        None => false,
+    let flag = |name: &str| match m.get(name) {
+        None => Ok(false),
         Some(b) => b
             .as_bool()
-            .ok_or_else(|| ctx.err(&["refine", "split_bistable"], show(b), "true or false"))?,
+            .ok_or_else(|| ctx.err(&["refine", name], show(b), "true or false")),
     };
+    let split_bistable = flag("split_bistable")?;
+    let certify_midpoints = flag("certify_midpoints")?;
+    if certify_midpoints && model == ModelKind::Ode {
+        return Err(ctx.err(
+            &["refine", "certify_midpoints"],
+            "true",
+            "false with model: ode (the certificate solves the PDE model's steady balances)",
+        ));
+    }
     let lattice = Lattice {
         x,
         y,
@@ -96,6 +116,7 @@ pub(super) fn parse(ctx: &Ctx, top: &Mapping, grid: &Grid) -> Result<Option<Latt
             levels,
             min_step,
             split_bistable,
+            certify_midpoints,
         },
     };
     // Both sides of a cell are halved together: a min_step above half of either grid step

@@ -311,6 +311,7 @@ pub fn points_frame(map: &PhaseMap) -> Result<DataFrame, SweepError> {
         ("n_t_max", |c| c.n_t_max),
         ("n_unsettled", |c| c.n_unsettled),
         ("n_diverged", |c| c.n_diverged),
+        ("n_certified", |c| c.n_certified),
     ] {
         cols.push(Column::new(
             name.into(),

@@ -1,0 +1,229 @@
+//! Points of a refined map certified without runs (`refine.certify_midpoints`, off by
+//! default).
+//!
+//! Refinement adds the midpoints of a split cell's edges; many lie between two coarser points
+//! of one state (the edge of a cell whose other corners differ). Such a point's runs are not
+//! stepped when all of this holds:
+//! - the two neighbours' runs all ended, steady and stepped (none certified itself), on one
+//!   class `C` (IC, ID or MD), so both are single-state points of that class;
+//! - at the point, the runs' Newton finish from the end of each neighbour's run from the same
+//!   initial condition reaches, from both neighbours, one root (`v`, `s` within
+//!   1e-6) of class `C` with no growing eigenvalue (the rotation mode aside; for IC, the
+//!   resting disk's own eigenvalues);
+//! - no other class has a stable steady state there among those the audit and `droplet
+//!   stability` know: the resting disk (its eigenvalues), ID and MD on both mirror axes
+//!   ([`droplet_solver::roots::named_state::find`]).
+//!
+//! Each run of the point then ends, without a step, on the root continued from its
+//! neighbours' ends (`ended_by: certified_midway`, `steps` 0, `t_end` 0, position 0, `wall_s`
+//! the certificate's time shared by its runs). Anything else (a failed Newton, two roots, a
+//! second stable class, a model whose balances cannot be linearised) leaves the point to its
+//! runs. What is proven is the point's state set among the named states, not that every
+//! initial condition reaches `C`: a state that is none of them (a periodic orbit, a root off
+//! the mirror axes of another class) is not looked for, which is why the option is off by
+//! default and a map says how many of its runs were certified (the summary, `ended_by`).
+//! The end of a moving or deformed run is one stable root of its class, the neighbours'
+//! orientation: where the grid pins the droplet at several orientations, the run's own
+//! stepping may reach another (measured at N = 96: 5 of 940 certified runs, up to 1.6e-2 in
+//! `v`; the class was the stepped runs' in all 940; results/map-profile, "Points certified
+//! without runs"). The resting disk has no orientation: a certified IC run's end is exact.
+use crate::store::plan::Plan;
+use crate::store::run_store::RunRecord;
+use droplet_solver::contract::ending::Ending;
+use droplet_solver::contract::outcome::{RunOutcome, RunStatus};
+use droplet_solver::model::classify::StateClass;
+use droplet_solver::model::mirror::MirrorLine;
+use droplet_solver::model::state::DropletState;
+use droplet_solver::roots::balances::Balances;
+use droplet_solver::roots::kept_jacobians::KeptJacobians;
+use droplet_solver::roots::named_state::{find, StateKind};
+use std::collections::HashMap;
+use std::time::Instant;
+
+/// Two roots closer than this in `v` and `s` are one.
+const SAME_ROOT: f64 = 1e-6;
+
+/// Why a point was left to its runs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Refusal {
+    /// Not a candidate: the neighbours' runs did not all end steady on one class IC, ID or MD
+    /// (the usual case: the edge of a cell whose corners differ). Not counted as a refusal.
+    NotCandidate,
+    /// A neighbour's runs were certified themselves, not stepped.
+    NeighbourCertified,
+    /// The model's steady balances cannot be set up at the point.
+    Balances,
+    /// The resting disk is stable at a point of another class, or unstable at an IC one.
+    Disk,
+    /// ID or MD of another class is stable at the point.
+    OtherState,
+    /// Newton from a neighbour's end finds no stable root of the class.
+    NoRoot,
+    /// The two neighbours' ends continue to different roots.
+    TwoRoots,
+}
+
+impl Refusal {
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            Self::NotCandidate => "not_candidate",
+            Self::NeighbourCertified => "neighbour_certified",
+            Self::Balances => "balances",
+            Self::Disk => "disk",
+            Self::OtherState => "other_state",
+            Self::NoRoot => "no_root",
+            Self::TwoRoots => "two_roots",
+        }
+    }
+}
+
+/// The records of the runs of plan point `p`, certified without runs from the stored runs of
+/// the points `pair` it lies midway between, or why the certificate does not hold (see the
+/// module).
+pub fn certify(
+    plan: &Plan,
+    p: usize,
+    pair: [usize; 2],
+    records: &HashMap<String, RunRecord>,
+) -> Result<Vec<RunRecord>, Refusal> {
+    let started = Instant::now();
+    let per_point = plan.ic_names.len().max(1);
+    let runs_of = |q: usize| -> Result<Vec<&RunRecord>, Refusal> {
+        (0..per_point)
+            .map(|i| records.get(&plan.task(q * per_point + i).key))
+            .collect::<Option<_>>()
+            .ok_or(Refusal::NotCandidate)
+    };
+    let (a, b) = (runs_of(pair[0])?, runs_of(pair[1])?);
+    let outs = || a.iter().chain(&b).map(|r| &r.outcome);
+    let class = single_class(outs()).ok_or(Refusal::NotCandidate)?;
+    if outs().any(|o| o.ended_by == Some(Ending::Certified)) {
+        return Err(Refusal::NeighbourCertified);
+    }
+    let task0 = plan.task(p * per_point);
+    let mut balances =
+        Balances::new(task0.params, task0.settings.n).map_err(|_| Refusal::Balances)?;
+    let disk_stable = balances.verdict(&vec![0.0; 2 * balances.modes()]).unstable == 0;
+    if disk_stable != (class == StateClass::IC) {
+        return Err(Refusal::Disk);
+    }
+    if !others_unstable(&mut balances, class) {
+        return Err(Refusal::OtherState);
+    }
+    let mut jacobians = KeptJacobians::default();
+    let mut ends = Vec::with_capacity(per_point);
+    for (ra, rb) in a.iter().zip(&b) {
+        let end = if class == StateClass::IC {
+            vec![0.0; 2 * balances.modes()]
+        } else {
+            let mut root = |r: &RunRecord| {
+                stable_root(&mut balances, &mut jacobians, &r.outcome.unknowns(), class)
+                    .ok_or(Refusal::NoRoot)
+            };
+            let (za, zb) = (root(ra)?, root(rb)?);
+            let (va, sa) = speed_shape(&za);
+            let (vb, sb) = speed_shape(&zb);
+            if (va - vb).abs() > SAME_ROOT || (sa - sb).abs() > SAME_ROOT {
+                return Err(Refusal::TwoRoots);
+            }
+            za
+        };
+        ends.push(end);
+    }
+    let wall_s = started.elapsed().as_secs_f64() / per_point as f64;
+    Ok(ends
+        .into_iter()
+        .enumerate()
+        .map(|(i, z)| {
+            let task = plan.task(p * per_point + i);
+            RunRecord {
+                key: task.key.clone(),
+                params: task.params,
+                ic: task.ic.clone(),
+                settings: task.settings,
+                solver_version: droplet_solver::solver_version(
+                    task.settings.model,
+                    task.params.modes,
+                )
+                .to_string(),
+                outcome: outcome(&z, class, wall_s),
+            }
+        })
+        .collect())
+}
+
+/// The one class every outcome ended steady on, if it is IC, ID or MD.
+fn single_class<'a>(outs: impl Iterator<Item = &'a RunOutcome>) -> Option<StateClass> {
+    let mut class = None;
+    for o in outs {
+        let c = o.class.filter(|_| o.status == RunStatus::Steady)?;
+        if *class.get_or_insert(c) != c {
+            return None;
+        }
+    }
+    class.filter(|c| matches!(c, StateClass::IC | StateClass::ID | StateClass::MD))
+}
+
+/// `(v, s)` of unknowns `(vx, vy, a_2..a_K, b_2..b_K)`.
+fn speed_shape(z: &[f64]) -> (f64, f64) {
+    let k = z.len() / 2;
+    (z[0].hypot(z[1]), z[2].hypot(z[k + 1]))
+}
+
+/// The runs' Newton finish from `z` ([`Balances::root_near`], with the Jacobians kept at the
+/// point), if it reaches a stable state of `class`.
+fn stable_root(
+    balances: &mut Balances,
+    jacobians: &mut KeptJacobians,
+    z: &[f64],
+    class: StateClass,
+) -> Option<Vec<f64>> {
+    let x = balances.root_near(z, jacobians).ok()?;
+    let (v, s) = speed_shape(&x);
+    (StateClass::of(v, s) == class && balances.verdict(&x).unstable == 0).then_some(x)
+}
+
+/// Whether ID and MD, on both mirror axes, are absent or unstable here unless they are
+/// `class` (a named state found of another class than asked counts by its own class).
+fn others_unstable(balances: &mut Balances, class: StateClass) -> bool {
+    for kind in [StateKind::ID, StateKind::MD] {
+        for axis in [MirrorLine::X, MirrorLine::Diagonal] {
+            let Ok(state) = find(balances, kind, axis, None) else {
+                continue;
+            };
+            let (v, s) = speed_shape(&state.z);
+            if state.verdict.unstable == 0 && StateClass::of(v, s) != class {
+                return false;
+            }
+        }
+    }
+    true
+}
+
+/// The outcome of a certified run ending on `z`.
+fn outcome(z: &[f64], class: StateClass, wall_s: f64) -> RunOutcome {
+    let (v, s) = speed_shape(z);
+    let (state, higher_modes) = DropletState::of_unknowns(z, 0.0, 0.0);
+    RunOutcome {
+        status: RunStatus::Steady,
+        class: Some(class),
+        state,
+        v,
+        s,
+        t_end: 0.0,
+        t_steady: None,
+        steps: 0,
+        rejected: 0,
+        max_step_error: None,
+        wall_s,
+        ended_by: Some(Ending::Certified),
+        diagnosis: None,
+        t_leapt: 0.0,
+        unsettled: None,
+        heading: None,
+        higher_modes,
+        series: Vec::new(),
+        higher_series: Vec::new(),
+        profile: Default::default(),
+    }
+}
