@@ -24,8 +24,8 @@
 //! default and a map says how many of its runs were certified (the summary, `ended_by`).
 //! The end of a moving or deformed run is one stable root of its class, the neighbours'
 //! orientation: where the grid pins the droplet at several orientations, the run's own
-//! stepping may reach another (measured at N = 96: 5 of 940 certified runs, up to 1.6e-2 in
-//! `v`; the class was the stepped runs' in all 940; results/map-profile, "Points certified
+//! stepping may reach another (measured at N = 96: 5 of 932 certified runs, up to 1.6e-2 in
+//! `v`; the class was the stepped runs' in all 932; results/map-profile, "Points certified
 //! without runs"). The resting disk has no orientation: a certified IC run's end is exact.
 use crate::store::plan::Plan;
 use crate::store::run_store::RunRecord;
