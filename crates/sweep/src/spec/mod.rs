@@ -223,7 +223,7 @@ pub fn parse(text: &str, file: &str, stem: &str) -> Result<SweepSpec, SpecError>
     let solver = solver::parse(&ctx, top, model)?;
     check_read(&ctx, top, &grid, params.modes, &solver)?;
     grid::check_points(&ctx, &grid, &params, &solver)?;
-    let refine = refine::parse(&ctx, top, &grid, model)?;
+    let refine = refine::parse(&ctx, top, &grid, &solver)?;
     classify::parse(&ctx, top)?;
     Ok(SweepSpec {
         name,

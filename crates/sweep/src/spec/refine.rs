@@ -15,7 +15,8 @@ use super::context::{show, Ctx};
 use super::grid::{Grid, Swept};
 use crate::error::SpecError;
 use crate::spec::lattice::{Lattice, Refine, Steps};
-use droplet_solver::contract::settings::ModelKind;
+use droplet_solver::contract::settings::{ModelKind, SolverSettings};
+use droplet_solver::stepping::SchemeKind;
 use serde_yaml::Mapping;
 
 /// Most refinement levels (a finest cell 1/1024 of the grid's).
@@ -54,7 +55,7 @@ pub(super) fn parse(
     ctx: &Ctx,
     top: &Mapping,
     grid: &Grid,
-    model: ModelKind,
+    solver: &SolverSettings,
 ) -> Result<Option<Lattice>, SpecError> {
     let Some(v) = top.get("refine") else {
         return Ok(None);
@@ -102,11 +103,24 @@ pub(super) fn parse(
     };
     let split_bistable = flag("split_bistable")?;
     let certify_midpoints = flag("certify_midpoints")?;
-    if certify_midpoints && model == ModelKind::Ode {
+    // The certificate is the spectral PDE runs' Newton finish and eigenvalues: refused where
+    // the runs end otherwise.
+    let unlike_runs = if solver.model == ModelKind::Ode {
+        Some("model: ode")
+    } else if solver.scheme != SchemeKind::Spectral {
+        Some("solver.scheme: paper-fd")
+    } else if solver.steady.is_test() {
+        Some("solver.steady: test (the paper's protocol)")
+    } else if solver.pinned {
+        Some("pinned runs")
+    } else {
+        None
+    };
+    if let (true, Some(what)) = (certify_midpoints, unlike_runs) {
         return Err(ctx.err(
             &["refine", "certify_midpoints"],
             "true",
-            "false with model: ode (the certificate solves the PDE model's steady balances)",
+            format!("false with {what}: the certificate is the spectral PDE runs' Newton finish and eigenvalues"),
         ));
     }
     let lattice = Lattice {
