@@ -1,5 +1,6 @@
 //! `droplet bench`: the work-precision benchmark ([`droplet_sweep::bench`]).
 use super::{print_json, CliError};
+use droplet_sweep::bench::certify_check::check_certificates;
 use droplet_sweep::bench::map_profile::{profile_map, Group, MapProfile, MapProfileOptions};
 use droplet_sweep::bench::run::{run_benchmark, BenchOptions};
 use droplet_sweep::map::sample::Sample;
@@ -27,7 +28,7 @@ use std::path::PathBuf;
 /// OUT/map_profile.json (the groups).
 #[derive(clap::Args)]
 #[command(
-    after_help = "Examples:\n  droplet bench --quick --out /tmp/bench     # miniature, seconds\n  droplet bench --out results/bench --jobs 2  # the committed benchmark\n  droplet bench --map results/fig2a-map --sample 200 --seed 1 --out out/map-profile"
+    after_help = "Examples:\n  droplet bench --quick --out /tmp/bench     # miniature, seconds\n  droplet bench --out results/bench --jobs 2  # the committed benchmark\n  droplet bench --map results/fig2a-map --sample 200 --seed 1 --out out/map-profile\n  droplet bench --map results/fig2a-map --certify   # what refine.certify_midpoints would make of it"
 )]
 pub struct Args {
     /// Output directory (default: out/bench, with --map out/map-profile).
@@ -37,6 +38,15 @@ pub struct Args {
     /// benchmark.
     #[arg(long, value_name = "DIR")]
     map: Option<PathBuf>,
+    /// With --map DIR of a refined map: instead of the profile, what refine.certify_midpoints
+    /// would make of it, from its tables (nothing is stepped): at every point midway between
+    /// two coarser points of one state, the certificate from the neighbours' runs against the
+    /// point's own runs (class, root, time). JSON keys: map, points, candidates,
+    /// certified_points, certified_runs, refused, class_differences, other_root,
+    /// other_root_max_dv, other_root_max_ds, same_root_max_dv, same_root_max_ds,
+    /// certificates_s, their_runs_s, map_run_time_s, wall_s.
+    #[arg(long, requires = "map", conflicts_with = "sample")]
+    certify: bool,
     /// With --map: a seeded random sample of this many runs (default: every run).
     #[arg(long, requires = "map", value_name = "N")]
     sample: Option<usize>,
@@ -120,6 +130,30 @@ pub fn run(a: Args) -> Result<(), CliError> {
 
 /// `droplet bench --map DIR`.
 fn run_map(a: Args, map: PathBuf) -> Result<(), CliError> {
+    if a.certify {
+        let check = check_certificates(&map, a.jobs)?;
+        if a.json {
+            print_json(&check);
+        } else {
+            outln!(
+                "{}: {} points, {} midway between two coarser points of one state: {} certified ({} runs), refused {:?}; {} certified runs of another class than their own run, {} on another root (up to {:.1e} in v, {:.1e} in s); certificates {:.1} s against {:.1} s of the map's run time for those runs ({:.1} s in all)",
+                check.map.display(),
+                check.points,
+                check.candidates,
+                check.certified_points,
+                check.certified_runs,
+                check.refused,
+                check.class_differences,
+                check.other_root,
+                check.other_root_max_dv,
+                check.other_root_max_ds,
+                check.certificates_s,
+                check.their_runs_s,
+                check.map_run_time_s
+            );
+        }
+        return Ok(());
+    }
     if a.sample == Some(0) {
         return Err(CliError::usage("invalid --sample 0: at least one run"));
     }

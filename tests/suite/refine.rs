@@ -360,6 +360,21 @@ fn certified_midpoints_end_where_their_runs_do_and_are_stepped_once_the_option_i
         );
     }
     assert_eq!(labels(&out), certified_labels);
+    // What the option would make of the map, from its tables alone (`bench --map --certify`):
+    // at least the points the sweep certified (no neighbour is certified in a stepped map),
+    // each of their runs with its stepped run's class.
+    let check = json(&run(&[
+        "bench",
+        "--map",
+        out.to_str().unwrap(),
+        "--certify",
+        "--json",
+    ]));
+    assert!(
+        4 * check["certified_points"].as_u64().unwrap() >= certified,
+        "{check}"
+    );
+    assert_eq!(check["class_differences"], 0, "{check}");
     // Bad values exit 2 naming the field; runs that end otherwise than by the spectral PDE's
     // Newton finish (the reduced model, the paper's test) have no certificate.
     for (name, text) in [

@@ -33,6 +33,7 @@ use droplet_solver::contract::ending::Ending;
 use droplet_solver::contract::outcome::{RunOutcome, RunStatus};
 use droplet_solver::model::classify::StateClass;
 use droplet_solver::model::mirror::MirrorLine;
+use droplet_solver::model::params::ModelParams;
 use droplet_solver::model::state::DropletState;
 use droplet_solver::roots::balances::Balances;
 use droplet_solver::roots::kept_jacobians::KeptJacobians;
@@ -77,6 +78,70 @@ impl Refusal {
     }
 }
 
+/// One neighbour run's end as the certificate reads it.
+#[derive(Debug, Clone)]
+pub struct End {
+    /// Its class if it ended steady.
+    pub class: Option<StateClass>,
+    /// It was certified itself, not stepped.
+    pub certified: bool,
+    /// Its end `(vx, vy, a_2..a_K, b_2..b_K)`.
+    pub z: Vec<f64>,
+}
+
+impl End {
+    fn of(o: &RunOutcome) -> Self {
+        Self {
+            class: o.class.filter(|_| o.status == RunStatus::Steady),
+            certified: o.ended_by == Some(Ending::Certified),
+            z: o.unknowns(),
+        }
+    }
+}
+
+/// The certificate at a point of the model `params` on an `n` grid from the ends of its two
+/// neighbours' runs (`a`, `b`: one per initial condition, in the same order): the class and
+/// each run's end, or why it does not hold (see the module).
+pub fn certify_ends(
+    params: ModelParams,
+    n: usize,
+    a: &[End],
+    b: &[End],
+) -> Result<(StateClass, Vec<Vec<f64>>), Refusal> {
+    let class = single_class(a.iter().chain(b)).ok_or(Refusal::NotCandidate)?;
+    if a.iter().chain(b).any(|e| e.certified) {
+        return Err(Refusal::NeighbourCertified);
+    }
+    let mut balances = Balances::new(params, n).map_err(|_| Refusal::Balances)?;
+    let disk_stable = balances.verdict(&vec![0.0; 2 * balances.modes()]).unstable == 0;
+    if disk_stable != (class == StateClass::IC) {
+        return Err(Refusal::Disk);
+    }
+    if !others_unstable(&mut balances, class) {
+        return Err(Refusal::OtherState);
+    }
+    let mut jacobians = KeptJacobians::default();
+    let mut ends = Vec::with_capacity(a.len());
+    for (ea, eb) in a.iter().zip(b) {
+        let end = if class == StateClass::IC {
+            vec![0.0; 2 * balances.modes()]
+        } else {
+            let mut root = |e: &End| {
+                stable_root(&mut balances, &mut jacobians, &e.z, class).ok_or(Refusal::NoRoot)
+            };
+            let (za, zb) = (root(ea)?, root(eb)?);
+            let (va, sa) = speed_shape(&za);
+            let (vb, sb) = speed_shape(&zb);
+            if (va - vb).abs() > SAME_ROOT || (sa - sb).abs() > SAME_ROOT {
+                return Err(Refusal::TwoRoots);
+            }
+            za
+        };
+        ends.push(end);
+    }
+    Ok((class, ends))
+}
+
 /// The records of the runs of plan point `p`, certified without runs from the stored runs of
 /// the points `pair` it lies midway between, or why the certificate does not hold (see the
 /// module).
@@ -88,48 +153,18 @@ pub fn certify(
 ) -> Result<Vec<RunRecord>, Refusal> {
     let started = Instant::now();
     let per_point = plan.ic_names.len().max(1);
-    let runs_of = |q: usize| -> Result<Vec<&RunRecord>, Refusal> {
+    let ends_of = |q: usize| -> Result<Vec<End>, Refusal> {
         (0..per_point)
-            .map(|i| records.get(&plan.task(q * per_point + i).key))
+            .map(|i| {
+                let r = records.get(&plan.task(q * per_point + i).key);
+                r.map(|r| End::of(&r.outcome))
+            })
             .collect::<Option<_>>()
             .ok_or(Refusal::NotCandidate)
     };
-    let (a, b) = (runs_of(pair[0])?, runs_of(pair[1])?);
-    let outs = || a.iter().chain(&b).map(|r| &r.outcome);
-    let class = single_class(outs()).ok_or(Refusal::NotCandidate)?;
-    if outs().any(|o| o.ended_by == Some(Ending::Certified)) {
-        return Err(Refusal::NeighbourCertified);
-    }
+    let (a, b) = (ends_of(pair[0])?, ends_of(pair[1])?);
     let task0 = plan.task(p * per_point);
-    let mut balances =
-        Balances::new(task0.params, task0.settings.n).map_err(|_| Refusal::Balances)?;
-    let disk_stable = balances.verdict(&vec![0.0; 2 * balances.modes()]).unstable == 0;
-    if disk_stable != (class == StateClass::IC) {
-        return Err(Refusal::Disk);
-    }
-    if !others_unstable(&mut balances, class) {
-        return Err(Refusal::OtherState);
-    }
-    let mut jacobians = KeptJacobians::default();
-    let mut ends = Vec::with_capacity(per_point);
-    for (ra, rb) in a.iter().zip(&b) {
-        let end = if class == StateClass::IC {
-            vec![0.0; 2 * balances.modes()]
-        } else {
-            let mut root = |r: &RunRecord| {
-                stable_root(&mut balances, &mut jacobians, &r.outcome.unknowns(), class)
-                    .ok_or(Refusal::NoRoot)
-            };
-            let (za, zb) = (root(ra)?, root(rb)?);
-            let (va, sa) = speed_shape(&za);
-            let (vb, sb) = speed_shape(&zb);
-            if (va - vb).abs() > SAME_ROOT || (sa - sb).abs() > SAME_ROOT {
-                return Err(Refusal::TwoRoots);
-            }
-            za
-        };
-        ends.push(end);
-    }
+    let (class, ends) = certify_ends(task0.params, task0.settings.n, &a, &b)?;
     let wall_s = started.elapsed().as_secs_f64() / per_point as f64;
     Ok(ends
         .into_iter()
@@ -152,11 +187,11 @@ pub fn certify(
         .collect())
 }
 
-/// The one class every outcome ended steady on, if it is IC, ID or MD.
-fn single_class<'a>(outs: impl Iterator<Item = &'a RunOutcome>) -> Option<StateClass> {
+/// The one class every end is steady on, if it is IC, ID or MD.
+fn single_class<'a>(ends: impl Iterator<Item = &'a End>) -> Option<StateClass> {
     let mut class = None;
-    for o in outs {
-        let c = o.class.filter(|_| o.status == RunStatus::Steady)?;
+    for e in ends {
+        let c = e.class?;
         if *class.get_or_insert(c) != c {
             return None;
         }

@@ -1,0 +1,185 @@
+//! `droplet bench --map DIR --certify`: what `refine.certify_midpoints`
+//! ([`crate::map::certify`]) would make of a finished refined map, from its tables: at every
+//! point that lies midway between two coarser points, the certificate from the neighbours'
+//! runs as the map has them, against the point's own runs (its class and root, and the
+//! certificate's time against theirs). Nothing is stepped: a committed map made without the
+//! option (N = 192, hours of run time) is measured in minutes.
+use crate::error::SweepError;
+use crate::map::certify::{certify_ends, End, Refusal};
+use crate::map::refine::midway;
+use crate::tables::read::{self, RunRow};
+use droplet_solver::model::classify::StateClass;
+use rayon::prelude::*;
+use serde::Serialize;
+use std::collections::{BTreeMap, HashMap};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Two ends closer than this in `v` and `s` are on one root.
+const SAME_ROOT: f64 = 1e-6;
+
+/// What the certificate makes of a map.
+#[derive(Debug, Clone, Default, Serialize)]
+pub struct CertifyCheck {
+    pub map: PathBuf,
+    pub points: usize,
+    /// Points midway between two coarser points of one single state.
+    pub candidates: usize,
+    /// Of those, the points certified, and their runs.
+    pub certified_points: usize,
+    pub certified_runs: usize,
+    /// The others, by reason ([`Refusal`]).
+    pub refused: BTreeMap<String, usize>,
+    /// Certified runs whose own run (the map's) ended on another class, or not steady.
+    pub class_differences: usize,
+    /// Certified runs whose own run ended on another root of the class (`v` or `s` more than
+    /// 1e-6 apart), and by how much at most; the largest difference of the others.
+    pub other_root: usize,
+    pub other_root_max_dv: f64,
+    pub other_root_max_ds: f64,
+    pub same_root_max_dv: f64,
+    pub same_root_max_ds: f64,
+    /// The certificates' time (this machine) and the map's run time of the runs they replace
+    /// (the machine that made the map), and of the whole map.
+    pub certificates_s: f64,
+    pub their_runs_s: f64,
+    pub map_run_time_s: f64,
+    pub wall_s: f64,
+}
+
+/// The certificate at every midpoint of the refined map in `map` (its tables), on `jobs`
+/// threads (default: one per core).
+pub fn check_certificates(map: &Path, jobs: Option<usize>) -> Result<CertifyCheck, SweepError> {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(jobs.unwrap_or(0))
+        .build()
+        .map_err(|e| SweepError::Invalid(format!("cannot start the worker threads: {e}")))?;
+    pool.install(|| check_all(map))
+}
+
+/// [`check_certificates`] on the current pool.
+fn check_all(map: &Path) -> Result<CertifyCheck, SweepError> {
+    let started = Instant::now();
+    let runs_path = map.join(read::RUNS);
+    for table in [read::RUNS, read::POINTS] {
+        if !map.join(table).is_file() {
+            return Err(SweepError::Invalid(format!(
+                "--map {}: no {table}; it takes the directory of a finished map",
+                map.display()
+            )));
+        }
+    }
+    let spec = read::stored_spec(&runs_path)?;
+    let Some(lattice) = &spec.refine else {
+        return Err(SweepError::Invalid(format!(
+            "--certify: the map in {} has no refine: section (only refined maps have midpoints)",
+            map.display()
+        )));
+    };
+    let rows = read::runs(&runs_path)?;
+    let points = read::points(&map.join(read::POINTS))?;
+    let names: Vec<String> = crate::store::plan::plan(&spec).ic_names;
+    let mut by_point: HashMap<u32, Vec<Option<&RunRow>>> = HashMap::new();
+    for r in &rows {
+        let slot = by_point
+            .entry(r.point)
+            .or_insert_with(|| vec![None; names.len()]);
+        if let Some(i) = names.iter().position(|n| *n == r.ic) {
+            slot[i] = Some(r);
+        }
+    }
+    // Each slice of a third axis on its own, as refinement has it.
+    let at: HashMap<(u64, (u64, u64)), (u32, u32)> = points
+        .iter()
+        .map(|p| {
+            let node = lattice.node_of((p.x, p.y));
+            ((p.z.to_bits(), node), (p.point, p.level))
+        })
+        .collect();
+    let pairs: Vec<(u32, [u32; 2])> = points
+        .iter()
+        .filter_map(|p| {
+            let z = p.z.to_bits();
+            let node = lattice.node_of((p.x, p.y));
+            let pair = midway(lattice, node, p.level, |m| at.get(&(z, m)).map(|&(_, l)| l))?;
+            Some((p.point, pair.map(|m| at[&(z, m)].0)))
+        })
+        .collect();
+    let ends =
+        |q: u32| -> Option<Vec<End>> { by_point.get(&q)?.iter().map(|r| r.map(end_of)).collect() };
+    let checked: Vec<Option<Checked>> = pairs
+        .par_iter()
+        .map(|&(p, [a, b])| {
+            let own = by_point
+                .get(&p)?
+                .iter()
+                .copied()
+                .collect::<Option<Vec<_>>>()?;
+            let (ea, eb) = (ends(a)?, ends(b)?);
+            let t = Instant::now();
+            let result = certify_ends(own[0].params, own[0].n, &ea, &eb);
+            Some(Checked {
+                result,
+                seconds: t.elapsed().as_secs_f64(),
+                own: own.into_iter().cloned().collect(),
+            })
+        })
+        .collect();
+    let mut out = CertifyCheck {
+        map: map.to_path_buf(),
+        points: points.len(),
+        map_run_time_s: rows.iter().map(|r| r.wall_s).sum(),
+        ..Default::default()
+    };
+    for c in checked.into_iter().flatten() {
+        match c.result {
+            Err(Refusal::NotCandidate) => continue,
+            Err(why) => {
+                out.candidates += 1;
+                *out.refused.entry(why.as_str().to_string()).or_default() += 1;
+            }
+            Ok((class, ends)) => {
+                out.candidates += 1;
+                out.certified_points += 1;
+                out.certificates_s += c.seconds;
+                for (z, r) in ends.iter().zip(&c.own) {
+                    out.certified_runs += 1;
+                    out.their_runs_s += r.wall_s;
+                    if r.status != "steady" || r.class != Some(class) {
+                        out.class_differences += 1;
+                        continue;
+                    }
+                    let k = z.len() / 2;
+                    let dv = (z[0].hypot(z[1]) - r.v).abs();
+                    let ds = (z[2].hypot(z[k + 1]) - r.s).abs();
+                    if dv > SAME_ROOT || ds > SAME_ROOT {
+                        out.other_root += 1;
+                        out.other_root_max_dv = out.other_root_max_dv.max(dv);
+                        out.other_root_max_ds = out.other_root_max_ds.max(ds);
+                    } else {
+                        out.same_root_max_dv = out.same_root_max_dv.max(dv);
+                        out.same_root_max_ds = out.same_root_max_ds.max(ds);
+                    }
+                }
+            }
+        }
+    }
+    out.wall_s = started.elapsed().as_secs_f64();
+    Ok(out)
+}
+
+/// One midpoint's certificate and its own runs.
+struct Checked {
+    result: Result<(StateClass, Vec<Vec<f64>>), Refusal>,
+    seconds: f64,
+    own: Vec<RunRow>,
+}
+
+/// A map run's end as the certificate reads it.
+fn end_of(r: &RunRow) -> End {
+    End {
+        class: r.class.filter(|_| r.status == "steady"),
+        certified: r.ended_by.as_deref() == Some("certified_midway"),
+        z: r.state.clone(),
+    }
+}
