@@ -52,7 +52,7 @@ pub enum Refusal {
     NotCandidate,
     /// A neighbour's runs were certified themselves, not stepped.
     NeighbourCertified,
-    /// The model's steady balances cannot be set up at the point.
+    /// The model's steady balances cannot be set up or linearised at the point (no inertia).
     Balances,
     /// The resting disk is stable at a point of another class, or unstable at an IC one.
     Disk,
@@ -111,6 +111,11 @@ pub fn certify_ends(
     let class = single_class(a.iter().chain(b)).ok_or(Refusal::NotCandidate)?;
     if a.iter().chain(b).any(|e| e.certified) {
         return Err(Refusal::NeighbourCertified);
+    }
+    // The named states' eigenvalues need inertia (`find` refuses `m = 0`, which would
+    // otherwise read as "no other state").
+    if params.mass <= 0.0 {
+        return Err(Refusal::Balances);
     }
     let mut balances = Balances::new(params, n).map_err(|_| Refusal::Balances)?;
     let disk_stable = balances.verdict(&vec![0.0; 2 * balances.modes()]).unstable == 0;
