@@ -267,3 +267,40 @@ fn outcome(z: &[f64], class: StateClass, wall_s: f64) -> RunOutcome {
         profile: Default::default(),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn end(class: Option<StateClass>, certified: bool) -> End {
+        End {
+            class,
+            certified,
+            z: vec![0.0; 4],
+        }
+    }
+
+    #[test]
+    fn only_neighbours_of_one_single_state_all_stepped_are_candidates() {
+        let p = ModelParams::default();
+        let ic = |c| vec![end(Some(StateClass::IC), c); 4];
+        // Two classes, an unsettled run, or a class the certificate does not know: not a
+        // candidate; a certified neighbour: refused before anything is solved.
+        let mut mixed = ic(false);
+        mixed[2] = end(Some(StateClass::MD), false);
+        let mut unsettled = ic(false);
+        unsettled[0] = end(None, false);
+        let mc = vec![end(Some(StateClass::MC), false); 4];
+        for b in [mixed, unsettled] {
+            assert_eq!(
+                certify_ends(p, 64, &ic(false), &b),
+                Err(Refusal::NotCandidate)
+            );
+        }
+        assert_eq!(certify_ends(p, 64, &mc, &mc), Err(Refusal::NotCandidate));
+        assert_eq!(
+            certify_ends(p, 64, &ic(false), &ic(true)),
+            Err(Refusal::NeighbourCertified)
+        );
+    }
+}
