@@ -43,8 +43,8 @@ pub struct Args {
     max_runs: u64,
     /// Print a JSON summary instead of text (keys: name, output, points, runs, shard, level,
     /// computed, reused, certified (runs certified without stepping, refine.certify_midpoints;
-    /// among computed), certify_refused (points left to their runs, by reason), corrupt, upgraded, wall_s, jobs, point_classes, run_statuses,
-    /// dt_warnings, run_time_s and profile (the computed runs' time and its parts:
+    /// among computed), certify_refused (points left to their runs, by reason), corrupt,
+    /// upgraded, wall_s, jobs, point_classes, run_statuses, dt_warnings, run_time_s and profile (the computed runs' time and its parts:
     /// stepping_s, newton_s, eigen_s, landing_s, flow_s, leap_s, diagnosis_s, newton_solves,
     /// eigen_problems, field_solves, fields), tables).
     #[arg(long)]

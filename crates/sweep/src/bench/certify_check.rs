@@ -5,7 +5,7 @@
 //! certificate's time against theirs). Nothing is stepped: a committed map made without the
 //! option (N = 192, hours of run time) is measured in minutes.
 use crate::error::SweepError;
-use crate::map::certify::{certify_ends, End, Refusal};
+use crate::map::certify::{certify_ends, speed_shape, End, Refusal, SAME_ROOT};
 use crate::map::refine::midway;
 use crate::tables::read::{self, RunRow};
 use droplet_solver::model::classify::StateClass;
@@ -14,9 +14,6 @@ use serde::Serialize;
 use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
-
-/// Two ends closer than this in `v` and `s` are on one root.
-const SAME_ROOT: f64 = 1e-6;
 
 /// What the certificate makes of a map.
 #[derive(Debug, Clone, Default, Serialize)]
@@ -149,9 +146,8 @@ fn check_all(map: &Path) -> Result<CertifyCheck, SweepError> {
                         out.class_differences += 1;
                         continue;
                     }
-                    let k = z.len() / 2;
-                    let dv = (z[0].hypot(z[1]) - r.v).abs();
-                    let ds = (z[2].hypot(z[k + 1]) - r.s).abs();
+                    let (v, s) = speed_shape(z);
+                    let (dv, ds) = ((v - r.v).abs(), (s - r.s).abs());
                     if dv > SAME_ROOT || ds > SAME_ROOT {
                         out.other_root += 1;
                         out.other_root_max_dv = out.other_root_max_dv.max(dv);

@@ -42,7 +42,7 @@ use std::collections::HashMap;
 use std::time::Instant;
 
 /// Two roots closer than this in `v` and `s` are one.
-const SAME_ROOT: f64 = 1e-6;
+pub const SAME_ROOT: f64 = 1e-6;
 
 /// Why a point was left to its runs.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
@@ -205,7 +205,7 @@ fn single_class<'a>(ends: impl Iterator<Item = &'a End>) -> Option<StateClass> {
 }
 
 /// `(v, s)` of unknowns `(vx, vy, a_2..a_K, b_2..b_K)`.
-fn speed_shape(z: &[f64]) -> (f64, f64) {
+pub fn speed_shape(z: &[f64]) -> (f64, f64) {
     let k = z.len() / 2;
     (z[0].hypot(z[1]), z[2].hypot(z[k + 1]))
 }
