@@ -1,7 +1,7 @@
 //! Runs a sweep: the pending tasks of a plan in a rayon pool, each persisted as it finishes,
 //! with progress (runs done / total, ETA, classes so far), then the final tables and picture.
 use crate::error::SweepError;
-use crate::execution::progress::progress_bar;
+use crate::execution::progress::{clock, progress_bar};
 use crate::map::phase_map::PhaseMap;
 use crate::map::tally::tally;
 use crate::spec::lattice::Lattice;
@@ -148,16 +148,6 @@ impl Pace {
     }
 }
 
-/// Seconds as `1h02m03s`, `2m03s` or `3s`.
-fn clock(s: f64) -> String {
-    let s = s.max(0.0).round() as u64;
-    match (s / 3600, s / 60 % 60, s % 60) {
-        (0, 0, sec) => format!("{sec}s"),
-        (0, m, sec) => format!("{m}m{sec:02}s"),
-        (h, m, sec) => format!("{h}h{m:02}m{sec:02}s"),
-    }
-}
-
 /// Runs the runs `mine` of `plan` that are not validly stored (a corrupt one is moved aside
 /// and recomputed; a certified one, unless `certified_count`, is replaced by its run), each
 /// saved as it finishes, with a progress bar labelled `what`.
@@ -232,68 +222,6 @@ fn run_pending(
     })
 }
 
-/// Certifies without runs ([`crate::map::certify`]) the points of `runs` that lie midway
-/// between two lower-level points (`between`) and have none of `runs` stored yet; saves the
-/// runs of `runs` among each certified point's: what it did and the runs it saved.
-fn certify_pending(
-    store: &Store,
-    plan: &Plan,
-    runs: &[usize],
-    between: &crate::map::levels::Between,
-    pool: &rayon::ThreadPool,
-) -> Result<(Ran, std::collections::BTreeSet<usize>), SweepError> {
-    let per_point = plan.ic_names.len().max(1);
-    let mine: std::collections::BTreeSet<usize> = runs.iter().copied().collect();
-    let points: Vec<(usize, [usize; 2])> = between
-        .iter()
-        .filter(|(&p, _)| {
-            let of_p = (p * per_point..(p + 1) * per_point).filter(|i| mine.contains(i));
-            of_p.clone().count() > 0 && of_p.clone().all(|i| !store.has(&plan.task(i).key))
-        })
-        .map(|(&p, &pair)| (p, pair))
-        .collect();
-    let neighbours = store.load_many(points.iter().flat_map(|(_, pair)| {
-        pair.iter()
-            .flat_map(|&q| (q * per_point..(q + 1) * per_point).map(|i| plan.task(i).key))
-            .collect::<Vec<_>>()
-    }));
-    let done = pool.install(|| {
-        points
-            .par_iter()
-            .map(|&(p, pair)| -> Result<(Ran, Vec<usize>), SweepError> {
-                let mut ran = Ran::default();
-                let mut saved = Vec::new();
-                let records = match crate::map::certify::certify(plan, p, pair, &neighbours) {
-                    Ok(records) => records,
-                    Err(why) => {
-                        if why != crate::map::certify::Refusal::NotCandidate {
-                            ran.refused.insert(why.as_str().to_string(), 1);
-                        }
-                        return Ok((ran, saved));
-                    }
-                };
-                for (i, record) in (p * per_point..).zip(records) {
-                    if mine.contains(&i) {
-                        store.save(&record)?;
-                        ran.computed += 1;
-                        ran.certified += 1;
-                        ran.run_time_s += record.outcome.wall_s;
-                        saved.push(i);
-                    }
-                }
-                Ok((ran, saved))
-            })
-            .collect::<Result<Vec<_>, SweepError>>()
-    })?;
-    let mut total = Ran::default();
-    let mut certified = std::collections::BTreeSet::new();
-    for (r, saved) in done {
-        total.add(r);
-        certified.extend(saved);
-    }
-    Ok((total, certified))
-}
-
 /// Runs a refined sweep level by level ([`crate::map::levels`]). Unsharded: every level.
 /// Sharded (`Some((shard, level))`): only the shard's slice of `level`, after checking that
 /// every level below it is finished (its points follow from them), so a Slurm array per level,
@@ -332,9 +260,15 @@ fn run_refined(
         let certify = lattice.refine.certify_midpoints;
         let mut to_run = runs.clone();
         if certify {
-            let (ran, certified) = certify_pending(store, plan, &runs, between, pool)?;
-            total.add(ran);
-            to_run.retain(|i| !certified.contains(i));
+            let c = crate::execution::certify::certify_pending(store, plan, &runs, between, pool)?;
+            to_run.retain(|i| !c.runs.contains(i));
+            total.add(Ran {
+                computed: c.runs.len(),
+                certified: c.runs.len(),
+                run_time_s: c.run_time_s,
+                refused: c.refused,
+                ..Ran::default()
+            });
         }
         let ran = run_pending(
             store,
