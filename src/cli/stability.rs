@@ -3,6 +3,7 @@ use super::param_line::parse_set;
 use super::{print_json, CliError};
 use droplet_solver::model::param::ModelParam;
 use droplet_solver::model::params::ModelParams;
+use droplet_solver::model::state::speed_and_deformation;
 use droplet_solver::roots::balances::Balances;
 use droplet_solver::roots::named_state::{find, StateKind};
 use droplet_solver::roots::thresholds::{ic_thresholds, IcThresholds};
@@ -159,6 +160,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
         other => CliError::from(other),
     })?;
     let z = &st.z;
+    let (v, s) = speed_and_deformation(z);
     let report = Report {
         state: a.state,
         axis: a.axis.clone(),
@@ -174,8 +176,8 @@ pub fn run(a: Args) -> Result<(), CliError> {
         b2: z[k + 1],
         a_k: z[2..=k].to_vec(),
         b_k: z[k + 1..].to_vec(),
-        v: z[0].hypot(z[1]),
-        s: z[2].hypot(z[k + 1]),
+        v,
+        s,
         residual: st.residual,
         eigenvalues: st
             .eigenvalues

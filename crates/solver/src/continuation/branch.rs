@@ -18,6 +18,7 @@ use crate::model::classify::StateClass;
 use crate::model::mirror::MirrorLine;
 use crate::model::param::ModelParam;
 use crate::model::params::ModelParams;
+use crate::model::state::speed_and_deformation;
 use crate::roots::balances::Balances;
 use crate::roots::verdict::Verdict;
 use serde::Serialize;
@@ -139,8 +140,7 @@ impl Tracer<'_> {
     pub(super) fn point(&mut self, y: &[f64], verdict: Verdict) -> BranchPoint {
         let p = self.prob.params_at(*y.last().expect("q"));
         let z = self.prob.state(y);
-        let k_max = z.len() / 2;
-        let (v, s) = (z[0].hypot(z[1]), z[2].hypot(z[k_max + 1]));
+        let (v, s) = speed_and_deformation(&z);
         BranchPoint {
             at: self.prob.parameter.get(&p),
             eta_t: p.eta_t,

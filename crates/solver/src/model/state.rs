@@ -1,6 +1,18 @@
 //! The droplet's mechanical state: centre `r_c`, velocity `v`, shape amplitudes `a2, b2`.
 use serde::{Deserialize, Serialize};
 
+/// The mode-2 amplitudes `(a2, b2)` of unknowns `z = (vx, vy, a_2..a_K, b_2..b_K)`.
+pub fn mode_two(z: &[f64]) -> (f64, f64) {
+    (z[2], z[z.len() / 2 + 1])
+}
+
+/// Speed `v = |(vx, vy)|` and deformation `s = |a2 + i b2|` (mode 2, the paper's) of unknowns
+/// `z = (vx, vy, a_2..a_K, b_2..b_K)`: the `v` and `s` that every table and `--json` reports.
+pub fn speed_and_deformation(z: &[f64]) -> (f64, f64) {
+    let (a2, b2) = mode_two(z);
+    (z[0].hypot(z[1]), a2.hypot(b2))
+}
+
 /// Centre, velocity and mode-2 amplitudes of the droplet.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 pub struct DropletState {

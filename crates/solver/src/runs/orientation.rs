@@ -3,7 +3,7 @@
 //! between the two compared like with like, a rotation-invariant distance, and whether one
 //! class lies within reach of a root.
 use crate::model::classify::StateClass;
-use crate::model::state::reflected;
+use crate::model::state::{mode_two, reflected, speed_and_deformation};
 
 /// Largest angle between a run's orientation and a stable root's for the run to be taken to
 /// be turning towards it.
@@ -19,11 +19,6 @@ pub const TURN_SEARCH: [f64; 7] = [1.0, 2.0, 4.0, 8.0, 16.0, 32.0, 45.0];
 
 /// Leans (radians) below this are round-off of a mirror-symmetric run and count as none.
 pub const LEAN_FLOOR: f64 = 1e-9;
-
-/// The mode-2 amplitudes `(a2, b2)` of the co-moving state `z = (vx, vy, a_2..a_K, b_2..b_K)`.
-fn mode_two(z: &[f64]) -> (f64, f64) {
-    (z[2], z[z.len() / 2 + 1])
-}
 
 /// The direction of motion, or for a resting droplet the direction of its long axis (of
 /// its mode 2).
@@ -89,12 +84,6 @@ pub(crate) fn angle_to(z: &[f64], root: &[f64]) -> f64 {
 /// The angle `d` modulo pi, in [-pi/2, pi/2] (orientations of long axes, or of lines).
 pub(crate) fn modulo_half_turn(d: f64) -> f64 {
     d - std::f64::consts::PI * (d / std::f64::consts::PI).round()
-}
-
-/// Speed `v` and deformation `s = |a2 + i b2|` (mode 2, the paper's) of `z`.
-pub(crate) fn speed_and_deformation(z: &[f64]) -> (f64, f64) {
-    let (a2, b2) = mode_two(z);
-    (z[0].hypot(z[1]), a2.hypot(b2))
 }
 
 /// The class of `z`.

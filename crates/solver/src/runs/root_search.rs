@@ -8,7 +8,7 @@
 //! before its own trigger ([`NewtonFinish::try_disk`]).
 use crate::contract::ending::Ending;
 use crate::contract::profile::{self, Part};
-use crate::model::state::{reflected, turned};
+use crate::model::state::{reflected, speed_and_deformation, turned};
 use crate::runs::finding::{Finding, MAX_SETTLED};
 use crate::runs::finish::{
     retry_after, same_root, Decision, NewtonFinish, DISK_FACTOR, LEAN_GROWTH,
@@ -16,7 +16,7 @@ use crate::runs::finish::{
 use crate::runs::landing::landings;
 use crate::runs::orientation::{
     angle_to, class_of, invariant_distance, lean_from_mirror_line, modulo_half_turn, orientation,
-    speed_and_deformation, unoriented, LEAN_FLOOR, TURN_SEARCH,
+    unoriented, LEAN_FLOOR, TURN_SEARCH,
 };
 use crate::runs::rotation_flow::LINEAR_LEAN;
 
@@ -416,8 +416,9 @@ impl NewtonFinish {
 mod tests {
     use crate::contract::settings::SolverSettings;
     use crate::model::params::ModelParams;
+    use crate::model::state::speed_and_deformation;
     use crate::runs::finish::NewtonFinish;
-    use crate::runs::orientation::{orientation, speed_and_deformation};
+    use crate::runs::orientation::orientation;
 
     #[test]
     fn a_k_mode_run_between_mirror_lines_lands_on_the_stable_ones_root_only_turning_to_it() {

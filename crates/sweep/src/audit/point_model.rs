@@ -5,6 +5,7 @@
 //! with what class and stability.
 use crate::error::SweepError;
 use droplet_solver::model::params::ModelParams;
+use droplet_solver::model::state::speed_and_deformation;
 use droplet_solver::numerics::newton::NewtonOptions;
 use droplet_solver::roots::balances::Balances;
 use droplet_solver::roots::verdict::Verdict;
@@ -83,10 +84,10 @@ pub fn root_near(balances: &mut Balances, state: &[f64]) -> Option<Root> {
         },
     };
     let x = balances.root_from(state, &opts).ok()?;
-    let k = x.len() / 2;
+    let (v, s) = speed_and_deformation(&x);
     Some(Root {
-        v: x[0].hypot(x[1]),
-        s: x[2].hypot(x[k + 1]),
+        v,
+        s,
         growth: Growth::of(&balances.verdict(&x)),
     })
 }

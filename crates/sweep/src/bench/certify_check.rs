@@ -5,10 +5,11 @@
 //! certificate's time against theirs). Nothing is stepped: a committed map made without the
 //! option (N = 192, hours of run time) is measured in minutes.
 use crate::error::SweepError;
-use crate::map::certify::{certify_ends, speed_shape, End, Refusal, SAME_ROOT};
+use crate::map::certify::{certify_ends, End, Refusal, SAME_ROOT};
 use crate::map::refine::midway;
 use crate::tables::read::{self, RunRow};
 use droplet_solver::model::classify::StateClass;
+use droplet_solver::model::state::speed_and_deformation;
 use rayon::prelude::*;
 use serde::Serialize;
 use std::collections::{BTreeMap, HashMap};
@@ -146,7 +147,7 @@ fn check_all(map: &Path) -> Result<CertifyCheck, SweepError> {
                         out.class_differences += 1;
                         continue;
                     }
-                    let (v, s) = speed_shape(z);
+                    let (v, s) = speed_and_deformation(z);
                     let (dv, ds) = ((v - r.v).abs(), (s - r.s).abs());
                     if dv > SAME_ROOT || ds > SAME_ROOT {
                         out.other_root += 1;

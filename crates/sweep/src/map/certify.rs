@@ -34,7 +34,7 @@ use droplet_solver::contract::outcome::{RunOutcome, RunStatus};
 use droplet_solver::model::classify::StateClass;
 use droplet_solver::model::mirror::MirrorLine;
 use droplet_solver::model::params::ModelParams;
-use droplet_solver::model::state::DropletState;
+use droplet_solver::model::state::{speed_and_deformation, DropletState};
 use droplet_solver::roots::balances::Balances;
 use droplet_solver::roots::kept_jacobians::KeptJacobians;
 use droplet_solver::roots::named_state::{find, StateKind};
@@ -135,8 +135,8 @@ pub fn certify_ends(
                 stable_root(&mut balances, &mut jacobians, &e.z, class).ok_or(Refusal::NoRoot)
             };
             let (za, zb) = (root(ea)?, root(eb)?);
-            let (va, sa) = speed_shape(&za);
-            let (vb, sb) = speed_shape(&zb);
+            let (va, sa) = speed_and_deformation(&za);
+            let (vb, sb) = speed_and_deformation(&zb);
             if (va - vb).abs() > SAME_ROOT || (sa - sb).abs() > SAME_ROOT {
                 return Err(Refusal::TwoRoots);
             }
@@ -204,12 +204,6 @@ fn single_class<'a>(ends: impl Iterator<Item = &'a End>) -> Option<StateClass> {
     class.filter(|c| matches!(c, StateClass::IC | StateClass::ID | StateClass::MD))
 }
 
-/// `(v, s)` of unknowns `(vx, vy, a_2..a_K, b_2..b_K)`.
-pub fn speed_shape(z: &[f64]) -> (f64, f64) {
-    let k = z.len() / 2;
-    (z[0].hypot(z[1]), z[2].hypot(z[k + 1]))
-}
-
 /// The runs' Newton finish from `z` ([`Balances::root_near`], with the Jacobians kept at the
 /// point), if it reaches a stable state of `class`.
 fn stable_root(
@@ -219,7 +213,7 @@ fn stable_root(
     class: StateClass,
 ) -> Option<Vec<f64>> {
     let x = balances.root_near(z, jacobians).ok()?;
-    let (v, s) = speed_shape(&x);
+    let (v, s) = speed_and_deformation(&x);
     (StateClass::of(v, s) == class && balances.verdict(&x).unstable == 0).then_some(x)
 }
 
@@ -231,7 +225,7 @@ fn others_unstable(balances: &mut Balances, class: StateClass) -> bool {
             let Ok(state) = find(balances, kind, axis, None) else {
                 continue;
             };
-            let (v, s) = speed_shape(&state.z);
+            let (v, s) = speed_and_deformation(&state.z);
             if state.verdict.unstable == 0 && StateClass::of(v, s) != class {
                 return false;
             }
@@ -242,7 +236,7 @@ fn others_unstable(balances: &mut Balances, class: StateClass) -> bool {
 
 /// The outcome of a certified run ending on `z`.
 fn outcome(z: &[f64], class: StateClass, wall_s: f64) -> RunOutcome {
-    let (v, s) = speed_shape(z);
+    let (v, s) = speed_and_deformation(z);
     let (state, higher_modes) = DropletState::of_unknowns(z, 0.0, 0.0);
     RunOutcome {
         status: RunStatus::Steady,
