@@ -1,6 +1,7 @@
 //! Model parameters of the droplet (paper Sect. 3, eqs. 31-39, with its shape modes `2..=K`)
 //! and their validation.
 use crate::error::{require, SolverError};
+use crate::model::shape::ShapeParams;
 use serde::{Deserialize, Serialize};
 
 /// Dimensionless model parameters.
@@ -61,6 +62,14 @@ impl ModelParams {
             eta_t,
             kappa2,
             ..Self::default()
+        }
+    }
+
+    /// The droplet's radius and interface width, what its indicator `Theta` is sampled with.
+    pub fn shape(&self) -> ShapeParams {
+        ShapeParams {
+            radius: self.radius,
+            sigma: self.sigma,
         }
     }
 

@@ -26,7 +26,6 @@ use droplet_solver::model::mirror::MirrorLine;
 use droplet_solver::model::modes::Modes;
 use droplet_solver::model::param::ModelParam;
 use droplet_solver::model::params::ModelParams;
-use droplet_solver::model::shape::ShapeParams;
 use droplet_solver::roots::balances::Balances;
 use droplet_solver::roots::linearisation::Linearization;
 use droplet_solver::roots::named_state::md_state;
@@ -124,10 +123,7 @@ fn row(
 
 /// The Fig. 1c droplet's outline for each row, labelled with its `K` and speed.
 fn outlines(rows: &[TruncationRow], base: &ModelParams) -> Vec<Curve> {
-    let shape = ShapeParams {
-        radius: base.radius,
-        sigma: base.sigma,
-    };
+    let shape = base.shape();
     rows.iter()
         .map(|r| {
             let m = Modes {

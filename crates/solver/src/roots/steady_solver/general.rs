@@ -22,7 +22,6 @@ use crate::model::forces::quadrature::{
 use crate::model::grid::Grid;
 use crate::model::modes::Modes;
 use crate::model::params::ModelParams;
-use crate::model::shape::ShapeParams;
 use crate::model::state::turned;
 use crate::numerics::newton::{self, NewtonOptions};
 use crate::roots::forces_memo::ForcesMemo;
@@ -69,10 +68,7 @@ impl SteadySolver {
         params.validate()?;
         let grid = Grid::new(n, params.box_len)?;
         crate::contract::limits::check_resolved(&params, n)?;
-        let shape = ShapeParams {
-            radius: params.radius,
-            sigma: params.sigma,
-        };
+        let shape = params.shape();
         let len = grid.spectral_len();
         Ok(Self {
             params,

@@ -45,9 +45,6 @@ pub(crate) fn moved(
     }
     let grid = Grid::new(n, params.box_len)?;
     crate::contract::limits::check_resolved(&params, n)?;
-    let shape = ShapeParams {
-        radius: params.radius,
-        sigma: params.sigma,
-    };
+    let shape = params.shape();
     Ok(Some((params, Some((grid, shape)))))
 }

@@ -10,7 +10,6 @@ use crate::model::forces::parseval::{spectral_forces, Forces};
 use crate::model::grid::Grid;
 use crate::model::mirror::MirrorLine;
 use crate::model::params::ModelParams;
-use crate::model::shape::ShapeParams;
 use crate::model::shape_transform::ShapeTransform;
 use crate::numerics::fft2::PrunedFft2;
 use crate::numerics::newton::{self, NewtonOptions};
@@ -64,10 +63,7 @@ impl TwoModeSolver {
         params.validate()?;
         let grid = Grid::new(n, params.box_len)?;
         crate::contract::limits::check_resolved(&params, n)?;
-        let shape = ShapeParams {
-            radius: params.radius,
-            sigma: params.sigma,
-        };
+        let shape = params.shape();
         let len = grid.spectral_len();
         let z = Complex64::default();
         Ok(Self {

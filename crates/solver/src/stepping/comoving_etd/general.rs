@@ -29,7 +29,6 @@ use crate::model::forces::quadrature::{derivatives, ForceQuadrature, PassBuffers
 use crate::model::grid::Grid;
 use crate::model::modes::Modes;
 use crate::model::params::ModelParams;
-use crate::model::shape::ShapeParams;
 use crate::model::state::DropletState;
 use crate::numerics::fft2::PrunedFft2;
 use crate::stepping::etd::{EtdCoef, SeparableExp};
@@ -105,10 +104,7 @@ impl ComovingEtd {
         let grid = Grid::new(n, params.box_len)?;
         let len = grid.spectral_len();
         let inv_c = grid.inverse_rates();
-        let shape = ShapeParams {
-            radius: params.radius,
-            sigma: params.sigma,
-        };
+        let shape = params.shape();
         let zero = Complex64::default();
         let snapshot = || Snapshot {
             sampled: SampledShape::new(&grid),

@@ -35,7 +35,6 @@ use crate::model::dynamics;
 use crate::model::forces::parseval::Forces;
 use crate::model::grid::Grid;
 use crate::model::params::ModelParams;
-use crate::model::shape::ShapeParams;
 use crate::model::shape_transform::ShapeTransform;
 use crate::model::state::DropletState;
 use crate::numerics::fft2::PrunedFft2;
@@ -108,10 +107,7 @@ impl TwoModeEtd {
         params.validate()?;
         let grid = Grid::new(n, params.box_len)?;
         let len = grid.spectral_len();
-        let shape = ShapeParams {
-            radius: params.radius,
-            sigma: params.sigma,
-        };
+        let shape = params.shape();
         let mut state = state;
         if pinned {
             state.vx = 0.0;

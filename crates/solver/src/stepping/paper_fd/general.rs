@@ -68,10 +68,7 @@ impl PaperFd {
         }
         Ok(Self {
             params: *params,
-            shape: ShapeParams {
-                radius: params.radius,
-                sigma: params.sigma,
-            },
+            shape: params.shape(),
             n,
             dx: grid.dx,
             z: z0.to_vec(),

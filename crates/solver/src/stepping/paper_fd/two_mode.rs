@@ -41,10 +41,7 @@ impl TwoModeFd {
         }
         Ok(Self {
             params,
-            shape: ShapeParams {
-                radius: params.radius,
-                sigma: params.sigma,
-            },
+            shape: params.shape(),
             n,
             dx: grid.dx,
             pinned,
