@@ -287,6 +287,7 @@ impl SteadySolver {
 mod tests {
     use super::*;
     use crate::model::modes::w_fields;
+    use crate::model::shape::ShapeParams;
     use crate::model::state::turned;
 
     #[test]
