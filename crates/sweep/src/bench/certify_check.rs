@@ -8,6 +8,8 @@ use crate::error::SweepError;
 use crate::map::certify::{certify_ends, End, Refusal, SAME_ROOT};
 use crate::map::refine::midway;
 use crate::tables::read::{self, RunRow};
+use droplet_solver::contract::ending::Ending;
+use droplet_solver::contract::outcome::RunStatus;
 use droplet_solver::model::classify::StateClass;
 use droplet_solver::model::state::speed_and_deformation;
 use rayon::prelude::*;
@@ -143,7 +145,7 @@ fn check_all(map: &Path) -> Result<CertifyCheck, SweepError> {
                 for (z, r) in ends.iter().zip(&c.own) {
                     out.certified_runs += 1;
                     out.their_runs_s += r.wall_s;
-                    if r.status != "steady" || r.class != Some(class) {
+                    if r.status != RunStatus::Steady.as_str() || r.class != Some(class) {
                         out.class_differences += 1;
                         continue;
                     }
@@ -175,8 +177,8 @@ struct Checked {
 /// A map run's end as the certificate reads it.
 fn end_of(r: &RunRow) -> End {
     End {
-        class: r.class.filter(|_| r.status == "steady"),
-        certified: r.ended_by.as_deref() == Some("certified_midway"),
+        class: r.class.filter(|_| r.status == RunStatus::Steady.as_str()),
+        certified: r.ended_by.as_deref() == Some(Ending::Certified.as_str()),
         z: r.state.clone(),
     }
 }
