@@ -40,7 +40,8 @@ pub struct Args {
     map: Option<PathBuf>,
     /// With --map DIR of a refined map: instead of the profile, what refine.certify_midpoints
     /// would make of it, from its tables (nothing is stepped): at every point midway between
-    /// two coarser points of one state, the certificate from the neighbours' runs against the
+    /// two coarser points of one state (an edge midpoint, or a cell centre between opposite
+    /// corners), the certificate from the neighbours' runs against the
     /// point's own runs (class, root, time). JSON keys: map, points, candidates,
     /// certified_points, certified_runs, refused, class_differences, other_root,
     /// other_root_max_dv, other_root_max_ds, same_root_max_dv, same_root_max_ds,

@@ -325,6 +325,20 @@ fn certified_midpoints_end_where_their_runs_do_and_are_stepped_once_the_option_i
         .map(|(k, _)| k)
         .collect();
     assert_eq!(certified_keys.len() as u64, certified);
+    // Edge midpoints and cell centres (midway between a split cell's opposite corners) alike:
+    // here (0.085, 0.13), the centre of the cell (0.08..0.09, 0.12..0.14), among them.
+    let df = read(&out.join("runs.parquet"));
+    let col = |c: &str| df.column(c).unwrap().f64().unwrap().clone();
+    let (eta_t, kappa2, ended) = (col("eta_t"), col("kappa2"), df.column("ended_by").unwrap());
+    let off_grid = |x: f64, start: f64, step: f64| ((x - start) / step).fract().abs() > 0.25;
+    let centres = (0..df.height())
+        .filter(|&i| ended.str().unwrap().get(i) == Some("certified_midway"))
+        .filter(|&i| {
+            off_grid(eta_t.get(i).unwrap(), 0.07, 0.01)
+                && off_grid(kappa2.get(i).unwrap(), 0.10, 0.02)
+        })
+        .count();
+    assert!(centres > 0 && centres.is_multiple_of(4), "{centres}");
     // Every label a stable state, the certified runs' included.
     let o = run(&["audit", out.to_str().unwrap(), "--json"]);
     assert_eq!(

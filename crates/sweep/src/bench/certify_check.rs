@@ -5,7 +5,7 @@
 //! certificate's time against theirs). Nothing is stepped: a committed map made without the
 //! option (N = 192, hours of run time) is measured in minutes.
 use crate::error::SweepError;
-use crate::map::certify::{certify_ends, End, Refusal, SAME_ROOT};
+use crate::map::certify::{certify_ends, first_candidate, End, Refusal, SAME_ROOT};
 use crate::map::refine::midway;
 use crate::tables::read::{self, RunRow};
 use droplet_solver::contract::ending::Ending;
@@ -96,28 +96,41 @@ fn check_all(map: &Path) -> Result<CertifyCheck, SweepError> {
             ((p.z.to_bits(), node), (p.point, p.level))
         })
         .collect();
-    let pairs: Vec<(u32, [u32; 2])> = points
+    let pairs: Vec<(u32, Vec<[usize; 2]>)> = points
         .iter()
         .filter_map(|p| {
             let z = p.z.to_bits();
             let node = lattice.node_of((p.x, p.y));
-            let pair = midway(lattice, node, p.level, |m| at.get(&(z, m)).map(|&(_, l)| l))?;
-            Some((p.point, pair.map(|m| at[&(z, m)].0)))
+            let pairs = midway(lattice, node, p.level, |m| at.get(&(z, m)).map(|&(_, l)| l));
+            let pairs = pairs
+                .iter()
+                .map(|pair| pair.map(|m| at[&(z, m)].0 as usize));
+            Some((p.point, pairs.collect::<Vec<_>>())).filter(|(_, pairs)| !pairs.is_empty())
         })
         .collect();
-    let ends =
-        |q: u32| -> Option<Vec<End>> { by_point.get(&q)?.iter().map(|r| r.map(end_of)).collect() };
+    let ends = |q: usize| -> Option<Vec<End>> {
+        by_point
+            .get(&(q as u32))?
+            .iter()
+            .map(|r| r.map(end_of))
+            .collect()
+    };
     let checked: Vec<Option<Checked>> = pairs
         .par_iter()
-        .map(|&(p, [a, b])| {
+        .map(|(p, pairs)| {
             let own = by_point
-                .get(&p)?
+                .get(p)?
                 .iter()
                 .copied()
                 .collect::<Option<Vec<_>>>()?;
-            let (ea, eb) = (ends(a)?, ends(b)?);
             let t = Instant::now();
-            let result = certify_ends(own[0].params, own[0].n, &ea, &eb);
+            let result = first_candidate(pairs, |[a, b]| {
+                let (ea, eb) = (ends(a), ends(b));
+                let (Some(ea), Some(eb)) = (ea, eb) else {
+                    return Err(Refusal::NotCandidate);
+                };
+                certify_ends(own[0].params, own[0].n, &ea, &eb)
+            });
             Some(Checked {
                 result,
                 seconds: t.elapsed().as_secs_f64(),

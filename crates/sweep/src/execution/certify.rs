@@ -30,25 +30,28 @@ pub(super) fn certify_pending(
 ) -> Result<Certified, SweepError> {
     let per_point = plan.ic_names.len().max(1);
     let mine: BTreeSet<usize> = runs.iter().copied().collect();
-    let points: Vec<(usize, [usize; 2])> = between
+    let points: Vec<(usize, &[[usize; 2]])> = between
         .iter()
         .filter(|(&p, _)| {
             let of_p = (p * per_point..(p + 1) * per_point).filter(|i| mine.contains(i));
             of_p.clone().count() > 0 && of_p.clone().all(|i| !store.has(&plan.task(i).key))
         })
-        .map(|(&p, &pair)| (p, pair))
+        .map(|(&p, pairs)| (p, pairs.as_slice()))
         .collect();
-    let neighbours = store.load_many(points.iter().flat_map(|(_, pair)| {
-        pair.iter()
+    let neighbours = store.load_many(points.iter().flat_map(|(_, pairs)| {
+        pairs
+            .iter()
+            .flatten()
             .flat_map(|&q| (q * per_point..(q + 1) * per_point).map(|i| plan.task(i).key))
             .collect::<Vec<_>>()
     }));
     let done = pool.install(|| {
         points
             .par_iter()
-            .map(|&(p, pair)| -> Result<Certified, SweepError> {
+            .map(|&(p, pairs)| -> Result<Certified, SweepError> {
                 let mut out = Certified::default();
-                let records = match crate::map::certify::certify(plan, p, pair, &neighbours) {
+                let certify = |pair| crate::map::certify::certify(plan, p, pair, &neighbours);
+                let records = match crate::map::certify::first_candidate(pairs, certify) {
                     Ok(records) => records,
                     Err(why) => {
                         if why != crate::map::certify::Refusal::NotCandidate {

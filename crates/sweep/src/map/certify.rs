@@ -1,9 +1,12 @@
 //! Points of a refined map certified without runs (`refine.certify_midpoints`, off by
 //! default).
 //!
-//! Refinement adds the midpoints of a split cell's edges; many lie between two coarser points
-//! of one state (the edge of a cell whose other corners differ). Such a point's runs are not
-//! stepped when all of this holds:
+//! Refinement adds the midpoints of a split cell's edges and its centre; many lie midway
+//! between two coarser points of one state: an edge midpoint between the ends of its edge
+//! (the edge of a cell whose other corners differ), a centre between two opposite corners of
+//! its cell (one diagonal of a cell with three corners of one state), the pairs
+//! [`crate::map::refine::midway`] lists, tried in turn ([`first_candidate`]). Such a point's
+//! runs are not stepped when all of this holds for one pair:
 //! - the two neighbours' runs all ended, steady and stepped (none certified itself), on one
 //!   class `C` (IC, ID or MD), so both are single-state points of that class;
 //! - at the point, the runs' Newton finish from the end of each neighbour's run from the same
@@ -145,6 +148,21 @@ pub fn certify_ends(
         ends.push(end);
     }
     Ok((class, ends))
+}
+
+/// The first of `pairs` whose two points are a candidate ([`Refusal::NotCandidate`] if none
+/// is): `certify` of each pair in turn, until one certifies or refuses.
+pub fn first_candidate<T>(
+    pairs: &[[usize; 2]],
+    mut certify: impl FnMut([usize; 2]) -> Result<T, Refusal>,
+) -> Result<T, Refusal> {
+    for &pair in pairs {
+        match certify(pair) {
+            Err(Refusal::NotCandidate) => continue,
+            decided => return decided,
+        }
+    }
+    Err(Refusal::NotCandidate)
 }
 
 /// The records of the runs of plan point `p`, certified without runs from the stored runs of

@@ -31,7 +31,7 @@ struct Slice {
 
 /// The points of `level` that lie midway between two points of lower levels of their slice
 /// ([`crate::map::refine::midway`]), as plan point indices (the plan lists the slices' points
-/// in order): point -> the two.
+/// in order): point -> its pairs.
 fn midpoints(lattice: &Lattice, slices: &[Slice], level: u32) -> Between {
     let mut between = Between::new();
     let mut first = 0;
@@ -46,8 +46,10 @@ fn midpoints(lattice: &Lattice, slices: &[Slice], level: u32) -> Between {
             if l != level {
                 continue;
             }
-            if let Some(pair) = midway(lattice, n, l, |m| index.get(&m).map(|&(_, l)| l)) {
-                between.insert(first + i, pair.map(|m| index[&m].0));
+            let pairs = midway(lattice, n, l, |m| index.get(&m).map(|&(_, l)| l));
+            if !pairs.is_empty() {
+                let pairs = pairs.iter().map(|pair| pair.map(|m| index[&m].0));
+                between.insert(first + i, pairs.collect());
             }
         }
         first += s.nodes.len();
@@ -55,9 +57,9 @@ fn midpoints(lattice: &Lattice, slices: &[Slice], level: u32) -> Between {
     between
 }
 
-/// Plan point index -> the plan point indices of the two lower-level points it lies midway
-/// between ([`midpoints`]).
-pub type Between = BTreeMap<usize, [usize; 2]>;
+/// Plan point index -> the plan point indices of the pairs of lower-level points it lies
+/// midway between, in the order a certificate tries them ([`midpoints`]).
+pub type Between = BTreeMap<usize, Vec<[usize; 2]>>;
 
 /// Walks the levels of `spec`'s refinement on `lattice`, each slice of a third axis on its own
 /// (its cells split by its own points' classes). At each level `visit(level, plan, runs,

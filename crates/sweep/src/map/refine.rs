@@ -80,27 +80,35 @@ pub fn split(
     (points.into_iter().collect(), children)
 }
 
-/// The two points of lower levels that a point of `level` (>= 1) lies midway between on a
-/// line of the lattice, if it does (the midpoint of a split cell's edge: along `x` first,
-/// then `y`); a cell's centre, whose neighbours at that distance are of its own level, does
-/// not. `level_of` gives the level of every known point.
+/// The pairs of points of lower levels that a point of `level` (>= 1) lies midway between,
+/// in the order a certificate tries them: the midpoint of a split cell's edge has one, on a
+/// line of the lattice (along `x` first, then `y`); a cell's centre, whose neighbours along
+/// the lattice's lines are of its own level, lies midway between the cell's opposite corners,
+/// on its two diagonals. Empty for a point of level 0. `level_of` gives the level of every
+/// known point.
 pub fn midway(
     lattice: &Lattice,
     (i, j): Node,
     level: u32,
     level_of: impl Fn(Node) -> Option<u32>,
-) -> Option<[Node; 2]> {
+) -> Vec<[Node; 2]> {
     if level == 0 {
-        return None;
+        return Vec::new();
     }
     let d = lattice.side(level);
-    let lower = |n: Node| level_of(n).is_some_and(|l| l < level);
+    let lower = |pair: &[Node; 2]| pair.iter().all(|&n| level_of(n).is_some_and(|l| l < level));
     let along_x = (i >= d).then(|| [(i - d, j), (i + d, j)]);
     let along_y = (j >= d).then(|| [(i, j - d), (i, j + d)]);
-    [along_x, along_y]
-        .into_iter()
-        .flatten()
-        .find(|pair| pair.iter().all(|&n| lower(n)))
+    if let Some(pair) = [along_x, along_y].into_iter().flatten().find(lower) {
+        return vec![pair];
+    }
+    let diagonals = (i >= d && j >= d).then(|| {
+        [
+            [(i - d, j - d), (i + d, j + d)],
+            [(i - d, j + d), (i + d, j - d)],
+        ]
+    });
+    diagonals.into_iter().flatten().filter(lower).collect()
 }
 
 #[cfg(test)]
@@ -220,19 +228,30 @@ mod tests {
     }
 
     #[test]
-    fn edge_midpoints_lie_midway_between_coarser_points_and_centres_do_not() {
+    fn edge_midpoints_lie_midway_on_the_lattice_and_centres_on_the_diagonals() {
         let l = lattice(2);
         let mut levels: BTreeMap<Node, u32> = l.level0().into_iter().map(|n| (n, 0)).collect();
         let added = [(8, 6), (10, 4), (10, 6), (10, 8), (12, 6)];
         levels.extend(added.map(|n| (n, 1)));
         let of = |n: Node| levels.get(&n).copied();
-        assert_eq!(midway(&l, (10, 4), 1, of), Some([(8, 4), (12, 4)]));
-        assert_eq!(midway(&l, (8, 6), 1, of), Some([(8, 4), (8, 8)]));
-        assert_eq!(midway(&l, (10, 6), 1, of), None, "a centre");
-        assert_eq!(midway(&l, (0, 0), 0, of), None, "level 0");
+        assert_eq!(midway(&l, (10, 4), 1, of), vec![[(8, 4), (12, 4)]]);
+        assert_eq!(midway(&l, (8, 6), 1, of), vec![[(8, 4), (8, 8)]]);
+        assert_eq!(
+            midway(&l, (10, 6), 1, of),
+            vec![[(8, 4), (12, 8)], [(8, 8), (12, 4)]],
+            "a centre: its cell's diagonals"
+        );
+        assert!(midway(&l, (0, 0), 0, of).is_empty(), "level 0");
         // A point of level 2 between a level-1 point and a level-0 one.
         levels.insert((9, 4), 2);
         let of = |n: Node| levels.get(&n).copied();
-        assert_eq!(midway(&l, (9, 4), 2, of), Some([(8, 4), (10, 4)]));
+        assert_eq!(midway(&l, (9, 4), 2, of), vec![[(8, 4), (10, 4)]]);
+        // The centre of a level-1 cell whose corners are of levels 0 and 1.
+        levels.insert((9, 5), 2);
+        let of = |n: Node| levels.get(&n).copied();
+        assert_eq!(
+            midway(&l, (9, 5), 2, of),
+            vec![[(8, 4), (10, 6)], [(8, 6), (10, 4)]]
+        );
     }
 }

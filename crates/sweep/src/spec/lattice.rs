@@ -18,7 +18,8 @@ pub struct Refine {
     /// to the finest step; by default only their edges are refined).
     pub split_bistable: bool,
     /// Certify a refined point without runs where it lies midway between two coarser points
-    /// of one single state and its own stability shows that state alone is stable there
+    /// of one single state (the ends of its edge, or opposite corners of the cell it is the
+    /// centre of) and its own stability shows that state alone is stable there
     /// ([`crate::map::certify`]). Off by default: such a point's runs are not stepped.
     pub certify_midpoints: bool,
 }
