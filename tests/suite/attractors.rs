@@ -133,6 +133,25 @@ fn a_run_beyond_a_bump_of_the_orientation_flow_ends_where_pure_stepping_does() {
 }
 
 #[test]
+fn a_run_turning_away_from_a_turned_root_does_not_end_there() {
+    // (0.089, 0.1075) from i, N = 192: the run turns up to the stable MD 18.0 degrees off the
+    // x axis (v = 0.314157, where pure stepping, `--steady test --steady-tol 1e-9`, ends at
+    // t = 2839). At t = 186 it is at 16.3 degrees, 12 % below that speed, next to a root of the
+    // lattice at 16.6 degrees unstable in rotation; the flow on that root's family leads down
+    // to the MD 1.7 degrees off the axis (v = 0.329282, where the run from ii ends), the way
+    // the run is not turning. It ended there; it now steps on to the next try.
+    let out = simulate("0.089", "0.1075", "i", &[]);
+    assert_eq!(out["ended_by"], "steady_by_newton", "{out}");
+    let v = out["v"].as_f64().unwrap();
+    assert!((v - 0.314157).abs() < 1e-6, "{out}");
+    let angle = out["vy"]
+        .as_f64()
+        .unwrap()
+        .atan2(out["vx"].as_f64().unwrap());
+    assert!((angle.to_degrees() - 18.003).abs() < 1e-2, "{out}");
+}
+
+#[test]
 fn a_run_landed_from_a_departure_turns_as_the_departure_turns_it() {
     // (0.088, 0.1095) from iii leaves the resting ID with its long axis turning; it lands
     // (v = 0.0074) 13 degrees off the diagonal MD, which is unstable in rotation. The flow on

@@ -69,7 +69,12 @@ use contract::settings::ModelKind;
 /// landing's walks for its later tries; the landing's zero is located by Illinois instead of
 /// bisection and its shape solves start with the last derivative (roots equal to about
 /// 1e-10 in `v` and `s`; results/map-profile).
-pub const SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-10");
+/// 11: a turned root (the flow's or the turn search's, from a root unstable in rotation) ends
+/// no run turning away from it since the last try (`runs::finish`): (0.089, 0.1075) from i,
+/// still gaining speed and turning up to the MD at 18.0 degrees where pure stepping ends, had
+/// ended on the one at 1.7 degrees; 1 of the Fig. 2a map's 7488 stepped runs
+/// (results/fig2a-map-certify).
+pub const SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-11");
 
 /// Version of the reduced ODE model's numerics (2: unstable states no longer end a run;
 /// 3: a run that does not end steady has no class).

@@ -79,6 +79,7 @@ use crate::runs::leap::{leap, Leap, Sighting};
 use crate::runs::orientation::{
     angle_to, class_of, invariant_distance, one_class_within, ORIENTATION,
 };
+use crate::runs::rotation_flow::LINEAR_LEAN;
 use rustfft::num_complex::Complex64;
 
 /// Newton is first tried when the change per window is below this many steady tolerances.
@@ -141,6 +142,8 @@ pub struct NewtonFinish {
     pub(super) last_lean: Option<((i64, bool), f64, f64)>,
     /// The root of the last try and the run's angle to it then.
     pub(super) last_turn: Option<(Vec<f64>, f64)>,
+    /// The run's state at the last try (which way it turns since).
+    pub(super) last_try: Option<Vec<f64>>,
     /// Roots already assessed and their verdicts (a run's later tries usually find the same
     /// root again; its eigenvalues are not recomputed).
     pub(super) assessed: Vec<(Vec<f64>, Verdict)>,
@@ -199,6 +202,7 @@ impl NewtonFinish {
             landing: settings.landing,
             sighting: None,
             last_turn: None,
+            last_try: None,
             last_lean: None,
             mirror_symmetric: true,
             assessed: Vec::new(),
@@ -344,6 +348,7 @@ impl NewtonFinish {
             return self.try_disk(t, z, change);
         }
         let turning = !test_fired && all >= self.trigger;
+        let before = self.last_try.replace(z.to_vec());
         let found = self.stable_root(z);
         let Some((f, may_end, basin_left)) = found else {
             // No root near (a run passing the ghost of a saddle-node, or caught mid-turn):
@@ -385,10 +390,21 @@ impl NewtonFinish {
         // lines: modes 2..3, N = 192, (0.085, 0.112) from iv, 17 degrees from the diagonal
         // MD (unstable in rotation) and turning towards it, to a root 2.25 degrees short of
         // it, had ended on the y-axis MD the turn search finds from the diagonal.
-        let turned = f
-            .turned_from
+        //
+        // And a turned root ends no run turning away from it (its angle to that root grown
+        // since the last try by more than LINEAR_LEAN), whatever the flow on the root's family
+        // says: a run still gaining speed turns as its transient turns it. 2 modes, N = 192,
+        // (0.089, 0.1075) from i at t = 186: 16.3 degrees off the x axis, 12 % below its
+        // speed and turning up at 0.017 degrees per time unit to the stable root at 18.0
+        // degrees, it is next to a root of the lattice at 16.6 degrees unstable in rotation,
+        // whose flow on the family leads down to 1.7 degrees; it had ended there.
+        let turning_away = before
             .as_ref()
-            .is_some_and(|from| self.lean_holds(angle_to(z, from), turning_to));
+            .is_some_and(|b| turn > angle_to(b, &f.z).abs() + LINEAR_LEAN);
+        let turned = !turning_away
+            && f.turned_from
+                .as_ref()
+                .is_some_and(|from| self.lean_holds(angle_to(z, from), turning_to));
         let approaching = settled && (turned || turn <= ORIENTATION || turning_to);
         // The basin check of a root stable in rotation, left to here: only a run that would
         // end on it pays for the flow's samples (the same decisions, fewer samples).
