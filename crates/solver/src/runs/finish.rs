@@ -37,7 +37,8 @@
 //! stable root on the side it leans to, looked for by Newton from the state turned by [`crate::runs::orientation::TURN_SEARCH`] degrees (a pitchfork pair a degree or
 //! so off the line, else the root on the next mirror line), and the run ends there: speed and
 //! deformation settle long before the orientation, and that root's `v` and `s` are what the
-//! time stepper reaches after the turn. Runs with more shape modes (no orientation flow) end
+//! time stepper reaches after the turn; no run ends on a turned root it has turned away from
+//! since the last try (numerics 11). Runs with more shape modes (no orientation flow) end
 //! on such a turned root only while they leave the root they turn from (within
 //! [`crate::runs::rotation_flow::LINEAR_LEAN`] of it) or turn towards the turned root
 //! (numerics modes-7): on their grids the lattice holds roots between the mirror lines.
