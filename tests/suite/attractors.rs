@@ -15,6 +15,12 @@ fn simulate(eta_t: &str, kappa2: &str, ic: &str, extra: &[&str]) -> serde_json::
     json(&run(&args))
 }
 
+/// The direction of motion of a run's end (`simulate --json`), in degrees from the x axis.
+fn direction_degrees(out: &serde_json::Value) -> f64 {
+    let (vx, vy) = (out["vx"].as_f64().unwrap(), out["vy"].as_f64().unwrap());
+    vy.atan2(vx).to_degrees()
+}
+
 #[test]
 fn just_below_the_onset_of_motion_every_initial_condition_ends_md() {
     // (0.0763, 0.16): the disk's drift grows at +1.44e-3, the moving branch's s > 0.01. Plain
@@ -125,11 +131,8 @@ fn a_run_beyond_a_bump_of_the_orientation_flow_ends_where_pure_stepping_does() {
     assert_eq!(out["class"], "MD", "{out}");
     let v = out["v"].as_f64().unwrap();
     assert!((v - 0.530204).abs() < 1e-6, "{out}");
-    let angle = out["vy"]
-        .as_f64()
-        .unwrap()
-        .atan2(out["vx"].as_f64().unwrap());
-    assert!((angle.to_degrees().abs() - 22.151).abs() < 1e-2, "{out}");
+    let angle = direction_degrees(&out);
+    assert!((angle.abs() - 22.151).abs() < 1e-2, "{out}");
 }
 
 #[test]
@@ -144,11 +147,8 @@ fn a_run_turning_away_from_a_turned_root_does_not_end_there() {
     assert_eq!(out["ended_by"], "steady_by_newton", "{out}");
     let v = out["v"].as_f64().unwrap();
     assert!((v - 0.314157).abs() < 1e-6, "{out}");
-    let angle = out["vy"]
-        .as_f64()
-        .unwrap()
-        .atan2(out["vx"].as_f64().unwrap());
-    assert!((angle.to_degrees() - 18.003).abs() < 1e-2, "{out}");
+    let angle = direction_degrees(&out);
+    assert!((angle - 18.003).abs() < 1e-2, "{out}");
 }
 
 #[test]
@@ -172,14 +172,8 @@ fn a_run_landed_from_a_departure_turns_as_the_departure_turns_it() {
         assert_eq!(out["class"], "MD", "{out}");
         let v = out["v"].as_f64().unwrap();
         assert!((v - v_end).abs() < 1e-6, "{out}");
-        let angle = out["vy"]
-            .as_f64()
-            .unwrap()
-            .atan2(out["vx"].as_f64().unwrap());
-        assert!(
-            ((135.0 - angle.to_degrees()).abs() - off).abs() < 1e-2,
-            "{out}"
-        );
+        let angle = direction_degrees(&out);
+        assert!(((135.0 - angle).abs() - off).abs() < 1e-2, "{out}");
     }
 }
 

@@ -96,24 +96,23 @@ fn check_all(map: &Path) -> Result<CertifyCheck, SweepError> {
             ((p.z.to_bits(), node), (p.point, p.level))
         })
         .collect();
-    let pairs: Vec<(u32, Vec<[usize; 2]>)> = points
+    let pairs: Vec<(u32, Vec<[u32; 2]>)> = points
         .iter()
         .filter_map(|p| {
             let z = p.z.to_bits();
             let node = lattice.node_of((p.x, p.y));
             let pairs = midway(lattice, node, p.level, |m| at.get(&(z, m)).map(|&(_, l)| l));
-            let pairs = pairs
-                .iter()
-                .map(|pair| pair.map(|m| at[&(z, m)].0 as usize));
+            let pairs = pairs.iter().map(|pair| pair.map(|m| at[&(z, m)].0));
             Some((p.point, pairs.collect::<Vec<_>>())).filter(|(_, pairs)| !pairs.is_empty())
         })
         .collect();
-    let ends = |q: usize| -> Option<Vec<End>> {
-        by_point
-            .get(&(q as u32))?
-            .iter()
+    // A neighbour without all its runs in the tables is no candidate.
+    let ends = |q: u32| -> Result<Vec<End>, Refusal> {
+        let runs = by_point.get(&q).ok_or(Refusal::NotCandidate)?;
+        runs.iter()
             .map(|r| r.map(end_of))
-            .collect()
+            .collect::<Option<_>>()
+            .ok_or(Refusal::NotCandidate)
     };
     let checked: Vec<Option<Checked>> = pairs
         .par_iter()
@@ -125,11 +124,7 @@ fn check_all(map: &Path) -> Result<CertifyCheck, SweepError> {
                 .collect::<Option<Vec<_>>>()?;
             let t = Instant::now();
             let result = first_candidate(pairs, |[a, b]| {
-                let (ea, eb) = (ends(a), ends(b));
-                let (Some(ea), Some(eb)) = (ea, eb) else {
-                    return Err(Refusal::NotCandidate);
-                };
-                certify_ends(own[0].params, own[0].n, &ea, &eb)
+                certify_ends(own[0].params, own[0].n, &ends(a)?, &ends(b)?)
             });
             Some(Checked {
                 result,

@@ -152,9 +152,9 @@ pub fn certify_ends(
 
 /// The first of `pairs` whose two points are a candidate ([`Refusal::NotCandidate`] if none
 /// is): `certify` of each pair in turn, until one certifies or refuses.
-pub fn first_candidate<T>(
-    pairs: &[[usize; 2]],
-    mut certify: impl FnMut([usize; 2]) -> Result<T, Refusal>,
+pub fn first_candidate<P: Copy, T>(
+    pairs: &[P],
+    mut certify: impl FnMut(P) -> Result<T, Refusal>,
 ) -> Result<T, Refusal> {
     for &pair in pairs {
         match certify(pair) {
