@@ -4,6 +4,7 @@ use droplet_sweep::bench::certify_check::check_certificates;
 use droplet_sweep::bench::map_profile::{profile_map, Group, MapProfile, MapProfileOptions};
 use droplet_sweep::bench::run::{run_benchmark, BenchOptions};
 use droplet_sweep::map::sample::Sample;
+use droplet_sweep::spec::lattice::Certify;
 use std::path::PathBuf;
 
 /// Time representative runs against their references: speed and the error it costs.
@@ -28,7 +29,7 @@ use std::path::PathBuf;
 /// OUT/map_profile.json (the groups).
 #[derive(clap::Args)]
 #[command(
-    after_help = "Examples:\n  droplet bench --quick --out /tmp/bench     # miniature, seconds\n  droplet bench --out results/bench --jobs 2  # the committed benchmark\n  droplet bench --map results/fig2a-map --sample 200 --seed 1 --out out/map-profile\n  droplet bench --map results/fig2a-map --certify   # what refine.certify_midpoints would make of it"
+    after_help = "Examples:\n  droplet bench --quick --out /tmp/bench     # miniature, seconds\n  droplet bench --out results/bench --jobs 2  # the committed benchmark\n  droplet bench --map results/fig2a-map --sample 200 --seed 1 --out out/map-profile\n  droplet bench --map results/fig2a-map --certify   # what refine.certify_midpoints would make of it\n  droplet bench --map results/fig2a-map --certify chained"
 )]
 pub struct Args {
     /// Output directory (default: out/bench, with --map out/map-profile).
@@ -45,9 +46,13 @@ pub struct Args {
     /// point's own runs (class, root, time). JSON keys: map, points, candidates,
     /// certified_points, certified_runs, refused, class_differences, other_root,
     /// other_root_max_dv, other_root_max_ds, same_root_max_dv, same_root_max_ds,
-    /// certificates_s, their_runs_s, map_run_time_s, wall_s.
-    #[arg(long, requires = "map", conflicts_with = "sample")]
-    certify: bool,
+    /// certificates_s, their_runs_s, map_run_time_s, wall_s, mode. `--certify` alone is
+    /// `certify_midpoints: true` (the neighbours' runs as the map has them); `--certify
+    /// chained` takes the levels in order as the sweep does, a neighbour certified here
+    /// lending its certified ends.
+    #[arg(long, requires = "map", conflicts_with = "sample", value_name = "MODE",
+          num_args = 0..=1, default_missing_value = "true", value_parser = ["true", "chained"])]
+    certify: Option<String>,
     /// With --map: a seeded random sample of this many runs (default: every run).
     #[arg(long, requires = "map", value_name = "N")]
     sample: Option<usize>,
@@ -131,14 +136,19 @@ pub fn run(a: Args) -> Result<(), CliError> {
 
 /// `droplet bench --map DIR`.
 fn run_map(a: Args, map: PathBuf) -> Result<(), CliError> {
-    if a.certify {
-        let check = check_certificates(&map, a.jobs)?;
+    if let Some(mode) = &a.certify {
+        let mode = match mode.as_str() {
+            "chained" => Certify::Chained,
+            _ => Certify::Stepped,
+        };
+        let check = check_certificates(&map, mode, a.jobs)?;
         if a.json {
             print_json(&check);
         } else {
             outln!(
-                "{}: {} points, {} midway between two coarser points of one state: {} certified ({} runs), refused {:?}; {} certified runs of another class than their own run, {} on another root (up to {:.1e} in v, {:.1e} in s); certificates {:.1} s against {:.1} s of the map's run time for those runs ({:.1} s in all)",
+                "{} ({}): {} points, {} midway between two coarser points of one state: {} certified ({} runs), refused {:?}; {} certified runs of another class than their own run, {} on another root (up to {:.1e} in v, {:.1e} in s); certificates {:.1} s against {:.1} s of the map's run time for those runs ({:.1} s in all)",
                 check.map.display(),
+                check.mode,
                 check.points,
                 check.candidates,
                 check.certified_points,

@@ -3,10 +3,13 @@
 //! point that lies midway between two coarser points, the certificate from the neighbours'
 //! runs as the map has them, against the point's own runs (its class and root, and the
 //! certificate's time against theirs). Nothing is stepped: a committed map made without the
-//! option (N = 192, hours of run time) is measured in minutes.
+//! option (N = 192, hours of run time) is measured in minutes. With `chained` the levels are
+//! taken in order, as the sweep takes them, and a neighbour certified here lends the
+//! certificate its certified ends instead of its runs'.
 use crate::error::SweepError;
 use crate::map::certify::{certify_ends, first_candidate, End, Refusal, SAME_ROOT};
 use crate::map::refine::midway;
+use crate::spec::lattice::Certify;
 use crate::tables::read::{self, RunRow};
 use droplet_solver::contract::ending::Ending;
 use droplet_solver::contract::outcome::RunStatus;
@@ -22,6 +25,8 @@ use std::time::Instant;
 #[derive(Debug, Clone, Default, Serialize)]
 pub struct CertifyCheck {
     pub map: PathBuf,
+    /// `true` (from stepped neighbours) or `chained`.
+    pub mode: &'static str,
     pub points: usize,
     /// Points midway between two coarser points of one single state.
     pub candidates: usize,
@@ -47,18 +52,27 @@ pub struct CertifyCheck {
     pub wall_s: f64,
 }
 
-/// The certificate at every midpoint of the refined map in `map` (its tables), on `jobs`
-/// threads (default: one per core).
-pub fn check_certificates(map: &Path, jobs: Option<usize>) -> Result<CertifyCheck, SweepError> {
+/// The certificate under `mode` at every midpoint of the refined map in `map` (its tables),
+/// on `jobs` threads (default: one per core).
+pub fn check_certificates(
+    map: &Path,
+    mode: Certify,
+    jobs: Option<usize>,
+) -> Result<CertifyCheck, SweepError> {
+    if !mode.is_on() {
+        return Err(SweepError::Invalid(
+            "--certify: a mode that certifies (true or chained)".to_string(),
+        ));
+    }
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(jobs.unwrap_or(0))
         .build()
         .map_err(|e| SweepError::Invalid(format!("cannot start the worker threads: {e}")))?;
-    pool.install(|| check_all(map))
+    pool.install(|| check_all(map, mode))
 }
 
 /// [`check_certificates`] on the current pool.
-fn check_all(map: &Path) -> Result<CertifyCheck, SweepError> {
+fn check_all(map: &Path, mode: Certify) -> Result<CertifyCheck, SweepError> {
     let started = Instant::now();
     let runs_path = map.join(read::RUNS);
     for table in [read::RUNS, read::POINTS] {
@@ -96,50 +110,77 @@ fn check_all(map: &Path) -> Result<CertifyCheck, SweepError> {
             ((p.z.to_bits(), node), (p.point, p.level))
         })
         .collect();
-    let pairs: Vec<(u32, Vec<[u32; 2]>)> = points
-        .iter()
-        .filter_map(|p| {
-            let z = p.z.to_bits();
-            let node = lattice.node_of((p.x, p.y));
-            let pairs = midway(lattice, node, p.level, |m| at.get(&(z, m)).map(|&(_, l)| l));
-            let pairs = pairs.iter().map(|pair| pair.map(|m| at[&(z, m)].0));
-            Some((p.point, pairs.collect::<Vec<_>>())).filter(|(_, pairs)| !pairs.is_empty())
-        })
-        .collect();
-    // A neighbour without all its runs in the tables is no candidate.
-    let ends = |q: u32| -> Result<Vec<End>, Refusal> {
-        let runs = by_point.get(&q).ok_or(Refusal::NotCandidate)?;
-        runs.iter()
-            .map(|r| r.map(end_of))
-            .collect::<Option<_>>()
-            .ok_or(Refusal::NotCandidate)
-    };
-    let checked: Vec<Option<Checked>> = pairs
-        .par_iter()
-        .map(|(p, pairs)| {
-            let own = by_point
-                .get(p)?
-                .iter()
-                .copied()
-                .collect::<Option<Vec<_>>>()?;
-            let t = Instant::now();
-            let result = first_candidate(pairs, |[a, b]| {
-                certify_ends(own[0].params, own[0].n, &ends(a)?, &ends(b)?)
-            });
-            Some(Checked {
-                result,
-                seconds: t.elapsed().as_secs_f64(),
-                own: own.into_iter().cloned().collect(),
+    // The midpoints by level (a midpoint's pairs are of lower levels).
+    let mut by_level: BTreeMap<u32, Vec<(u32, Vec<[u32; 2]>)>> = BTreeMap::new();
+    for p in &points {
+        let z = p.z.to_bits();
+        let node = lattice.node_of((p.x, p.y));
+        let pairs = midway(lattice, node, p.level, |m| at.get(&(z, m)).map(|&(_, l)| l));
+        let pairs: Vec<[u32; 2]> = pairs
+            .iter()
+            .map(|pair| pair.map(|m| at[&(z, m)].0))
+            .collect();
+        if !pairs.is_empty() {
+            by_level.entry(p.level).or_default().push((p.point, pairs));
+        }
+    }
+    // The ends a neighbour lends: its certificate's when chained and certified here, else
+    // its runs' (a neighbour without all its runs in the tables is no candidate).
+    let mut lent: HashMap<u32, Vec<End>> = HashMap::new();
+    let mut checked: Vec<Checked> = Vec::new();
+    for level_points in by_level.values() {
+        let ends = |q: u32| -> Result<Vec<End>, Refusal> {
+            if let Some(e) = lent.get(&q) {
+                return Ok(e.clone());
+            }
+            let runs = by_point.get(&q).ok_or(Refusal::NotCandidate)?;
+            runs.iter()
+                .map(|r| r.map(end_of))
+                .collect::<Option<_>>()
+                .ok_or(Refusal::NotCandidate)
+        };
+        let level: Vec<Checked> = level_points
+            .par_iter()
+            .filter_map(|(p, pairs)| {
+                let own = by_point
+                    .get(p)?
+                    .iter()
+                    .copied()
+                    .collect::<Option<Vec<_>>>()?;
+                let t = Instant::now();
+                let result = first_candidate(pairs, |[a, b]| {
+                    certify_ends(own[0].params, own[0].n, &ends(a)?, &ends(b)?, mode)
+                });
+                Some(Checked {
+                    point: *p,
+                    result,
+                    seconds: t.elapsed().as_secs_f64(),
+                    own: own.into_iter().cloned().collect(),
+                })
             })
-        })
-        .collect();
+            .collect();
+        if mode == Certify::Chained {
+            for c in &level {
+                if let Ok((class, ends)) = &c.result {
+                    let end = |z: &Vec<f64>| End {
+                        class: Some(*class),
+                        certified: true,
+                        z: z.clone(),
+                    };
+                    lent.insert(c.point, ends.iter().map(end).collect());
+                }
+            }
+        }
+        checked.extend(level);
+    }
     let mut out = CertifyCheck {
         map: map.to_path_buf(),
+        mode: mode.as_str(),
         points: points.len(),
         map_run_time_s: rows.iter().map(|r| r.wall_s).sum(),
         ..Default::default()
     };
-    for c in checked.into_iter().flatten() {
+    for c in checked {
         match c.result {
             Err(Refusal::NotCandidate) => continue,
             Err(why) => {
@@ -177,6 +218,7 @@ fn check_all(map: &Path) -> Result<CertifyCheck, SweepError> {
 
 /// One midpoint's certificate and its own runs.
 struct Checked {
+    point: u32,
     result: Result<(StateClass, Vec<Vec<f64>>), Refusal>,
     seconds: f64,
     own: Vec<RunRow>,

@@ -26,6 +26,7 @@ pub(super) fn certify_pending(
     plan: &Plan,
     runs: &[usize],
     between: &crate::map::levels::Between,
+    mode: crate::spec::lattice::Certify,
     pool: &rayon::ThreadPool,
 ) -> Result<Certified, SweepError> {
     let per_point = plan.ic_names.len().max(1);
@@ -50,7 +51,7 @@ pub(super) fn certify_pending(
             .par_iter()
             .map(|&(p, pairs)| -> Result<Certified, SweepError> {
                 let mut out = Certified::default();
-                let certify = |pair| crate::map::certify::certify(plan, p, pair, &neighbours);
+                let certify = |pair| crate::map::certify::certify(plan, p, pair, &neighbours, mode);
                 let records = match crate::map::certify::first_candidate(pairs, certify) {
                     Ok(records) => records,
                     Err(why) => {

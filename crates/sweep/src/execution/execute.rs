@@ -257,10 +257,13 @@ fn run_refined(
             }
             Some((sh, _)) => indices_of(plan, runs, sh),
         };
-        let certify = lattice.refine.certify_midpoints;
+        let mode = lattice.refine.certify_midpoints;
+        let certify = mode.is_on();
         let mut to_run = runs.clone();
         if certify {
-            let c = crate::execution::certify::certify_pending(store, plan, &runs, between, pool)?;
+            let c = crate::execution::certify::certify_pending(
+                store, plan, &runs, between, mode, pool,
+            )?;
             to_run.retain(|i| !c.runs.contains(i));
             total.add(Ran {
                 computed: c.runs.len(),

@@ -7,8 +7,11 @@
 //! its cell (one diagonal of a cell with three corners of one state), the pairs
 //! [`crate::map::refine::midway`] lists, tried in turn ([`first_candidate`]). Such a point's
 //! runs are not stepped when all of this holds for one pair:
-//! - the two neighbours' runs all ended, steady and stepped (none certified itself), on one
-//!   class `C` (IC, ID or MD), so both are single-state points of that class;
+//! - the two neighbours' runs all ended steady on one class `C` (IC, ID or MD), so both are
+//!   single-state points of that class; with `certify_midpoints: true` every one of those
+//!   runs was stepped, with `chained` a neighbour may have been certified itself (its runs'
+//!   ends are then the roots its own certificate continued, and every chain of certificates
+//!   starts at points whose runs were stepped, the coarser the closer to level 0);
 //! - at the point, the runs' Newton finish from the end of each neighbour's run from the same
 //!   initial condition reaches, from both neighbours, one root (`v`, `s` within
 //!   1e-6) of class `C` with no growing eigenvalue (the rotation mode aside; for IC, the
@@ -30,6 +33,7 @@
 //! stepping may reach another (measured at N = 96: 5 of 932 certified runs, up to 1.6e-2 in
 //! `v`; the class was the stepped runs' in all 932; results/map-profile, "Points certified
 //! without runs"). The resting disk has no orientation: a certified IC run's end is exact.
+use crate::spec::lattice::Certify;
 use crate::store::plan::Plan;
 use crate::store::run_store::RunRecord;
 use droplet_solver::contract::ending::Ending;
@@ -53,7 +57,8 @@ pub enum Refusal {
     /// Not a candidate: the neighbours' runs did not all end steady on one class IC, ID or MD
     /// (the usual case: the edge of a cell whose corners differ). Not counted as a refusal.
     NotCandidate,
-    /// A neighbour's runs were certified themselves, not stepped.
+    /// A neighbour's runs were certified themselves, not stepped (`certify_midpoints: true`;
+    /// `chained` accepts them).
     NeighbourCertified,
     /// The model's steady balances cannot be set up or linearised at the point (no inertia).
     Balances,
@@ -103,16 +108,17 @@ impl End {
 }
 
 /// The certificate at a point of the model `params` on an `n` grid from the ends of its two
-/// neighbours' runs (`a`, `b`: one per initial condition, in the same order): the class and
-/// each run's end, or why it does not hold (see the module).
+/// neighbours' runs (`a`, `b`: one per initial condition, in the same order) under `mode`:
+/// the class and each run's end, or why it does not hold (see the module).
 pub fn certify_ends(
     params: ModelParams,
     n: usize,
     a: &[End],
     b: &[End],
+    mode: Certify,
 ) -> Result<(StateClass, Vec<Vec<f64>>), Refusal> {
     let class = single_class(a.iter().chain(b)).ok_or(Refusal::NotCandidate)?;
-    if a.iter().chain(b).any(|e| e.certified) {
+    if mode != Certify::Chained && a.iter().chain(b).any(|e| e.certified) {
         return Err(Refusal::NeighbourCertified);
     }
     // The named states' eigenvalues need inertia (`find` refuses `m = 0`, which would
@@ -173,6 +179,7 @@ pub fn certify(
     p: usize,
     pair: [usize; 2],
     records: &HashMap<String, RunRecord>,
+    mode: Certify,
 ) -> Result<Vec<RunRecord>, Refusal> {
     let started = Instant::now();
     let per_point = plan.ic_names.len().max(1);
@@ -187,7 +194,7 @@ pub fn certify(
     };
     let (a, b) = (ends_of(pair[0])?, ends_of(pair[1])?);
     let task0 = plan.task(p * per_point);
-    let (class, ends) = certify_ends(task0.params, task0.settings.n, &a, &b)?;
+    let (class, ends) = certify_ends(task0.params, task0.settings.n, &a, &b, mode)?;
     let wall_s = started.elapsed().as_secs_f64() / per_point as f64;
     Ok(ends
         .into_iter()
@@ -293,7 +300,7 @@ mod tests {
     }
 
     #[test]
-    fn only_neighbours_of_one_single_state_all_stepped_are_candidates() {
+    fn only_neighbours_of_one_single_state_are_candidates_and_certified_ones_only_chained() {
         let p = ModelParams::default();
         let ic = |c| vec![end(Some(StateClass::IC), c); 4];
         // Two classes, an unsettled run, or a class the certificate does not know: not a
@@ -305,13 +312,21 @@ mod tests {
         let mc = vec![end(Some(StateClass::MC), false); 4];
         for b in [mixed, unsettled] {
             assert_eq!(
-                certify_ends(p, 64, &ic(false), &b),
+                certify_ends(p, 64, &ic(false), &b, Certify::Stepped),
                 Err(Refusal::NotCandidate)
             );
         }
-        assert_eq!(certify_ends(p, 64, &mc, &mc), Err(Refusal::NotCandidate));
         assert_eq!(
-            certify_ends(p, 64, &ic(false), &ic(true)),
+            certify_ends(p, 64, &mc, &mc, Certify::Chained),
+            Err(Refusal::NotCandidate)
+        );
+        assert_eq!(
+            certify_ends(p, 64, &ic(false), &ic(true), Certify::Stepped),
+            Err(Refusal::NeighbourCertified)
+        );
+        // Chained, a certified neighbour is read as a stepped one.
+        assert_ne!(
+            certify_ends(p, 64, &ic(false), &ic(true), Certify::Chained),
             Err(Refusal::NeighbourCertified)
         );
     }

@@ -132,7 +132,7 @@ mod tests {
                 levels,
                 min_step: (0.0, 0.0),
                 split_bistable: false,
-                certify_midpoints: false,
+                certify_midpoints: Default::default(),
             },
         }
     }
@@ -220,7 +220,7 @@ mod tests {
                 levels: 2,
                 min_step: (0.004, 0.0),
                 split_bistable: false,
-                certify_midpoints: false,
+                certify_midpoints: Default::default(),
             },
             ..l
         };

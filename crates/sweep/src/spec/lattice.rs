@@ -21,7 +21,38 @@ pub struct Refine {
     /// of one single state (the ends of its edge, or opposite corners of the cell it is the
     /// centre of) and its own stability shows that state alone is stable there
     /// ([`crate::map::certify`]). Off by default: such a point's runs are not stepped.
-    pub certify_midpoints: bool,
+    pub certify_midpoints: Certify,
+}
+
+/// Which refined points `refine.certify_midpoints` certifies without runs
+/// ([`crate::map::certify`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Certify {
+    /// None: every run is stepped (`false`, the default).
+    #[default]
+    Off,
+    /// Points whose two coarser neighbours' runs were all stepped (`true`).
+    Stepped,
+    /// Also points whose neighbours were certified themselves (`chained`): every chain of
+    /// certificates starts at points whose runs were stepped.
+    Chained,
+}
+
+impl Certify {
+    /// Whether any point is certified.
+    pub fn is_on(self) -> bool {
+        self != Self::Off
+    }
+
+    /// The spec's value (`false`, `true`, `chained`).
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Self::Off => "false",
+            Self::Stepped => "true",
+            Self::Chained => "chained",
+        }
+    }
 }
 
 /// The uniform steps of the spec's grid along one of its axes: `start + i step`, `i < count`.

@@ -5,7 +5,7 @@
 //!   levels: 4                               # levels beyond the grid (1..=MAX_LEVELS)
 //!   min_step: {eta_t: 1.5e-4, kappa2: 3e-4}  # optional: no cell side below these
 //!   split_bistable: false                   # optional: also fill bistable bands
-//!   certify_midpoints: false                # optional: certify some points without runs
+//!   certify_midpoints: false                # optional: certify some points without runs (true, chained)
 //! ```
 //!
 //! The grid's first two axes must be `{start, stop, step}` ranges: level 0 is that grid, and
@@ -14,7 +14,7 @@
 use super::context::{show, Ctx};
 use super::grid::{Grid, Swept};
 use crate::error::SpecError;
-use crate::spec::lattice::{Lattice, Refine, Steps};
+use crate::spec::lattice::{Certify, Lattice, Refine, Steps};
 use droplet_solver::contract::settings::{ModelKind, SolverSettings};
 use droplet_solver::stepping::SchemeKind;
 use serde_yaml::Mapping;
@@ -102,7 +102,20 @@ pub(super) fn parse(
             .ok_or_else(|| ctx.err(&["refine", name], show(b), "true or false")),
     };
     let split_bistable = flag("split_bistable")?;
-    let certify_midpoints = flag("certify_midpoints")?;
+    let certify_midpoints =
+        match m.get("certify_midpoints") {
+            None => Certify::Off,
+            Some(b) => match (b.as_bool(), b.as_str()) {
+                (Some(false), _) => Certify::Off,
+                (Some(true), _) => Certify::Stepped,
+                (_, Some("chained")) => Certify::Chained,
+                _ => return Err(ctx.err(
+                    &["refine", "certify_midpoints"],
+                    show(b),
+                    "false, true (from stepped neighbours) or chained (from certified ones too)",
+                )),
+            },
+        };
     // The certificate is the spectral PDE runs' Newton finish and eigenvalues: refused where
     // the runs end otherwise.
     let unlike_runs = if solver.model == ModelKind::Ode {
@@ -116,10 +129,10 @@ pub(super) fn parse(
     } else {
         None
     };
-    if let (true, Some(what)) = (certify_midpoints, unlike_runs) {
+    if let (true, Some(what)) = (certify_midpoints.is_on(), unlike_runs) {
         return Err(ctx.err(
             &["refine", "certify_midpoints"],
-            "true",
+            certify_midpoints.as_str(),
             format!("false with {what}: the certificate is the spectral PDE runs' Newton finish and eigenvalues"),
         ));
     }
