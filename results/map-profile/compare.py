@@ -6,7 +6,8 @@ SHA-256 of seed, point and initial condition), and runs each with both binaries 
 defaults), two processes at a time in the order (run 1, A), (run 1, B), (run 2, A), ... so
 that both binaries see the same machine at the same moments. Prints one JSON object: each
 binary's summed run time (the runs' own `wall_s`), their ratio B/A, how many runs end on the
-same state both ways (the same class, v and s within 1e-6), and the runs that do not.
+same state both ways (the same class, v and s within 1e-6), the runs that do not, and each
+run's two times (`runs`: eta_t, kappa2, ic, A's wall_s, B's wall_s).
 
     python3 results/map-profile/compare.py OLD_BIN NEW_BIN   # from the repository root
 MAP (default results/fig2a-map), SAMPLE (default 200), SEED (default 1), JOBS (default 2).
@@ -73,6 +74,8 @@ print(json.dumps({
          "old": [a["class"], a["v"], a["s"]], "new": [b["class"], b["v"], b["s"]]}
         for r, a, b, s in zip(sample, old, new, same) if not s
     ],
+    "runs": [[r["eta_t"], r["kappa2"], r["ic"], a["wall_s"], b["wall_s"]]
+             for r, a, b in zip(sample, old, new)],
     "machine": subprocess.check_output(
         ["sh", "-c", "grep -m1 'model name' /proc/cpuinfo | cut -d: -f2"]).decode().strip(),
     "wall_s": round(time.time() - started, 1),

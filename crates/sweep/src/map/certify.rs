@@ -14,8 +14,9 @@
 //!   starts at points whose runs were stepped, the coarser the closer to level 0);
 //! - at the point, the runs' Newton finish from the end of each neighbour's run from the same
 //!   initial condition reaches, from both neighbours, one root (`v`, `s` within
-//!   1e-6) of class `C` with no growing eigenvalue (the rotation mode aside; for IC, the
-//!   resting disk's own eigenvalues);
+//!   1e-6) of class `C` with no growing eigenvalue, the rotation mode included (a root
+//!   unstable only in rotation is left by the run's own stepping, slowly, for another
+//!   orientation the grid pins); for IC, the resting disk's own eigenvalues;
 //! - no other class has a stable steady state there among those the audit and `droplet
 //!   stability` know: the resting disk (its eigenvalues), ID and MD on both mirror axes
 //!   ([`droplet_solver::roots::named_state::find`]).
@@ -68,6 +69,8 @@ pub enum Refusal {
     OtherState,
     /// Newton from a neighbour's end finds no stable root of the class.
     NoRoot,
+    /// The root it finds is stable but for its rotation mode: the runs turn away from it.
+    Turns,
     /// The two neighbours' ends continue to different roots.
     TwoRoots,
 }
@@ -81,6 +84,7 @@ impl Refusal {
             Self::Disk => "disk",
             Self::OtherState => "other_state",
             Self::NoRoot => "no_root",
+            Self::Turns => "turns",
             Self::TwoRoots => "two_roots",
         }
     }
@@ -140,9 +144,7 @@ pub fn certify_ends(
         let end = if class == StateClass::IC {
             vec![0.0; 2 * balances.modes()]
         } else {
-            let mut root = |e: &End| {
-                stable_root(&mut balances, &mut jacobians, &e.z, class).ok_or(Refusal::NoRoot)
-            };
+            let mut root = |e: &End| stable_root(&mut balances, &mut jacobians, &e.z, class);
             let (za, zb) = (root(ea)?, root(eb)?);
             let (va, sa) = speed_and_deformation(&za);
             let (vb, sb) = speed_and_deformation(&zb);
@@ -230,16 +232,25 @@ fn single_class<'a>(ends: impl Iterator<Item = &'a End>) -> Option<StateClass> {
 }
 
 /// The runs' Newton finish from `z` ([`Balances::root_near`], with the Jacobians kept at the
-/// point), if it reaches a stable state of `class`.
+/// point), if it reaches a state of `class` stable in every mode, rotation included.
 fn stable_root(
     balances: &mut Balances,
     jacobians: &mut KeptJacobians,
     z: &[f64],
     class: StateClass,
-) -> Option<Vec<f64>> {
-    let x = balances.root_near(z, jacobians).ok()?;
+) -> Result<Vec<f64>, Refusal> {
+    let x = balances
+        .root_near(z, jacobians)
+        .map_err(|_| Refusal::NoRoot)?;
     let (v, s) = speed_and_deformation(&x);
-    (StateClass::of(v, s) == class && balances.verdict(&x).unstable == 0).then_some(x)
+    let verdict = balances.verdict(&x);
+    if StateClass::of(v, s) != class || verdict.unstable > 0 {
+        return Err(Refusal::NoRoot);
+    }
+    if verdict.rotation.is_some_and(|r| r > 0.0) {
+        return Err(Refusal::Turns);
+    }
+    Ok(x)
 }
 
 /// Whether ID and MD, on both mirror axes, are absent or unstable here unless they are
@@ -329,5 +340,49 @@ mod tests {
             certify_ends(p, 64, &ic(false), &ic(true), Certify::Chained),
             Err(Refusal::NeighbourCertified)
         );
+    }
+
+    #[test]
+    fn a_root_unstable_only_in_rotation_is_not_certified() {
+        // MD on the x axis at N = 96: at kappa2 = 0.105 stable in rotation too (-4.1e-3), at
+        // 0.11 stable but for its rotation mode (+4.5e-2, inside the verdict's rotation
+        // band): runs leave it, turning slowly.
+        let at = |kappa2| {
+            let p = ModelParams {
+                kappa2,
+                ..ModelParams::default()
+            };
+            let mut balances = Balances::new(p, 96).unwrap();
+            let md = find(&mut balances, StateKind::MD, MirrorLine::X, None).unwrap();
+            let rotation = md.verdict.rotation.unwrap();
+            let ends = vec![
+                End {
+                    class: Some(StateClass::MD),
+                    certified: false,
+                    z: md.z.clone(),
+                };
+                4
+            ];
+            (
+                certify_ends(p, 96, &ends, &ends, Certify::Stepped),
+                md.z,
+                rotation,
+            )
+        };
+        let (held, z, rotation) = at(0.105);
+        assert!(rotation < 0.0, "{rotation}");
+        let (class, ends) = held.unwrap();
+        assert_eq!(class, StateClass::MD);
+        for end in ends {
+            let gap = end
+                .iter()
+                .zip(&z)
+                .map(|(a, b)| (a - b).abs())
+                .fold(0.0, f64::max);
+            assert!(gap < 1e-9, "{gap}");
+        }
+        let (turns, _, rotation) = at(0.11);
+        assert!(rotation > 0.0, "{rotation}");
+        assert_eq!(turns.unwrap_err(), Refusal::Turns);
     }
 }
