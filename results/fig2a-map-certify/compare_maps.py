@@ -6,7 +6,11 @@ run by run, and its run time against the committed binary's on the same machine:
 COMPARE.json is `results/map-profile/compare.py COMMITTED_BIN NEW_BIN` on a sample of the
 committed map's runs (both binaries on this machine, one run after the other). The committed
 binary's whole map on this machine is its recorded run time scaled by what the sample took
-here against what the same runs took in the committed map. Prints one JSON object.
+here against what the same runs took in the committed map. When COMPARE.json lists each run's
+times (`runs`), the certified map is scaled the same way, by what the new binary took on the
+sample's runs that the certified map stepped against what they took in it, so that both maps
+are compared at the machine's speed during the sample (`drift_corrected`): a VM's speed drifts
+by 10-30 % over an hour. Prints one JSON object.
 """
 import hashlib
 import json
@@ -68,6 +72,20 @@ factor = compare["old_run_time_s"] / sample_recorded
 committed_total = float(old_runs["wall_s"].sum())
 committed_here = committed_total * factor
 new_total = float(new_runs["wall_s"].sum())
+drift_corrected = None
+if "runs" in compare:
+    timed = pl.DataFrame(compare["runs"], schema=["eta_t", "kappa2", "ic", "old_s", "new_s"],
+                         orient="row")
+    stepped = timed.join(new_runs.select(keyr + ["ended_by", "wall_s"]), on=keyr).filter(
+        pl.col("ended_by") != "certified_midway")
+    drift = float(stepped["new_s"].sum()) / float(stepped["wall_s"].sum())
+    drift_corrected = {
+        "sample_runs_stepped_in_certified_map": stepped.height,
+        "their_time_here_s": round(float(stepped["new_s"].sum()), 2),
+        "their_time_in_certified_map_s": round(float(stepped["wall_s"].sum()), 2),
+        "certified_map_here_s": round(new_total * drift, 1),
+        "ratio": round(new_total * drift / committed_here, 4),
+    }
 print(json.dumps({
     "committed": old_dir, "certified_map": new_dir,
     "points": {"committed": old_pts.height, "certified_map": new_pts.height,
@@ -90,5 +108,6 @@ print(json.dumps({
         "committed_here_s": round(committed_here, 1),
         "certified_map_s": round(new_total, 1),
         "ratio": round(new_total / committed_here, 4),
+        "drift_corrected": drift_corrected,
     },
 }, indent=1))

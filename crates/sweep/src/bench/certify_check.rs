@@ -111,7 +111,7 @@ fn check_all(map: &Path, mode: Certify) -> Result<CertifyCheck, SweepError> {
         })
         .collect();
     // The midpoints by level (a midpoint's pairs are of lower levels).
-    let mut by_level: BTreeMap<u32, Vec<(u32, Vec<[u32; 2]>)>> = BTreeMap::new();
+    let mut by_level: BTreeMap<u32, Vec<Midpoint>> = BTreeMap::new();
     for p in &points {
         let z = p.z.to_bits();
         let node = lattice.node_of((p.x, p.y));
@@ -215,6 +215,9 @@ fn check_all(map: &Path, mode: Certify) -> Result<CertifyCheck, SweepError> {
     out.wall_s = started.elapsed().as_secs_f64();
     Ok(out)
 }
+
+/// A map point (its index) and the pairs of coarser points it lies midway between.
+type Midpoint = (u32, Vec<[u32; 2]>);
 
 /// One midpoint's certificate and its own runs.
 struct Checked {

@@ -31,9 +31,12 @@
 //! default and a map says how many of its runs were certified (the summary, `ended_by`).
 //! The end of a moving or deformed run is one stable root of its class, the neighbours'
 //! orientation: where the grid pins the droplet at several orientations, the run's own
-//! stepping may reach another (measured at N = 96: 5 of 932 certified runs, up to 1.6e-2 in
-//! `v`; the class was the stepped runs' in all 932; results/map-profile, "Points certified
-//! without runs"). The resting disk has no orientation: a certified IC run's end is exact.
+//! stepping may reach another (measured at N = 96 before roots unstable in rotation were
+//! refused: 5 of 932 certified runs, up to 1.6e-2 in `v`; the class was the stepped runs' in
+//! all 932; results/map-profile, "Points certified without runs"; at N = 192, with the
+//! rotation rule, `droplet bench --map --certify` finds every certified run of the committed
+//! 2-mode and 4-mode maps on its own run's root). The resting disk has no orientation: a
+//! certified IC run's end is exact.
 use crate::spec::lattice::Certify;
 use crate::store::plan::Plan;
 use crate::store::run_store::RunRecord;
