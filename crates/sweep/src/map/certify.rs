@@ -11,7 +11,8 @@
 //!   single-state points of that class; with `certify_midpoints: true` every one of those
 //!   runs was stepped, with `chained` a neighbour may have been certified itself (its runs'
 //!   ends are then the roots its own certificate continued, and every chain of certificates
-//!   starts at points whose runs were stepped, the coarser the closer to level 0);
+//!   starts at points whose runs were stepped, at the latest the corners of the level-0 cell
+//!   around the point);
 //! - at the point, the runs' Newton finish from the end of each neighbour's run from the same
 //!   initial condition reaches, from both neighbours, one root (`v`, `s` within
 //!   1e-6) of class `C` with no growing eigenvalue, the rotation mode included (a root
