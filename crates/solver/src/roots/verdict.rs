@@ -49,6 +49,19 @@ impl Verdict {
         self.unstable == 0
     }
 
+    /// Largest real part of all eigenvalues, the rotation mode included (`-1` when there is
+    /// none above the field's spectrum).
+    pub fn slowest(&self) -> f64 {
+        self.eigenvalues.first().map_or(-1.0, |l| l[0])
+    }
+
+    /// Every eigenvalue decays, the rotation mode included: a state the runs stay on, not
+    /// only one of a stable class (a state stable but for its rotation mode is left, slowly,
+    /// for another orientation).
+    pub fn decays(&self) -> bool {
+        self.slowest() < 0.0
+    }
+
     /// The non-rotation eigenvalues, decreasing real part.
     pub fn decisive(&self) -> Vec<Complex64> {
         let mut skipped = false;

@@ -26,12 +26,12 @@ impl Finding {
 
     /// Largest real part of all eigenvalues, the rotation mode included.
     pub fn slowest(&self) -> f64 {
-        self.verdict.eigenvalues.first().map_or(-1.0, |l| l[0])
+        self.verdict.slowest()
     }
 
     /// Every eigenvalue decays (the rotation mode included).
     pub fn stable(&self) -> bool {
-        self.slowest() < 0.0
+        self.verdict.decays()
     }
 
     /// Why a run stopped at `z` (the state Newton started from) is not settled on this root.

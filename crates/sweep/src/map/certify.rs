@@ -248,10 +248,10 @@ fn stable_root(
         .map_err(|_| Refusal::NoRoot)?;
     let (v, s) = speed_and_deformation(&x);
     let verdict = balances.verdict(&x);
-    if StateClass::of(v, s) != class || verdict.unstable > 0 {
+    if StateClass::of(v, s) != class || !verdict.stable() {
         return Err(Refusal::NoRoot);
     }
-    if verdict.rotation.is_some_and(|r| r > 0.0) {
+    if !verdict.decays() {
         return Err(Refusal::Turns);
     }
     Ok(x)
