@@ -14,11 +14,11 @@ def turn(a, b):
 summary = {}
 for path in sorted(glob.glob(os.path.join(here, "runs", "pure-*.json"))):
     kn = os.path.basename(path)[len("pure-"):-len(".json")]
-    for tag in ["modes13", "modes12", "modes11", "modes10", "modes8", "modes7", "modes6", "newton", "before"]:
+    for tag in ["modes14", "modes13", "modes12", "modes11", "modes10", "modes8", "modes7", "modes6", "newton", "before"]:
         p = os.path.join(here, "runs", f"{tag}-{kn}.json")
         if not os.path.exists(p):
             continue
-        pure = load(("pure-" if tag in ("modes13", "modes12", "modes11", "modes10", "modes8", "modes7") else "pure6-") + kn)
+        pure = load(("pure-" if tag in ("modes14", "modes13", "modes12", "modes11", "modes10", "modes8", "modes7") else "pure6-") + kn)
         runs = load(f"{tag}-{kn}")
         rows = []
         for a, b in zip(pure, runs):

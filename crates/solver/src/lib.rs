@@ -115,7 +115,7 @@ pub const ODE_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numeri
 /// short of the diagonal, which it had reached by the paper's test at t = 101 884).
 /// 11: a run is tried for the resting disk alone once its rates are below the 2-mode runs'
 /// trigger (1e-3, its own is 1e-4 for the orientation of the other roots), by Newton and by
-/// the landing's slow flow (`runs::finish`, `try_disk`): runs near the onset of motion that
+/// the landing's slow flow (`runs::early_try`): runs near the onset of motion that
 /// crept onto the disk, or past the MD fold's ghost, for 1000-1800 time units end on the
 /// same disk by t = 20-110 ((0.0785, 0.12775) from ii: t = 1136 -> 62).
 /// 12: a run leaning from a root stable in rotation ends there once its speed and shape are
@@ -134,7 +134,17 @@ pub const ODE_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numeri
 /// counting as pointing outward: four runs of the
 /// 4-mode map leaving the diagonal ID at (0.08725, 0.115) and (0.08975, 0.11275) end on the
 /// diagonal's slow MD at t = 725-850 instead of 25 800-47 100, on the same state.
-pub const MODES_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-9+modes-13");
+/// 14: the early try (`runs::early_try`, from the 2-mode runs' trigger) also ends a run on a
+/// root with an orientation, stable in every mode, when the run has settled on it, is not
+/// turning and leans from it by at most one degree: within 0.05 degree, or turning towards
+/// it on the root's family with the orientation's flow pointing back at every sample out to
+/// the run (the Fig. 1c run from ii, modes 2..4, 0.17 degree off the x-axis MD: t = 71 -> 42);
+/// and the landing of a run leaving the resting disk samples the orientation's flow out to 8
+/// degrees instead of 5 (`runs::rotation_flow::DEPARTURE_REACH`): the disk has no
+/// orientation for the lattice to hold, and the paper's initial conditions leave it 5.71
+/// degrees off the axes ((0.07625, 0.13725) from iv, modes 2..4: t = 1965 -> 19, the same
+/// root). 200 runs of the 4-mode map: 0.85x the run time, every run on its map's state.
+pub const MODES_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-9+modes-14");
 
 /// The numerics version of a model's runs with shape modes `2..=modes`, part of their cache
 /// key: a change to one model's results invalidates its stored runs only.

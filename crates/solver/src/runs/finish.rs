@@ -8,8 +8,8 @@
 //! along a slow mode), and whenever the paper's test fires; after a try that did not end the
 //! run, not again for `max(10, t / 4)` time units (a saddle's neighbourhood, where runs slow
 //! down too, is not retried every window). A run with more than two shape modes, whose own
-//! trigger is ten times stricter, is tried for the resting disk alone from the 2-mode runs'
-//! trigger on ([`DISK_FACTOR`], [`NewtonFinish::try_disk`]).
+//! trigger is ten times stricter, is tried early from the 2-mode runs' trigger on, and ends
+//! there only where its orientation is not in doubt ([`crate::runs::early_try`]).
 //!
 //! When it ends the run: Newton on all four unknowns `(vx, vy, a2, b2)` from the current state
 //! converges to a root `z*` whose eigenvalues all have negative real parts (the rotation mode
@@ -86,10 +86,6 @@ use rustfft::num_complex::Complex64;
 /// Newton is first tried when the change per window is below this many steady tolerances.
 pub const TRIGGER_FACTOR: f64 = 100.0;
 
-/// A run with more than two shape modes is tried for the resting disk alone once its rates
-/// are below this many times the trigger ([`NewtonFinish::try_disk`]): the 2-mode runs' rate.
-pub const DISK_FACTOR: f64 = 10.0;
-
 /// Largest growth of a run's lean between two landing tries, relative to that of its speed
 /// (or deformation at rest), `d ln(lean) <= LEAN_GROWTH |d ln(coordinate)|`, for the landing
 /// to hold the lean fixed (a departure by a factor 1000 turns such a run by at most 40 %
@@ -162,9 +158,11 @@ pub struct NewtonFinish {
     pub(super) trigger: f64,
     pub(super) window: f64,
     pub(super) next_try: f64,
-    /// When a run with more than two shape modes may next be tried for the resting disk
-    /// ([`Self::try_disk`]).
-    pub(super) next_disk_try: f64,
+    /// When a run with more than two shape modes may next be tried early
+    /// ([`crate::runs::early_try`]).
+    pub(super) next_early_try: f64,
+    /// The root with an orientation of the last early try and the run's angle to it then.
+    pub(super) last_early: Option<(Vec<f64>, f64)>,
     /// The force balance's Jacobians at the roots found, for the chord method.
     pub(super) jacobians: KeptJacobians,
     /// What Newton found from a root turned by each angle of
@@ -214,7 +212,8 @@ impl NewtonFinish {
             trigger: TRIGGER_FACTOR * steady_tol,
             window: if two { settings.steady_window } else { 1.0 },
             next_try: 0.0,
-            next_disk_try: 0.0,
+            next_early_try: 0.0,
+            last_early: None,
             jacobians: KeptJacobians::default(),
             turn_searches: Vec::new(),
             walks: Default::default(),
@@ -346,7 +345,7 @@ impl NewtonFinish {
             return Decision::Continue;
         }
         if !(test_fired || change < self.trigger) {
-            return self.try_disk(t, z, change);
+            return self.try_early(t, z, (all, change));
         }
         let turning = !test_fired && all >= self.trigger;
         let before = self.last_try.replace(z.to_vec());

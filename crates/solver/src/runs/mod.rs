@@ -8,6 +8,7 @@
 //! `roots`). Used by: the sweep crate and the CLI.
 pub mod clock;
 pub mod driver;
+pub mod early_try;
 pub mod finding;
 pub mod finish;
 pub mod landing;

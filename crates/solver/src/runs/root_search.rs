@@ -4,15 +4,13 @@
 //! ([`NewtonFinish::landing_root`]), the stable one of two roots a run turning between mirror
 //! lines is caught between ([`NewtonFinish::turn_root`]), and the root on the nearest mirror
 //! line ([`NewtonFinish::aligned_root`]); and when the landing ends a run
-//! ([`NewtonFinish::land_now`]), or a run with more shape modes ends on the resting disk
-//! before its own trigger ([`NewtonFinish::try_disk`]).
+//! ([`NewtonFinish::land_now`]).
 use crate::contract::ending::Ending;
 use crate::contract::profile::{self, Part};
+use crate::model::classify::CLASS_THRESHOLD;
 use crate::model::state::{reflected, speed_and_deformation, turned};
 use crate::runs::finding::{Finding, MAX_SETTLED};
-use crate::runs::finish::{
-    retry_after, same_root, Decision, NewtonFinish, DISK_FACTOR, LEAN_GROWTH,
-};
+use crate::runs::finish::{same_root, Decision, NewtonFinish, LEAN_GROWTH};
 use crate::runs::landing::landings;
 use crate::runs::orientation::{
     angle_to, class_of, invariant_distance, lean_from_mirror_line, modulo_half_turn, orientation,
@@ -189,6 +187,8 @@ impl NewtonFinish {
             let balances = self.solver.as_mut().expect("made above");
             landings(balances, z, &mut self.walks)
         };
+        // A run leaving the resting disk: no deformation for the lattice to hold.
+        let from_disk = speed_and_deformation(z).1 <= CLASS_THRESHOLD;
         for landing in found {
             let Ok(near) = self.root_near(&landing.on_line) else {
                 continue;
@@ -202,7 +202,7 @@ impl NewtonFinish {
             let lean = angle_to(&landing.z, &landing.on_line);
             if near.stable()
                 && !self.landing_holds(&near, lean, false)
-                && !self.arrives_turning_back(&near, lean)
+                && !self.arrives_turning_back(&near, lean, from_disk)
             {
                 // Without the orientation's flow the run steps on.
                 continue;
@@ -263,58 +263,6 @@ impl NewtonFinish {
             .is_some_and(|phi| lean.abs() < modulo_half_turn(phi - orientation(&found.z)).abs());
         (self.landing_holds(&found, lean, turning_to) && self.within_rotation_basin(&found, lean))
             .then_some(found)
-    }
-
-    /// A run with more than two shape modes whose rates are below the 2-mode runs' trigger
-    /// ([`DISK_FACTOR`]) but not yet its own, which is ten times stricter for the orientation
-    /// of moving and deformed roots (results/k-mode-endings); the resting disk has none. The
-    /// run ends on the disk if Newton from its state finds the disk, stable, and the run has
-    /// settled on it as [`Self::consider`] asks, or if the landing's slow flow
-    /// ([`Self::flow_root`]) takes it there from the disk not yet settled on or from no root
-    /// at all (a run passing a saddle-node's ghost). A try that does not end the run changes
-    /// none of the finish's other decisions (its tries and their clock, the turns, the
-    /// sightings; the Jacobian it keeps may start a later solve, which then ends on the same
-    /// root to Newton's tolerance: 1.9e-9 in `v` in the map's sample); it is repeated after
-    /// `max(10, t / 4)`, unless its landing found the slow
-    /// flow going elsewhere: a landing costs tens of Newton solves, and the run has no more
-    /// such tries. Runs near the onset of motion creep onto the disk at rates below 1e-3 for
-    /// a long time: (0.077, 0.1405), modes 2..4, from i ended at t = 1767 by its own trigger,
-    /// by this try at t = 38.
-    pub(super) fn try_disk(&mut self, t: f64, z: &[f64], change: f64) -> Decision {
-        if !self.beyond_two_modes()
-            || t < self.next_disk_try
-            || change >= DISK_FACTOR * self.trigger
-        {
-            return Decision::Continue;
-        }
-        self.next_disk_try = retry_after(t);
-        match self.newton_root(z) {
-            // The disk: its verdict (another root's is not needed here).
-            Ok(root) if unoriented(&root) => {
-                let f = self.assess(root);
-                if !f.stable() {
-                    return Decision::Continue;
-                }
-                if invariant_distance(z, &f.z) <= self.settled_within(&f, change) {
-                    return Decision::End(Ending::Newton, f.z);
-                }
-            }
-            // No root near: a run passing a saddle-node's ghost.
-            Err(_) => {}
-            // Another root: the run's own trigger decides.
-            Ok(_) => return Decision::Continue,
-        }
-        if !self.landing {
-            return Decision::Continue;
-        }
-        match self.flow_root(z, false) {
-            Some(found) if unoriented(&found.z) => Decision::End(Ending::Landing, found.z),
-            _ => {
-                // The slow flow does not take the run to the disk: no more such tries.
-                self.next_disk_try = f64::INFINITY;
-                Decision::Continue
-            }
-        }
     }
 
     /// With `landing`, the end of the run at `z` on the stable root its slow flow

@@ -30,16 +30,19 @@ pub const SAMPLE_SPACING: f64 = 0.5 * std::f64::consts::PI / 180.0;
 /// Most samples of one [`FlowScan::extend`].
 const MAX_SAMPLES: usize = 48;
 
-/// Most samples of one [`FlowScan::extend`] of a model with more than two shape modes, whose
-/// samples are at most [`LINEAR_LEAN`] apart (numerics `modes-13`): on its grids the lattice
-/// holds roots 0.2 to 0.5 degrees off the mirror lines, between two samples of
-/// [`SAMPLE_SPACING`].
-const MAX_FINE_SAMPLES: usize = 100;
+/// The largest lean a scan of a model with more than two shape modes samples (numerics
+/// `modes-13`; 5 degrees), its samples at most [`LINEAR_LEAN`] apart (on its grids the
+/// lattice holds roots 0.2 to 0.5 degrees off the mirror lines, between two samples of
+/// [`SAMPLE_SPACING`]); a lean beyond the reach its caller asks for is not sampled, and
+/// licenses nothing ([`FlowScan::extend`]).
+pub const FINE_REACH: f64 = 101.0 * LINEAR_LEAN;
 
-/// The largest lean a scan of a model with more than two shape modes resolves at
-/// [`LINEAR_LEAN`] from the root's own linear lean out (5 degrees); a lean beyond it is not
-/// sampled, and licenses nothing ([`FlowScan::extend`]).
-pub const FINE_REACH: f64 = (MAX_FINE_SAMPLES + 1) as f64 * LINEAR_LEAN;
+/// The reach of such a scan for a run leaving the resting disk (numerics `modes-14`; 8
+/// degrees): the disk has no orientation for the lattice to hold, so the run leaves in the
+/// direction its initial condition gave it, `atan(0.1)` = 5.71 degrees off the box's axes
+/// for the paper's four; at FINE_REACH such runs waited to turn within 5 degrees first, for
+/// up to 2000 time units.
+pub const DEPARTURE_REACH: f64 = 161.0 * LINEAR_LEAN;
 
 /// Leans (radians, 0.05 degrees) within which the root's own rotation eigenvalue decides: the
 /// flow there is its linearisation (the nearest bump measured is 0.57 degrees off its root),
@@ -229,21 +232,25 @@ impl FlowScan {
     /// first sample that points outward. Where the fast balances cannot be solved the scan
     /// stops and counts the stretch out to `|lean|` as turning back: the root's eigenvalues
     /// decide there, as without the setting. With more than two shape modes the samples are
-    /// at most [`LINEAR_LEAN`] apart, none beyond [`FINE_REACH`] (a lean beyond it stays
-    /// unsampled), and a sample where the fast balances cannot be solved counts as pointing
-    /// outward: their flow is asked only to license an end that time stepping has not
-    /// reached yet.
-    pub fn extend(&mut self, balances: &mut Balances, root: &[f64], lean: f64) {
+    /// at most [`LINEAR_LEAN`] apart, none beyond `reach` ([`FINE_REACH`] or
+    /// [`DEPARTURE_REACH`]: a lean beyond it stays unsampled), and a sample where the fast
+    /// balances cannot be solved counts as pointing outward: their flow is asked only to
+    /// license an end that time stepping has not reached yet.
+    pub fn extend(&mut self, balances: &mut Balances, root: &[f64], lean: f64, reach: f64) {
         let (from, to, side) = (self.back_to, lean.abs(), lean.signum());
         if to <= from || self.outward_at.is_some() {
             return;
         }
         let fine = balances.modes() > 2;
-        if fine && to > FINE_REACH {
+        if fine && to > reach {
             return;
         }
         let (spacing, most) = if fine {
-            (LINEAR_LEAN, MAX_FINE_SAMPLES)
+            // One sample fewer than the reach holds: the first is one LINEAR_LEAN out.
+            (
+                LINEAR_LEAN,
+                ((reach / LINEAR_LEAN).round() as usize).max(2) - 1,
+            )
         } else {
             (SAMPLE_SPACING, MAX_SAMPLES)
         };
@@ -288,7 +295,7 @@ mod tests {
     /// to it: one [`FlowScan`] from the root out to the run, as a run's first try asks it.
     fn turns_back(balances: &mut Balances, root: &[f64], lean: f64) -> bool {
         let mut scan = FlowScan::new();
-        scan.extend(balances, root, lean);
+        scan.extend(balances, root, lean, FINE_REACH);
         scan.verdict(lean).unwrap_or(true)
     }
 

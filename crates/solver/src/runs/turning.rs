@@ -7,7 +7,9 @@ use crate::contract::profile::{self, Part};
 use crate::runs::finding::{Finding, MAX_SETTLED};
 use crate::runs::finish::{same_root, NewtonFinish};
 use crate::runs::orientation::{angle_to, invariant_distance, LEAN_FLOOR};
-use crate::runs::rotation_flow::{flow_zero, state_leaning, FlowScan, FINE_REACH, LINEAR_LEAN};
+use crate::runs::rotation_flow::{
+    flow_zero, state_leaning, FlowScan, DEPARTURE_REACH, FINE_REACH, LINEAR_LEAN,
+};
 
 /// The finish's questions to the flow: whether a leaning run turns back to a stable root
 /// ([`NewtonFinish::within_rotation_basin`]) and where it turns to from an unstable one
@@ -26,14 +28,18 @@ impl NewtonFinish {
         if !self.orientation_flow || near.verdict.rotation.is_none() || lean.abs() < LEAN_FLOOR {
             return true;
         }
-        self.scan_turns_back(near, lean)
+        self.scan_turns_back(near, lean, FINE_REACH)
     }
 
     /// Whether the orientation's flow beside `near` points back to it at every sample out
     /// to `lean` ([`FlowScan`]; each root's scan is kept and extended as the run's lean
-    /// grows). A lean the scan of a model with more shape modes does not reach
-    /// ([`crate::runs::rotation_flow::FINE_REACH`]) does not turn back.
-    fn scan_turns_back(&mut self, near: &Finding, lean: f64) -> bool {
+    /// grows). A lean beyond `reach` ([`FINE_REACH`], or
+    /// [`crate::runs::rotation_flow::DEPARTURE_REACH`]) does not turn back in a model with
+    /// more shape modes, whatever a wider scan asked for elsewhere found.
+    fn scan_turns_back(&mut self, near: &Finding, lean: f64, reach: f64) -> bool {
+        if self.beyond_two_modes() && lean.abs() > reach {
+            return false;
+        }
         // What earlier tries learnt of this root's flow on this side (a run's later tries find
         // the same root at a similar lean; the flow is sampled once).
         let side = lean > 0.0;
@@ -49,7 +55,7 @@ impl NewtonFinish {
             return true;
         };
         let timed = profile::enter(Part::Flow);
-        scan.extend(balances, &near.z, lean);
+        scan.extend(balances, &near.z, lean, reach);
         drop(timed);
         match known {
             Some(i) => self.flows[i].2 = scan,
@@ -89,7 +95,7 @@ impl NewtonFinish {
             state_leaning(balances, &near.z, lean)
         };
         beside.is_some_and(|b| invariant_distance(z, &b) <= bound)
-            && self.scan_turns_back(near, lean)
+            && self.scan_turns_back(near, lean, FINE_REACH)
     }
 
     /// Whether a run with more than two shape modes that the landing's slow flow takes to
@@ -101,13 +107,29 @@ impl NewtonFinish {
     /// run's lean. (0.08725, 0.115), modes 2..4, N = 192, from iii: the run leaves the
     /// diagonal ID (its drift growing at 2.1e-4) leaning 0.56 degrees, its lean shrinking
     /// at 4e-5, and pure time stepping reaches the diagonal's slow MD (v = 0.0213) at
-    /// t = 28 500.
-    pub(super) fn arrives_turning_back(&mut self, near: &Finding, lean: f64) -> bool {
+    /// t = 28 500. The scan reaches [`FINE_REACH`], or [`DEPARTURE_REACH`] for a run leaving
+    /// the resting disk (`from_disk`, numerics `modes-14`): (0.07625, 0.13725), modes 2..4,
+    /// N = 192, from iv leaves the disk along the x axis leaning 5.76 degrees, its lean
+    /// unchanged while its speed grows from 0.006 to 0.1, and landed on the x-axis MD at
+    /// t = 1965, once turned within 5 degrees, instead of t = 19. A run leaving a deformed
+    /// resting state leaves at the orientation the lattice holds that state at: modes 2..3,
+    /// N = 96, (0.088, 0.1095) from iv rests 5.3 degrees off the diagonal and turns on to
+    /// the MD 5.9 degrees off it, not to the diagonal's.
+    pub(super) fn arrives_turning_back(
+        &mut self,
+        near: &Finding,
+        lean: f64,
+        from_disk: bool,
+    ) -> bool {
+        let reach = if from_disk {
+            DEPARTURE_REACH
+        } else {
+            FINE_REACH
+        };
         self.beyond_two_modes()
             && near.stable()
             && near.verdict.rotation.is_some()
-            && lean.abs() <= FINE_REACH
-            && self.scan_turns_back(near, lean)
+            && self.scan_turns_back(near, lean, reach)
     }
 
     /// With `orientation_flow`: the stable root that the orientation's flow takes a run

@@ -59,19 +59,62 @@ fn a_four_mode_run_turning_slowly_back_to_a_stable_root_ends_once_settled_beside
     // of the MD's family at its own orientation (the root's differ by 1.2e-4 there): numerics
     // modes-12 ended it on the root by Newton at t = 2845, where the paper's test had ended
     // it at t = 26 504; modes-13 at t = 3557, the orientation's flow sampled only out to 5
-    // degrees (0.05 degree apart). (From iv, modes-13's landing ends it at t = 2240.)
+    // degrees (0.05 degree apart). With the landing (the default) the run is landed as it
+    // leaves the disk (numerics modes-14, the next test); without it, it steps to the turn.
     let pure = committed("pure-rotation-k4-n192");
     let end = pure
         .iter()
         .find(|e| e.ic == "iii")
         .expect("the run from iii");
-    let settings = SolverSettings { n: 192, ..n96() };
+    let settings = SolverSettings {
+        n: 192,
+        landing: false,
+        ..n96()
+    };
     let p = four(end.eta_t, end.kappa2);
     let out = simulate(&p, &InitialCondition::parse("iii").unwrap(), &settings).unwrap();
     assert!(same_end(&out, end), "{out:?}");
     assert_eq!(out.ended_by, Some(Ending::Newton), "{out:?}");
     assert!(out.t_end > 2000.0 && out.t_end < 4000.0, "{out:?}");
     assert!(orientation_deg(&out).abs() < 1e-5, "{out:?}");
+}
+
+#[test]
+fn a_four_mode_run_leaving_the_disk_lands_at_the_lean_its_initial_condition_gave_it() {
+    // The same point from iii and iv (numerics modes-14): each leaves the resting disk along
+    // the x axis leaning 5.7 degrees, atan(0.1) from its initial condition, and its lean
+    // holds while its speed grows 20-fold. The orientation's flow on the x-axis MD's family,
+    // sampled 0.05 degree apart out to 8 degrees for a run leaving the disk, points back at
+    // every sample, and the landing ends the run there as it leaves; out to 5 degrees (for
+    // any other run) the landing waited until the run had turned within them, at t = 2240
+    // (iv), or Newton ended it at t = 3557 (iii).
+    let settings = SolverSettings { n: 192, ..n96() };
+    for end in committed("pure-rotation-k4-n192") {
+        let p = four(end.eta_t, end.kappa2);
+        let ic = InitialCondition::parse(&end.ic).unwrap();
+        let out = simulate(&p, &ic, &settings).unwrap();
+        assert!(same_end(&out, &end), "{}: {out:?}", end.ic);
+        assert_eq!(out.ended_by, Some(Ending::Landing), "{}: {out:?}", end.ic);
+        assert!(out.t_end < 100.0, "{}: {out:?}", end.ic);
+    }
+}
+
+#[test]
+fn a_four_mode_run_turning_back_to_its_root_from_below_a_degree_ends_early() {
+    // Modes 2..4 at N = 96, Fig. 1c (0.085, 0.112) from ii (numerics modes-14): the run turns
+    // back to the x-axis MD, stable in every mode, from 0.57 degrees. Its own trigger (rates
+    // below 1e-4) ended it at t = 59.6; the early try (rates below 1e-3) ends it on the same
+    // root once it is seen turning towards it on the root's family, the orientation's flow
+    // pointing back out to its lean (results/k-mode-endings/runs/pure-k4-n96.json).
+    let end = committed("pure-k4-n96")
+        .into_iter()
+        .find(|e| (e.eta_t, e.kappa2) == (0.085, 0.112) && e.ic == "ii")
+        .expect("the run from ii");
+    let p = four(end.eta_t, end.kappa2);
+    let out = simulate(&p, &InitialCondition::parse("ii").unwrap(), &n96()).unwrap();
+    assert!(same_end(&out, &end), "{out:?}");
+    assert_eq!(out.ended_by, Some(Ending::Newton), "{out:?}");
+    assert!(out.t_end < 50.0, "{out:?}");
 }
 
 #[test]

@@ -1,0 +1,126 @@
+//! The early try of a run with more than two shape modes: its own trigger
+//! ([`crate::runs::finish::TRIGGER_FACTOR`] steady tolerances of `|dz/dt|`) is ten times
+//! stricter than the 2-mode runs', for the orientation of moving and deformed roots (with the
+//! 2-mode trigger such runs had ended on roots of the grid's lattice that pure time stepping
+//! does not reach, 9 to 27 degrees from the run; results/k-mode-endings). Between the two
+//! triggers a run is tried early, and ends only where its orientation is not in doubt:
+//! - on the resting disk, which has none (numerics `modes-11`): Newton from the run finds the
+//!   disk, stable, and the run has settled on it, or the landing's slow flow takes the run to
+//!   the disk from the disk not yet settled on or from no root at all (a run passing a
+//!   saddle-node's ghost);
+//! - on a root with an orientation (numerics `modes-14`), stable in every mode (the rotation
+//!   mode included), the run settled on it (as [`NewtonFinish::consider`] asks), not turning,
+//!   and leaning from it by at most [`EARLY_LEAN`]: within
+//!   [`crate::runs::rotation_flow::LINEAR_LEAN`] of it (where its rotation eigenvalue
+//!   decides), or turning towards it since the last early try (made one window after the
+//!   first that found it so), with its speed and shape those of the root's family at its own
+//!   orientation and the orientation's flow on that family pointing back at every sample
+//!   from the root out to the run ([`NewtonFinish::settled_beside`]): on the root's branch of
+//!   the fast balances, with no root of the lattice between it and the root.
+//!
+//! A try that does not end the run changes none of the finish's other decisions (its tries
+//! and their clock, the turns, the sightings; what it learns of a root's verdict and flow is
+//! what a later try would learn, kept; the Jacobian it keeps may start a later solve, which
+//! then ends on the same root to Newton's tolerance). It is repeated after `max(10, t / 4)`
+//! (or one window, above), unless its landing found the slow flow going elsewhere than the
+//! disk: a landing costs tens of Newton solves, and the run has no more early tries.
+use crate::contract::ending::Ending;
+use crate::runs::finish::{retry_after, same_root, Decision, NewtonFinish};
+use crate::runs::orientation::{angle_to, invariant_distance, unoriented};
+use crate::runs::rotation_flow::LINEAR_LEAN;
+
+/// A run with more than two shape modes is tried early once its rates are below this many
+/// times its trigger: the 2-mode runs' rate.
+pub const EARLY_FACTOR: f64 = 10.0;
+
+/// The largest lean (radians) from a root with an orientation at which an early try ends a
+/// run there: one degree, twice the spacing of the lattice's roots beside the box's mirror
+/// lines at N = 192 (0.2 to 0.5 degrees), a fifth of the reach of a K-mode flow's scan.
+pub const EARLY_LEAN: f64 = std::f64::consts::PI / 180.0;
+
+impl NewtonFinish {
+    /// The early try at time `t` of a run at `z` whose change (`(all, across)`, as
+    /// [`NewtonFinish::consider`] has it) is below [`EARLY_FACTOR`] triggers but not yet
+    /// below its own (module doc). Runs: (0.077, 0.1405), modes 2..4, from i, creeping onto
+    /// the disk, ended at t = 1767 by its own trigger and at t = 38 by this try; the Fig. 1c
+    /// run from ii, modes 2..4, turning back to the x-axis MD 0.17 degrees off it, at t = 71
+    /// and t = 42.
+    pub(super) fn try_early(&mut self, t: f64, z: &[f64], (all, change): (f64, f64)) -> Decision {
+        if !self.beyond_two_modes()
+            || t < self.next_early_try
+            || change >= EARLY_FACTOR * self.trigger
+        {
+            return Decision::Continue;
+        }
+        self.next_early_try = retry_after(t);
+        match self.newton_root(z) {
+            // The disk: its verdict.
+            Ok(root) if unoriented(&root) => {
+                let f = self.assess(root);
+                if !f.stable() {
+                    return Decision::Continue;
+                }
+                if invariant_distance(z, &f.z) <= self.settled_within(&f, change) {
+                    return Decision::End(Ending::Newton, f.z);
+                }
+            }
+            // No root near: a run passing a saddle-node's ghost.
+            Err(_) => {}
+            // A root with an orientation, not turned to: only where the run is beside it.
+            Ok(root) => {
+                let turning = all >= EARLY_FACTOR * self.trigger;
+                return match self.settled_early(t, z, root, change, turning) {
+                    Some(root) => Decision::End(Ending::Newton, root),
+                    None => Decision::Continue,
+                };
+            }
+        }
+        if !self.landing {
+            return Decision::Continue;
+        }
+        match self.flow_root(z, false) {
+            Some(found) if unoriented(&found.z) => Decision::End(Ending::Landing, found.z),
+            _ => {
+                // The slow flow does not take the run to the disk: no more early tries.
+                self.next_early_try = f64::INFINITY;
+                Decision::Continue
+            }
+        }
+    }
+
+    /// The root with an orientation Newton found from the run at `z` at time `t` (change
+    /// across the rotation `change`), if an early try ends the run there (module doc). A run
+    /// that would end there but for its turn, not yet seen, is tried again one window later
+    /// (a chord solve from the root's kept Jacobian; its verdict and flow are kept).
+    fn settled_early(
+        &mut self,
+        t: f64,
+        z: &[f64],
+        root: Vec<f64>,
+        change: f64,
+        turning: bool,
+    ) -> Option<Vec<f64>> {
+        if turning {
+            return None;
+        }
+        let f = self.assess(root);
+        let lean = angle_to(z, &f.z);
+        let before = self.last_early.replace((f.z.clone(), lean.abs()));
+        if !f.stable() || f.verdict.rotation.is_none() || lean.abs() > EARLY_LEAN {
+            return None;
+        }
+        let bound = self.settled_within(&f, change);
+        if invariant_distance(z, &f.z) > bound {
+            return None;
+        }
+        let seen = before.filter(|(r, _)| same_root(r, &f.z));
+        if lean.abs() <= LINEAR_LEAN {
+            return Some(f.z);
+        }
+        let Some((_, lean_before)) = seen else {
+            self.next_early_try = t + self.window;
+            return None;
+        };
+        (lean.abs() < lean_before && self.settled_beside(z, &f, lean, bound)).then_some(f.z)
+    }
+}
