@@ -187,7 +187,8 @@ impl NewtonFinish {
             let balances = self.solver.as_mut().expect("made above");
             landings(balances, z, &mut self.walks)
         };
-        // A run leaving the resting disk: no deformation for the lattice to hold.
+        // A run with the resting disk's shape (round to the class threshold), leaving it or
+        // beside a saddle near it: no deformation for the lattice to hold its orientation by.
         let from_disk = speed_and_deformation(z).1 <= CLASS_THRESHOLD;
         for landing in found {
             let Ok(near) = self.root_near(&landing.on_line) else {
