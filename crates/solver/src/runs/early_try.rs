@@ -91,7 +91,7 @@ impl NewtonFinish {
     /// The root with an orientation Newton found from the run at `z` at time `t` (change
     /// across the rotation `change`), if an early try ends the run there (module doc). A run
     /// that would end there but for its turn, not yet seen, is tried again one window later
-    /// (a chord solve from the root's kept Jacobian; its verdict and flow are kept).
+    /// (a chord solve from the root's kept Jacobian; the root's verdict is kept).
     fn settled_early(
         &mut self,
         t: f64,
