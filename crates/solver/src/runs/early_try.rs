@@ -66,10 +66,12 @@ impl NewtonFinish {
             }
             // No root near: a run passing a saddle-node's ghost.
             Err(_) => {}
-            // A root with an orientation, not turned to: only where the run is beside it.
+            // A root with an orientation: only where the run is beside it, not turning.
             Ok(root) => {
-                let turning = all >= EARLY_FACTOR * self.trigger;
-                return match self.settled_early(t, z, root, change, turning) {
+                if all >= EARLY_FACTOR * self.trigger {
+                    return Decision::Continue;
+                }
+                return match self.settled_early(t, z, root, change) {
                     Some(root) => Decision::End(Ending::Newton, root),
                     None => Decision::Continue,
                 };
@@ -91,22 +93,22 @@ impl NewtonFinish {
     /// The root with an orientation Newton found from the run at `z` at time `t` (change
     /// across the rotation `change`), if an early try ends the run there (module doc). A run
     /// that would end there but for its turn, not yet seen, is tried again one window later
-    /// (a chord solve from the root's kept Jacobian; the root's verdict is kept).
+    /// (a chord solve from the root's kept Jacobian; the root's verdict is kept). The lean is
+    /// asked first: a run leaning beyond [`EARLY_LEAN`] costs no eigenvalue problem.
     fn settled_early(
         &mut self,
         t: f64,
         z: &[f64],
         root: Vec<f64>,
         change: f64,
-        turning: bool,
     ) -> Option<Vec<f64>> {
-        if turning {
+        let lean = angle_to(z, &root);
+        let before = self.last_early.replace((root.clone(), lean.abs()));
+        if lean.abs() > EARLY_LEAN {
             return None;
         }
         let f = self.assess(root);
-        let lean = angle_to(z, &f.z);
-        let before = self.last_early.replace((f.z.clone(), lean.abs()));
-        if !f.stable() || f.verdict.rotation.is_none() || lean.abs() > EARLY_LEAN {
+        if !f.stable() || f.verdict.rotation.is_none() {
             return None;
         }
         let bound = self.settled_within(&f, change);
