@@ -73,7 +73,8 @@ pub struct Args {
     #[arg(long, conflicts_with_all = ["force", "map"])]
     rescore: bool,
     /// Print one JSON object (keys: out, profile, rows, summary, reference_wall_s, wall_s,
-    /// files; with --map: map, map_runs, runs, seed, jobs, total, by_ending, by_level (each
+    /// files; with --map: map, map_runs, runs, seed, jobs, total, by_ending, by_level,
+    /// by_duration (the decades of t_end; each
     /// group: name, runs, wall_s, map_wall_s, same_end, profile {stepping_s, newton_s,
     /// eigen_s, landing_s, flow_s, leap_s, diagnosis_s, newton_solves, eigen_problems,
     /// field_solves}), changed, wall_s, files).
@@ -214,7 +215,13 @@ fn print_profile(p: &MapProfile) {
         "same"
     );
     let pct = |x: f64, g: &Group| 100.0 * x / g.wall_s.max(1e-300);
-    for g in p.by_ending.iter().chain(&p.by_level).chain([&p.total]) {
+    for g in p
+        .by_ending
+        .iter()
+        .chain(&p.by_level)
+        .chain(&p.by_duration)
+        .chain([&p.total])
+    {
         let q = &g.profile;
         outln!(
             "{:<18} {:>5} {:>9.1} {:>9.1} {:>6.3}  {:>4.0}% {:>4.0}% {:>4.0}% {:>4.0}% {:>4.0}% {:>4.0}%  {:>7.1} {:>5}",

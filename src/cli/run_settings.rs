@@ -146,7 +146,9 @@ pub struct Args {
         allow_negative_numbers = true
     )]
     pub(super) eta_k_exponent: f64,
-    /// Print one JSON object instead of text.
+    /// Print one JSON object instead of text (the same keys for every K; `profile`: where the
+    /// run's wall time went, as `droplet bench --map` profiles a map's runs: stepping_s,
+    /// newton_s, eigen_s, landing_s, flow_s, leap_s, diagnosis_s and the solves' counts).
     #[arg(long)]
     pub(super) json: bool,
 }

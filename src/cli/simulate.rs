@@ -4,6 +4,7 @@
 use super::run_settings::{check_outputs, model_of, Args};
 use super::{print_json, CliError};
 use droplet_solver::contract::outcome::RunOutcome;
+use droplet_solver::contract::profile::RunProfile;
 use droplet_solver::{
     contract::settings::SolverSettings, model::initial::InitialCondition,
     model::params::ModelParams, runs::driver::Run, stepping::Field, stepping::SchemeKind,
@@ -60,6 +61,10 @@ struct Report {
     /// stopped at (a root found by Newton from there; rotation mode included).
     final_state: Option<FinalState>,
     wall_s: f64,
+    /// Where the run's wall time went: stepping, Newton solves, eigenvalue problems, the
+    /// landing's and the orientation flow's samples, the leap, the diagnosis (as `droplet
+    /// bench --map` profiles a map's runs).
+    profile: RunProfile,
     /// The surfactant's integral over the box at the end.
     mass_integral: f64,
     params: ModelParams,
@@ -123,6 +128,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
         diagnosis: out.diagnosis.clone(),
         final_state,
         wall_s: out.wall_s,
+        profile: out.profile,
         mass_integral,
         params,
         settings,
@@ -206,6 +212,15 @@ fn print_text(report: &Report) {
         report.t_end,
         report.steps,
         report.wall_s
+    );
+    let p = &report.profile;
+    outln!(
+        "time: stepping {:.2} s, Newton {:.2} s, eigenvalues {:.2} s, landing {:.2} s, flow {:.2} s",
+        p.stepping_s,
+        p.newton_s,
+        p.eigen_s,
+        p.landing_s,
+        p.flow_s
     );
     if report.modes > 2 {
         outln!(

@@ -150,8 +150,8 @@ fn bench_map_profiles_a_seeded_sample_of_a_committed_map() {
         "{j}"
     );
     assert!(parts["newton_solves"].as_u64().unwrap() >= 6, "{j}");
-    // Groups by ending and by level cover every run once.
-    for groups in ["by_ending", "by_level"] {
+    // Groups by ending, by level and by decade of simulated time cover every run once.
+    for groups in ["by_ending", "by_level", "by_duration"] {
         let n: u64 = j[groups]
             .as_array()
             .unwrap()

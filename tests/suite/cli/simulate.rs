@@ -84,6 +84,17 @@ fn simulate_json_series_and_picture() {
     assert!((j["t_end"].as_f64().unwrap() - 20.0).abs() < 1e-9);
     assert!(j["max_step_error"].as_f64().unwrap() <= 1e-4);
     assert!(j["dt_warning"].is_null());
+    // Where the run's time went: stepping, and no more than the run's wall time in all.
+    let profile = &j["profile"];
+    let stepping = profile["stepping_s"].as_f64().unwrap();
+    let parts: f64 = ["stepping_s", "newton_s", "eigen_s", "landing_s", "flow_s"]
+        .iter()
+        .map(|k| profile[k].as_f64().unwrap())
+        .sum();
+    assert!(
+        stepping > 0.0 && parts <= j["wall_s"].as_f64().unwrap() + 1e-9,
+        "{profile}"
+    );
     assert!((j["mass_integral"].as_f64().unwrap() - (1.0 - (-20f64).exp())).abs() < 1e-9);
     let df = read(&series);
     assert_eq!(df.height(), 21);

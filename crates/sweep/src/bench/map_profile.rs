@@ -2,8 +2,8 @@
 //! of a finished map (or all of them) computed again by this binary as the map's sweep runs
 //! them, each profiled ([`droplet_solver::contract::profile`]): how the time divides between
 //! time stepping, the Newton solves, the eigenvalue problems, the landing's and the
-//! orientation flow's samples, per way of ending (the map's) and per refinement level,
-//! against the map's own time for the same runs; and each run's end against the map's (the
+//! orientation flow's samples, per way of ending (the map's), per refinement level and per
+//! decade of simulated time (a map's slow runs are few and weigh most), against the map's own time for the same runs; and each run's end against the map's (the
 //! same class, `v` and `s` within [`SAME_END`]).
 use crate::error::SweepError;
 use crate::execution::progress::progress_bar;
@@ -109,6 +109,8 @@ pub struct MapProfile {
     /// run), and by refinement level.
     pub by_ending: Vec<Group>,
     pub by_level: Vec<Group>,
+    /// By the decade of the run's simulated time `t_end` here ([`duration_group`]).
+    pub by_duration: Vec<Group>,
     /// The runs that end otherwise than the map's.
     pub changed: Vec<ProfiledRun>,
     /// Wall time of the whole profile.
@@ -268,6 +270,7 @@ fn summarise(ran: &[ProfiledRun]) -> MapProfile {
     };
     let mut by_ending: BTreeMap<String, Group> = BTreeMap::new();
     let mut by_level: BTreeMap<u32, Group> = BTreeMap::new();
+    let mut by_duration: BTreeMap<i32, Group> = BTreeMap::new();
     for r in ran {
         total.add(r);
         let ending = r.map_ended_by.clone().unwrap_or_else(|| "unsettled".into());
@@ -285,6 +288,14 @@ fn summarise(ran: &[ProfiledRun]) -> MapProfile {
                 ..Group::default()
             })
             .add(r);
+        let (decade, name) = duration_group(r.t_end);
+        by_duration
+            .entry(decade)
+            .or_insert_with(|| Group {
+                name,
+                ..Group::default()
+            })
+            .add(r);
     }
     MapProfile {
         map: PathBuf::new(),
@@ -295,10 +306,28 @@ fn summarise(ran: &[ProfiledRun]) -> MapProfile {
         total,
         by_ending: by_ending.into_values().collect(),
         by_level: by_level.into_values().collect(),
+        by_duration: by_duration.into_values().collect(),
         changed: ran.iter().filter(|r| !r.same_end).cloned().collect(),
         wall_s: 0.0,
         files: Vec::new(),
     }
+}
+
+/// The decade of simulated time a run of `t_end` falls in, and its group's name: `t < 10`,
+/// `10 <= t < 100`, ... up to `t >= 10000` (decades 1 to 5; a run with no steps, `t_end` 0,
+/// is in the first).
+pub fn duration_group(t_end: f64) -> (i32, String) {
+    let decade = if t_end >= 10.0 {
+        (t_end.log10().floor() as i32).clamp(1, 4) + 1
+    } else {
+        1
+    };
+    let name = match decade {
+        1 => "t < 10".to_string(),
+        5 => "t >= 10000".to_string(),
+        d => format!("{} <= t < {}", 10i64.pow(d as u32 - 1), 10i64.pow(d as u32)),
+    };
+    (decade, name)
 }
 
 /// The per-run table and the summary (`profile.files`), atomically.
