@@ -190,11 +190,19 @@ pub fn flow_zero(
 /// The state on the slow manifold of `root`'s family at the lean `lean` (radians) from it:
 /// the fast balances solved at that orientation from the root's own fast variables (a state
 /// that turns slowly has its speed and shape there, not the root's: the box's anisotropy
-/// moves them by `O(lean^2)`). `None` where Newton does not converge.
-pub fn state_leaning(balances: &mut Balances, root: &[f64], lean: f64) -> Option<Vec<f64>> {
+/// moves them by `O(lean^2)`). `None` where Newton does not converge. `jac` is left with the
+/// fast balances' Jacobian at that state, for the chord steps of a [`FlowScan`] out to the
+/// same lean.
+pub fn state_leaning(
+    balances: &mut Balances,
+    root: &[f64],
+    lean: f64,
+    jac: &mut Option<Vec<Vec<f64>>>,
+) -> Option<Vec<f64>> {
     let (moving, phi0, guess) = fast_guess(root);
     let phi = phi0 + lean;
-    let (_, y) = flow_at(balances, moving, phi, &guess, &mut None)?;
+    *jac = None;
+    let (_, y) = flow_at(balances, moving, phi, &guess, jac)?;
     Some(state_at(moving, phi, &y))
 }
 
@@ -235,8 +243,17 @@ impl FlowScan {
     /// at most [`LINEAR_LEAN`] apart, none beyond `reach` ([`FINE_REACH`] or
     /// [`DEPARTURE_REACH`]: a lean beyond it stays unsampled), and a sample where the fast
     /// balances cannot be solved counts as pointing outward: their flow is asked only to
-    /// license an end that time stepping has not reached yet.
-    pub fn extend(&mut self, balances: &mut Balances, root: &[f64], lean: f64, reach: f64) {
+    /// license an end that time stepping has not reached yet. `jac`, if given, is a Jacobian
+    /// of the fast balances near the samples (e.g. [`state_leaning`]'s at the run's lean),
+    /// and the first sample takes chord steps from it instead of Newton's from scratch.
+    pub fn extend(
+        &mut self,
+        balances: &mut Balances,
+        root: &[f64],
+        lean: f64,
+        reach: f64,
+        mut jac: Option<Vec<Vec<f64>>>,
+    ) {
         let (from, to, side) = (self.back_to, lean.abs(), lean.signum());
         if to <= from || self.outward_at.is_some() {
             return;
@@ -255,7 +272,6 @@ impl FlowScan {
             (SAMPLE_SPACING, MAX_SAMPLES)
         };
         let (moving, phi0, mut guess) = fast_guess(root);
-        let mut jac = None;
         let samples = (((to - from) / spacing).ceil() as usize).clamp(1, most);
         for j in 1..=samples {
             let theta = from + (to - from) * j as f64 / samples as f64;
@@ -295,7 +311,7 @@ mod tests {
     /// to it: one [`FlowScan`] from the root out to the run, as a run's first try asks it.
     fn turns_back(balances: &mut Balances, root: &[f64], lean: f64) -> bool {
         let mut scan = FlowScan::new();
-        scan.extend(balances, root, lean, FINE_REACH);
+        scan.extend(balances, root, lean, FINE_REACH, None);
         scan.verdict(lean).unwrap_or(true)
     }
 
@@ -391,12 +407,12 @@ mod tests {
         let mut b = two(0.072, 0.132);
         let md = solver(&mut b).newton(1.17, -0.21, 1e-12).unwrap();
         let root = [md.v, 0.0, md.a2, 0.0];
-        let at_root = state_leaning(&mut b, &root, 0.0).unwrap();
+        let at_root = state_leaning(&mut b, &root, 0.0, &mut None).unwrap();
         for (x, r) in at_root.iter().zip(&root) {
             assert!((x - r).abs() < 1e-9, "{at_root:?}");
         }
         let lean = 3f64.to_radians();
-        let z = state_leaning(&mut b, &root, lean).unwrap();
+        let z = state_leaning(&mut b, &root, lean, &mut None).unwrap();
         assert!((orientation(&z) - lean).abs() < 1e-12, "{z:?}");
         let frame = turned(&b.residual(&z), -lean);
         assert!(

@@ -28,7 +28,7 @@ impl NewtonFinish {
         if !self.orientation_flow || near.verdict.rotation.is_none() || lean.abs() < LEAN_FLOOR {
             return true;
         }
-        self.scan_turns_back(near, lean, FINE_REACH)
+        self.scan_turns_back(near, lean, FINE_REACH, None)
     }
 
     /// Whether the orientation's flow beside `near` points back to it at every sample out
@@ -36,7 +36,15 @@ impl NewtonFinish {
     /// grows). A lean beyond `reach` ([`FINE_REACH`], or
     /// [`crate::runs::rotation_flow::DEPARTURE_REACH`]) does not turn back in a model with
     /// more shape modes, whatever a wider scan asked for elsewhere found.
-    fn scan_turns_back(&mut self, near: &Finding, lean: f64, reach: f64) -> bool {
+    /// `jac`: a Jacobian of the fast balances near the run's lean, if one is known (the scan's
+    /// first sample takes chord steps from it).
+    fn scan_turns_back(
+        &mut self,
+        near: &Finding,
+        lean: f64,
+        reach: f64,
+        jac: Option<Vec<Vec<f64>>>,
+    ) -> bool {
         if self.beyond_two_modes() && lean.abs() > reach {
             return false;
         }
@@ -55,7 +63,7 @@ impl NewtonFinish {
             return true;
         };
         let timed = profile::enter(Part::Flow);
-        scan.extend(balances, &near.z, lean, reach);
+        scan.extend(balances, &near.z, lean, reach, jac);
         drop(timed);
         match known {
             Some(i) => self.flows[i].2 = scan,
@@ -90,12 +98,14 @@ impl NewtonFinish {
         let Ok(balances) = self.balances() else {
             return false;
         };
+        // The scan out to the run starts from the Jacobian of the state at the run's lean.
+        let mut jac = None;
         let beside = {
             let _timed = profile::enter(Part::Flow);
-            state_leaning(balances, &near.z, lean)
+            state_leaning(balances, &near.z, lean, &mut jac)
         };
         beside.is_some_and(|b| invariant_distance(z, &b) <= bound)
-            && self.scan_turns_back(near, lean, FINE_REACH)
+            && self.scan_turns_back(near, lean, FINE_REACH, jac)
     }
 
     /// Whether a run with more than two shape modes that the landing's slow flow takes to
@@ -129,7 +139,7 @@ impl NewtonFinish {
         self.beyond_two_modes()
             && near.stable()
             && near.verdict.rotation.is_some()
-            && self.scan_turns_back(near, lean, reach)
+            && self.scan_turns_back(near, lean, reach, None)
     }
 
     /// With `orientation_flow`: the stable root that the orientation's flow takes a run
