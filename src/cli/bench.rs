@@ -74,10 +74,9 @@ pub struct Args {
     rescore: bool,
     /// Print one JSON object (keys: out, profile, rows, summary, reference_wall_s, wall_s,
     /// files; with --map: map, map_runs, runs, seed, jobs, total, by_ending, by_level,
-    /// by_duration (the decades of t_end; each
-    /// group: name, runs, wall_s, map_wall_s, same_end, profile {stepping_s, newton_s,
-    /// eigen_s, landing_s, flow_s, leap_s, diagnosis_s, newton_solves, eigen_problems,
-    /// field_solves}), changed, wall_s, files).
+    /// by_duration (by decade of t_end; each group: name, runs, wall_s, map_wall_s,
+    /// same_end, profile {stepping_s, newton_s, eigen_s, landing_s, flow_s, leap_s,
+    /// diagnosis_s, newton_solves, eigen_problems, field_solves}), changed, wall_s, files).
     #[arg(long)]
     json: bool,
 }

@@ -3,8 +3,9 @@
 //! them, each profiled ([`droplet_solver::contract::profile`]): how the time divides between
 //! time stepping, the Newton solves, the eigenvalue problems, the landing's and the
 //! orientation flow's samples, per way of ending (the map's), per refinement level and per
-//! decade of simulated time (a map's slow runs are few and weigh most), against the map's own time for the same runs; and each run's end against the map's (the
-//! same class, `v` and `s` within [`SAME_END`]).
+//! decade of simulated time (a map's slow runs are few and weigh most), against the map's
+//! own time for the same runs; and each run's end against the map's (the same class, `v` and
+//! `s` within [`SAME_END`]).
 use crate::error::SweepError;
 use crate::execution::progress::progress_bar;
 use crate::map::sample::Sample;
@@ -388,4 +389,21 @@ fn write(ran: &[ProfiledRun], profile: &MapProfile, spec_text: &str) -> Result<(
     let text = serde_json::to_vec_pretty(profile).expect("plain data serialises");
     crate::store::atomic::write_atomic(summary, &text)?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::duration_group;
+
+    #[test]
+    fn runs_fall_in_the_decade_of_their_simulated_time() {
+        let decade = |t: f64| duration_group(t).0;
+        assert_eq!(
+            [0.0, 9.99, 10.0, 99.9, 100.0, 999.9, 1000.0, 9999.0, 1e4, 1e6].map(decade),
+            [1, 1, 2, 2, 3, 3, 4, 4, 5, 5]
+        );
+        assert_eq!(duration_group(250.0).1, "100 <= t < 1000");
+        assert_eq!(duration_group(5.0).1, "t < 10");
+        assert_eq!(duration_group(2e5).1, "t >= 10000");
+    }
 }
