@@ -91,50 +91,56 @@ pub fn run(a: Args) -> Result<(), CliError> {
     if a.json {
         print_json(&summary);
     } else {
-        outln!(
-            "{}: {} points, {} runs ({} computed, {} reused, {} corrupt recomputed) in {:.1} s on {} threads",
-            summary.name,
-            summary.points,
-            summary.runs,
-            summary.computed,
-            summary.reused,
-            summary.corrupt.len(),
-            summary.wall_s,
-            summary.jobs
-        );
-        let classes: Vec<String> = summary
-            .point_classes
-            .iter()
-            .map(|(k, v)| format!("{k}: {v}"))
-            .collect();
-        outln!("point classes: {}", classes.join(", "));
-        if summary.certified > 0 || !summary.certify_refused.is_empty() {
-            let refused: Vec<String> = summary
-                .certify_refused
-                .iter()
-                .map(|(k, v)| format!("{k} {v}"))
-                .collect();
-            outln!(
-                "{} of the computed runs certified without stepping (refine.certify_midpoints; ended_by certified_midway in runs.parquet); points left to their runs: {}",
-                summary.certified,
-                if refused.is_empty() { "none".to_string() } else { refused.join(", ") }
-            );
-        }
-        if summary.computed > 0 {
-            outln!("{}", run_time_line(&summary));
-        }
-        if summary.dt_warnings > 0 {
-            errln!(
-                "warning: {} fixed-step runs took steps too large to trust (column max_step_error > {:e} in runs.parquet); lower dt or use adaptive stepping (solver.tol)",
-                summary.dt_warnings,
-                droplet_solver::contract::outcome::STEP_ERROR_LIMIT
-            );
-        }
-        for p in &summary.tables {
-            outln!("wrote {}", p.display());
-        }
+        print_text(&summary);
     }
     Ok(())
+}
+
+/// The sweep's summary as text: counts, point classes, certified runs, run time, warnings and
+/// the files written.
+fn print_text(summary: &droplet_sweep::execution::execute::SweepSummary) {
+    outln!(
+        "{}: {} points, {} runs ({} computed, {} reused, {} corrupt recomputed) in {:.1} s on {} threads",
+        summary.name,
+        summary.points,
+        summary.runs,
+        summary.computed,
+        summary.reused,
+        summary.corrupt.len(),
+        summary.wall_s,
+        summary.jobs
+    );
+    let classes: Vec<String> = summary
+        .point_classes
+        .iter()
+        .map(|(k, v)| format!("{k}: {v}"))
+        .collect();
+    outln!("point classes: {}", classes.join(", "));
+    if summary.certified > 0 || !summary.certify_refused.is_empty() {
+        let refused: Vec<String> = summary
+            .certify_refused
+            .iter()
+            .map(|(k, v)| format!("{k} {v}"))
+            .collect();
+        outln!(
+            "{} of the computed runs certified without stepping (refine.certify_midpoints; ended_by certified_midway in runs.parquet); points left to their runs: {}",
+            summary.certified,
+            if refused.is_empty() { "none".to_string() } else { refused.join(", ") }
+        );
+    }
+    if summary.computed > 0 {
+        outln!("{}", run_time_line(summary));
+    }
+    if summary.dt_warnings > 0 {
+        errln!(
+            "warning: {} fixed-step runs took steps too large to trust (column max_step_error > {:e} in runs.parquet); lower dt or use adaptive stepping (solver.tol)",
+            summary.dt_warnings,
+            droplet_solver::contract::outcome::STEP_ERROR_LIMIT
+        );
+    }
+    for p in &summary.tables {
+        outln!("wrote {}", p.display());
+    }
 }
 
 /// The computed runs' time and its parts in one line (docs/performance.md).

@@ -246,6 +246,15 @@ fn mc_curve(w: &Window, (v, x, y): (f64, f64, f64)) -> Result<Vec<(f64, f64)>, S
         }
         halves.push(pts);
     }
+    if !stable(&y0) {
+        return Ok(Vec::new());
+    }
+    Ok(joined(w, &halves))
+}
+
+/// A curve from its two halves traced from one start (window coordinates): the first
+/// reversed, then the second without the shared start, in the plane's coordinates.
+fn joined(w: &Window, halves: &[Vec<(f64, f64)>]) -> Vec<(f64, f64)> {
     let mut out: Vec<(f64, f64)> = Vec::new();
     if let Some(back) = halves.first() {
         out.extend(back.iter().rev().map(|&q| w.point(q)));
@@ -254,10 +263,7 @@ fn mc_curve(w: &Window, (v, x, y): (f64, f64, f64)) -> Result<Vec<(f64, f64)>, S
         out.extend(fwd.iter().skip(1).map(|&q| w.point(q)));
     }
     out.dedup();
-    if !stable(&y0) {
-        out.clear();
-    }
-    Ok(out)
+    out
 }
 
 /// The MD fold and the MC onset, both started on MD branches followed in `x`.

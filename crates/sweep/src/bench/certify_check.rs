@@ -9,8 +9,8 @@
 use crate::error::SweepError;
 use crate::map::certify::{certify_ends, first_candidate, End, Refusal, SAME_ROOT};
 use crate::map::refine::midway;
-use crate::spec::lattice::Certify;
-use crate::tables::read::{self, RunRow};
+use crate::spec::lattice::{Certify, Lattice};
+use crate::tables::read::{self, PointRow, RunRow};
 use droplet_solver::contract::ending::Ending;
 use droplet_solver::contract::outcome::RunStatus;
 use droplet_solver::model::classify::StateClass;
@@ -102,7 +102,24 @@ fn check_all(map: &Path, mode: Certify) -> Result<CertifyCheck, SweepError> {
             slot[i] = Some(r);
         }
     }
-    // Each slice of a third axis on its own, as refinement has it.
+    let checked = check_levels(&midpoints_by_level(lattice, &points), &by_point, mode);
+    let mut out = CertifyCheck {
+        map: map.to_path_buf(),
+        mode: mode.as_str(),
+        points: points.len(),
+        map_run_time_s: rows.iter().map(|r| r.wall_s).sum(),
+        ..Default::default()
+    };
+    for c in checked {
+        out.add(c);
+    }
+    out.wall_s = started.elapsed().as_secs_f64();
+    Ok(out)
+}
+
+/// The map's midpoints by level (a midpoint's pairs are of lower levels), each slice of a
+/// third axis on its own, as refinement has it.
+fn midpoints_by_level(lattice: &Lattice, points: &[PointRow]) -> BTreeMap<u32, Vec<Midpoint>> {
     let at: HashMap<(u64, (u64, u64)), (u32, u32)> = points
         .iter()
         .map(|p| {
@@ -110,9 +127,8 @@ fn check_all(map: &Path, mode: Certify) -> Result<CertifyCheck, SweepError> {
             ((p.z.to_bits(), node), (p.point, p.level))
         })
         .collect();
-    // The midpoints by level (a midpoint's pairs are of lower levels).
     let mut by_level: BTreeMap<u32, Vec<Midpoint>> = BTreeMap::new();
-    for p in &points {
+    for p in points {
         let z = p.z.to_bits();
         let node = lattice.node_of((p.x, p.y));
         let pairs = midway(lattice, node, p.level, |m| at.get(&(z, m)).map(|&(_, l)| l));
@@ -124,8 +140,17 @@ fn check_all(map: &Path, mode: Certify) -> Result<CertifyCheck, SweepError> {
             by_level.entry(p.level).or_default().push((p.point, pairs));
         }
     }
-    // The ends a neighbour lends: its certificate's when chained and certified here, else
-    // its runs' (a neighbour without all its runs in the tables is no candidate).
+    by_level
+}
+
+/// Each level's midpoints certified (in parallel) from their neighbours' ends: a
+/// neighbour's certificate's when chained and certified here, else its runs' (a neighbour
+/// without all its runs in the tables is no candidate).
+fn check_levels(
+    by_level: &BTreeMap<u32, Vec<Midpoint>>,
+    by_point: &HashMap<u32, Vec<Option<&RunRow>>>,
+    mode: Certify,
+) -> Vec<Checked> {
     let mut lent: HashMap<u32, Vec<End>> = HashMap::new();
     let mut checked: Vec<Checked> = Vec::new();
     for level_points in by_level.values() {
@@ -173,47 +198,43 @@ fn check_all(map: &Path, mode: Certify) -> Result<CertifyCheck, SweepError> {
         }
         checked.extend(level);
     }
-    let mut out = CertifyCheck {
-        map: map.to_path_buf(),
-        mode: mode.as_str(),
-        points: points.len(),
-        map_run_time_s: rows.iter().map(|r| r.wall_s).sum(),
-        ..Default::default()
-    };
-    for c in checked {
-        match c.result {
-            Err(Refusal::NotCandidate) => continue,
+    checked
+}
+
+impl CertifyCheck {
+    /// Counts one midpoint's certificate (or refusal) against its own runs.
+    fn add(&mut self, c: Checked) {
+        let (class, ends) = match c.result {
+            Err(Refusal::NotCandidate) => return,
             Err(why) => {
-                out.candidates += 1;
-                *out.refused.entry(why.as_str().to_string()).or_default() += 1;
+                self.candidates += 1;
+                *self.refused.entry(why.as_str().to_string()).or_default() += 1;
+                return;
             }
-            Ok((class, ends)) => {
-                out.candidates += 1;
-                out.certified_points += 1;
-                out.certificates_s += c.seconds;
-                for (z, r) in ends.iter().zip(&c.own) {
-                    out.certified_runs += 1;
-                    out.their_runs_s += r.wall_s;
-                    if r.status != RunStatus::Steady.as_str() || r.class != Some(class) {
-                        out.class_differences += 1;
-                        continue;
-                    }
-                    let (v, s) = speed_and_deformation(z);
-                    let (dv, ds) = ((v - r.v).abs(), (s - r.s).abs());
-                    if dv > SAME_ROOT || ds > SAME_ROOT {
-                        out.other_root += 1;
-                        out.other_root_max_dv = out.other_root_max_dv.max(dv);
-                        out.other_root_max_ds = out.other_root_max_ds.max(ds);
-                    } else {
-                        out.same_root_max_dv = out.same_root_max_dv.max(dv);
-                        out.same_root_max_ds = out.same_root_max_ds.max(ds);
-                    }
-                }
+            Ok(found) => found,
+        };
+        self.candidates += 1;
+        self.certified_points += 1;
+        self.certificates_s += c.seconds;
+        for (z, r) in ends.iter().zip(&c.own) {
+            self.certified_runs += 1;
+            self.their_runs_s += r.wall_s;
+            if r.status != RunStatus::Steady.as_str() || r.class != Some(class) {
+                self.class_differences += 1;
+                continue;
+            }
+            let (v, s) = speed_and_deformation(z);
+            let (dv, ds) = ((v - r.v).abs(), (s - r.s).abs());
+            if dv > SAME_ROOT || ds > SAME_ROOT {
+                self.other_root += 1;
+                self.other_root_max_dv = self.other_root_max_dv.max(dv);
+                self.other_root_max_ds = self.other_root_max_ds.max(ds);
+            } else {
+                self.same_root_max_dv = self.same_root_max_dv.max(dv);
+                self.same_root_max_ds = self.same_root_max_ds.max(ds);
             }
         }
     }
-    out.wall_s = started.elapsed().as_secs_f64();
-    Ok(out)
 }
 
 /// A map point (its index) and the pairs of coarser points it lies midway between.

@@ -65,19 +65,7 @@ pub(super) fn parse(
         &["refine"],
         &["levels", "min_step", "split_bistable", "certify_midpoints"],
     )?;
-    let levels = match m.get("levels") {
-        None => return Err(ctx.err(&["refine", "levels"], "missing", "an integer 1..=10")),
-        Some(x) => x
-            .as_u64()
-            .filter(|l| (1..=MAX_LEVELS as u64).contains(l))
-            .ok_or_else(|| {
-                ctx.err(
-                    &["refine", "levels"],
-                    show(x),
-                    format!("an integer 1..={MAX_LEVELS}"),
-                )
-            })? as u32,
-    };
+    let levels = levels_of(ctx, m)?;
     let x = lattice_axis(ctx, Some(&grid.x))?;
     let y = lattice_axis(ctx, grid.y.as_ref())?;
     let names = grid
@@ -86,23 +74,63 @@ pub(super) fn parse(
         .iter()
         .map(|p| p.name())
         .collect::<Vec<_>>();
+    let min_step = min_step_of(ctx, m, &names)?;
+    let split_bistable = match m.get("split_bistable") {
+        None => false,
+        Some(b) => b
+            .as_bool()
+            .ok_or_else(|| ctx.err(&["refine", "split_bistable"], show(b), "true or false"))?,
+    };
+    let certify_midpoints = certify_of(ctx, m, solver)?;
+    let lattice = Lattice {
+        x,
+        y,
+        refine: Refine {
+            levels,
+            min_step,
+            split_bistable,
+            certify_midpoints,
+        },
+    };
+    check_min_step(ctx, &lattice, &names)?;
+    Ok(Some(lattice))
+}
+
+/// `refine.levels`: an integer `1..=MAX_LEVELS`.
+fn levels_of(ctx: &Ctx, m: &Mapping) -> Result<u32, SpecError> {
+    match m.get("levels") {
+        None => Err(ctx.err(&["refine", "levels"], "missing", "an integer 1..=10")),
+        Some(x) => Ok(x
+            .as_u64()
+            .filter(|l| (1..=MAX_LEVELS as u64).contains(l))
+            .ok_or_else(|| {
+                ctx.err(
+                    &["refine", "levels"],
+                    show(x),
+                    format!("an integer 1..={MAX_LEVELS}"),
+                )
+            })? as u32),
+    }
+}
+
+/// `refine.min_step` per axis of the plane (`names`), 0 where not given.
+fn min_step_of(ctx: &Ctx, m: &Mapping, names: &[&str]) -> Result<(f64, f64), SpecError> {
     let mut min_step = (0.0, 0.0);
     if let Some(v) = m.get("min_step") {
-        let ms = ctx.mapping(v, &["refine", "min_step"], &names)?;
+        let ms = ctx.mapping(v, &["refine", "min_step"], names)?;
         for (key, slot) in [(names[0], &mut min_step.0), (names[1], &mut min_step.1)] {
             if let Some(w) = ms.get(key) {
                 *slot = ctx.number(w, &["refine", "min_step", key], |s| s > 0.0, "a number > 0")?;
             }
         }
     }
-    let flag = |name: &str| match m.get(name) {
-        None => Ok(false),
-        Some(b) => b
-            .as_bool()
-            .ok_or_else(|| ctx.err(&["refine", name], show(b), "true or false")),
-    };
-    let split_bistable = flag("split_bistable")?;
-    let certify_midpoints =
+    Ok(min_step)
+}
+
+/// `refine.certify_midpoints`: false, true or chained; refused where the runs end otherwise
+/// than by the spectral PDE runs' Newton finish and eigenvalues, which the certificate is.
+fn certify_of(ctx: &Ctx, m: &Mapping, solver: &SolverSettings) -> Result<Certify, SpecError> {
+    let certify =
         match m.get("certify_midpoints") {
             None => Certify::Off,
             Some(b) => match (b.as_bool(), b.as_str()) {
@@ -116,8 +144,6 @@ pub(super) fn parse(
                 )),
             },
         };
-    // The certificate is the spectral PDE runs' Newton finish and eigenvalues: refused where
-    // the runs end otherwise.
     let unlike_runs = if solver.model == ModelKind::Ode {
         Some("model: ode")
     } else if solver.scheme != SchemeKind::Spectral {
@@ -129,25 +155,20 @@ pub(super) fn parse(
     } else {
         None
     };
-    if let (true, Some(what)) = (certify_midpoints.is_on(), unlike_runs) {
+    if let (true, Some(what)) = (certify.is_on(), unlike_runs) {
         return Err(ctx.err(
             &["refine", "certify_midpoints"],
-            certify_midpoints.as_str(),
+            certify.as_str(),
             format!("false with {what}: the certificate is the spectral PDE runs' Newton finish and eigenvalues"),
         ));
     }
-    let lattice = Lattice {
-        x,
-        y,
-        refine: Refine {
-            levels,
-            min_step,
-            split_bistable,
-            certify_midpoints,
-        },
-    };
-    // Both sides of a cell are halved together: a min_step above half of either grid step
-    // would forbid every split, turning refinement off without a word.
+    Ok(certify)
+}
+
+/// Both sides of a cell are halved together: a `min_step` above half of either grid step
+/// would forbid every split, turning refinement off without a word.
+fn check_min_step(ctx: &Ctx, lattice: &Lattice, names: &[&str]) -> Result<(), SpecError> {
+    let min_step = lattice.refine.min_step;
     for (key, grid_step, min) in [
         (names[0], lattice.x.step, min_step.0),
         (names[1], lattice.y.step, min_step.1),
@@ -164,5 +185,5 @@ pub(super) fn parse(
             ));
         }
     }
-    Ok(Some(lattice))
+    Ok(())
 }
