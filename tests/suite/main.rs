@@ -8,14 +8,16 @@
 //! - `reliability`: bad input, corrupt and edited stored runs, kills and resume, full disks
 //!   and closed streams, incomplete maps;
 //! - `attractors`: every label an attractor (slow runs settled, the audit);
-//! - `continuation`, `stability`, `newton_finish`, `refine`: the commands of the same names
-//!   end to end;
+//! - `continuation`, `boundaries`, `stability`, `newton_finish`, `refine`: the commands of
+//!   the same names end to end; `certify`: refinement's certified midpoints;
 //! - `committed_results`: samples of the committed tables, recomputed;
 //! - `slurm`: a sharded sweep under a real Slurm cluster (`.ci/run` brings one up);
 //! - `module_graph`: the library crates' folders depend one way, without cycles.
 //!
 //! `common` holds the helpers they share.
 mod attractors;
+mod boundaries;
+mod certify;
 mod cli;
 mod committed_results;
 mod common;
