@@ -1,6 +1,9 @@
-//! End-to-end tests through the `droplet` binary, one file per group of commands: `sweep` (sweep, merge, resume, specs), `shards` (sharded sweeps merged), `axes` (sweeps in any parameter), `plane_boundaries` (boundaries over them), `three_axes` (three-axis maps), `simulate`,
-//! `ode`, `commands` (bench, help), `truncation` (the K-mode model), `k_mode_states` (its boundaries, runs and branches), `modes` (K-mode sweeps),
-//! `shape_modes` (K-mode single runs), `pictures` (what a map's picture shows beside its labels).
+//! End-to-end tests through the `droplet` binary, one file per group of commands: `sweep`
+//! (sweep, merge, resume, specs), `shards` (sharded sweeps merged), `axes` (sweeps in any
+//! parameter), `plane_boundaries` (boundaries over them), `three_axes` (three-axis maps),
+//! `simulate`, `ode`, `commands` (bench, help), `truncation` (the K-mode model),
+//! `k_mode_states` (its boundaries, runs and branches), `modes` (K-mode sweeps), `shape_modes`
+//! (K-mode single runs), `pictures` (what a map's picture shows beside its labels).
 mod axes;
 mod commands;
 mod k_mode_states;
