@@ -275,28 +275,10 @@ fn summarise(ran: &[ProfiledRun]) -> MapProfile {
     for r in ran {
         total.add(r);
         let ending = r.map_ended_by.clone().unwrap_or_else(|| "unsettled".into());
-        by_ending
-            .entry(ending.clone())
-            .or_insert_with(|| Group {
-                name: ending,
-                ..Group::default()
-            })
-            .add(r);
-        by_level
-            .entry(r.level)
-            .or_insert_with(|| Group {
-                name: format!("level {}", r.level),
-                ..Group::default()
-            })
-            .add(r);
+        add_to(&mut by_ending, ending.clone(), ending, r);
+        add_to(&mut by_level, r.level, format!("level {}", r.level), r);
         let (decade, name) = duration_group(r.t_end);
-        by_duration
-            .entry(decade)
-            .or_insert_with(|| Group {
-                name,
-                ..Group::default()
-            })
-            .add(r);
+        add_to(&mut by_duration, decade, name, r);
     }
     MapProfile {
         map: PathBuf::new(),
@@ -312,6 +294,17 @@ fn summarise(ran: &[ProfiledRun]) -> MapProfile {
         wall_s: 0.0,
         files: Vec::new(),
     }
+}
+
+/// Adds `r` to the group of `key`, named `name` when `r` is its first run.
+fn add_to<K: Ord>(groups: &mut BTreeMap<K, Group>, key: K, name: String, r: &ProfiledRun) {
+    groups
+        .entry(key)
+        .or_insert_with(|| Group {
+            name,
+            ..Group::default()
+        })
+        .add(r);
 }
 
 /// The decade of simulated time a run of `t_end` falls in, and its group's name: `t < 10`,
