@@ -255,11 +255,13 @@ fn initial_amplitudes_of_higher_modes_start_the_run_and_beyond_k_exit_2() {
         settled["a_k"][1].as_f64().unwrap().abs() < 1e-8,
         "{settled}"
     );
-    // Its time series has mode 3 too: the dent at t = 0, decaying, gone at the end.
+    // Its time series has mode 3 too: the dent at t = 0, decaying at every sample (the
+    // early try ends the run on the disk once it has settled, the dent down to a fortieth).
     let table = read(&series);
     let (t, a3) = (floats(&table, "t"), floats(&table, "a3"));
     assert_eq!((t[0], a3[0]), (0.0, 0.05));
-    assert!(a3[1] < 0.05 && a3[a3.len() - 1].abs() < 1e-3, "{a3:?}");
+    assert!(a3.windows(2).all(|w| w[1].abs() < w[0].abs()), "{a3:?}");
+    assert!(a3[a3.len() - 1].abs() < 2e-3, "{a3:?}");
     assert_eq!(t[t.len() - 1], settled["t_end"].as_f64().unwrap());
     assert!(table.column("b3").is_ok() && table.column("a4").is_err());
     // Amplitudes beyond K: simulate names --ic, a sweep names initial_conditions.

@@ -2,8 +2,10 @@
 //! ([`crate::runs::finish::TRIGGER_FACTOR`] steady tolerances of `|dz/dt|`) is ten times
 //! stricter than the 2-mode runs', for the orientation of moving and deformed roots (with the
 //! 2-mode trigger such runs had ended on roots of the grid's lattice that pure time stepping
-//! does not reach, 9 to 27 degrees from the run; results/k-mode-endings). Between the two
-//! triggers a run is tried early, and ends only where its orientation is not in doubt:
+//! does not reach, 9 to 27 degrees from the run; results/k-mode-endings). From
+//! [`crate::runs::early_tries::EARLY_FACTOR`] of its triggers down (three times the 2-mode
+//! runs' rate, numerics `modes-15`) a run is tried early, and ends only where its orientation
+//! is not in doubt:
 //! - on the resting disk, which has none (numerics `modes-11`): Newton from the run finds the
 //!   disk, stable, and the run has settled on it, or the landing's slow flow takes the run to
 //!   the disk from the disk not yet settled on or from no root at all (a run passing a
@@ -22,16 +24,14 @@
 //! and their clock, the turns, the sightings; what it learns of a root's verdict and flow is
 //! what a later try would learn, kept; the Jacobian it keeps may start a later solve, which
 //! then ends on the same root to Newton's tolerance). It is repeated after `max(10, t / 4)`
-//! (or one window, above), unless its landing found the slow flow going elsewhere than the
-//! disk: a landing costs tens of Newton solves, and the run has no more early tries.
+//! (or one window, above). A landing costs tens of Newton solves: once one has found the slow
+//! flow going elsewhere than the disk, the run is tried early once more, below
+//! [`LATE_EARLY_FACTOR`] triggers, and then no more.
 use crate::contract::ending::Ending;
-use crate::runs::finish::{retry_after, same_root, Decision, NewtonFinish};
+use crate::runs::early_tries::LATE_EARLY_FACTOR;
+use crate::runs::finish::{retry_after, Decision, NewtonFinish};
 use crate::runs::orientation::{angle_to, invariant_distance, unoriented};
 use crate::runs::rotation_flow::LINEAR_LEAN;
-
-/// A run with more than two shape modes is tried early once its rates are below this many
-/// times its trigger: the 2-mode runs' rate.
-pub const EARLY_FACTOR: f64 = 10.0;
 
 /// The largest lean (radians) from a root with an orientation at which an early try ends a
 /// run there: one degree, twice the spacing of the lattice's roots beside the box's mirror
@@ -40,19 +40,28 @@ pub const EARLY_LEAN: f64 = std::f64::consts::PI / 180.0;
 
 impl NewtonFinish {
     /// The early try at time `t` of a run at `z` whose change (`(all, across)`, as
-    /// [`NewtonFinish::consider`] has it) is below [`EARLY_FACTOR`] triggers but not yet
-    /// below its own (module doc). Runs: (0.077, 0.1405), modes 2..4, from i, creeping onto
-    /// the disk, ended at t = 1767 by its own trigger and at t = 38 by this try; the Fig. 1c
-    /// run from ii, modes 2..4, turning back to the x-axis MD 0.17 degrees off it, at t = 71
-    /// and t = 42.
+    /// [`NewtonFinish::consider`] has it) is below the early tries' factor of triggers
+    /// ([`crate::runs::early_tries::EarlyTries`]) but not yet below its own (module doc).
+    /// Runs: (0.077, 0.1405), modes 2..4, from i, creeping onto the disk, ended at t = 1767
+    /// by its own trigger and at t = 38 by this try (numerics `modes-11`); the Fig. 1c run
+    /// from ii, modes 2..4, turning back to the x-axis MD 0.17 degrees off it, at t = 71 and
+    /// t = 42 (`modes-14`) and 27.4 (`modes-15`).
     pub(super) fn try_early(&mut self, t: f64, z: &[f64], (all, change): (f64, f64)) -> Decision {
         if !self.beyond_two_modes()
-            || t < self.next_early_try
-            || change >= EARLY_FACTOR * self.trigger
+            || t < self.early.next
+            || change >= self.early.factor * self.trigger
         {
             return Decision::Continue;
         }
-        self.next_early_try = retry_after(t);
+        self.early.next = retry_after(t);
+        // Leaning beyond EARLY_LEAN from the root the last try found, the run is not ended
+        // there, and Newton from it finds that root again (the Fig. 1c run from i, modes
+        // 2..4, 6.9 to 7.0 degrees off the x-axis MD at five tries): no solve.
+        if let Some((root, _)) = &self.early.last {
+            if angle_to(z, root).abs() > EARLY_LEAN {
+                return Decision::Continue;
+            }
+        }
         match self.newton_root(z) {
             // The disk: its verdict.
             Ok(root) if unoriented(&root) => {
@@ -68,7 +77,7 @@ impl NewtonFinish {
             Err(_) => {}
             // A root with an orientation: only where the run is beside it, not turning.
             Ok(root) => {
-                if all >= EARLY_FACTOR * self.trigger {
+                if all >= self.early.factor * self.trigger {
                     return Decision::Continue;
                 }
                 return match self.settled_early(t, z, root, change) {
@@ -83,8 +92,13 @@ impl NewtonFinish {
         match self.flow_root(z, false) {
             Some(found) if unoriented(&found.z) => Decision::End(Ending::Landing, found.z),
             _ => {
-                // The slow flow does not take the run to the disk: no more early tries.
-                self.next_early_try = f64::INFINITY;
+                // The slow flow does not take the run to the disk: one more early try nearer
+                // the disk, then no more.
+                if self.early.factor > LATE_EARLY_FACTOR {
+                    self.early.factor = LATE_EARLY_FACTOR;
+                } else {
+                    self.early.next = f64::INFINITY;
+                }
                 Decision::Continue
             }
         }
@@ -103,7 +117,7 @@ impl NewtonFinish {
         change: f64,
     ) -> Option<Vec<f64>> {
         let lean = angle_to(z, &root);
-        let before = self.last_early.replace((root.clone(), lean.abs()));
+        let before = self.early.last.replace((root.clone(), lean.abs()));
         if lean.abs() > EARLY_LEAN {
             return None;
         }
@@ -115,12 +129,12 @@ impl NewtonFinish {
         if invariant_distance(z, &f.z) > bound {
             return None;
         }
-        let seen = before.filter(|(r, _)| same_root(r, &f.z));
+        let seen = before.filter(|(r, _)| self.same_root(r, &f.z));
         if lean.abs() <= LINEAR_LEAN {
             return Some(f.z);
         }
         let Some((_, lean_before)) = seen else {
-            self.next_early_try = t + self.window;
+            self.early.next = t + self.window;
             return None;
         };
         (lean.abs() < lean_before && self.settled_beside(z, &f, lean, bound)).then_some(f.z)

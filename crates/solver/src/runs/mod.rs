@@ -1,6 +1,7 @@
 //! One run of the full model, from an initial condition to its ending: the driver (`driver`:
 //! the time loop and its stop rules), the Newton finish and the diagnosis of a run that is not
-//! settled (`finish`), the leap along a departure from a saddle (`leap`) and the landing of a
+//! settled (`finish`; the early tries of K-mode runs, `early_try`, and their record,
+//! `early_tries`), the leap along a departure from a saddle (`leap`) and the landing of a
 //! slow run where its one-dimensional quasi-steady flow ends (`landing`, and the walks along its
 //! families, `walks`; docs/classification.md).
 //!
@@ -8,6 +9,7 @@
 //! `roots`). Used by: the sweep crate and the CLI.
 pub mod clock;
 pub mod driver;
+pub mod early_tries;
 pub mod early_try;
 pub mod finding;
 pub mod finish;

@@ -10,7 +10,7 @@ use crate::contract::profile::{self, Part};
 use crate::model::classify::CLASS_THRESHOLD;
 use crate::model::state::{reflected, speed_and_deformation, turned};
 use crate::runs::finding::{Finding, MAX_SETTLED};
-use crate::runs::finish::{same_root, Decision, NewtonFinish, LEAN_GROWTH};
+use crate::runs::finish::{Decision, NewtonFinish, LEAN_GROWTH};
 use crate::runs::landing::landings;
 use crate::runs::orientation::{
     angle_to, class_of, invariant_distance, lean_from_mirror_line, modulo_half_turn, orientation,
@@ -132,12 +132,13 @@ impl NewtonFinish {
 
     /// The root Newton finds from the root `near` turned by `degrees` (the `i`-th of
     /// [`TURN_SEARCH`]) to the side `side` (+1 or -1), as an earlier try found it from the
-    /// same root (to 1e-9) if one did: a run's tries beside one root search the same turns.
+    /// same root ([`NewtonFinish::same_root`]) if one did: a run's tries beside one root
+    /// search the same turns.
     fn turned_root(&mut self, near: &[f64], side: f64, i: usize, degrees: f64) -> Option<Finding> {
         let known = self
             .turn_searches
             .iter()
-            .position(|(root, s, _)| *s == (side > 0.0) && same_root(root, near));
+            .position(|(root, s, _)| *s == (side > 0.0) && self.same_root(root, near));
         if let Some(found) = known.and_then(|k| self.turn_searches[k].2[i].clone()) {
             return found;
         }

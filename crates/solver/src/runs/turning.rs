@@ -5,7 +5,7 @@
 //! has settled beside a stable root it turns back to.
 use crate::contract::profile::{self, Part};
 use crate::runs::finding::{Finding, MAX_SETTLED};
-use crate::runs::finish::{same_root, NewtonFinish};
+use crate::runs::finish::NewtonFinish;
 use crate::runs::orientation::{angle_to, invariant_distance, LEAN_FLOOR};
 use crate::runs::rotation_flow::{
     flow_zero, state_leaning, FlowScan, DEPARTURE_REACH, FINE_REACH, LINEAR_LEAN,
@@ -54,7 +54,7 @@ impl NewtonFinish {
         let known = self
             .flows
             .iter()
-            .position(|(z, s, _)| *s == side && same_root(z, &near.z));
+            .position(|(z, s, _)| *s == side && self.same_root(z, &near.z));
         let mut scan = known.map_or_else(FlowScan::new, |i| self.flows[i].2);
         if let Some(verdict) = scan.verdict(lean) {
             return verdict;
@@ -159,7 +159,7 @@ impl NewtonFinish {
         if let Some((.., found)) = self
             .turns
             .iter()
-            .find(|(root, from, to, _)| same_root(root, &near.z) && between(*from, *to))
+            .find(|(root, from, to, _)| self.same_root(root, &near.z) && between(*from, *to))
         {
             return found.clone();
         }
