@@ -56,7 +56,8 @@ impl NewtonFinish {
         self.early.next = retry_after(t);
         // Leaning beyond EARLY_LEAN from the root the last try found, the run is not ended
         // there, and Newton from it finds that root again (the Fig. 1c run from i, modes
-        // 2..4, 6.9 to 7.0 degrees off the x-axis MD at five tries): no solve.
+        // 2..4, 6.9 to 7.0 degrees off the x-axis MD at five tries): no solve. A skipped try
+        // only leaves the run to a later one (module doc).
         if let Some((root, _)) = &self.early.last {
             if angle_to(z, root).abs() > EARLY_LEAN {
                 return Decision::Continue;
