@@ -146,11 +146,12 @@ pub const ODE_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numeri
 /// root). 200 runs of the 4-mode map: 0.85x the run time, every run on its map's state.
 /// 15: the early try from three times the 2-mode runs' rate (`runs::early_try::EARLY_FACTOR`
 /// 30, was 10; a landing that finds the slow flow going elsewhere than the disk leaves one
-/// more try below 10), no Newton solve at an early try while the run leans more than a
-/// degree from the root the last one found, and two roots one state when they agree to
-/// 1e-6 (was 1e-9: Newton fixes a K-mode root along its slow rotation only to 1e-8, and its
-/// verdict was computed again): the Fig. 1c run from ii, modes 2..4, t = 41.9 -> 27.4; 150
-/// runs of the 4-mode map: 0.945x the run time, every run on the same state.
+/// more try below 10), no Newton solve at an early try while the run, beside the root the
+/// last one found in speed and shape, leans more than a degree from it, and two roots one
+/// state when they agree to 1e-6 (was 1e-9: Newton fixes a K-mode root along its slow
+/// rotation only to 1e-8, and its verdict was computed again): the Fig. 1c run from ii,
+/// modes 2..4, t = 41.9 -> 27.4; two samples of the 4-mode map (150 and 200 runs): 0.948x
+/// and 0.965x the run time, every run on the same state.
 pub const MODES_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-9+modes-15");
 
 /// The numerics version of a model's runs with shape modes `2..=modes`, part of their cache

@@ -29,6 +29,7 @@
 //! [`LATE_EARLY_FACTOR`] triggers, and then no more.
 use crate::contract::ending::Ending;
 use crate::runs::early_tries::LATE_EARLY_FACTOR;
+use crate::runs::finding::MAX_SETTLED;
 use crate::runs::finish::{retry_after, Decision, NewtonFinish};
 use crate::runs::orientation::{angle_to, invariant_distance, unoriented};
 use crate::runs::rotation_flow::LINEAR_LEAN;
@@ -54,12 +55,13 @@ impl NewtonFinish {
             return Decision::Continue;
         }
         self.early.next = retry_after(t);
-        // Leaning beyond EARLY_LEAN from the root the last try found, the run is not ended
-        // there, and Newton from it finds that root again (the Fig. 1c run from i, modes
-        // 2..4, 6.9 to 7.0 degrees off the x-axis MD at five tries): no solve. A skipped try
-        // only leaves the run to a later one (module doc).
+        // Beside the root the last try found in speed and shape but leaning beyond EARLY_LEAN
+        // from it, the run is not ended there, and Newton from it finds that root again (the
+        // Fig. 1c run from i, modes 2..4, 6.9 to 7.0 degrees off the x-axis MD at five
+        // tries): no solve. A skipped try only leaves the run to a later one (module doc); a
+        // run leaving that root (for the disk) is tried.
         if let Some((root, _)) = &self.early.last {
-            if angle_to(z, root).abs() > EARLY_LEAN {
+            if angle_to(z, root).abs() > EARLY_LEAN && invariant_distance(z, root) <= MAX_SETTLED {
                 return Decision::Continue;
             }
         }
