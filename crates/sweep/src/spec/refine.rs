@@ -98,18 +98,14 @@ pub(super) fn parse(
 
 /// `refine.levels`: an integer `1..=MAX_LEVELS`.
 fn levels_of(ctx: &Ctx, m: &Mapping) -> Result<u32, SpecError> {
+    let allowed = format!("an integer 1..={MAX_LEVELS}");
     match m.get("levels") {
-        None => Err(ctx.err(&["refine", "levels"], "missing", "an integer 1..=10")),
+        None => Err(ctx.err(&["refine", "levels"], "missing", allowed)),
         Some(x) => Ok(x
             .as_u64()
             .filter(|l| (1..=MAX_LEVELS as u64).contains(l))
-            .ok_or_else(|| {
-                ctx.err(
-                    &["refine", "levels"],
-                    show(x),
-                    format!("an integer 1..={MAX_LEVELS}"),
-                )
-            })? as u32),
+            .ok_or_else(|| ctx.err(&["refine", "levels"], show(x), allowed))?
+            as u32),
     }
 }
 
