@@ -184,6 +184,7 @@ mod tests {
                 fd_step: 1e-7,
                 max_step: vec![0.05; z.len()],
                 one_sided: false,
+                backtrack: false,
             };
             let z = crate::numerics::newton::solve(|y| solver.residual(y), &z, &opts)
                 .unwrap()

@@ -156,6 +156,7 @@ fn two_mode_mc_line(
         fd_step: 1e-7,
         max_step: vec![0.05, 0.002],
         one_sided: false,
+        backtrack: false,
     };
     // a2 ~ -0.18 v^2 on the moving branch near the onset of motion (docs/model.md, "Where a slow run lands").
     let mut guess = [(-c / 0.18f64).sqrt(), onset_eta_t];
@@ -218,6 +219,7 @@ fn general_mc_line(
         fd_step: 1e-7,
         max_step: [vec![0.05; k_max - 1], vec![0.002]].concat(),
         one_sided: false,
+        backtrack: false,
     };
     // a2 ~ -0.18 v^2 on the 2-mode moving branch near the onset of motion.
     let mut guess = vec![0.0; k_max];

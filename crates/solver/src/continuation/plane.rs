@@ -194,6 +194,7 @@ fn mc_curve(w: &Window, (v, x, y): (f64, f64, f64)) -> Result<Vec<(f64, f64)>, S
         fd_step: 1e-7,
         max_step: vec![0.05, 0.05],
         one_sided: false,
+        backtrack: false,
     };
     let Ok(sol) = crate::numerics::newton::solve(|u| f(&[u[0], u[1], qy]), &[v, w.x.q(x)], &newton)
     else {

@@ -225,6 +225,7 @@ impl Problem {
             fd_step: 1e-7,
             max_step: vec![0.05; rest.max(2)],
             one_sided: false,
+            backtrack: false,
         };
         let sol = newton::solve(
             |x| {
@@ -298,6 +299,7 @@ impl Problem {
             fd_step: 1e-7,
             max_step: vec![0.2; n.max(1)],
             one_sided: false,
+            backtrack: false,
         };
         let x = if n == 0 {
             Vec::new()

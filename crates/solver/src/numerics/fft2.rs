@@ -13,6 +13,10 @@ use std::sync::Arc;
 /// Rows transposed together in the forward transform.
 const BLOCK: usize = 8;
 
+/// Columns whose derivatives are formed and transformed together in
+/// [`PrunedFft2::inverse_gradient`].
+const COLUMNS: usize = 8;
+
 /// Plans plus the scratch buffers of one worker.
 pub struct PrunedFft2 {
     n: usize,
@@ -25,6 +29,10 @@ pub struct PrunedFft2 {
     row_real: Vec<f64>,
     row_scratch: Vec<Complex64>,
     col_scratch: Vec<Complex64>,
+    /// [`Self::inverse_gradient`]'s buffers (empty until its first call): the derivatives'
+    /// columns transformed along y, and a block of columns being transformed.
+    grad_cols: [Vec<Complex64>; 2],
+    grad_block: [Vec<Complex64>; 2],
 }
 
 impl PrunedFft2 {
@@ -46,6 +54,8 @@ impl PrunedFft2 {
             row_real: vec![0.0; n],
             row_scratch: vec![Complex64::default(); row_scratch_len],
             col_scratch: vec![Complex64::default(); col_scratch_len],
+            grad_cols: Default::default(),
+            grad_block: Default::default(),
             r2c,
             c2r,
             col_fwd,
@@ -101,9 +111,61 @@ impl PrunedFft2 {
         self.inverse_rows(spec, real, lo, hi);
     }
 
+    /// The gradient `(u_x, u_y)`, on the rows `lo..=hi` of `ux` and `uy` (row-major `N x N`),
+    /// of the real field whose unnormalised half spectrum is `u` (`[kx][ky]`, left as it is):
+    /// the inverse transforms of `i kx u` and `i ky u` with the derivative wavenumbers `kx`
+    /// (per column) and `ky` (per row of a column). The derivatives are formed a few columns
+    /// at a time into a block that is transformed along y while it is in the cache, and only
+    /// the rows `lo..=hi` are kept; then the rows as in [`Self::inverse`]. The same numbers
+    /// as forming both derivative spectra and transforming each with [`Self::inverse`].
+    pub fn inverse_gradient(
+        &mut self,
+        u: &[Complex64],
+        (kx, ky): (&[f64], &[f64]),
+        (ux, uy): (&mut [f64], &mut [f64]),
+        lo: usize,
+        hi: usize,
+    ) {
+        let n = self.n;
+        let nc = n / 2 + 1;
+        let mut cols = std::mem::take(&mut self.grad_cols);
+        let [bx, by] = &mut self.grad_block;
+        for c in cols.iter_mut() {
+            c.resize(nc * n, Complex64::default());
+        }
+        bx.resize(COLUMNS * n, Complex64::default());
+        by.resize(COLUMNS * n, Complex64::default());
+        let mut c0 = 0;
+        while c0 < nc {
+            let width = (nc - c0).min(COLUMNS);
+            for (j, jx) in (c0..c0 + width).enumerate() {
+                let column = &u[jx * n..(jx + 1) * n];
+                let (x, y) = (&mut bx[j * n..(j + 1) * n], &mut by[j * n..(j + 1) * n]);
+                for (((x, y), u), k) in x.iter_mut().zip(y.iter_mut()).zip(column).zip(ky) {
+                    *x = Complex64::new(-u.im * kx[jx], u.re * kx[jx]);
+                    *y = Complex64::new(-u.im * k, u.re * k);
+                }
+            }
+            let [cx, cy] = &mut cols;
+            for (block, cols) in [(&mut *bx, cx), (&mut *by, cy)] {
+                let block = &mut block[..width * n];
+                self.col_inv
+                    .process_with_scratch(block, &mut self.col_scratch);
+                for (j, jx) in (c0..c0 + width).enumerate() {
+                    cols[jx * n + lo..=jx * n + hi]
+                        .copy_from_slice(&block[j * n + lo..=j * n + hi]);
+                }
+            }
+            c0 += width;
+        }
+        self.inverse_rows(&cols[0], ux, lo, hi);
+        self.inverse_rows(&cols[1], uy, lo, hi);
+        self.grad_cols = cols;
+    }
+
     /// The second half of [`Self::inverse`]: the rows `lo..=hi` of `real` from `spec`, whose
     /// columns are transformed along y.
-    fn inverse_rows(&mut self, spec: &mut [Complex64], real: &mut [f64], lo: usize, hi: usize) {
+    fn inverse_rows(&mut self, spec: &[Complex64], real: &mut [f64], lo: usize, hi: usize) {
         let n = self.n;
         let nc = n / 2 + 1;
         // Rows in blocks, as in the forward transform: every column gives BLOCK consecutive
@@ -140,6 +202,45 @@ impl PrunedFft2 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_gradient_is_the_inverse_transform_of_the_derivative_spectra_to_the_last_bit() {
+        // A field with every coefficient set (the kx = 0 and N/2 columns real, as a real
+        // field's are after the y transform), N = 24: three column blocks, the last partial.
+        let n = 24;
+        let nc = n / 2 + 1;
+        let u: Vec<Complex64> = (0..nc * n)
+            .map(|i| Complex64::new((i as f64 * 0.37).sin(), (i as f64 * 0.11).cos()))
+            .collect();
+        let kx: Vec<f64> = (0..nc)
+            .map(|j| if j == n / 2 { 0.0 } else { j as f64 * 0.9 })
+            .collect();
+        let ky: Vec<f64> = (0..n)
+            .map(|j| match j {
+                _ if j == n / 2 => 0.0,
+                _ if j > n / 2 => (j as f64 - n as f64) * 0.9,
+                _ => j as f64 * 0.9,
+            })
+            .collect();
+        let (lo, hi) = (5, 17);
+        let mut fft = PrunedFft2::new(n);
+        let (mut ux, mut uy) = (vec![0.0; n * n], vec![0.0; n * n]);
+        fft.inverse_gradient(&u, (&kx, &ky), (&mut ux, &mut uy), lo, hi);
+        let (mut dx, mut dy) = (u.clone(), u.clone());
+        for jx in 0..nc {
+            for jy in 0..n {
+                let (w, i) = (u[jx * n + jy], jx * n + jy);
+                dx[i] = Complex64::new(-w.im * kx[jx], w.re * kx[jx]);
+                dy[i] = Complex64::new(-w.im * ky[jy], w.re * ky[jy]);
+            }
+        }
+        let (mut ex, mut ey) = (vec![0.0; n * n], vec![0.0; n * n]);
+        fft.inverse(&mut dx, &mut ex, lo, hi);
+        fft.inverse(&mut dy, &mut ey, lo, hi);
+        assert_eq!(ux, ex);
+        assert_eq!(uy, ey);
+        assert!(ux[lo * n..(hi + 1) * n].iter().any(|v| v.abs() > 1.0));
+    }
 
     #[test]
     fn pruned_round_trip_is_exact() {

@@ -48,19 +48,24 @@ impl Balances {
                     fd_step: 1e-6,
                     max_step: vec![f64::INFINITY, f64::INFINITY, 0.2, 0.2],
                     one_sided: false,
+                    backtrack: false,
                 };
                 Ok(solver.root_near(four(z), &opts, jacobians)?.to_vec())
             }
             Balances::General(solver) => {
                 // The settings K-mode runs have been finished with: to 1e-11, every
                 // unknown's step limited; the Jacobian by forward differences (2K field solves
-                // where central ones take 4K, the same roots: numerics modes-8).
+                // where central ones take 4K, the same roots: numerics modes-8); a step that
+                // raises the residual halved (numerics modes-16: the Fig. 1c run from ii,
+                // modes 2..4, 0.18 degree off the x-axis MD, had Newton step 10 degrees along
+                // the MD's family and fail after 12 iterations).
                 let opts = NewtonOptions {
                     tol: 1e-11,
                     max_iter: 12,
                     fd_step: 1e-7,
                     max_step: vec![0.2; z.len()],
                     one_sided: true,
+                    backtrack: true,
                 };
                 let found = jacobians.solve(|y| solver.residual(y), z, &opts)?;
                 if found.iter().all(|x| x.is_finite()) {

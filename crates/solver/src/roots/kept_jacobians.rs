@@ -93,6 +93,7 @@ mod tests {
             fd_step: 1e-7,
             max_step: vec![f64::INFINITY; 3],
             one_sided: false,
+            backtrack: false,
         };
         let mut kept = KeptJacobians::default();
         let first = kept.solve(f, &[1.2, 0.9, 1.1], &opts).unwrap();

@@ -206,6 +206,7 @@ fn general_root(
         fd_step: 1e-7,
         max_step: vec![0.2; z.len()],
         one_sided: false,
+        backtrack: false,
     };
     let turned = turned(&z, std::f64::consts::FRAC_PI_4);
     Ok(newton::solve(|y| solver.residual(y), &turned, &opts)?.x)
@@ -267,6 +268,7 @@ fn rest_root(solver: &mut SteadySolver, seed: &[f64]) -> Option<Vec<f64>> {
         fd_step: 1e-7,
         max_step: vec![0.05; seed.len()],
         one_sided: false,
+        backtrack: false,
     };
     newton::solve(
         |a| {

@@ -112,6 +112,21 @@ pub(crate) fn one_class_within(z: &[f64], root: &[f64], reach: f64) -> bool {
     })
 }
 
+/// How far (radians, in `(0, pi/4]`) the box's next mirror line lies from the orientation
+/// `phi` turning to the side `side` (+1 or -1): 45 degrees from an orientation on a line
+/// (within 1e-4 of the spacing, 0.0045 degree), nearer from one between two.
+pub(crate) fn next_mirror_line(phi: f64, side: f64) -> f64 {
+    const ON_LINE: f64 = 1e-4;
+    let quarter = std::f64::consts::FRAC_PI_4;
+    let f = phi / quarter;
+    let line = if side > 0.0 {
+        (f + ON_LINE).floor() + 1.0
+    } else {
+        (f - ON_LINE).ceil() - 1.0
+    };
+    side * (line * quarter - phi)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -167,5 +182,27 @@ mod tests {
         let ((line, moving), lean) = lean_from_mirror_line(&[0.0, 0.0, 0.0, -0.1]);
         assert_eq!((line, moving), (-1, false));
         assert!(lean.abs() < 1e-12, "{lean}");
+    }
+
+    #[test]
+    fn the_next_mirror_line_is_a_quarter_turn_away_from_a_line_and_nearer_between_two() {
+        let deg = |d: f64| d.to_radians();
+        let close = |a: f64, b: f64| (a - b).abs() < 1e-12;
+        for (phi, side, to_line) in [
+            (90.0, 1.0, 45.0),
+            (90.0, -1.0, 45.0),
+            (90.0 - 1e-6, 1.0, 45.0),
+            (111.65, 1.0, 23.35),
+            (111.65, -1.0, 21.65),
+            (-2.25, 1.0, 2.25),
+            (-2.25, -1.0, 42.75),
+        ] {
+            let got = next_mirror_line(deg(phi), side);
+            assert!(
+                close(got, deg(to_line)) || (phi == 90.0 - 1e-6 && (got - deg(45.0)).abs() < 1e-7),
+                "{phi} {side}: {}",
+                got.to_degrees()
+            );
+        }
     }
 }

@@ -13,8 +13,8 @@ use crate::runs::finding::{Finding, MAX_SETTLED};
 use crate::runs::finish::{Decision, NewtonFinish, LEAN_GROWTH};
 use crate::runs::landing::landings;
 use crate::runs::orientation::{
-    angle_to, class_of, invariant_distance, lean_from_mirror_line, modulo_half_turn, orientation,
-    unoriented, LEAN_FLOOR, TURN_SEARCH,
+    angle_to, class_of, invariant_distance, lean_from_mirror_line, modulo_half_turn,
+    next_mirror_line, orientation, unoriented, LEAN_FLOOR, TURN_SEARCH,
 };
 use crate::runs::rotation_flow::LINEAR_LEAN;
 
@@ -103,10 +103,15 @@ impl NewtonFinish {
             // class may differ where `s` is near the threshold: MD on one line, MC on the
             // other); one further away (a resting state, say) is not where a turn ends.
             let mut turn = side * angle_to(&other.z, &near.z);
-            if self.beyond_two_modes() && turn > quarter + 1e-6 && turn < 2.0 * quarter {
-                // Past the next mirror line: its mirror image in that line is a root as
-                // stable, on the run's side of the line.
-                let line = orientation(&near.z) + side * quarter;
+            let to_line = next_mirror_line(orientation(&near.z), side);
+            if self.beyond_two_modes() && turn > to_line + 1e-6 && turn < to_line + quarter {
+                // Past the next mirror line (45 degrees from a root on a line, nearer from a
+                // root of the lattice between two): its mirror image in that line is a root
+                // as stable, on the run's side of the line. Modes 2..3, N = 192, (0.085,
+                // 0.112) from iv, turning from the lattice's root at 111.65 degrees
+                // (unstable in rotation) to the one at 132.75 where pure stepping ends: the
+                // search finds its image at 137.25 first.
+                let line = orientation(&near.z) + side * to_line;
                 if let Ok(image) = self.root_near(&reflected(&other.z, line)) {
                     turn = side * angle_to(&image.z, &near.z);
                     other = image;

@@ -70,6 +70,7 @@ fn flow_at(
         fd_step: 1e-6,
         max_step: vec![0.2; guess.len()],
         one_sided: false,
+        backtrack: false,
     };
     // Moving: all but the balance across the motion; at rest: the shape's, but mode 2's
     // across its long axis (the velocity's vanish with the odd modes of a resting state).
@@ -355,6 +356,7 @@ mod tests {
                     fd_step: 1e-6,
                     max_step: vec![f64::INFINITY, f64::INFINITY, 0.2, 0.2],
                     one_sided: false,
+                    backtrack: false,
                 },
             )
             .unwrap();
@@ -378,6 +380,7 @@ mod tests {
             fd_step: 1e-6,
             max_step: vec![f64::INFINITY, f64::INFINITY, 0.2, 0.2],
             one_sided: false,
+            backtrack: false,
         };
         for (lean, away) in [(LINEAR_LEAN, true), (4f64.to_radians(), false)] {
             let z = flow_zero(&mut b, &root, lean, away).unwrap();

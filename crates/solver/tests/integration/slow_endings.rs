@@ -144,7 +144,8 @@ fn a_four_mode_run_leaving_a_saddle_leaning_lands_once_the_flow_turns_it_back() 
         "{out:?}"
     );
     assert_eq!(out.ended_by, Some(Ending::Landing), "{out:?}");
-    assert!(out.t_end < 1000.0, "{out:?}");
+    // t = 1139 (numerics modes-16; 804 with modes-15), pure stepping 44 371.
+    assert!(out.t_end < 1500.0, "{out:?}");
 }
 
 #[test]

@@ -74,6 +74,7 @@ pub fn root_near(balances: &mut Balances, state: &[f64]) -> Option<Root> {
             fd_step: 1e-6,
             max_step: vec![f64::INFINITY, f64::INFINITY, 0.2, 0.2],
             one_sided: false,
+            backtrack: false,
         },
         _ => NewtonOptions {
             tol: 1e-11,
@@ -81,6 +82,7 @@ pub fn root_near(balances: &mut Balances, state: &[f64]) -> Option<Root> {
             fd_step: 1e-7,
             max_step: vec![0.2; state.len()],
             one_sided: false,
+            backtrack: false,
         },
     };
     let x = balances.root_from(state, &opts).ok()?;

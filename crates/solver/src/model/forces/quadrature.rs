@@ -96,23 +96,34 @@ impl SampledShape {
     }
 }
 
-/// The spectral derivatives `(i kx u, i ky u)` of one mode `u` of a field, with the grid's
-/// derivative wavenumbers `kx_d`, `ky_d` (Nyquist zeroed).
-#[inline(always)]
-pub fn derivatives(u: Complex64, kxd: f64, kyd: f64) -> (Complex64, Complex64) {
-    (
-        Complex64::new(-u.im * kxd, u.re * kxd),
-        Complex64::new(-u.im * kyd, u.re * kyd),
-    )
+/// A field's gradient `(u_x, u_y)` on the rows `lo..=hi` of the grid (row-major `N x N`;
+/// the forces read its rows and columns `lo..=hi` only). A time step keeps the last two
+/// states' ([`ForceQuadrature::exchange_gradient`]) to extrapolate its predictor's
+/// ([`ForceQuadrature::extrapolate_gradient`]).
+pub struct GradientRows {
+    pub ux: Vec<f64>,
+    pub uy: Vec<f64>,
+    pub lo: usize,
+    pub hi: usize,
 }
 
-/// [`ForceQuadrature::pass_buffers`]: the grid and `Theta`'s transform to read, the
-/// derivative spectra to write.
+impl GradientRows {
+    /// Empty buffers for `grid`.
+    pub fn new(grid: &Grid) -> Self {
+        let n = grid.n;
+        Self {
+            ux: vec![0.0; n * n],
+            uy: vec![0.0; n * n],
+            lo: n / 2,
+            hi: n / 2,
+        }
+    }
+}
+
+/// [`ForceQuadrature::pass_buffers`]: the grid and `Theta`'s last transform to read.
 pub struct PassBuffers<'a> {
     pub grid: &'a Grid,
     pub source: &'a [Complex64],
-    pub dx: &'a mut [Complex64],
-    pub dy: &'a mut [Complex64],
 }
 
 /// `Theta` of a droplet of any shape on an `N x N` grid, its transform and the forces of a
@@ -123,12 +134,8 @@ pub struct ForceQuadrature {
     fft: PrunedFft2,
     /// `Theta` and its transform.
     sampled: SampledShape,
-    /// The spectral derivatives of the field.
-    dx_spec: Vec<Complex64>,
-    dy_spec: Vec<Complex64>,
     /// The field's gradient on the droplet's rows.
-    ux: Vec<f64>,
-    uy: Vec<f64>,
+    grad: GradientRows,
     /// The window's radii, harmonics and powers.
     polar: PolarTable,
 }
@@ -137,15 +144,11 @@ impl ForceQuadrature {
     /// Plans and buffers for `grid` and droplets of radius and interface width `shape`.
     pub fn new(grid: Grid, shape: ShapeParams) -> Self {
         let n = grid.n;
-        let len = grid.spectral_len();
         Self {
             shape,
             fft: PrunedFft2::new(n),
             sampled: SampledShape::new(&grid),
-            dx_spec: vec![Complex64::default(); len],
-            dy_spec: vec![Complex64::default(); len],
-            ux: vec![0.0; n * n],
-            uy: vec![0.0; n * n],
+            grad: GradientRows::new(&grid),
             polar: PolarTable::default(),
             grid,
         }
@@ -290,36 +293,52 @@ impl ForceQuadrature {
     }
 
     /// The gradient of the real field with the normalised half spectrum `u` on the rows
-    /// `lo..=hi` (spectral derivatives, Nyquist mode zeroed).
+    /// `lo..=hi` (spectral derivatives, Nyquist mode zeroed; [`PrunedFft2::inverse_gradient`]).
     pub fn gradient(&mut self, u: &[Complex64], lo: usize, hi: usize) {
+        let wavenumbers = (&self.grid.kx_d[..], &self.grid.ky_d[..]);
+        let rows = (&mut self.grad.ux[..], &mut self.grad.uy[..]);
+        self.fft.inverse_gradient(u, wavenumbers, rows, lo, hi);
+        (self.grad.lo, self.grad.hi) = (lo, hi);
+    }
+
+    /// Exchanges the last gradient (its buffers and rows) with `other`, without copying.
+    pub fn exchange_gradient(&mut self, other: &mut GradientRows) {
+        std::mem::swap(&mut self.grad, other);
+    }
+
+    /// Makes the gradient the extrapolation `base + beta (base - back)` of two gradients on
+    /// the rows and columns `lo..=hi`, which both must hold (what the forces read).
+    pub fn extrapolate_gradient(
+        &mut self,
+        base: &GradientRows,
+        back: &GradientRows,
+        beta: f64,
+        (lo, hi): (usize, usize),
+    ) {
+        debug_assert!(base.lo <= lo && hi <= base.hi && back.lo <= lo && hi <= back.hi);
         let n = self.grid.n;
-        for jx in 0..=n / 2 {
-            let kxd = self.grid.kx_d[jx];
-            for jy in 0..n {
-                let i = jx * n + jy;
-                (self.dx_spec[i], self.dy_spec[i]) = derivatives(u[i], kxd, self.grid.ky_d[jy]);
+        let pairs = [
+            (&mut self.grad.ux, &base.ux, &back.ux),
+            (&mut self.grad.uy, &base.uy, &back.uy),
+        ];
+        for (out, base, back) in pairs {
+            for iy in lo..=hi {
+                let row = iy * n + lo..=iy * n + hi;
+                let points = out[row.clone()].iter_mut().zip(&base[row.clone()]);
+                for ((o, b), q) in points.zip(&back[row]) {
+                    *o = b + beta * (b - q);
+                }
             }
         }
-        self.gradient_formed(lo, hi);
+        (self.grad.lo, self.grad.hi) = (lo, hi);
     }
 
-    /// The gradient on the rows `lo..=hi` of the field whose spectral derivatives a caller
-    /// formed in [`Self::pass_buffers`] (a time step's pass over the spectrum forms them as it
-    /// writes the field, [`derivatives`]); the buffers are consumed.
-    pub fn gradient_formed(&mut self, lo: usize, hi: usize) {
-        self.fft.inverse(&mut self.dx_spec, &mut self.ux, lo, hi);
-        self.fft.inverse(&mut self.dy_spec, &mut self.uy, lo, hi);
-    }
-
-    /// What a pass over a field's spectrum reads and writes here: the grid, the last
-    /// transform of `Theta` ([`Self::source_spectrum`]), the buffers of the field's spectral
-    /// derivatives ([`Self::gradient_formed`]).
-    pub fn pass_buffers(&mut self) -> PassBuffers<'_> {
+    /// What a pass over a field's spectrum reads here: the grid and the last transform of
+    /// `Theta` ([`Self::source_spectrum`]).
+    pub fn pass_buffers(&self) -> PassBuffers<'_> {
         PassBuffers {
             grid: &self.grid,
             source: &self.sampled.spec,
-            dx: &mut self.dx_spec,
-            dy: &mut self.dy_spec,
         }
     }
 
@@ -337,8 +356,8 @@ impl ForceQuadrature {
             let (_, _, powers) = self.polar.row(iy, lo, hi);
             let points = self.sampled.theta[row.clone()]
                 .iter()
-                .zip(&self.ux[row.clone()])
-                .zip(&self.uy[row])
+                .zip(&self.grad.ux[row.clone()])
+                .zip(&self.grad.uy[row])
                 .zip(powers.chunks_exact(stride));
             for (((&t, ux), uy), powers) in points {
                 if t == 0.0 {
@@ -363,7 +382,7 @@ impl ForceQuadrature {
     /// The field's gradient `(u_x, u_y)` of the last [`Self::gradient`] (row-major `N x N`,
     /// the droplet's rows).
     pub fn gradient_rows(&self) -> (&[f64], &[f64]) {
-        (&self.ux, &self.uy)
+        (&self.grad.ux, &self.grad.uy)
     }
 
     /// The forces `-Int grad u Theta` and `-Int w_k . grad u Theta` of the last

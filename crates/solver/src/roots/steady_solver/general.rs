@@ -16,9 +16,7 @@
 //! ([`crate::model::forces::quadrature`]; equal to round-off for `K = 2`, tested). No
 //! symmetry of the shape is assumed (odd modes break the point symmetry the fast path uses).
 use crate::error::SolverError;
-use crate::model::forces::quadrature::{
-    derivatives, operator, ForceQuadrature, PassBuffers, ShapeForces,
-};
+use crate::model::forces::quadrature::{operator, ForceQuadrature, PassBuffers, ShapeForces};
 use crate::model::grid::Grid;
 use crate::model::modes::Modes;
 use crate::model::params::ModelParams;
@@ -148,14 +146,8 @@ impl SteadySolver {
                 window
             }
         };
-        // u_hat = source / (1 + k^2 - i k.v) = -source / D, and the field's spectral
-        // derivatives, in one pass.
-        let PassBuffers {
-            grid,
-            source,
-            dx,
-            dy,
-        } = self.quad.pass_buffers();
+        // u_hat = source / (1 + k^2 - i k.v) = -source / D.
+        let PassBuffers { grid, source } = self.quad.pass_buffers();
         let n = grid.n;
         for (jx, (kx, kxd)) in grid.kx.iter().zip(&grid.kx_d).enumerate().take(n / 2 + 1) {
             let row = jx * n..(jx + 1) * n;
@@ -163,13 +155,11 @@ impl SteadySolver {
             let fields = self.u_spec[row.clone()]
                 .iter_mut()
                 .zip(&source[row.clone()]);
-            let derivs = dx[row.clone()].iter_mut().zip(&mut dy[row]);
-            for (((ky, kyd), (u, s)), (dx, dy)) in modes.zip(fields).zip(derivs) {
+            for ((ky, kyd), (u, s)) in modes.zip(fields) {
                 *u = -s / operator((*kx, *ky), (*kxd, *kyd), (vx, vy));
-                (*dx, *dy) = derivatives(*u, *kxd, *kyd);
             }
         }
-        self.quad.gradient_formed(lo, hi);
+        self.quad.gradient(&self.u_spec, lo, hi);
         self.quad.sums(m.k_max(), lo, hi, area)
     }
 
@@ -273,6 +263,7 @@ impl SteadySolver {
             fd_step: 1e-7,
             max_step: vec![0.1; guess.len()],
             one_sided: false,
+            backtrack: false,
         };
         let sol = newton::solve(|y| self.residual_x(y), guess, &opts)?;
         Ok(MirrorState {
@@ -310,6 +301,7 @@ mod tests {
             fd_step: 1e-7,
             max_step: vec![0.2; 6],
             one_sided: false,
+            backtrack: false,
         };
         let full = newton::solve(
             |y| solver.residual(y),
@@ -480,6 +472,7 @@ mod tests {
             fd_step: 1e-7,
             max_step: vec![0.05; 3],
             one_sided: false,
+            backtrack: false,
         };
         let mut y = vec![two.v, two.a[0], 0.0];
         let mut last_v = f64::INFINITY;

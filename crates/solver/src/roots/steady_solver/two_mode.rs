@@ -276,6 +276,7 @@ impl TwoModeSolver {
                 vec![0.2]
             },
             one_sided: false,
+            backtrack: false,
         };
         let sol = if moving {
             newton::solve(

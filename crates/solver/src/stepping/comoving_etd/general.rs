@@ -15,17 +15,21 @@
 //! steady states of [`crate::roots::steady_solver::SteadySolver`] (the field's is `s_hat / (1 + k^2 - i k.v)`), whatever
 //! the step.
 //!
-//! The predictor's droplet (`Theta` and its transform) is the extrapolation of the last two
-//! states' along the last step, as in the 2-mode fast path ([`ComovingEtd::predictor_shape`]):
-//! the scheme stays second order and its fixed points are unchanged.
+//! The predictor's droplet (`Theta` and its transform) and the field's gradient on it are
+//! extrapolated from the last two accepted states ([`super::predictor`]): the scheme stays
+//! second order and its fixed points are unchanged. The 2-mode fast path extrapolates its
+//! droplet by the same rule and sums its predictor's own field (which costs it no transform),
+//! so at `K = 2` the two part by `O(h^2)` (numerics `modes-16`; the general step's error half
+//! the fast path's, tested).
 //!
-//! Cost per step: `Theta` sampled and transformed once (at the new state) and the gradient of
-//! the field transformed back twice (at the predictor and at the new state; each pass over
-//! the spectrum forms the spectral derivatives of the field it writes, so no pass of its own
-//! does); the 2-mode scheme saves the inverse transforms by the droplet's point symmetry and
-//! the forces' Parseval sums, which the odd modes break.
+//! Cost per step: `Theta` sampled and transformed once and the field's gradient transformed
+//! back once, both at the new state (three row-pruned transforms; the gradient's two share
+//! one pass over the spectrum, [`PrunedFft2::inverse_gradient`]); the 2-mode scheme saves the
+//! inverse transforms by the droplet's point symmetry and the forces' Parseval sums, which
+//! the odd modes break.
+use super::predictor::History;
 use crate::error::SolverError;
-use crate::model::forces::quadrature::{derivatives, ForceQuadrature, PassBuffers, SampledShape};
+use crate::model::forces::quadrature::{ForceQuadrature, PassBuffers};
 use crate::model::grid::Grid;
 use crate::model::modes::Modes;
 use crate::model::params::ModelParams;
@@ -39,13 +43,6 @@ use rustfft::num_complex::Complex64;
 struct AtStart {
     forces: Vec<f64>,
     area: f64,
-}
-
-/// A sampled droplet and the shape amplitudes `(a_2..a_K, b_2..b_K)` it was sampled at.
-struct Snapshot {
-    sampled: SampledShape,
-    shape: Vec<f64>,
-    valid: bool,
 }
 
 /// The predictor's source `Theta_hat` as `base + alpha (base - back)` of two transforms, with
@@ -82,13 +79,11 @@ pub struct ComovingEtd {
     rate_of: Vec<f64>,
     inertia: Vec<f64>,
     start: Option<AtStart>,
-    /// The droplet sampled at the present state and at the one before it (see
-    /// [`ComovingEtd::predictor_shape`]).
-    cur: Snapshot,
-    prev: Snapshot,
-    /// Whether the quadrature's derivative spectra are the present field's (formed by the
-    /// last corrector pass, [`ForceQuadrature::gradient_formed`]).
-    derivatives_formed: bool,
+    /// The last two accepted states' droplets and gradients, for the predictor's
+    /// ([`super::predictor`]).
+    history: History,
+    /// The last accepted step (between the state `start` is taken at and the one before).
+    h_accepted: f64,
     /// Time stepped (the run's clock keeps the run's own).
     pub t: f64,
     /// The centre.
@@ -106,12 +101,7 @@ impl ComovingEtd {
         let inv_c = grid.inverse_rates();
         let shape = params.shape();
         let zero = Complex64::default();
-        let snapshot = || Snapshot {
-            sampled: SampledShape::new(&grid),
-            shape: Vec::new(),
-            valid: false,
-        };
-        let (cur, prev) = (snapshot(), snapshot());
+        let history = History::new(&grid);
         let mut run = Self {
             params: *params,
             quad: ForceQuadrature::new(grid, shape),
@@ -126,9 +116,8 @@ impl ComovingEtd {
             rate_of: Vec::new(),
             inertia: Vec::new(),
             start: None,
-            cur,
-            prev,
-            derivatives_formed: false,
+            history,
+            h_accepted: 0.0,
             t: 0.0,
             x: 0.0,
             y: 0.0,
@@ -159,57 +148,17 @@ impl ComovingEtd {
     }
 
     /// The forces at the present state; the first call after a step samples and transforms
-    /// its droplet, which becomes `cur` (the one before it `prev`).
+    /// its droplet, and records it with its field's gradient in the history.
     fn ensure_start(&mut self) {
         if self.start.is_some() {
             return;
         }
         let (area, lo, hi) = self.quad.theta_spectrum(&Modes::of_state(&self.z));
-        if std::mem::take(&mut self.derivatives_formed) {
-            self.quad.gradient_formed(lo, hi);
-        } else {
-            self.quad.gradient(&self.field.u, lo, hi);
-        }
+        self.quad.gradient(&self.field.u, lo, hi);
         let forces = self.forces(lo, hi, area);
-        std::mem::swap(&mut self.prev, &mut self.cur);
-        self.quad.exchange(&mut self.cur.sampled);
-        self.cur.shape.clear();
-        self.cur.shape.extend_from_slice(&self.z[2..]);
-        self.cur.valid = true;
+        self.history
+            .record(&mut self.quad, &self.z[2..], self.h_accepted);
         self.start = Some(AtStart { forces, area });
-    }
-
-    /// Puts the predictor's droplet, the state `z_a`'s, in the quadrature: `(alpha, area, lo, hi)`. When the last step is known and the predictor's
-    /// shape change projects onto it by `|alpha| <= 2`, its `Theta` and transform are the
-    /// extrapolation `cur + alpha (cur - prev)` (no sample, no transform; `alpha` returned);
-    /// else it is sampled and transformed (`alpha = None`).
-    ///
-    /// The part of the shape change across the last step is `O(h^2)`, as is the curvature of
-    /// the path, so the predictor's droplet is off by `O(h^2)`. It enters the step only through
-    /// the corrector's `h phi2 (N(a) - N(w))`: the local error stays `O(h^3)` and the scheme
-    /// second order; at a fixed point the shape does not change and the extrapolation is
-    /// exact, so the scheme's fixed points are the steady states. The 2-mode fast path
-    /// extrapolates its shape transforms by the same rule.
-    fn predictor_shape(&mut self, z_a: &[f64]) -> (Option<f64>, f64, usize, usize) {
-        const MAX_ALPHA: f64 = 2.0;
-        let shape = &z_a[2..];
-        if self.cur.valid && self.prev.valid {
-            let (c, q) = (&self.cur.shape, &self.prev.shape);
-            let (mut dot, mut norm2) = (0.0, 0.0);
-            for ((s, c), q) in shape.iter().zip(c).zip(q) {
-                dot += (s - c) * (c - q);
-                norm2 += (c - q) * (c - q);
-            }
-            let alpha = if norm2 > 0.0 { dot / norm2 } else { 0.0 };
-            if alpha.abs() <= MAX_ALPHA {
-                let (area, lo, hi) =
-                    self.quad
-                        .extrapolate(&self.cur.sampled, &self.prev.sampled, alpha);
-                return (Some(alpha), area, lo, hi);
-            }
-        }
-        let (area, lo, hi) = self.quad.theta_spectrum(&Modes::of_state(z_a));
-        (None, area, lo, hi)
     }
 
     /// The rates `dz/dt = f / m - r z` at the present state.
@@ -236,9 +185,7 @@ enum Stage {
 impl Spectra {
     /// One pass of `stage` over the spectrum for a step of `h`, with the droplet of that stage
     /// moving at `(vx, vy)`, its raw `Theta_hat` `source` and the factor `scale` to the
-    /// normalised source ([`ForceQuadrature::source_scale`]); the spectral derivatives of the
-    /// field it writes (the predictor's or the new one) into the buffers' `dx`, `dy`
-    /// ([`ForceQuadrature::gradient_formed`]).
+    /// normalised source ([`ForceQuadrature::source_scale`]).
     fn pass(
         &mut self,
         bufs: PassBuffers,
@@ -247,7 +194,7 @@ impl Spectra {
         (vx, vy): (f64, f64),
         (source, scale): (Source, f64),
     ) {
-        let PassBuffers { grid, dx, dy, .. } = bufs;
+        let PassBuffers { grid, .. } = bufs;
         if let Stage::Predict = stage {
             self.exp.update(h, &grid.kx, &grid.ky);
         }
@@ -264,13 +211,8 @@ impl Spectra {
                 .iter_mut()
                 .zip(&mut self.a_hat[row.clone()]);
             let sources = base[row.clone()].iter().zip(&back[row.clone()]);
-            let derivs = dx[row.clone()].iter_mut().zip(&mut dy[row.clone()]);
-            for ((((u, (sb, sq)), ((kyd, ay), ic)), (n0, a)), (dx, dy)) in self.u[row.clone()]
-                .iter_mut()
-                .zip(sources)
-                .zip(modes)
-                .zip(stages)
-                .zip(derivs)
+            for (((u, (sb, sq)), ((kyd, ay), ic)), (n0, a)) in
+                self.u[row].iter_mut().zip(sources).zip(modes).zip(stages)
             {
                 let cf = SeparableExp::coef(*ax, *ay, *ic, h, inv_h);
                 let kv = kxd * vx + kyd * vy;
@@ -280,13 +222,11 @@ impl Spectra {
                         // i k.v u + s.
                         *n0 = Complex64::new(-kv * u.im + scale * s.re, kv * u.re + scale * s.im);
                         *a = *u * cf.e + *n0 * cf.p1;
-                        (*dx, *dy) = derivatives(*a, *kxd, *kyd);
                     }
                     Stage::Correct => {
                         let na =
                             Complex64::new(-kv * a.im + scale * s.re, kv * a.re + scale * s.im);
                         *u = *a + (na - *n0) * cf.p2;
-                        (*dx, *dy) = derivatives(*u, *kxd, *kyd);
                     }
                 }
             }
@@ -329,9 +269,7 @@ impl Scheme for ComovingEtd {
         // The shape changed: its droplet and forces are sampled afresh, and the predictor's
         // extrapolation starts again.
         self.start = None;
-        self.derivatives_formed = false;
-        self.cur.valid = false;
-        self.prev.valid = false;
+        self.history.forget();
         true
     }
 
@@ -354,28 +292,35 @@ impl Scheme for ComovingEtd {
 impl Stepper for ComovingEtd {
     fn attempt(&mut self, h: f64, max_error: f64) -> Attempt {
         self.ensure_start();
-        let area = self.start.as_ref().expect("forces at the start").area;
-        let start_source = Source {
-            base: &self.cur.sampled.spec,
-            back: &self.cur.sampled.spec,
-            alpha: 0.0,
-        };
-        let scale = self.quad.source_scale(area);
-        let velocity = (self.z[0], self.z[1]);
-        let bufs = self.quad.pass_buffers();
-        self.field
-            .pass(bufs, Stage::Predict, h, velocity, (start_source, scale));
-        // The mechanics' predictor, its droplet and the forces there.
+        // The mechanics' predictor and its droplet; the start's forces, put back if the
+        // step is refused.
         let coefs: Vec<EtdCoef> = self.rate_of.iter().map(|r| EtdCoef::new(-r, h)).collect();
-        // The start's forces, put back if the step is refused.
         let start = self.start.take().expect("forces at the start");
         let f0 = &start.forces;
         let z_a: Vec<f64> = (0..self.z.len())
             .map(|j| coefs[j].predict(self.z[j], f0[j] / self.inertia[j]))
             .collect();
-        let (alpha, area_a, lo, hi) = self.predictor_shape(&z_a);
-        // The predictor pass formed the derivative spectra of its field.
-        self.quad.gradient_formed(lo, hi);
+        let (alpha, area_a, lo, hi) = self.history.shape(&mut self.quad, &z_a);
+        let beta = self.history.gradient_factor(h, (lo, hi));
+        // The field's predictor, and the gradient there: extrapolated, or transformed back
+        // from the derivative spectra the pass formed.
+        let start_spec = self.history.start_spectrum();
+        let start_source = Source {
+            base: start_spec,
+            back: start_spec,
+            alpha: 0.0,
+        };
+        let scale = self.quad.source_scale(start.area);
+        let velocity = (self.z[0], self.z[1]);
+        let bufs = self.quad.pass_buffers();
+        self.field
+            .pass(bufs, Stage::Predict, h, velocity, (start_source, scale));
+        match beta {
+            Some(beta) => self
+                .history
+                .extrapolate_gradient(&mut self.quad, beta, (lo, hi)),
+            None => self.quad.gradient(&self.field.a_hat, lo, hi),
+        }
         let f_a = self.forces(lo, hi, area_a);
         let next: Vec<f64> = (0..self.z.len())
             .map(|j| {
@@ -402,7 +347,7 @@ impl Stepper for ComovingEtd {
         let (v0, v_a) = ((self.z[0], self.z[1]), (z_a[0], z_a[1]));
         // The field's corrector with the predictor's source.
         let scale = self.quad.source_scale(area_a);
-        let (base, back) = (&self.cur.sampled.spec, &self.prev.sampled.spec);
+        let (base, back) = self.history.spectra();
         let bufs = self.quad.pass_buffers();
         let source = match alpha {
             Some(alpha) => Source { base, back, alpha },
@@ -414,7 +359,7 @@ impl Stepper for ComovingEtd {
         };
         self.field
             .pass(bufs, Stage::Correct, h, v_a, (source, scale));
-        self.derivatives_formed = true;
+        self.h_accepted = h;
         // The centre by the trapezoidal rule (ETD2RK with rate 0).
         self.x += 0.5 * h * (v0.0 + v_a.0);
         self.y += 0.5 * h * (v0.1 + v_a.1);
@@ -445,33 +390,70 @@ mod tests {
         (run.z, run.x)
     }
 
-    #[test]
-    fn with_two_modes_it_steps_as_the_two_mode_scheme() {
-        // The general stepper at K = 2 and the 2-mode fast path (point symmetry, Parseval
-        // forces) from IC i to t = 2 at N = 64: the same ETD2RK of the same discretisation,
-        // both with the predictor's droplet extrapolated along the last step, so the same
-        // numbers to round-off (measured 1.1e-15 in v, a2 and the centre), at two steps.
-        let p = ModelParams::at(0.085, 0.112);
+    /// `(vx, vy, a2, b2, x)` after `steps` steps of `h` from IC i at `K = 2`: the general step
+    /// and the 2-mode fast path.
+    fn both_at_two_modes(p: &ModelParams, h: f64, steps: usize) -> ([f64; 5], [f64; 5]) {
+        let (z, x) = stepped(p, 64, 2, h, steps);
         let st0 = InitialCondition::parse("i").unwrap().state();
-        for h in [0.02f64, 0.05] {
-            let steps = (2.0 / h).round() as usize;
-            let (z, x) = stepped(&p, 64, 2, h, steps);
-            let mut fast = TwoModeEtd::new(p, 64, st0, false).unwrap();
-            for _ in 0..steps {
-                fast.step(h);
+        let mut fast = TwoModeEtd::new(*p, 64, st0, false).unwrap();
+        for _ in 0..steps {
+            fast.step(h);
+        }
+        let st = fast.state();
+        (
+            [z[0], z[1], z[2], z[3], x],
+            [st.vx, st.vy, st.a2, st.b2, st.x],
+        )
+    }
+
+    #[test]
+    fn with_two_modes_it_converges_with_the_two_mode_scheme() {
+        // The general step at K = 2 and the 2-mode fast path (point symmetry, Parseval forces)
+        // from IC i to t = 2 at N = 64: the same discretisation and the same ETD2RK but for
+        // the predictor's field gradient, which the general step extrapolates from the last
+        // two states ([`super::super::predictor`]) where the fast path sums its predictor's own
+        // field; both second order, so they part by O(h^2): a quarter as the step halves.
+        let p = ModelParams::at(0.085, 0.112);
+        let gap = |h: f64| {
+            let (general, fast) = both_at_two_modes(&p, h, (2.0 / h).round() as usize);
+            assert!(fast[0] > 0.4, "{fast:?}");
+            general
+                .iter()
+                .zip(&fast)
+                .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()))
+        };
+        // Measured 5.1e-4, 1.3e-4, 4.2e-5 (the general step's error from h = 0.001 half the
+        // fast path's at each step).
+        let (g1, g2, g3) = (gap(0.04), gap(0.02), gap(0.01));
+        for ratio in [g1 / g2, g2 / g3] {
+            assert!(ratio > 3.0 && ratio < 5.0, "{g1:e} {g2:e} {g3:e}");
+        }
+    }
+
+    #[test]
+    fn a_steady_state_is_a_fixed_point_whatever_the_step() {
+        // The 3-mode MD root and its steady field at N = 96: steps of any length from it (the
+        // predictor's droplet and gradient extrapolated from the second on) leave it there.
+        let p = ModelParams::at(0.085, 0.112).with_modes(3);
+        let n = 96;
+        let mut solver = crate::roots::steady_solver::SteadySolver::new(p, n).unwrap();
+        let st = md_state(&mut solver, 3).unwrap();
+        let root = vec![st.v, 0.0, st.a[0], st.a[1], 0.0, 0.0];
+        solver.forces(root[0], root[1], &Modes::of_state(&root));
+        let field = solver.field_spectrum().to_vec();
+        for h in [0.02, 0.1, 0.3] {
+            let mut run = ComovingEtd::new(&p, n, &root).unwrap();
+            // A leap by the factor 0 puts the run on the root, field and all.
+            assert!(run.leap(&root, &field, 0.0, [0.0; 2]));
+            for _ in 0..20 {
+                run.step(h);
             }
-            let st = fast.state();
-            assert!(st.vx > 0.4, "{st:?}");
-            let diff = [
-                st.vx - z[0],
-                st.vy - z[1],
-                st.a2 - z[2],
-                st.b2 - z[3],
-                st.x - x,
-            ]
-            .iter()
-            .fold(0.0f64, |m, d| m.max(d.abs()));
-            assert!(diff < 1e-12, "h = {h}: {diff:e}");
+            let drift = run
+                .z
+                .iter()
+                .zip(&root)
+                .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+            assert!(drift < 1e-10, "h = {h}: {drift:e}");
         }
     }
 
