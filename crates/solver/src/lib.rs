@@ -157,7 +157,7 @@ pub const ODE_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numeri
 /// `beta = h / h_last`) instead of transforming its own field's back: three transforms a
 /// step instead of five, second order still, the fixed points unchanged, and the error of a
 /// transient at Fig. 1c (modes 2..4, fixed steps) 28 to 64 times smaller; K-mode Newton halves
-/// a step that raises the residual (`NewtonOptions::backtrack`: from a run 0.18 degree off
+/// a step that more than doubles the residual (`NewtonOptions::backtrack`: from a run 0.18 degree off
 /// the x-axis MD it had stepped 10 degrees along the MD's family and failed); and the turn
 /// search from a root of the lattice between two mirror lines reflects a root found past
 /// the next line in that line, not in the one 45 degrees on (modes 2..3, N = 192, (0.085,

@@ -56,9 +56,9 @@ impl Balances {
                 // The settings K-mode runs have been finished with: to 1e-11, every
                 // unknown's step limited; the Jacobian by forward differences (2K field solves
                 // where central ones take 4K, the same roots: numerics modes-8); a step that
-                // raises the residual halved (numerics modes-16: the Fig. 1c run from ii,
-                // modes 2..4, 0.18 degree off the x-axis MD, had Newton step 10 degrees along
-                // the MD's family and fail after 12 iterations).
+                // more than doubles the residual halved (numerics modes-16: the Fig. 1c run
+                // from ii, modes 2..4, 0.18 degree off the x-axis MD, had Newton step 10
+                // degrees along the MD's family and fail after 12 iterations).
                 let opts = NewtonOptions {
                     tol: 1e-11,
                     max_iter: 12,
