@@ -1,5 +1,6 @@
 """Compares the runs of runs/*.json: each Newton-finished set against pure time stepping at the
-same K and N (modes15 to modes7 against pure-*.json, stepped by the scheme of numerics modes-7; the older
+same K and N (modes16 to modes7 against pure-*.json, stepped by the scheme of numerics modes-7, and
+modes16 also against pure16-*.json, the scheme of modes-16, where those exist; the older
 sets against pure6-*.json, the scheme of modes-3 to modes-6) (class; |dv|, |ds|; the orientation's difference in degrees; t_end and wall time).
 Writes summary.json and prints a table.  python3 summarise.py"""
 import json, glob, os
@@ -14,12 +15,16 @@ def turn(a, b):
 summary = {}
 for path in sorted(glob.glob(os.path.join(here, "runs", "pure-*.json"))):
     kn = os.path.basename(path)[len("pure-"):-len(".json")]
-    for tag in ["modes15", "modes14", "modes13", "modes12", "modes11", "modes10", "modes8", "modes7", "modes6", "newton", "before"]:
+    for tag, ref in [("modes16", "pure"), ("modes16", "pure16")] + [
+        (t, "pure") for t in ["modes15", "modes14", "modes13", "modes12", "modes11", "modes10", "modes8", "modes7"]
+    ] + [(t, "pure6") for t in ["modes6", "newton", "before"]]:
         p = os.path.join(here, "runs", f"{tag}-{kn}.json")
-        if not os.path.exists(p):
+        if not os.path.exists(p) or not os.path.exists(os.path.join(here, "runs", f"{ref}-{kn}.json")):
             continue
-        pure = load(("pure-" if tag in ("modes15", "modes14", "modes13", "modes12", "modes11", "modes10", "modes8", "modes7") else "pure6-") + kn)
+        pure = load(f"{ref}-{kn}")
         runs = load(f"{tag}-{kn}")
+        if ref == "pure16":
+            tag = "modes16/pure16"
         rows = []
         for a, b in zip(pure, runs):
             assert (a["eta_t"], a["kappa2"], a["ic"]) == (b["eta_t"], b["kappa2"], b["ic"])
