@@ -294,11 +294,9 @@ const UNSETTLED: &[(&str, u64)] = &[];
 /// Points of each committed map whose stable states the suite audits (seeded).
 const SAMPLE: usize = 8;
 
-#[test]
-fn every_committed_map_passes_the_audit() {
+/// The folders under `results/`, one or two deep (results/convergence-n/sweep), sorted.
+fn result_folders() -> Vec<std::path::PathBuf> {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("results");
-    let mut audited = Vec::new();
-    // Every map under results/, one or two folders deep (results/convergence-n/sweep).
     let folders = |d: &Path| -> Vec<std::path::PathBuf> {
         let mut v: Vec<_> = std::fs::read_dir(d)
             .unwrap()
@@ -309,11 +307,17 @@ fn every_committed_map_passes_the_audit() {
         v.sort();
         v
     };
-    let dirs: Vec<_> = folders(&root)
+    folders(&root)
         .into_iter()
         .flat_map(|d| std::iter::once(d.clone()).chain(folders(&d)))
-        .collect();
-    for dir in dirs {
+        .collect()
+}
+
+#[test]
+fn every_committed_map_passes_the_audit() {
+    let mut audited = Vec::new();
+    // Every map under results/.
+    for dir in result_folders() {
         if !dir.join("runs.parquet").exists() {
             continue;
         }

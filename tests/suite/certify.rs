@@ -55,6 +55,53 @@ fn run_ends(dir: &Path) -> HashMap<String, (String, f64, f64, String)> {
         .collect()
 }
 
+/// How many runs of the map in `out` are certified at cell centres (midway between a split
+/// cell's opposite corners), four per point.
+fn certified_cell_centres(out: &Path) -> usize {
+    // Edge midpoints and cell centres (midway between a split cell's opposite corners) alike:
+    // here (0.085, 0.13), the centre of the cell (0.08..0.09, 0.12..0.14), among them.
+    let df = read(&out.join("runs.parquet"));
+    let col = |c: &str| df.column(c).unwrap().f64().unwrap().clone();
+    let (eta_t, kappa2, ended) = (col("eta_t"), col("kappa2"), df.column("ended_by").unwrap());
+    let off_grid = |x: f64, start: f64, step: f64| ((x - start) / step).fract().abs() > 0.25;
+    let centres = (0..df.height())
+        .filter(|&i| ended.str().unwrap().get(i) == Some("certified_midway"))
+        .filter(|&i| {
+            off_grid(eta_t.get(i).unwrap(), 0.07, 0.01)
+                && off_grid(kappa2.get(i).unwrap(), 0.10, 0.02)
+        })
+        .count();
+    assert!(centres.is_multiple_of(4), "{centres}");
+    centres
+}
+
+/// How many level-2 points of the map in `out` are certified midway (along an axis or a
+/// diagonal of their level's cell) between two points, one of them certified on level 1
+/// (`level_1`).
+fn certified_from_certified_neighbours(out: &Path, level_1: &[(f64, f64)]) -> usize {
+    let all = points(out);
+    let near = |a: (f64, f64), b: (f64, f64)| (a.0 - b.0).abs() < 1e-9 && (a.1 - b.1).abs() < 1e-9;
+    let exists = |q: (f64, f64)| all.iter().any(|p| near((p.eta_t, p.kappa2), q));
+    let on_level_1 = |q: (f64, f64)| level_1.iter().any(|&c| near(c, q));
+    let (h, k) = (0.01 / 4.0, 0.02 / 4.0);
+    let from_certified = certified_points(out)
+        .into_iter()
+        .filter(|&(e, kk)| {
+            all.iter()
+                .any(|p| p.level == 2 && near((p.eta_t, p.kappa2), (e, kk)))
+        })
+        .filter(|&(e, kk)| {
+            [(h, 0.0), (0.0, k), (h, k), (h, -k)]
+                .iter()
+                .any(|&(de, dk)| {
+                    let (a, b) = ((e - de, kk - dk), (e + de, kk + dk));
+                    exists(a) && exists(b) && (on_level_1(a) || on_level_1(b))
+                })
+        })
+        .count();
+    from_certified
+}
+
 #[test]
 fn certified_midpoints_end_where_their_runs_do_and_are_stepped_once_the_option_is_off() {
     let dir = tempfile::tempdir().unwrap();
@@ -82,26 +129,7 @@ fn certified_midpoints_end_where_their_runs_do_and_are_stepped_once_the_option_i
         "{chained}"
     );
     let certified = certified_1 + certified_2;
-    let all = points(&out);
-    let near = |a: (f64, f64), b: (f64, f64)| (a.0 - b.0).abs() < 1e-9 && (a.1 - b.1).abs() < 1e-9;
-    let exists = |q: (f64, f64)| all.iter().any(|p| near((p.eta_t, p.kappa2), q));
-    let on_level_1 = |q: (f64, f64)| level_1.iter().any(|&c| near(c, q));
-    let (h, k) = (0.01 / 4.0, 0.02 / 4.0);
-    let from_certified = certified_points(&out)
-        .into_iter()
-        .filter(|&(e, kk)| {
-            all.iter()
-                .any(|p| p.level == 2 && near((p.eta_t, p.kappa2), (e, kk)))
-        })
-        .filter(|&(e, kk)| {
-            [(h, 0.0), (0.0, k), (h, k), (h, -k)]
-                .iter()
-                .any(|&(de, dk)| {
-                    let (a, b) = ((e - de, kk - dk), (e + de, kk + dk));
-                    exists(a) && exists(b) && (on_level_1(a) || on_level_1(b))
-                })
-        })
-        .count();
+    let from_certified = certified_from_certified_neighbours(&out, &level_1);
     assert!(from_certified > 0, "{chained}");
     let ends = run_ends(&out);
     let certified_keys: Vec<&String> = ends
@@ -110,20 +138,7 @@ fn certified_midpoints_end_where_their_runs_do_and_are_stepped_once_the_option_i
         .map(|(k, _)| k)
         .collect();
     assert_eq!(certified_keys.len() as u64, certified);
-    // Edge midpoints and cell centres (midway between a split cell's opposite corners) alike:
-    // here (0.085, 0.13), the centre of the cell (0.08..0.09, 0.12..0.14), among them.
-    let df = read(&out.join("runs.parquet"));
-    let col = |c: &str| df.column(c).unwrap().f64().unwrap().clone();
-    let (eta_t, kappa2, ended) = (col("eta_t"), col("kappa2"), df.column("ended_by").unwrap());
-    let off_grid = |x: f64, start: f64, step: f64| ((x - start) / step).fract().abs() > 0.25;
-    let centres = (0..df.height())
-        .filter(|&i| ended.str().unwrap().get(i) == Some("certified_midway"))
-        .filter(|&i| {
-            off_grid(eta_t.get(i).unwrap(), 0.07, 0.01)
-                && off_grid(kappa2.get(i).unwrap(), 0.10, 0.02)
-        })
-        .count();
-    assert!(centres > 0 && centres.is_multiple_of(4), "{centres}");
+    assert!(certified_cell_centres(&out) > 0);
     // Every label a stable state, the certified runs' included.
     let o = run(&["audit", out.to_str().unwrap(), "--json"]);
     assert_eq!(
@@ -170,6 +185,11 @@ fn certified_midpoints_end_where_their_runs_do_and_are_stepped_once_the_option_i
         assert!(check["certified_points"].as_u64().unwrap() > 0, "{check}");
         assert_eq!(check["class_differences"], 0, "{check}");
     }
+}
+
+#[test]
+fn bad_certify_values_exit_2_naming_the_field() {
+    let dir = tempfile::tempdir().unwrap();
     // Bad values exit 2 naming the field; runs that end otherwise than by the spectral PDE's
     // Newton finish (the reduced model, the paper's test) have no certificate.
     for (name, text) in [

@@ -59,14 +59,12 @@ fn continue_follows_md_through_its_fold_to_the_onset_of_motion() {
     assert!(dir.path().join("continuation_kappa2_0.13.svg").exists());
 }
 
-#[test]
-fn bad_input_exits_2_naming_the_option() {
-    let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().to_str().unwrap();
+/// `continue --param` given what it refuses: `(arguments, what the message says)`.
+fn bad_param_cases() -> Vec<(Vec<&'static str>, &'static str)> {
     let line = ["--from", "0.05", "--to", "0.5"];
     let with_line =
         |head: &[&'static str]| -> Vec<&'static str> { head.iter().copied().chain(line).collect() };
-    let param_cases: Vec<(Vec<&str>, &str)> = vec![
+    vec![
         (
             with_line(&["continue", "--param", "massive"]),
             "--param massive",
@@ -107,7 +105,14 @@ fn bad_input_exits_2_naming_the_option() {
             ],
             "R/4",
         ),
-    ];
+    ]
+}
+
+#[test]
+fn bad_input_exits_2_naming_the_option() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().to_str().unwrap();
+    let param_cases = bad_param_cases();
     for (args, needle) in param_cases {
         let mut all = args.clone();
         all.extend(["--out", out]);

@@ -61,6 +61,20 @@ fn distance(p: (f64, f64), line: &[(f64, f64)], (de, dk): (f64, f64)) -> f64 {
     droplet_solver::continuation::polyline::distance_to_polyline(scaled(p), &line)
 }
 
+/// The reduced model's analytic boundaries a sweep in `out` wrote (curves of two points or
+/// more).
+fn analytic_curves(out: &Path) -> Vec<Vec<(f64, f64)>> {
+    boundaries::read(
+        &out.join(boundaries::FILE),
+        droplet_solver::contract::settings::ModelKind::Ode,
+    )
+    .unwrap()
+    .into_iter()
+    .map(|c| c.points)
+    .filter(|p| p.len() >= 2)
+    .collect()
+}
+
 #[test]
 fn ode_refinement_reproduces_the_analytic_boundaries_to_the_finest_step() {
     let dir = tempfile::tempdir().unwrap();
@@ -92,15 +106,7 @@ fn ode_refinement_reproduces_the_analytic_boundaries_to_the_finest_step() {
         pts.iter().any(|p| p.level == FINEST),
         "the finest level is reached"
     );
-    let curves: Vec<Vec<(f64, f64)>> = boundaries::read(
-        &out.join(boundaries::FILE),
-        droplet_solver::contract::settings::ModelKind::Ode,
-    )
-    .unwrap()
-    .into_iter()
-    .map(|c| c.points)
-    .filter(|p| p.len() >= 2)
-    .collect();
+    let curves = analytic_curves(&out);
     assert!(!curves.is_empty());
     let near_a_boundary =
         |p: (f64, f64), within: f64| curves.iter().any(|c| distance(p, c, finest) <= within);

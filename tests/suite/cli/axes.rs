@@ -214,11 +214,14 @@ fn a_pde_mass_kappa2_sweep_resumes_after_kills_and_shards_give_equal_tables() {
     assert!(single.join("phase_map.png").exists());
 }
 
-#[test]
-fn bad_axes_exit_2_naming_the_key() {
-    let dir = tempfile::tempdir().unwrap();
-    let good = "model: ode\ngrid:\n  mass: [0.05, 0.1]\n  eta_t: [0.08, 0.09]\n";
-    let cases = [
+/// A spec with a two-axis grid of the reduced model, the one the bad axes change.
+const GOOD_AXES: &str = "model: ode\ngrid:\n  mass: [0.05, 0.1]\n  eta_t: [0.08, 0.09]\n";
+
+/// Bad axes: `(what, spec, the key named, what the message says)`. Unknown, doubled, too
+/// many or none.
+fn bad_axis_names() -> Vec<(&'static str, String, &'static str, &'static str)> {
+    let good = GOOD_AXES;
+    vec![
         (
             "unknown axis",
             good.replace("mass:", "massive:"),
@@ -249,6 +252,13 @@ fn bad_axes_exit_2_naming_the_key() {
             "grid",
             "one to three",
         ),
+    ]
+}
+
+/// Bad axes: values out of range, and refinement on axes it cannot take.
+fn bad_axis_values() -> Vec<(&'static str, String, &'static str, &'static str)> {
+    let good = GOOD_AXES;
+    vec![
         (
             "non-positive eta2",
             good.replace("mass:", "eta2:").replace("0.05", "0"),
@@ -298,7 +308,13 @@ fn bad_axes_exit_2_naming_the_key() {
             "refine",
             "two",
         ),
-    ];
+    ]
+}
+
+#[test]
+fn bad_axes_exit_2_naming_the_key() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases = [bad_axis_names(), bad_axis_values()].concat();
     for (what, text, key, says) in cases {
         let spec = write_spec(dir.path(), "bad.yaml", &text);
         let out = dir.path().join("never");

@@ -93,35 +93,86 @@ fn a_k_mode_run_settles_on_the_k_mode_steady_state() {
     assert!(String::from_utf8_lossy(&o.stderr).contains("--no-orientation-flow"));
 }
 
+/// The MD branch at kappa2 = 0.13 with shape modes 2..`modes` (N = 96), written to `dir`:
+/// `continue --json`.
+fn md_line(modes: &str, dir: &std::path::Path) -> serde_json::Value {
+    json(&run(&[
+        "continue",
+        "--modes",
+        modes,
+        "--branch",
+        "md",
+        "--kappa2",
+        "0.13",
+        "--from",
+        "0.0775",
+        "--to",
+        "0.1",
+        "--n",
+        "96",
+        "--max-points",
+        "24",
+        "--ds-max",
+        "0.08",
+        "--out",
+        dir.to_str().unwrap(),
+        "--json",
+    ]))
+}
+
+/// The 3-mode MD line (`at`, `v`, `a3`, `stable` of its table) against two independent
+/// computations at its first stable state.
+fn agrees_with_newton_and_time_stepping(at: &[f64], v: &[f64], a3: &[f64], stable: &[bool]) {
+    // The branch against two independent computations at a stable state of the table:
+    // Newton at that point (`stability --modes 3`) and time stepping to it (`simulate
+    // --modes 3`). (At N = 64 the 3-mode model has a second stable MD state there, v = 0.497
+    // against 0.657: an under-resolved grid; at N = 96 one, which both reach to 1e-10.)
+    let j = (0..stable.len())
+        .filter(|&i| stable[i])
+        .min_by(|&x, &y| at[x].total_cmp(&at[y]))
+        .unwrap();
+    let eta = format!("{}", at[j]);
+    let st = stability(&[
+        "--eta-t", &eta, "--kappa2", "0.13", "--state", "md", "--modes", "3", "--n", "96",
+    ]);
+    let f = |x: &serde_json::Value| x.as_f64().unwrap();
+    assert!(
+        (f(&st["v"]) - v[j]).abs() < 1e-8 && (f(&st["a_k"][1]) - a3[j]).abs() < 1e-8,
+        "{st}"
+    );
+    assert_eq!(st["stable"], true, "{st}");
+    let stepped = json(&run(&[
+        "simulate",
+        "--eta-t",
+        &eta,
+        "--kappa2",
+        "0.13",
+        "--ic",
+        "custom:0.6,0,-0.15,0",
+        "--modes",
+        "3",
+        "--n",
+        "96",
+        "--steady-tol",
+        "1e-9",
+        "--t-max",
+        "5000",
+        "--json",
+    ]));
+    assert_eq!(stepped["status"], "steady", "{stepped}");
+    assert!((f(&stepped["v"]) - v[j]).abs() < 1e-6, "{stepped} {}", v[j]);
+    assert!(
+        (f(&stepped["a_k"][1]) - a3[j]).abs() < 1e-6,
+        "{stepped} {}",
+        a3[j]
+    );
+}
+
 #[test]
 fn continue_with_modes_follows_the_k_mode_branch_with_its_stability() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("c3");
-    // The MD branch at kappa2 = 0.13 with shape modes 2..K, written to `dir`.
-    let line = |modes: &str, dir: &std::path::Path| {
-        json(&run(&[
-            "continue",
-            "--modes",
-            modes,
-            "--branch",
-            "md",
-            "--kappa2",
-            "0.13",
-            "--from",
-            "0.0775",
-            "--to",
-            "0.1",
-            "--n",
-            "96",
-            "--max-points",
-            "24",
-            "--ds-max",
-            "0.08",
-            "--out",
-            dir.to_str().unwrap(),
-            "--json",
-        ]))
-    };
+    let line = md_line;
     let c = line("3", &out);
     assert_eq!(c["modes"], 3, "{c}");
     assert_eq!(c["eta_k_exponent"], 0.0, "{c}");
@@ -171,49 +222,7 @@ fn continue_with_modes_follows_the_k_mode_branch_with_its_stability() {
     assert_eq!(changes, 1, "{stable:?}");
     let counted = c["branches"][0]["stable_points"].as_u64().unwrap() as usize;
     assert_eq!(counted, stable.iter().filter(|s| **s).count(), "{c}");
-    // The branch against two independent computations at a stable state of the table:
-    // Newton at that point (`stability --modes 3`) and time stepping to it (`simulate
-    // --modes 3`). (At N = 64 the 3-mode model has a second stable MD state there, v = 0.497
-    // against 0.657: an under-resolved grid; at N = 96 one, which both reach to 1e-10.)
-    let j = (0..stable.len())
-        .filter(|&i| stable[i])
-        .min_by(|&x, &y| at[x].total_cmp(&at[y]))
-        .unwrap();
-    let eta = format!("{}", at[j]);
-    let st = stability(&[
-        "--eta-t", &eta, "--kappa2", "0.13", "--state", "md", "--modes", "3", "--n", "96",
-    ]);
-    let f = |x: &serde_json::Value| x.as_f64().unwrap();
-    assert!(
-        (f(&st["v"]) - v[j]).abs() < 1e-8 && (f(&st["a_k"][1]) - a3[j]).abs() < 1e-8,
-        "{st}"
-    );
-    assert_eq!(st["stable"], true, "{st}");
-    let stepped = json(&run(&[
-        "simulate",
-        "--eta-t",
-        &eta,
-        "--kappa2",
-        "0.13",
-        "--ic",
-        "custom:0.6,0,-0.15,0",
-        "--modes",
-        "3",
-        "--n",
-        "96",
-        "--steady-tol",
-        "1e-9",
-        "--t-max",
-        "5000",
-        "--json",
-    ]));
-    assert_eq!(stepped["status"], "steady", "{stepped}");
-    assert!((f(&stepped["v"]) - v[j]).abs() < 1e-6, "{stepped} {}", v[j]);
-    assert!(
-        (f(&stepped["a_k"][1]) - a3[j]).abs() < 1e-6,
-        "{stepped} {}",
-        a3[j]
-    );
+    agrees_with_newton_and_time_stepping(&at, &v, &a3, &stable);
     assert!(out.join("continuation_modes3_kappa2_0.13.png").exists());
     refused(
         &[

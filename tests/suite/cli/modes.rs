@@ -11,6 +11,53 @@ fn spec(modes: &str) -> String {
     )
 }
 
+/// The points table of the 3-mode map in `out` has the state each initial condition's run
+/// settled on: the runs' `a3` where they have a class.
+fn points_hold_the_runs_amplitudes(out: &std::path::Path, a3: &[f64], classes: &[Option<&str>]) {
+    // The points table has the state each initial condition's run settled on: the same
+    // amplitudes as the runs table (one run per point here).
+    let points = read(&out.join("points.parquet"));
+    let col = points.column("a3_i").unwrap().f64().unwrap().clone();
+    let mut from_points: Vec<f64> = (0..col.len()).filter_map(|i| col.get(i)).collect();
+    let mut from_runs: Vec<f64> = (0..a3.len())
+        .filter(|&i| classes[i].is_some())
+        .map(|i| a3[i])
+        .collect();
+    from_points.sort_by(f64::total_cmp);
+    from_runs.sort_by(f64::total_cmp);
+    assert_eq!(from_points, from_runs);
+    assert_eq!(from_points.len(), 4);
+    assert!(points.column("deformation_i").is_ok() && points.column("b3_i").is_ok());
+}
+
+/// `droplet boundaries` onto the 3-mode map in `out`.
+fn boundaries_draw_the_three_mode_curves_across(out: &std::path::Path) {
+    // `droplet boundaries` onto the map draws the 3-mode model's curves that cross its
+    // window (0.085-0.1 x 0.112-0.16): the disk's diagonal deformation onset and the diagonal
+    // ID's onset of motion. Not drawn: the disk's onset of motion (eta_t = 0.0765) and its
+    // MC onset lie left of the window; the axis deformation onset and the axis ID meet below
+    // it, at kappa2 = 0.1097 at N = 96; no MD on the window's middle line, so no fold curve.
+    let b = json(&run(&[
+        "boundaries",
+        "--out",
+        out.to_str().unwrap(),
+        "--n",
+        "96",
+        "--samples",
+        "8",
+        "--json",
+    ]));
+    let pde = crate::cli::truncation::pde_curves(&b);
+    assert_eq!(
+        pde,
+        [
+            "IC onset of deformation (b2, diagonal)",
+            "ID onset of motion (diagonal ID)"
+        ],
+        "{b}"
+    );
+}
+
 #[test]
 fn a_sweep_with_three_modes_runs_the_k_mode_model_and_tables_its_amplitudes() {
     let dir = tempfile::tempdir().unwrap();
@@ -50,50 +97,8 @@ fn a_sweep_with_three_modes_runs_the_k_mode_model_and_tables_its_amplitudes() {
             assert!(a3[i].abs() > 1e-2, "{}", a3[i]);
         }
     }
-    // The points table has the state each initial condition's run settled on: the same
-    // amplitudes as the runs table (one run per point here).
-    let points = read(&out.join("points.parquet"));
-    let col = points.column("a3_i").unwrap().f64().unwrap().clone();
-    let mut from_points: Vec<f64> = (0..col.len()).filter_map(|i| col.get(i)).collect();
-    let mut from_runs: Vec<f64> = (0..runs.height())
-        .filter(|&i| classes[i].is_some())
-        .map(|i| a3[i])
-        .collect();
-    from_points.sort_by(f64::total_cmp);
-    from_runs.sort_by(f64::total_cmp);
-    assert_eq!(from_points, from_runs);
-    assert_eq!(from_points.len(), 4);
-    assert!(points.column("deformation_i").is_ok() && points.column("b3_i").is_ok());
-    // `droplet boundaries` onto the map draws the 3-mode model's curves that cross its
-    // window (0.085-0.1 x 0.112-0.16): the disk's diagonal deformation onset and the diagonal
-    // ID's onset of motion. Not drawn: the disk's onset of motion (eta_t = 0.0765) and its
-    // MC onset lie left of the window; the axis deformation onset and the axis ID meet below
-    // it, at kappa2 = 0.1097 at N = 96; no MD on the window's middle line, so no fold curve.
-    let b = json(&run(&[
-        "boundaries",
-        "--out",
-        out.to_str().unwrap(),
-        "--n",
-        "96",
-        "--samples",
-        "8",
-        "--json",
-    ]));
-    let pde = crate::cli::truncation::pde_curves(&b);
-    assert_eq!(
-        pde,
-        [
-            "IC onset of deformation (b2, diagonal)",
-            "ID onset of motion (diagonal ID)"
-        ],
-        "{b}"
-    );
-    // The 2-mode tables have none of these columns.
-    let two = dir.path().join("m2");
-    let o = sweep(&write_spec(dir.path(), "m2.yaml", &spec("2")), &two, &[]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    assert!(read(&two.join("runs.parquet")).column("a3").is_err());
-    assert!(read(&two.join("points.parquet")).column("a3_i").is_err());
+    points_hold_the_runs_amplitudes(&out, &a3, &classes);
+    boundaries_draw_the_three_mode_curves_across(&out);
     // The audit checks the K-mode map with the 3-mode equations: every label a stable state.
     let o = run(&["audit", out.to_str().unwrap(), "--json"]);
     let a = json(&o);
@@ -129,6 +134,17 @@ fn a_sweep_with_three_modes_runs_the_k_mode_model_and_tables_its_amplitudes() {
     assert_eq!(o.status.code(), Some(1));
     let a: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     assert_eq!(a["list"][0]["kind"], "unstable_disk", "{a}");
+}
+
+#[test]
+fn two_mode_tables_have_no_higher_modes() {
+    let dir = tempfile::tempdir().unwrap();
+    // The 2-mode tables have none of these columns.
+    let two = dir.path().join("m2");
+    let o = sweep(&write_spec(dir.path(), "m2.yaml", &spec("2")), &two, &[]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(read(&two.join("runs.parquet")).column("a3").is_err());
+    assert!(read(&two.join("points.parquet")).column("a3_i").is_err());
 }
 
 #[test]

@@ -5,6 +5,26 @@ use crate::common::{droplet, json, run, table_without_wall, write_spec};
 use std::process::Stdio;
 use std::time::Duration;
 
+/// `droplet sweep SPEC --out OUT --shard SHARD --jobs 1`, started and left running.
+fn spawn_shard(spec: &std::path::Path, out: &str, shard: &str) -> std::process::Child {
+    droplet()
+        .args([
+            "sweep",
+            spec.to_str().unwrap(),
+            "--out",
+            out,
+            "--shard",
+            shard,
+            "--jobs",
+            "1",
+            "--json",
+        ])
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap()
+}
+
 #[test]
 fn shards_then_merge_equal_a_single_sweep_and_early_merge_writes_nothing() {
     let dir = tempfile::tempdir().unwrap();
@@ -38,24 +58,7 @@ fn shards_then_merge_equal_a_single_sweep_and_early_merge_writes_nothing() {
     assert!(String::from_utf8_lossy(&early.stderr).contains("missing"));
     assert!(!sharded.join("runs.parquet").exists() && !sharded.join("points.parquet").exists());
     // Shards 1 and 2 concurrently (separate locks), shard 1 killed mid-way and re-run.
-    let spawn = |shard: &str| {
-        droplet()
-            .args([
-                "sweep",
-                spec.to_str().unwrap(),
-                "--out",
-                s,
-                "--shard",
-                shard,
-                "--jobs",
-                "1",
-                "--json",
-            ])
-            .stdout(Stdio::null())
-            .stderr(Stdio::null())
-            .spawn()
-            .unwrap()
-    };
+    let spawn = |shard: &str| spawn_shard(&spec, s, shard);
     let mut one = spawn("1/3");
     let mut two = spawn("2/3");
     std::thread::sleep(Duration::from_millis(300));
@@ -92,6 +95,14 @@ fn shards_then_merge_equal_a_single_sweep_and_early_merge_writes_nothing() {
         let b = table_without_wall(&sharded.join(t));
         assert!(a.equals_missing(&b), "{t} differs");
     }
+}
+
+#[test]
+fn slurm_writes_an_array_script_of_shards_and_a_merge_script() {
+    let dir = tempfile::tempdir().unwrap();
+    let spec = write_spec(dir.path(), "tiny.yaml", TINY);
+    let sharded = dir.path().join("sharded");
+    let s = sharded.to_str().unwrap();
     // The Slurm scripts.
     let sl = json(&run(&[
         "slurm",

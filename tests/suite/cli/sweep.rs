@@ -184,11 +184,13 @@ fn a_second_sweep_on_the_same_directory_is_refused() {
     assert!(err.contains("in use by another droplet process"), "{err}");
 }
 
-#[test]
-fn malformed_specs_exit_2_name_the_key_and_write_nothing() {
-    let dir = tempfile::tempdir().unwrap();
-    let good = "name: m\noutput: OUTDIR\ngrid:\n  eta_t: {start: 0.07, stop: 0.08, step: 0.01}\n  kappa2: [0.11]\nsolver:\n  n: 32\n  dt: 0.05\n  t_max: 10\n";
-    let cases: Vec<(&str, String, &str)> = vec![
+/// A spec of two runs; the malformed ones change it (`OUTDIR`: the output directory).
+const GOOD_SPEC: &str = "name: m\noutput: OUTDIR\ngrid:\n  eta_t: {start: 0.07, stop: 0.08, step: 0.01}\n  kappa2: [0.11]\nsolver:\n  n: 32\n  dt: 0.05\n  t_max: 10\n";
+
+/// Malformed specs: `(what, spec, the key named)`. Unknown keys and bad solver settings.
+fn malformed_solver_settings() -> Vec<(&'static str, String, &'static str)> {
+    let good = GOOD_SPEC;
+    vec![
         ("unknown top key", format!("{good}colour: red\n"), "colour"),
         (
             "unknown solver key",
@@ -227,6 +229,13 @@ fn malformed_specs_exit_2_name_the_key_and_write_nothing() {
             good.replace("t_max: 10", "t_max: .nan"),
             "solver.t_max",
         ),
+    ]
+}
+
+/// Malformed specs: bad grids, initial conditions, parameters and YAML.
+fn malformed_grids_and_documents() -> Vec<(&'static str, String, &'static str)> {
+    let good = GOOD_SPEC;
+    vec![
         (
             "zero step",
             good.replace("step: 0.01", "step: 0"),
@@ -286,7 +295,13 @@ fn malformed_specs_exit_2_name_the_key_and_write_nothing() {
             "grid",
         ),
         ("bad yaml", format!("{good}  : [\n"), "(document)"),
-    ];
+    ]
+}
+
+#[test]
+fn malformed_specs_exit_2_name_the_key_and_write_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases = [malformed_solver_settings(), malformed_grids_and_documents()].concat();
     assert!(cases.len() >= 15);
     for (what, text, key) in cases {
         let outdir = dir.path().join(format!("out-{}", what.replace(' ', "_")));

@@ -35,6 +35,34 @@ pub(crate) fn refused(base: &[&str], cases: &[(&[&str], &str)]) {
     }
 }
 
+/// Each K's fold curve of a `truncation` in `out` (its `rows`), continued in (eta_t,
+/// kappa2), crosses kappa2 = 0.13 where the branch followed in eta_t folds (two
+/// computations).
+fn fold_curves_cross_where_the_branches_fold(out: &std::path::Path, rows: &[serde_json::Value]) {
+    let f = |r: &serde_json::Value, k: &str| r[k].as_f64().unwrap();
+    // Each K's fold curve, continued in (eta_t, kappa2), crosses kappa2 = 0.13 where the branch
+    // followed in eta_t folds (two computations).
+    let b = read(&out.join("truncation_boundaries.parquet"));
+    let curve = b.column("curve").unwrap().str().unwrap().clone();
+    let (e, k) = (floats(&b, "eta_t"), floats(&b, "kappa2"));
+    for row in rows {
+        let name = format!("K = {}: MD saddle-node (x axis)", row["k_max"]);
+        let pts: Vec<(f64, f64)> = (0..b.height())
+            .filter(|&i| curve.get(i) == Some(name.as_str()))
+            .map(|i| (e[i], k[i]))
+            .collect();
+        let w = pts
+            .windows(2)
+            .find(|w| (w[0].1 - 0.13) * (w[1].1 - 0.13) <= 0.0)
+            .unwrap_or_else(|| panic!("{name}: {pts:?}"));
+        let at = w[0].0 + (w[1].0 - w[0].0) * (0.13 - w[0].1) / (w[1].1 - w[0].1);
+        assert!(
+            (at - f(row, "fold_eta_t")).abs() < 2e-5,
+            "{name}: {at} vs {row}"
+        );
+    }
+}
+
 #[test]
 fn two_modes_are_the_two_mode_commands_and_a_third_changes_the_moving_state() {
     let dir = tempfile::tempdir().unwrap();
@@ -121,27 +149,7 @@ fn two_modes_are_the_two_mode_commands_and_a_third_changes_the_moving_state() {
     ] {
         assert!(out.join(file).exists(), "{file}");
     }
-    // Each K's fold curve, continued in (eta_t, kappa2), crosses kappa2 = 0.13 where the branch
-    // followed in eta_t folds (two computations).
-    let b = read(&out.join("truncation_boundaries.parquet"));
-    let curve = b.column("curve").unwrap().str().unwrap().clone();
-    let (e, k) = (floats(&b, "eta_t"), floats(&b, "kappa2"));
-    for row in rows {
-        let name = format!("K = {}: MD saddle-node (x axis)", row["k_max"]);
-        let pts: Vec<(f64, f64)> = (0..b.height())
-            .filter(|&i| curve.get(i) == Some(name.as_str()))
-            .map(|i| (e[i], k[i]))
-            .collect();
-        let w = pts
-            .windows(2)
-            .find(|w| (w[0].1 - 0.13) * (w[1].1 - 0.13) <= 0.0)
-            .unwrap_or_else(|| panic!("{name}: {pts:?}"));
-        let at = w[0].0 + (w[1].0 - w[0].0) * (0.13 - w[0].1) / (w[1].1 - w[0].1);
-        assert!(
-            (at - f(row, "fold_eta_t")).abs() < 2e-5,
-            "{name}: {at} vs {row}"
-        );
-    }
+    fold_curves_cross_where_the_branches_fold(&out, rows);
 }
 
 #[test]
@@ -233,6 +241,17 @@ fn stability_with_modes_gives_the_k_mode_state_and_its_verdict() {
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2), "{err}");
     assert!(err.contains("eta_k_exponent"), "{err}");
+    refused(
+        &["stability", "--eta-t", "0.085", "--kappa2", "0.112"],
+        &[
+            (&["--modes", "1"], "modes"),
+            (&["--modes", "8", "--n", "64"], "modes"),
+        ],
+    );
+}
+
+#[test]
+fn the_resting_disk_has_each_modes_onset_and_two_modes_name_their_mode_alike() {
     // The resting disk: round but for the box's square symmetry (a4 small), with each
     // mode's onset.
     let ic = stability(&[
@@ -251,6 +270,10 @@ fn stability_with_modes_gives_the_k_mode_state_and_its_verdict() {
     ]);
     assert_eq!(two["modes"], 2, "{two}");
     assert_eq!(two["a_k"][0], two["a2"], "{two}");
+}
+
+#[test]
+fn the_three_mode_md_state_on_the_diagonal_is_where_a_run_started_on_it_ends() {
     // The MD state on the diagonal with 3 modes: on the mirror line (vx = vy; mode 2 along
     // it, a2 = 0; mode 3 symmetric about it, b3 = -a3), the x-axis state but for the box's
     // anisotropy, and where a 3-mode run started on the diagonal ends (an independent
@@ -300,12 +323,5 @@ fn stability_with_modes_gives_the_k_mode_state_and_its_verdict() {
     assert!(
         (run_d["a_k"][1].as_f64().unwrap() - f("a_k", 1)).abs() < 1e-6,
         "{run_d}"
-    );
-    refused(
-        &["stability", "--eta-t", "0.085", "--kappa2", "0.112"],
-        &[
-            (&["--modes", "1"], "modes"),
-            (&["--modes", "8", "--n", "64"], "modes"),
-        ],
     );
 }

@@ -99,7 +99,22 @@ pub(super) fn simc(
 /// Every case: steps, initial conditions and geometry here, the rest in
 /// [`super::refusals`].
 fn catalogue() -> Vec<Case> {
-    let mut cases = vec![
+    [
+        steps_that_never_finish(),
+        initial_conditions(),
+        geometry_and_scheme(),
+        spec_geometry_and_settings(),
+        spec_values_and_structure(),
+        super::refusals::cases(),
+    ]
+    .into_iter()
+    .flatten()
+    .collect()
+}
+
+/// Steps and intervals that would never finish.
+fn steps_that_never_finish() -> Vec<Case> {
+    vec![
         // Steps and intervals that would never finish.
         simc(
             "fixed step 1e-300",
@@ -143,6 +158,12 @@ fn catalogue() -> Vec<Case> {
             ("dt: 0.05", "dt: 1.0e-300\n  dt_max: 1.0e-300"),
             &["solver.dt_max"],
         ),
+    ]
+}
+
+/// Initial conditions: the bound that is broken.
+fn initial_conditions() -> Vec<Case> {
+    vec![
         // Initial conditions: the bound that is broken.
         simc(
             "custom ic s >= 1",
@@ -174,6 +195,12 @@ fn catalogue() -> Vec<Case> {
             &["unknown initial condition"],
             5.0,
         ),
+    ]
+}
+
+/// Geometry (the field at fault, an unresolved droplet) and the scheme, on the command line.
+fn geometry_and_scheme() -> Vec<Case> {
+    vec![
         // Geometry: the field at fault, and an unresolved droplet.
         simc(
             "sigma 10",
@@ -238,6 +265,12 @@ fn catalogue() -> Vec<Case> {
             &["does not exist"],
             5.0,
         ),
+    ]
+}
+
+/// Specs: geometry out of range and settings that contradict each other.
+fn spec_geometry_and_settings() -> Vec<Case> {
+    vec![
         spec_case(
             "spec sigma below dx",
             ("solver:", "params: {sigma: 1.0e-4}\nsolver:"),
@@ -276,6 +309,12 @@ fn catalogue() -> Vec<Case> {
             ("solver:", "params: {radius: 0.5}\nsolver:"),
             &["params.radius"],
         ),
+    ]
+}
+
+/// Specs: an unstable scheme, initial conditions, steps, unknown keys, YAML, sizes and types.
+fn spec_values_and_structure() -> Vec<Case> {
+    vec![
         spec_case(
             "spec unstable paper-fd",
             (
@@ -317,9 +356,7 @@ fn catalogue() -> Vec<Case> {
             ("solver:", "params: {mass: heavy}\nsolver:"),
             &["params.mass"],
         ),
-    ];
-    cases.extend(super::refusals::cases());
-    cases
+    ]
 }
 
 #[test]

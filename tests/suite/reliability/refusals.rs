@@ -4,6 +4,26 @@
 use super::catalogue::{case, fast, simc, spec_case, Case};
 
 pub(super) fn cases() -> Vec<Case> {
+    [
+        negative_values(),
+        unreadable_inputs_and_unwritable_outputs(),
+        missing_sweeps_and_bad_arguments(),
+        sizes_out_of_range(),
+        windows_beyond_the_models_limits(),
+        boundary_windows_beyond_the_models_limits(),
+        specs(),
+        round_four_settings(),
+        round_four_spec_settings(),
+        round_four_slurm_values(),
+        round_four_grid_checks(),
+    ]
+    .into_iter()
+    .flatten()
+    .collect()
+}
+
+/// Negative numbers: values, refused with the field's message.
+fn negative_values() -> Vec<Case> {
     vec![
         // Negative numbers are values, rejected with the field's message.
         Case {
@@ -27,6 +47,12 @@ pub(super) fn cases() -> Vec<Case> {
         simc("negative t_max", &["--t-max", "-5"], &["t_max"], 5.0),
         simc("zero eta2", &["--eta2", "0"], &["eta2"], 5.0),
         simc("infinite box", &["--box-len", "inf"], &["box_len"], 5.0),
+    ]
+}
+
+/// Files that cannot be read, and outputs that cannot be written.
+fn unreadable_inputs_and_unwritable_outputs() -> Vec<Case> {
+    vec![
         // Files that cannot be read, and outputs that cannot be written.
         case(
             "missing spec file",
@@ -87,6 +113,13 @@ pub(super) fn cases() -> Vec<Case> {
             2,
             &["output directory"],
         ),
+    ]
+}
+
+/// An output under a regular file, commands on a directory that holds no sweep, and arguments
+/// no command can take.
+fn missing_sweeps_and_bad_arguments() -> Vec<Case> {
+    vec![
         case(
             "fit-h0 out under a regular file",
             &["fit-h0", "--n", "32", "--out", "FILE/out"],
@@ -148,6 +181,12 @@ pub(super) fn cases() -> Vec<Case> {
             2,
             &["from < to"],
         ),
+    ]
+}
+
+/// Sizes that would run for ever: the h0 fit's step, the reduced model's samples and radius.
+fn sizes_out_of_range() -> Vec<Case> {
+    vec![
         Case {
             within: 1.0,
             ..case(
@@ -185,6 +224,12 @@ pub(super) fn cases() -> Vec<Case> {
             2,
             &["radius"],
         ),
+    ]
+}
+
+/// Parameter lines beyond the model's limits.
+fn windows_beyond_the_models_limits() -> Vec<Case> {
+    vec![
         // Parameter windows beyond the model's limits are refused before any work, naming the
         // option (a line to 1e10 once gave a wrong onset of motion, 1e300 wrong states).
         fast(case(
@@ -216,15 +261,37 @@ pub(super) fn cases() -> Vec<Case> {
         fast(case(
             "ode line to 1e300",
             &[
-                "ode", "bifurcation", "--kappa2", "0.13", "--from", "0.07", "--to", "1e300",
-                "--out", "DIR/ode",
+                "ode",
+                "bifurcation",
+                "--kappa2",
+                "0.13",
+                "--from",
+                "0.07",
+                "--to",
+                "1e300",
+                "--out",
+                "DIR/ode",
             ],
             2,
             &["--to", "at most 10"],
         )),
+    ]
+}
+
+/// Boundary windows and seeds beyond the model's limits.
+fn boundary_windows_beyond_the_models_limits() -> Vec<Case> {
+    vec![
         fast(case(
             "boundaries window to 1e300",
-            &["boundaries", "--eta-t", "0.07,1e300", "--n", "64", "--out", "DIR/b"],
+            &[
+                "boundaries",
+                "--eta-t",
+                "0.07,1e300",
+                "--n",
+                "64",
+                "--out",
+                "DIR/b",
+            ],
             2,
             &["--eta-t", "at most 10"],
         )),
@@ -237,12 +304,25 @@ pub(super) fn cases() -> Vec<Case> {
         fast(case(
             "stability seed of negative numbers",
             &[
-                "stability", "--eta-t", "0.085", "--kappa2", "0.112", "--seed", "-0.5,-2",
-                "--n", "64",
+                "stability",
+                "--eta-t",
+                "0.085",
+                "--kappa2",
+                "0.112",
+                "--seed",
+                "-0.5,-2",
+                "--n",
+                "64",
             ],
             2,
             &["--seed", "|SHAPE| < 1"],
         )),
+    ]
+}
+
+/// Specs: duplicated keys, sizes refused at once.
+fn specs() -> Vec<Case> {
+    vec![
         // Specs: duplicated keys on their own line, sizes refused at once.
         spec_case(
             "spec name twice",
@@ -308,60 +388,180 @@ pub(super) fn cases() -> Vec<Case> {
             says: &["`name`", "a name of 1048576 characters", "at most 100"],
             within: 1.0,
         }),
+    ]
+}
+
+/// Reliability round 4: an initial speed that overflows, options a run would ignore.
+fn round_four_settings() -> Vec<Case> {
+    vec![
         // Reliability round 4: an initial speed that overflows the first step (it hung the
         // K-mode eigenvalues), settings a run would ignore, values that would change a Slurm
         // script, and checks that disagreed between commands.
         fast(simc(
             "K-mode IC at speed 1e308",
-            &["--modes", "3", "--n", "64", "--t-max", "1", "--no-run-on", "--ic", "custom:1e308,0,0.1,0,0,0"],
+            &[
+                "--modes",
+                "3",
+                "--n",
+                "64",
+                "--t-max",
+                "1",
+                "--no-run-on",
+                "--ic",
+                "custom:1e308,0,0.1,0,0,0",
+            ],
             &["initial speed", "at most 10"],
             1.0,
         )),
         spec_case(
             "spec IC at speed 1e308",
-            ("name: m\n", "name: m\ninitial_conditions: ['custom:1e308,0,0.1,0']\n"),
+            (
+                "name: m\n",
+                "name: m\ninitial_conditions: ['custom:1e308,0,0.1,0']\n",
+            ),
             &["initial_conditions", "initial speed"],
         ),
-        fast(simc("--tol with --modes 3 and paper-fd", &["--modes", "3", "--n", "64", "--scheme", "paper-fd", "--tol", "1e-5"], &["--tol", "fixed step"], 1.0)),
-        fast(simc("--dt-max with --modes 3 and --tol 0", &["--modes", "3", "--n", "64", "--tol", "0", "--dt-max", "0.1"], &["--dt-max", "fixed steps"], 1.0)),
-        fast(simc("--no-orientation-flow with --modes 3", &["--modes", "3", "--n", "64", "--no-orientation-flow"], &["--no-orientation-flow", "2-mode runs only"], 1.0)),
-        fast(simc("--no-run-on with paper-fd", &["--scheme", "paper-fd", "--no-run-on"], &["--no-run-on", "Newton finish"], 1.0)),
-        fast(simc("--dt-max with fixed steps", &["--tol", "0", "--dt-max", "0.5"], &["--dt-max", "fixed steps"], 1.0)),
-        fast(simc("--modes 0", &["--modes", "0"], &["--modes 0", "from 2"], 1.0)),
-        fast(simc("--modes 1", &["--modes", "1"], &["--modes 1", "from 2"], 1.0)),
-        spec_case("spec h0 for a PDE run", ("dt: 0.05", "dt: 0.05\n  h0: 0.2"), &["solver.h0", "ODE"]),
+        fast(simc(
+            "--tol with --modes 3 and paper-fd",
+            &[
+                "--modes", "3", "--n", "64", "--scheme", "paper-fd", "--tol", "1e-5",
+            ],
+            &["--tol", "fixed step"],
+            1.0,
+        )),
+        fast(simc(
+            "--dt-max with --modes 3 and --tol 0",
+            &["--modes", "3", "--n", "64", "--tol", "0", "--dt-max", "0.1"],
+            &["--dt-max", "fixed steps"],
+            1.0,
+        )),
+        fast(simc(
+            "--no-orientation-flow with --modes 3",
+            &["--modes", "3", "--n", "64", "--no-orientation-flow"],
+            &["--no-orientation-flow", "2-mode runs only"],
+            1.0,
+        )),
+        fast(simc(
+            "--no-run-on with paper-fd",
+            &["--scheme", "paper-fd", "--no-run-on"],
+            &["--no-run-on", "Newton finish"],
+            1.0,
+        )),
+        fast(simc(
+            "--dt-max with fixed steps",
+            &["--tol", "0", "--dt-max", "0.5"],
+            &["--dt-max", "fixed steps"],
+            1.0,
+        )),
+        fast(simc(
+            "--modes 0",
+            &["--modes", "0"],
+            &["--modes 0", "from 2"],
+            1.0,
+        )),
+        fast(simc(
+            "--modes 1",
+            &["--modes", "1"],
+            &["--modes 1", "from 2"],
+            1.0,
+        )),
+    ]
+}
+
+/// Reliability round 4: spec settings a run would ignore.
+fn round_four_spec_settings() -> Vec<Case> {
+    vec![
+        spec_case(
+            "spec h0 for a PDE run",
+            ("dt: 0.05", "dt: 0.05\n  h0: 0.2"),
+            &["solver.h0", "ODE"],
+        ),
         spec_case(
             "spec orientation_flow with params.modes 3",
             ("name: m\n", "name: m\nparams: {modes: 3}\n"),
             &[],
         )
-        .replaced("  t_max: 10\n", "  t_max: 10\n  orientation_flow: false\n", &["solver.orientation_flow", "modes > 2"]),
+        .replaced(
+            "  t_max: 10\n",
+            "  t_max: 10\n  orientation_flow: false\n",
+            &["solver.orientation_flow", "modes > 2"],
+        ),
         spec_case(
             "spec landing with steady test",
             ("dt: 0.05", "dt: 0.05\n  steady: test\n  landing: false"),
             &["solver.landing", "Newton finish"],
         ),
-        spec_case("spec n with model ode", ("name: m\n", "name: m\nmodel: ode\n"), &["solver.n", "no grid"]),
-        spec_case("spec params.modes 1", ("name: m\n", "name: m\nparams: {modes: 1}\n"), &["params.modes", "from 2"]),
-        spec_case("spec modes as a grid axis", ("  kappa2: [0.11]\n", "  modes: [2, 3]\n"), &["grid.modes", "not an axis", "params.modes"]),
+        spec_case(
+            "spec n with model ode",
+            ("name: m\n", "name: m\nmodel: ode\n"),
+            &["solver.n", "no grid"],
+        ),
+        spec_case(
+            "spec params.modes 1",
+            ("name: m\n", "name: m\nparams: {modes: 1}\n"),
+            &["params.modes", "from 2"],
+        ),
+        spec_case(
+            "spec modes as a grid axis",
+            ("  kappa2: [0.11]\n", "  modes: [2, 3]\n"),
+            &["grid.modes", "not an axis", "params.modes"],
+        ),
+    ]
+}
+
+/// Reliability round 4: values that would change a Slurm script.
+fn round_four_slurm_values() -> Vec<Case> {
+    vec![
         fast(case(
             "slurm partition with a newline",
-            &["slurm", "SPEC:name: m\ngrid: {eta_t: [0.08], kappa2: [0.11]}\n", "--shards", "2", "--partition", "p\necho INJECTED", "--out", "DIR/out"],
+            &[
+                "slurm",
+                "SPEC:name: m\ngrid: {eta_t: [0.08], kappa2: [0.11]}\n",
+                "--shards",
+                "2",
+                "--partition",
+                "p\necho INJECTED",
+                "--out",
+                "DIR/out",
+            ],
             2,
             &["--partition", "cannot be written into a Slurm script"],
         )),
         fast(case(
             "slurm time with a blank",
-            &["slurm", "SPEC:name: m\ngrid: {eta_t: [0.08], kappa2: [0.11]}\n", "--shards", "2", "--time", "1:00 --wrap=x", "--out", "DIR/out"],
+            &[
+                "slurm",
+                "SPEC:name: m\ngrid: {eta_t: [0.08], kappa2: [0.11]}\n",
+                "--shards",
+                "2",
+                "--time",
+                "1:00 --wrap=x",
+                "--out",
+                "DIR/out",
+            ],
             2,
             &["--time", "blanks"],
         )),
         fast(case(
             "slurm 100000 shards for 4 runs",
-            &["slurm", "SPEC:name: m\ngrid: {eta_t: [0.08], kappa2: [0.11]}\n", "--shards", "100000", "--out", "DIR/out"],
+            &[
+                "slurm",
+                "SPEC:name: m\ngrid: {eta_t: [0.08], kappa2: [0.11]}\n",
+                "--shards",
+                "100000",
+                "--out",
+                "DIR/out",
+            ],
             2,
             &["--shards 100000", "4 runs"],
         )),
+    ]
+}
+
+/// Reliability round 4: checks of `--n` and windows that disagreed between commands; commands
+/// that do not exist.
+fn round_four_grid_checks() -> Vec<Case> {
+    vec![
         fast(case(
             "boundaries --n 64,64",
             &["boundaries", "--n", "64,64", "--out", "DIR/b"],
@@ -376,7 +576,15 @@ pub(super) fn cases() -> Vec<Case> {
         )),
         fast(case(
             "stability --n 8192",
-            &["stability", "--eta-t", "0.085", "--kappa2", "0.13", "--n", "8192"],
+            &[
+                "stability",
+                "--eta-t",
+                "0.085",
+                "--kappa2",
+                "0.13",
+                "--n",
+                "8192",
+            ],
             2,
             &["--n 8192", "16 to 4096"],
         )),
@@ -388,7 +596,21 @@ pub(super) fn cases() -> Vec<Case> {
         )),
         fast(case(
             "continue --kappa2 with --set kappa2",
-            &["continue", "--kappa2", "0.13", "--set", "kappa2=0.2", "--from", "0.07", "--to", "0.1", "--n", "64", "--out", "DIR/c"],
+            &[
+                "continue",
+                "--kappa2",
+                "0.13",
+                "--set",
+                "kappa2=0.2",
+                "--from",
+                "0.07",
+                "--to",
+                "0.1",
+                "--n",
+                "64",
+                "--out",
+                "DIR/c",
+            ],
             2,
             &["--set kappa2=0.2", "give it once"],
         )),

@@ -6,6 +6,43 @@ use std::path::{Path, PathBuf};
 use std::process::Stdio;
 use std::time::{Duration, Instant};
 
+/// `droplet status` on the sweep in `out` (4 of its 12 run files `files` corrupt; `st`, its
+/// status now): the pace from the files' ages, and no ETA once the runs left are slower.
+fn status_paces_by_the_files_ages(out: &Path, files: &[PathBuf], st: &serde_json::Value) {
+    // The pace: every file is seconds old, so it is measured over the 60 s floor; with one
+    // stored 5 min ago, over those 5 min; one stored 20 min ago is outside the window.
+    let eta = |st: &serde_json::Value| st["eta_s"].as_f64().unwrap();
+    assert_eq!(st["runs_recent"], 12, "{st}");
+    assert_eq!(st["pace_s"], 60.0, "{st}");
+    assert!((eta(st) - 4.0 * 60.0 / 12.0).abs() < 1e-9, "{st}");
+    let age = |f: &Path, s: u64| {
+        let file = std::fs::File::options().write(true).open(f).unwrap();
+        let t = std::time::SystemTime::now() - Duration::from_secs(s);
+        file.set_modified(t).unwrap();
+    };
+    age(&files[6], 300);
+    age(&files[7], 1200);
+    let st = json(&run(&["status", out.to_str().unwrap(), "--json"]));
+    assert_eq!(st["runs_recent"], 11, "{st}");
+    let pace = st["pace_s"].as_f64().unwrap();
+    assert!((300.0..310.0).contains(&pace), "{st}");
+    assert!((eta(&st) - 4.0 * pace / 11.0).abs() < 1e-9, "{st}");
+    // No run stored for 4 min, longer than that estimate (4 x 300 s / 11): the runs left are
+    // slower than the finished ones, and the text says so instead of an ETA.
+    for f in files.iter().filter(|f| *f != &files[7]) {
+        age(f, 240);
+    }
+    age(&files[6], 300);
+    let st = json(&run(&["status", out.to_str().unwrap(), "--json"]));
+    let since = st["since_last_s"].as_f64().unwrap();
+    assert!((240.0..250.0).contains(&since) && eta(&st) < since, "{st}");
+    let text = String::from_utf8_lossy(&run(&["status", out.to_str().unwrap()]).stdout).to_string();
+    assert!(
+        text.contains("ETA: unknown") && text.contains("no run has been stored for 4 min"),
+        "{text}"
+    );
+}
+
 #[test]
 fn corrupt_stored_runs_are_moved_aside_and_recomputed_and_merge_refuses_gaps() {
     let dir = tempfile::tempdir().unwrap();
@@ -35,38 +72,7 @@ fn corrupt_stored_runs_are_moved_aside_and_recomputed_and_merge_refuses_gaps() {
     let st = json(&run(&["status", out.to_str().unwrap(), "--json"]));
     assert_eq!(st["runs_corrupt"], 4, "{st}");
     assert_eq!(st["runs_done"], 8, "{st}");
-    // The pace: every file is seconds old, so it is measured over the 60 s floor; with one
-    // stored 5 min ago, over those 5 min; one stored 20 min ago is outside the window.
-    let eta = |st: &serde_json::Value| st["eta_s"].as_f64().unwrap();
-    assert_eq!(st["runs_recent"], 12, "{st}");
-    assert_eq!(st["pace_s"], 60.0, "{st}");
-    assert!((eta(&st) - 4.0 * 60.0 / 12.0).abs() < 1e-9, "{st}");
-    let age = |f: &Path, s: u64| {
-        let file = std::fs::File::options().write(true).open(f).unwrap();
-        let t = std::time::SystemTime::now() - Duration::from_secs(s);
-        file.set_modified(t).unwrap();
-    };
-    age(&files[6], 300);
-    age(&files[7], 1200);
-    let st = json(&run(&["status", out.to_str().unwrap(), "--json"]));
-    assert_eq!(st["runs_recent"], 11, "{st}");
-    let pace = st["pace_s"].as_f64().unwrap();
-    assert!((300.0..310.0).contains(&pace), "{st}");
-    assert!((eta(&st) - 4.0 * pace / 11.0).abs() < 1e-9, "{st}");
-    // No run stored for 4 min, longer than that estimate (4 x 300 s / 11): the runs left are
-    // slower than the finished ones, and the text says so instead of an ETA.
-    for f in files.iter().filter(|f| *f != &files[7]) {
-        age(f, 240);
-    }
-    age(&files[6], 300);
-    let st = json(&run(&["status", out.to_str().unwrap(), "--json"]));
-    let since = st["since_last_s"].as_f64().unwrap();
-    assert!((240.0..250.0).contains(&since) && eta(&st) < since, "{st}");
-    let text = String::from_utf8_lossy(&run(&["status", out.to_str().unwrap()]).stdout).to_string();
-    assert!(
-        text.contains("ETA: unknown") && text.contains("no run has been stored for 4 min"),
-        "{text}"
-    );
+    status_paces_by_the_files_ages(&out, &files, &st);
 
     // The sweep moves them aside (never deletes), recomputes them, and the tables are whole.
     let o = sweep(&spec, &out, &[]);

@@ -302,8 +302,8 @@ impl Stepper for ComovingEtd {
             .collect();
         let (alpha, area_a, lo, hi) = self.history.shape(&mut self.quad, &z_a);
         let beta = self.history.gradient_factor(h, (lo, hi));
-        // The field's predictor, and the gradient there: extrapolated, or transformed back
-        // from the derivative spectra the pass formed.
+        // The field's predictor, and the gradient there: extrapolated, or the predictor's own
+        // field's transformed back.
         let start_spec = self.history.start_spectrum();
         let start_source = Source {
             base: start_spec,
