@@ -40,8 +40,6 @@ pub(crate) fn refused(base: &[&str], cases: &[(&[&str], &str)]) {
 /// computations).
 fn fold_curves_cross_where_the_branches_fold(out: &std::path::Path, rows: &[serde_json::Value]) {
     let f = |r: &serde_json::Value, k: &str| r[k].as_f64().unwrap();
-    // Each K's fold curve, continued in (eta_t, kappa2), crosses kappa2 = 0.13 where the branch
-    // followed in eta_t folds (two computations).
     let b = read(&out.join("truncation_boundaries.parquet"));
     let curve = b.column("curve").unwrap().str().unwrap().clone();
     let (e, k) = (floats(&b, "eta_t"), floats(&b, "kappa2"));
