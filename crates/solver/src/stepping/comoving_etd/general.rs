@@ -68,11 +68,9 @@ impl<'a> Source<'a> {
 
 /// The field's spectra of one run and what a pass over them needs.
 struct Spectra {
-    /// The field's normalised spectrum, the predictor's, and the explicit part `N` at the
-    /// step's start.
+    /// The field's normalised spectrum and the predictor's.
     u: Vec<Complex64>,
     a_hat: Vec<Complex64>,
-    n0: Vec<Complex64>,
     /// `e^(c h) - 1` factored by wavenumber, and `1 / c` per mode.
     exp: SeparableExp,
     inv_c: Vec<f64>,
@@ -121,7 +119,6 @@ impl ComovingEtd {
             field: Spectra {
                 u: vec![zero; len],
                 a_hat: vec![zero; len],
-                n0: vec![zero; len],
                 exp: SeparableExp::default(),
                 inv_c,
             },
@@ -185,33 +182,26 @@ impl ComovingEtd {
     }
 }
 
-/// Which half of an ETD2RK step a pass over the field's spectrum takes.
-#[derive(Clone, Copy)]
-enum Stage {
-    /// The ETD1 predictor `a = e w + h phi1 N(w, z)` into `a_hat`, keeping `N(w, z)` in `n0`.
-    Predict,
-    /// The corrector `w = a + h phi2 (N(a, z_a) - N(w, z))` into the field.
-    Correct,
+/// One droplet's part of a pass over the field's spectrum: its raw `Theta_hat` `source`, the
+/// factor to the normalised source ([`ForceQuadrature::source_scale`]) and its velocity.
+type Droplet<'a> = (Source<'a>, f64, (f64, f64));
+
+/// `N(w, z) = i k.v w + s` of one mode `u` (`kv = k.v`; `s` the normalised source) and the
+/// ETD1 predictor `a = e w + h phi1 N` with the mode's coefficients `cf`: `(N, a)`.
+#[inline(always)]
+fn predicted(u: Complex64, cf: &EtdCoef, kv: f64, s: Complex64) -> (Complex64, Complex64) {
+    let n = Complex64::new(-kv * u.im + s.re, kv * u.re + s.im);
+    (n, u * cf.e + n * cf.p1)
 }
 
 impl Spectra {
-    /// One pass of `stage` over the spectrum for a step of `h`, with the droplet of that stage
-    /// moving at `(vx, vy)`, its raw `Theta_hat` `source` and the factor `scale` to the
-    /// normalised source ([`ForceQuadrature::source_scale`]).
-    fn pass(
-        &mut self,
-        bufs: PassBuffers,
-        stage: Stage,
-        h: f64,
-        (vx, vy): (f64, f64),
-        (source, scale): (Source, f64),
-    ) {
-        let PassBuffers { grid, .. } = bufs;
-        if let Stage::Predict = stage {
-            self.exp.update(h, &grid.kx, &grid.ky);
-        }
+    /// The ETD1 predictor `a = e w + h phi1 N(w, z)` of a step of `h` into `a_hat`, the droplet
+    /// at the step's start `start`: for a step whose forces at the predictor need the
+    /// predictor's field ([`Self::advance`] then makes the step).
+    fn predict(&mut self, grid: &Grid, h: f64, start: Droplet) {
+        let (Source { base, back, alpha }, scale, (vx, vy)) = start;
+        self.exp.update(h, &grid.kx, &grid.ky);
         let (n, inv_h) = (grid.n, 1.0 / h);
-        let Source { base, back, alpha } = source;
         for (jx, (kxd, ax)) in grid.kx_d.iter().zip(&self.exp.ax).enumerate() {
             let row = jx * n..(jx + 1) * n;
             let modes = grid
@@ -219,48 +209,25 @@ impl Spectra {
                 .iter()
                 .zip(&self.exp.ay)
                 .zip(&self.inv_c[row.clone()]);
-            let stages = self.n0[row.clone()]
-                .iter_mut()
-                .zip(&mut self.a_hat[row.clone()]);
             let sources = base[row.clone()].iter().zip(&back[row.clone()]);
-            for (((u, (sb, sq)), ((kyd, ay), ic)), (n0, a)) in
-                self.u[row].iter_mut().zip(sources).zip(modes).zip(stages)
-            {
+            let fields = self.u[row.clone()].iter().zip(&mut self.a_hat[row]);
+            for (((u, a), (sb, sq)), ((kyd, ay), ic)) in fields.zip(sources).zip(modes) {
                 let cf = SeparableExp::coef(*ax, *ay, *ic, h, inv_h);
-                let kv = kxd * vx + kyd * vy;
-                let s = *sb + (*sb - *sq) * alpha;
-                match stage {
-                    Stage::Predict => {
-                        // i k.v u + s.
-                        *n0 = Complex64::new(-kv * u.im + scale * s.re, kv * u.re + scale * s.im);
-                        *a = *u * cf.e + *n0 * cf.p1;
-                    }
-                    Stage::Correct => {
-                        let na =
-                            Complex64::new(-kv * a.im + scale * s.re, kv * a.re + scale * s.im);
-                        *u = *a + (na - *n0) * cf.p2;
-                    }
-                }
+                let s = (*sb + (*sb - *sq) * alpha) * scale;
+                (_, *a) = predicted(*u, &cf, kxd * vx + kyd * vy, s);
             }
         }
     }
 
-    /// Both passes of a step of `h` in one ([`Stage::Predict`], then [`Stage::Correct`]), the
-    /// predictor `a` and `N(w, z)` held per mode and not stored: for a step whose forces at
-    /// the predictor were had without the predictor's field. `start`: the start's source, its
-    /// factor to the normalised source and its velocity; `predictor`: the predictor's. The same
-    /// numbers as the two passes, in the same order.
-    fn whole(
-        &mut self,
-        grid: &Grid,
-        h: f64,
-        (start, scale0, (v0x, v0y)): (Source, f64, (f64, f64)),
-        (source, scale, (vx, vy)): (Source, f64, (f64, f64)),
-    ) {
+    /// A step of `h` of the field in one pass over its spectrum: per mode the predictor `a`
+    /// and `N(w, z)` of the droplet at the start `start` (held, not stored: the same numbers
+    /// as [`Self::predict`]), then the corrector `w = a + h phi2 (N(a, z_a) - N(w, z))` with the
+    /// predictor's droplet `predictor`.
+    fn advance(&mut self, grid: &Grid, h: f64, start: Droplet, predictor: Droplet) {
+        let (start, scale0, (v0x, v0y)) = start;
+        let (Source { base, back, alpha }, scale, (vx, vy)) = predictor;
         self.exp.update(h, &grid.kx, &grid.ky);
         let (n, inv_h) = (grid.n, 1.0 / h);
-        let Source { base, back, alpha } = source;
-        let start_alpha = start.alpha;
         for (jx, (kxd, ax)) in grid.kx_d.iter().zip(&self.exp.ax).enumerate() {
             let row = jx * n..(jx + 1) * n;
             let modes = grid
@@ -274,13 +241,10 @@ impl Spectra {
                 self.u[row].iter_mut().zip(starts).zip(sources).zip(modes)
             {
                 let cf = SeparableExp::coef(*ax, *ay, *ic, h, inv_h);
-                let kv0 = kxd * v0x + kyd * v0y;
-                let s0 = *s0b + (*s0b - *s0q) * start_alpha;
-                let n0 = Complex64::new(-kv0 * u.im + scale0 * s0.re, kv0 * u.re + scale0 * s0.im);
-                let a = *u * cf.e + n0 * cf.p1;
-                let kv = kxd * vx + kyd * vy;
-                let s = *sb + (*sb - *sq) * alpha;
-                let na = Complex64::new(-kv * a.im + scale * s.re, kv * a.re + scale * s.im);
+                let s0 = (*s0b + (*s0b - *s0q) * start.alpha) * scale0;
+                let (n0, a) = predicted(*u, &cf, kxd * v0x + kyd * v0y, s0);
+                let s = (*sb + (*sb - *sq) * alpha) * scale;
+                let (na, _) = predicted(a, &cf, kxd * vx + kyd * vy, s);
                 *u = a + (na - n0) * cf.p2;
             }
         }
@@ -357,8 +321,8 @@ impl Stepper for ComovingEtd {
         let beta = self.history.gradient_factor(h, (lo, hi));
         let start_scale = self.quad.source_scale(start.area);
         let velocity = (self.z[0], self.z[1]);
-        // The gradient at the predictor: extrapolated (the field's two stages are then one
-        // pass over the spectrum, once the step is accepted), or the predictor's own field's,
+        // The gradient at the predictor: extrapolated (the field's step is then one pass over
+        // its spectrum, once the step is accepted), or the predictor's own field's,
         // transformed back after a pass of its own.
         match beta {
             Some(beta) => self
@@ -366,14 +330,8 @@ impl Stepper for ComovingEtd {
                 .extrapolate_gradient(&mut self.quad, beta, (lo, hi)),
             None => {
                 let start_source = Source::own(self.history.start_spectrum());
-                let bufs = self.quad.pass_buffers();
-                self.field.pass(
-                    bufs,
-                    Stage::Predict,
-                    h,
-                    velocity,
-                    (start_source, start_scale),
-                );
+                let start = (start_source, start_scale, velocity);
+                self.field.predict(self.quad.grid(), h, start);
                 self.quad.gradient(&self.field.a_hat, lo, hi);
             }
         }
@@ -404,20 +362,13 @@ impl Stepper for ComovingEtd {
         // The field's corrector with the predictor's source.
         let scale = self.quad.source_scale(area_a);
         let (base, back) = self.history.spectra();
-        let bufs = self.quad.pass_buffers();
+        let PassBuffers { grid, source } = self.quad.pass_buffers();
         let source = match alpha {
             Some(alpha) => Source { base, back, alpha },
-            None => Source::own(bufs.source),
+            None => Source::own(source),
         };
-        match beta {
-            Some(_) => {
-                let start = (Source::own(base), start_scale, v0);
-                self.field.whole(bufs.grid, h, start, (source, scale, v_a));
-            }
-            None => self
-                .field
-                .pass(bufs, Stage::Correct, h, v_a, (source, scale)),
-        }
+        let start = (Source::own(base), start_scale, v0);
+        self.field.advance(grid, h, start, (source, scale, v_a));
         self.h_accepted = h;
         // The centre by the trapezoidal rule (ETD2RK with rate 0).
         self.x += 0.5 * h * (v0.0 + v_a.0);
@@ -435,7 +386,6 @@ impl Stepper for ComovingEtd {
 mod tests {
     use super::*;
     use crate::model::initial::InitialCondition;
-    use crate::model::shape::ShapeParams;
     use crate::roots::named_state::md_state;
     use crate::stepping::{comoving_etd::TwoModeEtd, Scheme, Stepper};
 
@@ -518,9 +468,9 @@ mod tests {
     }
 
     #[test]
-    fn the_one_pass_step_is_the_two_passes_to_the_last_bit() {
-        // A field and two sources with every coefficient set, N = 32: the predictor's pass and
-        // the corrector's against the one pass that holds `a` and `N(w, z)` per mode.
+    fn the_field_step_is_etd2rk_written_out_mode_by_mode() {
+        // A field and two sources with every coefficient set, N = 32: the one pass of a step
+        // and the predictor's pass against ETD2RK written out per mode.
         let grid = Grid::new(32, 7.0).unwrap();
         let len = grid.spectral_len();
         let field = |c: f64| -> Vec<Complex64> {
@@ -529,38 +479,53 @@ mod tests {
                 .collect()
         };
         let (u, cur, prev) = (field(0.11), field(0.37), field(0.53));
-        let spectra = || Spectra {
+        let mut spectra = Spectra {
             u: u.clone(),
             a_hat: vec![Complex64::default(); len],
-            n0: vec![Complex64::default(); len],
             exp: SeparableExp::default(),
             inv_c: grid.inverse_rates(),
         };
-        let h = 0.07;
+        let (h, alpha, (scale0, scale)) = (0.07, 0.8, (0.6, 0.5));
         let (v0, va) = ((0.31, -0.02), (0.29, -0.015));
         let predictor = Source {
             base: &cur,
             back: &prev,
-            alpha: 0.8,
+            alpha,
         };
-        let shape = ShapeParams {
-            radius: 1.0,
-            sigma: 0.03,
-        };
-        let quad = ForceQuadrature::new(grid.clone(), shape);
-        let mut two = spectra();
-        two.pass(
-            quad.pass_buffers(),
-            Stage::Predict,
+        spectra.predict(&grid, h, (Source::own(&cur), scale0, v0));
+        let a_hat = spectra.a_hat.clone();
+        spectra.advance(
+            &grid,
             h,
-            v0,
-            (Source::own(&cur), 0.6),
+            (Source::own(&cur), scale0, v0),
+            (predictor, scale, va),
         );
-        two.pass(quad.pass_buffers(), Stage::Correct, h, va, (predictor, 0.5));
-        let mut one = spectra();
-        one.whole(&grid, h, (Source::own(&cur), 0.6, v0), (predictor, 0.5, va));
-        assert_eq!(one.u, two.u);
-        assert!(one.u.iter().zip(&u).any(|(a, b)| (a - b).norm() > 1e-3));
+        let n = grid.n;
+        let mut exp = SeparableExp::default();
+        exp.update(h, &grid.kx, &grid.ky);
+        let inv_c = grid.inverse_rates();
+        for jx in 0..=n / 2 {
+            for jy in 0..n {
+                let i = jx * n + jy;
+                let cf = SeparableExp::coef(exp.ax[jx], exp.ay[jy], inv_c[i], h, 1.0 / h);
+                let k = (grid.kx_d[jx], grid.ky_d[jy]);
+                // N = i k.v w + s.
+                let big_n = |w: Complex64, v: (f64, f64), s: Complex64| {
+                    Complex64::new(0.0, k.0 * v.0 + k.1 * v.1) * w + s
+                };
+                let s0 = cur[i] * scale0;
+                let sa = (cur[i] + (cur[i] - prev[i]) * alpha) * scale;
+                let n0 = big_n(u[i], v0, s0);
+                let a = u[i] * cf.e + n0 * cf.p1;
+                let next = a + (big_n(a, va, sa) - n0) * cf.p2;
+                assert!((a_hat[i] - a).norm() <= 1e-15 * a.norm().max(1.0), "{i}");
+                assert!(
+                    (spectra.u[i] - next).norm() <= 1e-15 * next.norm().max(1.0),
+                    "{i}"
+                );
+            }
+        }
+        assert!(spectra.u.iter().zip(&u).any(|(a, b)| (a - b).norm() > 1e-3));
     }
 
     #[test]
