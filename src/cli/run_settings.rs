@@ -106,6 +106,12 @@ pub struct Args {
     /// unsettled).
     #[arg(long)]
     pub(super) no_run_on: bool,
+    /// Take every step (by default an adaptive run moves on along a slow phase by projective
+    /// steps: once 8 steps at one size show its fast parts decayed, the chord of the last step
+    /// is continued over up to 16 steps' time, its error kept below a tenth of --tol;
+    /// t_projected says how long; docs/numerics.md, "Projective steps").
+    #[arg(long)]
+    pub(super) no_projective_steps: bool,
     /// Hold the centre fixed (deformation-only run, Appendix E).
     #[arg(long)]
     pub(super) pinned: bool,
@@ -204,6 +210,7 @@ pub(super) fn model_of(a: &Args) -> Result<(ModelParams, SolverSettings), CliErr
         landing: !a.no_landing,
         orientation_flow: !a.no_orientation_flow,
         run_on: !a.no_run_on,
+        projective_steps: !a.no_projective_steps,
         ..base
     };
     check_read(a, &settings)?;
@@ -246,6 +253,11 @@ fn check_read(a: &Args, settings: &SolverSettings) -> Result<(), CliError> {
             "--no-orientation-flow",
         ),
         (a.no_run_on, "run_on", "--no-run-on"),
+        (
+            a.no_projective_steps,
+            "projective_steps",
+            "--no-projective-steps",
+        ),
         (
             a.stop_beside_saddle,
             "stop_beside_saddle",

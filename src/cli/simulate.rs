@@ -44,6 +44,9 @@ struct Report {
     t_steady: Option<f64>,
     /// Time leapt along departures from unstable steady states (`--leap-departures`).
     t_leapt: f64,
+    /// Time moved on by projective steps along slow phases (`--no-projective-steps` turns
+    /// them off).
+    t_projected: f64,
     steps: u64,
     rejected: u64,
     max_step_error: Option<f64>,
@@ -118,6 +121,7 @@ pub fn run(a: Args) -> Result<(), CliError> {
         t_end: out.t_end,
         t_steady: out.t_steady,
         t_leapt: out.t_leapt,
+        t_projected: out.t_projected,
         steps: out.steps,
         rejected: out.rejected,
         max_step_error: out.max_step_error,
@@ -237,6 +241,13 @@ fn print_text(report: &Report) {
         outln!(
             "leapt {:.1} time units along a departure from an unstable steady state",
             report.t_leapt
+        );
+    }
+    if report.t_projected > 0.0 {
+        outln!(
+            "moved {:.1} of its {:.1} time units by projective steps along slow phases",
+            report.t_projected,
+            report.t_end
         );
     }
     if let Some(u) = &report.unsettled {

@@ -74,7 +74,12 @@ use contract::settings::ModelKind;
 /// still gaining speed and turning up to the MD at 18.0 degrees where pure stepping ends, had
 /// ended on the one at 1.7 degrees; 1 of the Fig. 2a map's 7488 stepped runs
 /// (results/fig2a-map-certify).
-pub const SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-11");
+/// 12: projective steps along slow phases (setting `projective_steps`, [`runs::projection`]):
+/// once 8 steps at one size show the fast parts decayed, the chord of the last step is
+/// continued over up to 20 steps' time, its error kept below `tol`; every run ends on the
+/// state it ended on before (200 runs of results/fig2a-map, `v` and `s` within 1.5e-8), with
+/// about half the steps of a slow run (results/map-profile, "Projective steps").
+pub const SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-12");
 
 /// Version of the reduced ODE model's numerics (2: unstable states no longer end a run;
 /// 3: a run that does not end steady has no class).
@@ -162,7 +167,8 @@ pub const ODE_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numeri
 /// search from a root of the lattice between two mirror lines reflects a root found past
 /// the next line in that line, not in the one 45 degrees on (modes 2..3, N = 192, (0.085,
 /// 0.112) from iv: 137.25 -> 132.75 degrees, where pure stepping ends).
-pub const MODES_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-9+modes-16");
+/// 17: projective steps along slow phases, as numerics 12 of the 2-mode runs.
+pub const MODES_SOLVER_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), "+numerics-9+modes-17");
 
 /// The numerics version of a model's runs with shape modes `2..=modes`, part of their cache
 /// key: a change to one model's results invalidates its stored runs only.

@@ -448,6 +448,12 @@ fn round_four_settings() -> Vec<Case> {
             1.0,
         )),
         fast(simc(
+            "--no-projective-steps with fixed steps",
+            &["--tol", "0", "--no-projective-steps"],
+            &["--no-projective-steps", "fixed steps"],
+            1.0,
+        )),
+        fast(simc(
             "--dt-max with fixed steps",
             &["--tol", "0", "--dt-max", "0.5"],
             &["--dt-max", "fixed steps"],

@@ -37,6 +37,10 @@ impl SolverSettings {
             "orientation_flow" if k_modes => Some("runs with modes > 2 end by the Newton finish, its turn search and the landing, without the orientation flow's choice of where a run turns (2-mode runs only; they sample the flow only to confirm that a run settled beside a root, or landing on one, turns back to it, whatever this setting)"),
             "steady_window" if k_modes => Some("runs with modes > 2 are steady when every rate is below steady_tol; steady_window is the 2-mode test's window"),
             "pinned" if ode || k_modes => Some("only a 2-mode PDE run can hold its centre fixed"),
+            "projective_steps" if ode => Some("the ODE model takes fixed RK4 steps dt"),
+            "projective_steps" if !spectral => Some("the paper's scheme takes fixed steps dt"),
+            "projective_steps" if !self.adaptive() => Some("tol = 0 gives fixed steps dt; projective steps continue adaptive steps at their cap"),
+            "projective_steps" if self.pinned => Some("a run with its centre held fixed takes every step"),
             _ => None,
         }
     }
@@ -90,6 +94,9 @@ impl SolverSettings {
         if !keep("run_on") {
             out.run_on = base.run_on;
         }
+        if !keep("projective_steps") {
+            out.projective_steps = base.projective_steps;
+        }
         out
     }
 
@@ -124,6 +131,7 @@ impl SolverSettings {
             "stop_beside_saddle" => self.stop_beside_saddle != other.stop_beside_saddle,
             "leap_departures" => self.leap_departures != other.leap_departures,
             "run_on" => self.run_on != other.run_on,
+            "projective_steps" => self.projective_steps != other.projective_steps,
             // Every other setting is read by every run ([`Self::unread_reason`]).
             _ => false,
         }
@@ -135,7 +143,7 @@ mod tests {
     use super::*;
 
     /// Every setting a spec's `solver` section or a command may give.
-    const FIELDS: [&str; 14] = [
+    const FIELDS: [&str; 15] = [
         "h0",
         "n",
         "scheme",
@@ -150,6 +158,7 @@ mod tests {
         "stop_beside_saddle",
         "leap_departures",
         "run_on",
+        "projective_steps",
     ];
 
     /// The settings of the 3-mode runs below (the model's K is the `modes` they are asked with).

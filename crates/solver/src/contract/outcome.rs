@@ -139,6 +139,10 @@ pub struct RunOutcome {
     /// [`crate::runs::leap`]): part of `t_end`, not stepped. 0 in records from before it.
     #[serde(default)]
     pub t_leapt: f64,
+    /// Time moved on by projective steps along slow phases (setting `projective_steps`,
+    /// [`crate::runs::projection`]): part of `t_end`, not stepped. 0 in records from before it.
+    #[serde(default)]
+    pub t_projected: f64,
     /// Why the run did not end on a stable steady state (`None` for a steady run).
     #[serde(default)]
     pub unsettled: Option<Unsettled>,

@@ -96,6 +96,14 @@ pub struct SolverSettings {
     /// On by default (numerics 4); off gives up at `t_max`, as the paper.
     #[serde(default = "on")]
     pub run_on: bool,
+    /// Adaptive spectral runs: move on along a slow phase by projective steps, the chord of
+    /// the last step continued over up to 16 steps' time once 8 steps of one size in a row
+    /// show the fast parts decayed, its error kept below a tenth of `tol`
+    /// ([`crate::runs::projection`], numerics 12 and `modes-17`). On by default; off steps
+    /// every step. Not written into a run's key when on (keys of runs that do not read it are
+    /// those they had before it existed).
+    #[serde(default = "on", skip_serializing_if = "is_on")]
+    pub projective_steps: bool,
 }
 
 /// How far past `t_max` a run not yet on a stable state runs on with its own steps (setting
@@ -110,6 +118,10 @@ pub const RUN_ON_FAR: f64 = 64.0;
 
 fn on() -> bool {
     true
+}
+
+fn is_on(flag: &bool) -> bool {
+    *flag
 }
 
 /// Default adaptive tolerance, chosen with `droplet bench` (results/bench): at N = 192 the
@@ -141,6 +153,7 @@ impl Default for SolverSettings {
             landing: true,
             orientation_flow: true,
             run_on: true,
+            projective_steps: true,
         }
     }
 }

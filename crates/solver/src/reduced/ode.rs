@@ -164,6 +164,7 @@ fn outcome(
         ended_by: (status == RunStatus::Steady).then_some(crate::contract::ending::Ending::Test),
         diagnosis: None,
         t_leapt: 0.0,
+        t_projected: 0.0,
         unsettled: match status {
             RunStatus::Steady => None,
             RunStatus::Diverged => Some(crate::contract::outcome::Unsettled::Diverged),

@@ -27,6 +27,8 @@ pub(super) struct Clock {
     pub(super) slack: f64,
     pub(super) controller: PiController,
     pub(super) h: f64,
+    /// The last accepted step.
+    pub(super) last_h: f64,
     pub(super) t: f64,
     pub(super) steps: u64,
     pub(super) rejected: u64,
@@ -44,6 +46,7 @@ impl Clock {
             slack: 1e-9 * cfg.dt,
             controller: PiController::new(cfg.dt_max),
             h: cfg.dt,
+            last_h: 0.0,
             t: 0.0,
             steps: 0,
             rejected: 0,
@@ -67,6 +70,7 @@ impl Clock {
             let a = scheme.attempt(cfg.dt, f64::INFINITY);
             self.steps += 1;
             self.t = self.steps as f64 * cfg.dt;
+            self.last_h = cfg.dt;
             self.max_step_error = larger(self.max_step_error, a.error);
             return Step::Taken;
         }
@@ -92,6 +96,7 @@ impl Clock {
         }
         self.h = self.controller.accept(h_try, err);
         self.t += h_try;
+        self.last_h = h_try;
         self.steps += 1;
         self.max_step_error = larger(self.max_step_error, a.error);
         Step::Taken

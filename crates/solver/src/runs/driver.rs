@@ -27,6 +27,7 @@ use crate::runs::clock::{Clock, Recorder, Step};
 use crate::runs::finding::Diagnosis;
 use crate::runs::finish::{Decision, NewtonFinish};
 use crate::runs::leap::Leap;
+use crate::runs::projection::Projection;
 use crate::stepping::comoving_etd::ComovingEtd;
 use crate::stepping::paper_fd::PaperFd;
 use crate::stepping::{comoving_etd::TwoModeEtd, paper_fd::TwoModeFd, Scheme, SchemeKind};
@@ -109,6 +110,8 @@ impl Run {
         let mut finish = (cfg.steady == SteadyMethod::Newton && self.params.mass > 0.0)
             .then(|| NewtonFinish::new(&self.params, &cfg).starting_at(&start));
         let mut end = End::default();
+        let mut projection = (cfg.adaptive() && cfg.projective_steps && !cfg.pinned)
+            .then(|| Projection::new(cfg.tol));
         loop {
             match clock.step(self.scheme.as_mut(), &cfg, rec.next) {
                 Step::Taken => {}
@@ -117,6 +120,9 @@ impl Run {
                     end.status = status;
                     break;
                 }
+            }
+            if let Some(p) = projection.as_mut() {
+                self.project(p, &mut clock, rec.next, finish.as_ref(), &mut end);
             }
             let st = self.scheme.state();
             let z = self.scheme.unknowns();
@@ -164,12 +170,39 @@ impl Run {
                         let st = self.scheme.state();
                         watch = Watch::new_at(&cfg, clock.t, &self.scheme.unknowns());
                         rec.after_leap(clock.t, &st);
+                        if let Some(p) = projection.as_mut() {
+                            p.reset();
+                        }
                     }
                 }
                 Decision::Leap(_) => {}
             }
         }
         self.outcome(clock, rec, end, finish, started)
+    }
+
+    /// A projective step after the step just taken ([`Projection::after_step`]), up to the
+    /// run's next recording time, Newton try or end, whichever comes first.
+    fn project(
+        &mut self,
+        p: &mut Projection,
+        clock: &mut Clock,
+        next_record: Option<f64>,
+        finish: Option<&NewtonFinish>,
+        end: &mut End,
+    ) {
+        let mut limit = clock.give_up - clock.t;
+        if let Some(next) = next_record {
+            limit = limit.min(next - clock.t);
+        }
+        if let Some(f) = finish.filter(|f| f.next_try > clock.t) {
+            limit = limit.min(f.next_try - clock.t);
+        }
+        let z = self.scheme.unknowns();
+        if let Some(d) = p.after_step(self.scheme.as_mut(), clock.last_h, &z, limit) {
+            clock.t += d;
+            end.t_projected += d;
+        }
     }
 
     /// Moves the run at `st` along the leap (its field and unknowns towards the saddle's, its
@@ -240,6 +273,7 @@ impl Run {
             ended_by: end.ended_by,
             diagnosis,
             t_leapt: end.t_leapt,
+            t_projected: end.t_projected,
             unsettled: found.as_ref().map(|d| d.reason),
             heading: found.and_then(|d| d.heading),
             higher_modes,
@@ -323,7 +357,19 @@ impl Watch {
                         finish: f64::NAN,
                     });
                 };
-                let largest = |r: &[f64]| r.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+                // NaN (a rate of a run that left the model) is kept, not passed over.
+                let largest = |r: &[f64]| {
+                    r.iter().fold(
+                        0.0f64,
+                        |m, x| {
+                            if x.is_nan() {
+                                f64::NAN
+                            } else {
+                                m.max(x.abs())
+                            }
+                        },
+                    )
+                };
                 let g = rotation_generator(z);
                 let gg: f64 = g.iter().map(|x| x * x).sum();
                 let across = if gg.sqrt() > ROTATION_MIN_NORM {
@@ -351,6 +397,7 @@ struct End {
     polished: Option<Vec<f64>>,
     saddle_diagnosis: Option<String>,
     t_leapt: f64,
+    t_projected: f64,
 }
 
 impl Default for End {
@@ -362,6 +409,7 @@ impl Default for End {
             polished: None,
             saddle_diagnosis: None,
             t_leapt: 0.0,
+            t_projected: 0.0,
         }
     }
 }

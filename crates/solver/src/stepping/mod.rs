@@ -107,6 +107,11 @@ pub trait Scheme: Stepper {
     fn mass(&self) -> f64;
     /// The concentration in the lab frame.
     fn field(&mut self) -> Field;
+    /// The co-moving field's normalised spectrum (`[kx][ky]`, the layout of
+    /// [`Scheme::leap`]'s `root_field`), for schemes that hold one.
+    fn spectrum(&self) -> Option<&[rustfft::num_complex::Complex64]> {
+        None
+    }
     /// Moves the run along a linear mode of the fixed point `root = (vx, vy, a_2..a_K,
     /// b_2..b_K)` whose co-moving field is `root_field` (normalised coefficients, `[kx][ky]`,
     /// as [`crate::roots::balances::Balances::root_field`] gives them): the displacement of

@@ -1,6 +1,6 @@
 //! Adaptive ETD2RK stepping: same fixed points as fixed steps, error bounded by the tolerance,
 //! errors falling with the tolerance, steps growing during relaxation, recording times hit,
-//! and large fixed steps flagged.
+//! large fixed steps flagged, and projective steps along a slow phase.
 use droplet_solver::model::mirror::MirrorLine;
 use droplet_solver::{
     contract::outcome::RunStatus, contract::settings::SolverSettings, model::classify::StateClass,
@@ -148,4 +148,45 @@ fn diagonal_newton_matches_the_x_axis_for_a_rotation_invariant_state() {
     let d = s.newton_on(MirrorLine::Diagonal, 0.0, 0.2, 1e-13).unwrap();
     assert!(x.a2 > 0.1, "{x:?}");
     assert!((x.a2 - d.a2).abs() < 0.02 * x.a2, "{x:?} vs {d:?}");
+}
+
+#[test]
+fn projective_steps_move_a_slow_run_by_less_than_the_step_cap_does() {
+    // (0.088, 0.1115) from ii at N = 96: the droplet slows from v = 0.27 over hundreds of time
+    // units, stepped at the cap; to t = 400 by the paper's test alone.
+    let (p, ic) = (
+        ModelParams::at(0.088, 0.1115),
+        InitialCondition::parse("ii").unwrap(),
+    );
+    let run = |projective_steps: bool, dt_max: f64| {
+        let s = SolverSettings {
+            t_max: 400.0,
+            dt_max,
+            projective_steps,
+            ..settings(96, 1e-4)
+        };
+        let out = simulate(&p, &ic, &s).unwrap();
+        assert_eq!(out.status, RunStatus::TMax, "{out:?}");
+        out
+    };
+    let (projected, plain, finer) = (run(true, 0.25), run(false, 0.25), run(false, 0.125));
+    assert!(
+        projected.t_projected > 200.0 && projected.steps * 2 < plain.steps,
+        "{} of 400 projected in {} steps, {} without",
+        projected.t_projected,
+        projected.steps,
+        plain.steps
+    );
+    assert_eq!(plain.t_projected, 0.0);
+    // What the projections change is less than what halving the cap changes.
+    let apart = |a: &droplet_solver::contract::outcome::RunOutcome,
+                 b: &droplet_solver::contract::outcome::RunOutcome| {
+        (a.v - b.v).abs().max((a.s - b.s).abs())
+    };
+    assert!(
+        apart(&projected, &plain) < apart(&plain, &finer),
+        "{} vs {}",
+        apart(&projected, &plain),
+        apart(&plain, &finer)
+    );
 }

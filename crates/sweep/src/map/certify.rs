@@ -293,6 +293,7 @@ fn outcome(z: &[f64], class: StateClass, wall_s: f64) -> RunOutcome {
         ended_by: Some(Ending::Certified),
         diagnosis: None,
         t_leapt: 0.0,
+        t_projected: 0.0,
         unsettled: None,
         heading: None,
         higher_modes,

@@ -131,6 +131,7 @@ mod tests {
                 ended_by: None,
                 diagnosis: None,
                 t_leapt: 0.0,
+                t_projected: 0.0,
                 unsettled: None,
                 heading: None,
                 higher_modes: vec![],

@@ -40,7 +40,7 @@ type Flag = (
     fn(&mut SolverSettings) -> &mut bool,
 );
 
-const FLAGS: [Flag; 5] = [
+const FLAGS: [Flag; 6] = [
     (
         "stop_beside_saddle",
         "stop a run beside a saddle it cannot leave before t_max",
@@ -65,6 +65,11 @@ const FLAGS: [Flag; 5] = [
         "run_on",
         "run a run not yet on a stable state on to 64 t_max (4 t_max with fixed steps); the default",
         |s| &mut s.run_on,
+    ),
+    (
+        "projective_steps",
+        "move on along slow phases by projective steps (adaptive spectral runs); the default",
+        |s| &mut s.projective_steps,
     ),
 ];
 
@@ -167,7 +172,7 @@ mod tests {
             "steady" if model == ModelKind::Ode => "newton",
             "steady" => "test",
             "stop_beside_saddle" | "leap_departures" => "true",
-            "landing" | "orientation_flow" | "run_on" => "false",
+            "landing" | "orientation_flow" | "run_on" | "projective_steps" => "false",
             _ => "0.0123",
         }
     }
@@ -194,7 +199,7 @@ mod tests {
     #[test]
     fn every_solver_key_sets_the_field_of_its_own_name_and_no_other() {
         let keys = keys();
-        assert_eq!(keys.len(), 15, "{keys:?}");
+        assert_eq!(keys.len(), 16, "{keys:?}");
         for key in keys {
             let for_model = |model| {
                 let text = format!("solver:\n  {key}: {}\n", other_value(key, model));

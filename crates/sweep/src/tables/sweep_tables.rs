@@ -169,6 +169,10 @@ fn input_columns(rows: &[(crate::store::plan::Task, &RunRecord)]) -> Vec<Column>
         ),
         Column::new("landing".into(), read(rows, "landing", |s| s.landing)),
         Column::new("run_on".into(), read(rows, "run_on", |s| s.run_on)),
+        Column::new(
+            "projective_steps".into(),
+            read(rows, "projective_steps", |s| s.projective_steps),
+        ),
     ]
 }
 
@@ -214,6 +218,7 @@ fn outcome_columns(rows: &[(crate::store::plan::Task, &RunRecord)]) -> Vec<Colum
                 .collect::<Vec<Option<f64>>>(),
         ),
         f64_col("t_leapt", f(&|r| r.outcome.t_leapt)),
+        f64_col("t_projected", f(&|r| r.outcome.t_projected)),
         Column::new(
             "steps".into(),
             rows.iter()

@@ -264,6 +264,10 @@ impl Scheme for ComovingEtd {
         Some(ComovingEtd::rates(self))
     }
 
+    fn spectrum(&self) -> Option<&[Complex64]> {
+        Some(&self.field.u)
+    }
+
     fn mass(&self) -> f64 {
         let len = self.params.box_len;
         len * len * self.field.u[0].re

@@ -297,6 +297,10 @@ impl Scheme for TwoModeEtd {
         true
     }
 
+    fn spectrum(&self) -> Option<&[Complex64]> {
+        Some(&self.w_hat)
+    }
+
     fn mass(&self) -> f64 {
         self.params.box_len * self.params.box_len * self.w_hat[0].re
     }
