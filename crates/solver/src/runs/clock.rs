@@ -30,6 +30,8 @@ pub(super) struct Clock {
     /// The last accepted step.
     pub(super) last_h: f64,
     pub(super) t: f64,
+    /// The part of `t` moved on by projective steps ([`crate::runs::projection`]).
+    pub(super) projected: f64,
     pub(super) steps: u64,
     pub(super) rejected: u64,
     pub(super) max_step_error: Option<f64>,
@@ -48,6 +50,7 @@ impl Clock {
             h: cfg.dt,
             last_h: 0.0,
             t: 0.0,
+            projected: 0.0,
             steps: 0,
             rejected: 0,
             max_step_error: None,

@@ -110,8 +110,7 @@ impl Run {
         let mut finish = (cfg.steady == SteadyMethod::Newton && self.params.mass > 0.0)
             .then(|| NewtonFinish::new(&self.params, &cfg).starting_at(&start));
         let mut end = End::default();
-        let mut projection = (cfg.adaptive() && cfg.projective_steps && !cfg.pinned)
-            .then(|| Projection::new(cfg.tol));
+        let mut projection = Projection::for_run(&cfg);
         loop {
             match clock.step(self.scheme.as_mut(), &cfg, rec.next) {
                 Step::Taken => {}
@@ -121,9 +120,7 @@ impl Run {
                     break;
                 }
             }
-            if let Some(p) = projection.as_mut() {
-                self.project(p, &mut clock, rec.next, finish.as_ref(), &mut end);
-            }
+            self.project(projection.as_mut(), &mut clock, rec.next, finish.as_ref());
             let st = self.scheme.state();
             let z = self.scheme.unknowns();
             if diverged(st.monitored(), &[st.x, st.y])
@@ -164,15 +161,12 @@ impl Run {
                 }
                 // Leaps only in adaptive runs (a fixed-step run's time is its step count).
                 Decision::Leap(leap) if cfg.adaptive() => {
-                    if self.leap(&leap, finish.as_mut(), &st) {
+                    if self.leap(&leap, finish.as_mut(), &st, projection.as_mut()) {
                         clock.t += leap.duration;
                         end.t_leapt += leap.duration;
                         let st = self.scheme.state();
                         watch = Watch::new_at(&cfg, clock.t, &self.scheme.unknowns());
                         rec.after_leap(clock.t, &st);
-                        if let Some(p) = projection.as_mut() {
-                            p.reset();
-                        }
                     }
                 }
                 Decision::Leap(_) => {}
@@ -185,12 +179,12 @@ impl Run {
     /// run's next recording time, Newton try or end, whichever comes first.
     fn project(
         &mut self,
-        p: &mut Projection,
+        p: Option<&mut Projection>,
         clock: &mut Clock,
         next_record: Option<f64>,
         finish: Option<&NewtonFinish>,
-        end: &mut End,
     ) {
+        let Some(p) = p else { return };
         let mut limit = clock.give_up - clock.t;
         if let Some(next) = next_record {
             limit = limit.min(next - clock.t);
@@ -201,20 +195,31 @@ impl Run {
         let z = self.scheme.unknowns();
         if let Some(d) = p.after_step(self.scheme.as_mut(), clock.last_h, &z, limit) {
             clock.t += d;
-            end.t_projected += d;
+            clock.projected += d;
         }
     }
 
     /// Moves the run at `st` along the leap (its field and unknowns towards the saddle's, its
     /// centre by the leap's shift); whether it did (the saddle's field known, the scheme able).
-    fn leap(&mut self, leap: &Leap, finish: Option<&mut NewtonFinish>, st: &DropletState) -> bool {
+    /// The projective steps, if any, start counting again after it.
+    fn leap(
+        &mut self,
+        leap: &Leap,
+        finish: Option<&mut NewtonFinish>,
+        st: &DropletState,
+        projection: Option<&mut Projection>,
+    ) -> bool {
         let _timed = profile::enter(Part::Leap);
-        finish
+        let leapt = finish
             .and_then(|f| f.root_field(&leap.root).ok())
             .is_some_and(|field| {
                 let shift = leap.shift(st.vx, st.vy);
                 self.scheme.leap(&leap.root, &field, leap.factor(), shift)
-            })
+            });
+        if let (true, Some(p)) = (leapt, projection) {
+            p.reset();
+        }
+        leapt
     }
 
     /// The outcome of a run that stopped: the final state (the root, if the Newton finish
@@ -273,7 +278,7 @@ impl Run {
             ended_by: end.ended_by,
             diagnosis,
             t_leapt: end.t_leapt,
-            t_projected: end.t_projected,
+            t_projected: clock.projected,
             unsettled: found.as_ref().map(|d| d.reason),
             heading: found.and_then(|d| d.heading),
             higher_modes,
@@ -397,7 +402,6 @@ struct End {
     polished: Option<Vec<f64>>,
     saddle_diagnosis: Option<String>,
     t_leapt: f64,
-    t_projected: f64,
 }
 
 impl Default for End {
@@ -409,7 +413,6 @@ impl Default for End {
             polished: None,
             saddle_diagnosis: None,
             t_leapt: 0.0,
-            t_projected: 0.0,
         }
     }
 }

@@ -18,6 +18,7 @@
 //!
 //! A projection never passes a time at which the run has something to do (a series row, a
 //! Newton try, `t_max`): the caller's `limit`.
+use crate::contract::settings::SolverSettings;
 use crate::stepping::Scheme;
 use rustfft::num_complex::Complex64;
 
@@ -69,6 +70,13 @@ impl Projection {
             z: Vec::new(),
             centre: (0.0, 0.0),
         }
+    }
+
+    /// The projective steps of a run with `settings`: adaptive steps of a run that is not
+    /// pinned, with the setting `projective_steps` on.
+    pub(super) fn for_run(settings: &SolverSettings) -> Option<Self> {
+        (settings.adaptive() && settings.projective_steps && !settings.pinned)
+            .then(|| Self::new(settings.tol))
     }
 
     /// Starts counting again (after a leap that was not a projection).

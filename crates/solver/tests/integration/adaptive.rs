@@ -171,7 +171,8 @@ fn projective_steps_move_a_slow_run_by_less_than_the_step_cap_does() {
     };
     let (projected, plain, finer) = (run(true, 0.25), run(false, 0.25), run(false, 0.125));
     assert!(
-        projected.t_projected > 200.0 && projected.steps * 2 < plain.steps,
+        // More than half of the time projected, at 60 % of the steps at most.
+        projected.t_projected > 200.0 && projected.steps * 5 < plain.steps * 3,
         "{} of 400 projected in {} steps, {} without",
         projected.t_projected,
         projected.steps,
