@@ -362,18 +362,13 @@ impl Watch {
                         finish: f64::NAN,
                     });
                 };
-                // NaN (a rate of a run that left the model) is kept, not passed over.
+                // NaN (a rate of a run that left the model) is kept: `f64::max` passes over it.
                 let largest = |r: &[f64]| {
-                    r.iter().fold(
-                        0.0f64,
-                        |m, x| {
-                            if x.is_nan() {
-                                f64::NAN
-                            } else {
-                                m.max(x.abs())
-                            }
-                        },
-                    )
+                    if r.iter().any(|x| x.is_nan()) {
+                        f64::NAN
+                    } else {
+                        r.iter().fold(0.0f64, |m, x| m.max(x.abs()))
+                    }
                 };
                 let g = rotation_generator(z);
                 let gg: f64 = g.iter().map(|x| x * x).sum();
