@@ -108,8 +108,10 @@ pub struct Args {
     pub(super) no_run_on: bool,
     /// Take every step (by default an adaptive run moves on along a slow phase by projective
     /// steps: once 8 steps at one size show its fast parts decayed, the chord of the last step
-    /// is continued over up to 16 steps' time, its error kept below a tenth of --tol;
-    /// t_projected says how long; docs/numerics.md, "Projective steps").
+    /// is continued over up to 20 steps' time, its error kept below --tol and every
+    /// unknown's slope changing by at most a tenth; never past a series row, so a run
+    /// recorded every 0.5, the default --every, takes every step; t_projected says how long;
+    /// docs/numerics.md, "Projective steps along slow phases").
     #[arg(long)]
     pub(super) no_projective_steps: bool,
     /// Hold the centre fixed (deformation-only run, Appendix E).

@@ -97,8 +97,9 @@ pub struct SolverSettings {
     #[serde(default = "on")]
     pub run_on: bool,
     /// Adaptive spectral runs: move on along a slow phase by projective steps, the chord of
-    /// the last step continued over up to 16 steps' time once 8 steps of one size in a row
-    /// show the fast parts decayed, its error kept below a tenth of `tol`
+    /// the last step continued over up to 20 steps' time once 8 steps of one size in a row
+    /// show the fast parts decayed, its error kept below `tol` and every unknown's slope
+    /// changing by at most a tenth
     /// ([`crate::runs::projection`], numerics 12 and `modes-17`). On by default; off steps
     /// every step. Not written into a run's key when on (keys of runs that do not read it are
     /// those they had before it existed).

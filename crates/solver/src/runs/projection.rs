@@ -1,5 +1,5 @@
-//! Projective steps along a run's slow phase (setting `project_slow`; docs/numerics.md,
-//! "Projective steps"): once a run has taken [`INNER`] steps of one size in a row (in a slow
+//! Projective steps along a run's slow phase (setting `projective_steps`; docs/numerics.md,
+//! "Projective steps along slow phases"): once a run has taken [`INNER`] steps of one size in a row (in a slow
 //! phase, the step cap), its fast parts (the field's modes, decaying at `1 + k^2 >= 1`, the
 //! velocity's and the shape's relaxation) have decayed towards the slow manifold, and the last
 //! step's change is the slow flow's. The run then moves on along that chord, field and
