@@ -110,7 +110,7 @@ impl Run {
         let mut finish = (cfg.steady == SteadyMethod::Newton && self.params.mass > 0.0)
             .then(|| NewtonFinish::new(&self.params, &cfg).starting_at(&start));
         let mut end = End::default();
-        let mut projection = Projection::for_run(&cfg);
+        let mut projection = Projection::for_run(&cfg, self.params.modes);
         loop {
             match clock.step(self.scheme.as_mut(), &cfg, rec.next) {
                 Step::Taken => {}
@@ -120,9 +120,8 @@ impl Run {
                     break;
                 }
             }
-            self.project(projection.as_mut(), &mut clock, rec.next, finish.as_ref());
+            let z = self.project(projection.as_mut(), &mut clock, rec.next, finish.as_ref());
             let st = self.scheme.state();
-            let z = self.scheme.unknowns();
             if diverged(st.monitored(), &[st.x, st.y])
                 || !z.iter().all(|x| x.is_finite())
                 // With mode 2 alone that is `diverged`'s `s >= 1`.
@@ -176,15 +175,17 @@ impl Run {
     }
 
     /// A projective step after the step just taken ([`Projection::after_step`]), up to the
-    /// run's next recording time, Newton try or end, whichever comes first.
+    /// run's next recording time, Newton try or end, whichever comes first; the unknowns
+    /// after it.
     fn project(
         &mut self,
         p: Option<&mut Projection>,
         clock: &mut Clock,
         next_record: Option<f64>,
         finish: Option<&NewtonFinish>,
-    ) {
-        let Some(p) = p else { return };
+    ) -> Vec<f64> {
+        let z = self.scheme.unknowns();
+        let Some(p) = p else { return z };
         let mut limit = clock.give_up - clock.t;
         if let Some(next) = next_record {
             limit = limit.min(next - clock.t);
@@ -192,10 +193,13 @@ impl Run {
         if let Some(f) = finish.filter(|f| f.next_try > clock.t) {
             limit = limit.min(f.next_try - clock.t);
         }
-        let z = self.scheme.unknowns();
-        if let Some(d) = p.after_step(self.scheme.as_mut(), clock.last_h, &z, limit) {
-            clock.t += d;
-            clock.projected += d;
+        match p.after_step(self.scheme.as_mut(), clock.last_h, &z, limit) {
+            Some(d) => {
+                clock.t += d;
+                clock.projected += d;
+                self.scheme.unknowns()
+            }
+            None => z,
         }
     }
 

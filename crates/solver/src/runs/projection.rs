@@ -72,10 +72,11 @@ impl Projection {
         }
     }
 
-    /// The projective steps of a run with `settings`: adaptive steps of a run that is not
-    /// pinned, with the setting `projective_steps` on.
-    pub(super) fn for_run(settings: &SolverSettings) -> Option<Self> {
-        (settings.adaptive() && settings.projective_steps && !settings.pinned)
+    /// The projective steps of a run of a model with shape modes `2..modes` and `settings`:
+    /// with the setting on, where the run reads it (adaptive spectral steps, the centre free;
+    /// [`SolverSettings::unread_reason`]).
+    pub(super) fn for_run(settings: &SolverSettings, modes: usize) -> Option<Self> {
+        (settings.projective_steps && settings.reads(modes, "projective_steps"))
             .then(|| Self::new(settings.tol))
     }
 
