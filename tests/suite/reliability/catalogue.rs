@@ -97,15 +97,15 @@ pub(super) fn simc(
 }
 
 /// Every case: steps, initial conditions and geometry here, the rest in
-/// [`super::refusals`].
+/// [`super::refusals`] and [`super::spec_refusals`].
 fn catalogue() -> Vec<Case> {
     [
         steps_that_never_finish(),
         initial_conditions(),
         geometry_and_scheme(),
-        spec_geometry_and_settings(),
-        spec_values_and_structure(),
+        super::spec_refusals::structure(),
         super::refusals::cases(),
+        super::spec_refusals::cases(),
     ]
     .into_iter()
     .flatten()
@@ -264,97 +264,6 @@ fn geometry_and_scheme() -> Vec<Case> {
             &["--series", "DIR/no/such/s.parquet"],
             &["does not exist"],
             5.0,
-        ),
-    ]
-}
-
-/// Specs: geometry out of range and settings that contradict each other.
-fn spec_geometry_and_settings() -> Vec<Case> {
-    vec![
-        spec_case(
-            "spec sigma below dx",
-            ("solver:", "params: {sigma: 1.0e-4}\nsolver:"),
-            &["params.sigma", "grid cell"],
-        ),
-        spec_case(
-            "spec with the removed classify section",
-            ("solver:", "classify: {beside_unstable: exclude}\nsolver:"),
-            &["classify", "removed", "stable steady state"],
-        ),
-        spec_case(
-            "spec stop_beside_saddle not true or false",
-            ("solver:", "solver:\n  stop_beside_saddle: maybe"),
-            &["solver.stop_beside_saddle", "maybe", "true"],
-        ),
-        spec_case(
-            "spec stop_beside_saddle with the paper's test",
-            (
-                "solver:",
-                "solver:\n  steady: test\n  stop_beside_saddle: true",
-            ),
-            &["solver.stop_beside_saddle", "Newton finish"],
-        ),
-        spec_case(
-            "spec leap_departures not true or false",
-            ("solver:", "solver:\n  leap_departures: 1"),
-            &["solver.leap_departures", "1", "true"],
-        ),
-        spec_case(
-            "spec sigma 10",
-            ("solver:", "params: {sigma: 10}\nsolver:"),
-            &["params.sigma"],
-        ),
-        spec_case(
-            "spec radius below dx",
-            ("solver:", "params: {radius: 0.5}\nsolver:"),
-            &["params.radius"],
-        ),
-    ]
-}
-
-/// Specs: an unstable scheme, initial conditions, steps, unknown keys, YAML, sizes and types.
-fn spec_values_and_structure() -> Vec<Case> {
-    vec![
-        spec_case(
-            "spec unstable paper-fd",
-            (
-                "  n: 32\n  dt: 0.05\n",
-                "  scheme: paper-fd\n  n: 64\n  dt: 0.01\n  tol: 0\n",
-            ),
-            &["solver.dt", "stability limit"],
-        ),
-        spec_case(
-            "spec custom ic s >= 1",
-            (
-                "solver:",
-                "initial_conditions: [\"custom:0,0,2,0\"]\nsolver:",
-            ),
-            &["initial_conditions", "< 1"],
-        ),
-        spec_case(
-            "spec negative step",
-            (
-                "eta_t: [0.08]",
-                "eta_t: {start: 0.07, stop: 0.08, step: -0.01}",
-            ),
-            &["grid.eta_t.step"],
-        ),
-        spec_case(
-            "spec unknown key",
-            ("name: m", "name: m\ncolour: red"),
-            &["colour"],
-        ),
-        spec_case("spec not yaml", ("name: m", "name: [m"), &["(document)"]),
-        spec_case("spec n huge", ("n: 32", "n: 100000"), &["solver.n"]),
-        spec_case(
-            "spec t_max inf",
-            ("t_max: 10", "t_max: .inf"),
-            &["solver.t_max"],
-        ),
-        spec_case(
-            "spec mass string",
-            ("solver:", "params: {mass: heavy}\nsolver:"),
-            &["params.mass"],
         ),
     ]
 }

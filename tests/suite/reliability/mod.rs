@@ -14,7 +14,8 @@
 //! With `DROPLET_RELIABILITY_DIR` set, the catalogue and kill tests write their counts there
 //! (`inputs.md`, `kills.md`): the README's reliability section quotes them.
 //!
-//! One file per concern: `catalogue` (bad input; its cases for files, windows, specs and round 4 in `refusals`), `store` (corrupt runs, resume
+//! One file per concern: `catalogue` (bad input; its cases for files and windows in
+//! `refusals`, for specs and round 4's settings in `spec_refusals`), `store` (corrupt runs, resume
 //! after kills, temporaries, locks), `output` (a full disk, a closed pipe, pictures and
 //! messages), `audit` (complete maps only), `round4` (edited and re-keyed stored runs, a full
 //! stderr, directories in use, continuation files of their own).
@@ -23,6 +24,7 @@ mod catalogue;
 mod output;
 mod refusals;
 mod round4;
+mod spec_refusals;
 mod store;
 
 use crate::common::table_without_wall;
