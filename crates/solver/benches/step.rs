@@ -3,10 +3,13 @@
 //! `K`-mode model's ETD2RK step (`stepping::comoving_etd`) at N = 192 for K = 2, 3, 4, 6, to say what
 //! each shape mode adds (K = 2 through the general stepper, beside the 2-mode fast path); and one
 //! row-pruned transform of the K-mode step (`numerics::fft2`, N = 192, the 103 rows of the
-//! K = 4 droplet's window at the MD point), five of which a K-mode step takes.
+//! K = 4 droplet's window at the MD point), five of which a K-mode step takes; and one steady
+//! field solve of the 2-mode Newton finish (`roots::steady_solver::TwoModeSolver`, N = 192):
+//! of a droplet whose transform is kept (the field and its forces) and of a new shape.
 //! Run: `cargo bench --bench step` (add `-- --quick` for a fast pass).
 use criterion::{criterion_group, criterion_main, Criterion};
 use droplet_solver::numerics::fft2::PrunedFft2;
+use droplet_solver::roots::steady_solver::TwoModeSolver;
 use droplet_solver::stepping::comoving_etd::ComovingEtd;
 use droplet_solver::stepping::{comoving_etd::TwoModeEtd, paper_fd::TwoModeFd, Stepper};
 use droplet_solver::{model::initial::InitialCondition, model::params::ModelParams};
@@ -62,6 +65,25 @@ fn bench(c: &mut Criterion) {
         b.iter(|| {
             spec.copy_from_slice(&full);
             fft.inverse(&mut spec, &mut out, lo, hi)
+        })
+    });
+    let mut solver = TwoModeSolver::new(p, 192).unwrap();
+    let (v, a2) = (0.59, -0.25);
+    let mut i = 0u32;
+    g.bench_function("steady_field_n192", |b| {
+        b.iter(|| {
+            i = i.wrapping_add(1);
+            solver
+                .field_and_forces(v + 1e-9 * f64::from(i % 64), 0.0, a2, 0.0)
+                .1
+        })
+    });
+    g.bench_function("steady_field_new_shape_n192", |b| {
+        b.iter(|| {
+            i = i.wrapping_add(1);
+            solver
+                .field_and_forces(v, 0.0, a2 + 1e-9 * f64::from(i % 64), 0.0)
+                .1
         })
     });
     g.finish();

@@ -58,6 +58,18 @@ pub struct SteadyState {
     pub iterations: usize,
 }
 
+/// `x / d` for a real `x`, as `Complex64::new(x, 0.0) / d` computes it (the same operations in
+/// the same order, so the same bits), written out so that a loop of them is vectorised: the
+/// steady field, `Theta_hat / (A N^2 (1 + k^2 - i k.v))`, took a tenth of a 2-mode map's run
+/// time with one scalar division after another.
+#[inline(always)]
+fn real_over(x: f64, d: Complex64) -> Complex64 {
+    let norm_sqr = d.re * d.re + d.im * d.im;
+    let re = x * d.re + 0.0 * d.im;
+    let im = 0.0 * d.re - x * d.im;
+    Complex64::new(re / norm_sqr, im / norm_sqr)
+}
+
 impl TwoModeSolver {
     pub fn new(params: ModelParams, n: usize) -> Result<Self, SolverError> {
         params.validate()?;
@@ -90,19 +102,18 @@ impl TwoModeSolver {
         let n = self.grid.n;
         let area = self.transform(a2, b2);
         let norm = 1.0 / (area * (n * n) as f64);
-        for jx in 0..=n / 2 {
-            let kx = self.grid.kx[jx];
-            let kxd = self.grid.kx_d[jx];
-            for jy in 0..n {
-                let ky = self.grid.ky[jy];
-                let kv = kxd * vx + self.grid.ky_d[jy] * vy;
-                let denom = Complex64::new(1.0 + kx * kx + ky * ky, -kv);
-                let i = jx * n + jy;
+        let t = &self.transformed[0];
+        let grid = &self.grid;
+        let columns = self.w.chunks_exact_mut(n).zip(t.ph.chunks_exact(n));
+        for ((w_col, ph_col), (kx, kxd)) in columns.zip(grid.kx.iter().zip(&grid.kx_d)) {
+            let kx2 = 1.0 + kx * kx;
+            let modes = grid.ky.iter().zip(&grid.ky_d);
+            for ((w, ph), (ky, kyd)) in w_col.iter_mut().zip(ph_col).zip(modes) {
+                let kv = kxd * vx + kyd * vy;
                 // Theta_hat = Re of the packed transform.
-                self.w[i] = Complex64::new(self.transformed[0].ph[i].re * norm, 0.0) / denom;
+                *w = real_over(ph.re * norm, Complex64::new(kx2 + ky * ky, -kv));
             }
         }
-        let t = &self.transformed[0];
         let f = spectral_forces(&self.grid, &self.w, &t.ph, &t.yh, area);
         (&self.w, f)
     }
@@ -306,5 +317,29 @@ impl TwoModeSolver {
 
     pub fn grid(&self) -> &Grid {
         &self.grid
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_real_over_a_complex_number_is_num_complexs_quotient_to_the_last_bit() {
+        let xs = [0.0, -0.0, 1.0, -3.7e-5, 2.5e8, f64::MIN_POSITIVE];
+        let ds = [
+            Complex64::new(1.0, 0.0),
+            Complex64::new(1.0, -0.0),
+            Complex64::new(37.5, -0.8125),
+            Complex64::new(1.0 + 1e-12, 4.2e3),
+            Complex64::new(2.0, -1e-300),
+        ];
+        for x in xs {
+            for d in ds {
+                let (ours, theirs) = (real_over(x, d), Complex64::new(x, 0.0) / d);
+                assert_eq!(ours.re.to_bits(), theirs.re.to_bits(), "{x} / {d}");
+                assert_eq!(ours.im.to_bits(), theirs.im.to_bits(), "{x} / {d}");
+            }
+        }
     }
 }
