@@ -64,6 +64,20 @@ impl DropletState {
     }
 }
 
+/// The largest magnitude of `values`, NaN if any of them is NaN (`f64::max` passes over NaN,
+/// and a run that left the model must not read as one at rest): a step's error estimate, a
+/// run's largest rate.
+pub fn largest_magnitude(values: impl IntoIterator<Item = f64>) -> f64 {
+    values.into_iter().fold(0.0, |m: f64, x| {
+        let a = x.abs();
+        if m.is_nan() || a.is_nan() {
+            f64::NAN
+        } else {
+            m.max(a)
+        }
+    })
+}
+
 /// The distance of two co-moving states `(vx, vy, a_2..a_K, b_2..b_K)` (for `K = 2` the
 /// monitored `(vx, vy, a2, b2)`): the largest difference of a component (the paper's steady
 /// test's norm).
@@ -118,6 +132,17 @@ pub fn four(z: &[f64]) -> [f64; 4] {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_largest_magnitude_is_nan_wherever_a_nan_stands() {
+        assert_eq!(largest_magnitude([0.5, -2.0, 1.0]), 2.0);
+        assert_eq!(largest_magnitude(std::iter::empty()), 0.0);
+        for at in 0..3 {
+            let mut v = [1e-3, -4.0, 2.0];
+            v[at] = f64::NAN;
+            assert!(largest_magnitude(v).is_nan(), "NaN at {at}");
+        }
+    }
 
     #[test]
     fn reflecting_twice_in_a_line_is_the_identity_and_in_two_lines_a_turn() {

@@ -21,7 +21,7 @@ use crate::model::classify::StateClass;
 use crate::model::initial::InitialCondition;
 use crate::model::modes::Modes;
 use crate::model::params::ModelParams;
-use crate::model::state::{four, DropletState};
+use crate::model::state::{four, largest_magnitude, DropletState};
 use crate::roots::verdict::{rotation_generator, ROTATION_MIN_NORM};
 use crate::runs::clock::{Clock, Recorder, Step};
 use crate::runs::finding::Diagnosis;
@@ -366,14 +366,8 @@ impl Watch {
                         finish: f64::NAN,
                     });
                 };
-                // NaN (a rate of a run that left the model) is kept: `f64::max` passes over it.
-                let largest = |r: &[f64]| {
-                    if r.iter().any(|x| x.is_nan()) {
-                        f64::NAN
-                    } else {
-                        r.iter().fold(0.0f64, |m, x| m.max(x.abs()))
-                    }
-                };
+                // NaN (a rate of a run that left the model) is kept.
+                let largest = |r: &[f64]| largest_magnitude(r.iter().copied());
                 let g = rotation_generator(z);
                 let gg: f64 = g.iter().map(|x| x * x).sum();
                 let across = if gg.sqrt() > ROTATION_MIN_NORM {

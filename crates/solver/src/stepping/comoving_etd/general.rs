@@ -34,7 +34,7 @@ use crate::model::forces::quadrature::{ForceQuadrature, PassBuffers};
 use crate::model::grid::Grid;
 use crate::model::modes::Modes;
 use crate::model::params::ModelParams;
-use crate::model::state::DropletState;
+use crate::model::state::{largest_magnitude, DropletState};
 use crate::numerics::fft2::PrunedFft2;
 use crate::stepping::etd::{EtdCoef, SeparableExp};
 use crate::stepping::{scale_displacement, Attempt, Field, Scheme, Stepper};
@@ -347,14 +347,7 @@ impl Stepper for ComovingEtd {
             })
             .collect();
         // The largest |corrector - predictor|, NaN if any is.
-        let error = next.iter().zip(&z_a).fold(0.0f64, |e, (c, p)| {
-            let d = (c - p).abs();
-            if e.is_nan() || d.is_nan() {
-                f64::NAN
-            } else {
-                e.max(d)
-            }
-        });
+        let error = largest_magnitude(next.iter().zip(&z_a).map(|(c, p)| c - p));
         if max_error.is_finite() && (error.is_nan() || error > max_error) {
             self.start = Some(start);
             return Attempt {
